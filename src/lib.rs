@@ -1,0 +1,38 @@
+//! # zshift
+//!
+//! Ends z-fighting of coplanar geometry (decals, scorch marks, outlines) by offsetting depth
+//! through the projection matrix, and tells exactly how much depth precision a projection has.
+//!
+//! ## Conventions
+//! Unless a function says otherwise: OpenGL's right-handed eye space looking down −z; clip depth
+//! in `[−w, w]`, NDC depth in `[−1, 1]`, window depth in `[0, 1]`; column-major matrices, as
+//! `glLoadMatrixf` takes them. Distances `n`, `f`, `d` are positive; `Pz` is an eye-space z
+//! (negative in front of the camera). `δ > 0` moves geometry toward the camera. All arithmetic
+//! is f64; matrices are rounded to f32 at the end, and where the rounding direction matters
+//! (the offset element) it is chosen so the offset is never lost.
+//!
+//! ## Map of the modules
+//! | module | computes | seeds |
+//! |---|---|---|
+//! | [`projection`] | the `glFrustum` matrix, finite or infinite far | 000 eq. 4.1.1, 003 |
+//! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
+//! | [`precision`] | window depth and the exact depth step at a distance | 001 |
+//! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
+//! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
+
+pub mod domain;
+mod double_double;
+pub mod error;
+pub mod ffi;
+pub mod offset;
+pub mod precision;
+pub mod projection;
+
+pub use domain::{depth_steps, Planes};
+pub use error::{Error, ErrorKind, Result};
+pub use offset::{
+    epsilon, epsilon_matrix, load_offset_matrix, max_delta_away, min_delta_toward, min_epsilon,
+    offset_matrix,
+};
+pub use precision::{depth_resolution, window_depth};
+pub use projection::{frustum, Frustum};

@@ -1,0 +1,201 @@
+//! Lengyel's depth offset through the projection matrix (seed 000, eq. 4.1.3–4.1.11, with the
+//! errata of seed 002), and its f32 rounding.
+//!
+//! Scaling element 10 of the `glFrustum` matrix by `1 + ε` adds `−ε·m10 = ε·(f+n)/(f−n)` to
+//! every NDC depth and leaves x, y and w untouched (eq. 4.1.4). Sign convention, as in the
+//! seed: `δ > 0` moves geometry toward the camera and gives `ε < 0`.
+
+use glam::Mat4;
+
+use crate::domain::{depth_steps, finite, representable, Planes};
+use crate::double_double::{unit_scale, DoubleDouble};
+use crate::error::{Error, ErrorKind, Result};
+use crate::precision::depth_step_toward;
+use crate::projection::Frustum;
+
+/// ε for an eye-space shift `δ` of a point at eye-space depth `Pz` (eq. 4.1.7):
+///
+/// `ε = −(2fn/(f+n)) · δ / (Pz·(Pz+δ))`
+///
+/// With `f = +∞` the factor `2fn/(f+n)` becomes its limit `2n`. Computed in f64 in an order
+/// that never forms `f·n` or `Pz²`, within a few ulp of the exact value (measured in the
+/// exact-arithmetic tests); `Pz + δ` is exact near the singularity `δ → −Pz` (Sterbenz).
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] for NaN or infinite inputs (except `f = +∞`);
+/// [`ErrorKind::Domain`] for bad planes, `Pz` outside `[−f, −n]`, or `Pz + δ ≥ 0` (the shifted
+/// point would be at or behind the eye); [`ErrorKind::Overflow`] if ε overflows f64.
+pub fn epsilon(n: f64, f: f64, delta: f64, pz: f64) -> Result<f64> {
+    let planes = Planes::new(n, f)?;
+    let shifted = shifted_depth(&planes, delta, pz)?;
+    let eps = -2.0 * n * planes.far_over_sum() * ((delta / pz) / shifted);
+    representable(eps, "epsilon overflows f64: Pz + delta is too close to 0")
+}
+
+/// The smallest |ε| that moves depth by one step of an m-bit buffer: the corrected eq. 4.1.8
+/// (seed 002), `2/(2^m − 1) · (f − n)/(f + n)`.
+///
+/// The factor is 2, not the 1 printed in seed 000, because NDC depth spans `[−1, 1]`: one
+/// window-depth step `1/(2^m−1)` is two NDC units of it. With `f = +∞`, `2/(2^m − 1)`.
+/// This is a lower bound on a real rasterizer, not a recommendation (see `../shared/NOTES.md`).
+///
+/// # Errors
+/// As [`Planes::new`] and [`depth_steps`].
+pub fn min_epsilon(n: f64, f: f64, bits: u32) -> Result<f64> {
+    let planes = Planes::new(n, f)?;
+    let steps = depth_steps(bits)?;
+    Ok(2.0 / (steps * planes.sum_over_span()))
+}
+
+/// The smallest shift toward the camera that changes the stored depth of a point at `Pz`
+/// (eq. 4.1.9 with the corrected `k = (f − n)/(f·n·(2^m − 1))` of seed 002):
+///
+/// `δ = k·Pz² / (1 − k·Pz)`, positive.
+///
+/// It equals [`crate::precision::depth_resolution`] at `d = −Pz` (Walker's exact step).
+/// Well conditioned everywhere: `1 − k·Pz > 1` since `Pz < 0`.
+///
+/// # Errors
+/// As [`Planes::new`], [`Planes::check_eye_z`] and [`depth_steps`].
+pub fn min_delta_toward(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
+    let planes = Planes::new(n, f)?;
+    planes.check_eye_z(pz)?;
+    depth_step_toward(&planes, depth_steps(bits)?, -pz)
+}
+
+/// The largest (least negative) shift away from the camera that still changes the stored depth
+/// of a point at `Pz` (eq. 4.1.10 with the corrected k of seed 002):
+///
+/// `δ = −k·Pz² / (1 + k·Pz)`, negative.
+///
+/// Ill-conditioned as `k·|Pz| → 1`: the relative error grows like the condition number
+/// `k|Pz| / (1 − k|Pz|)` times a few ulp, and no faster.
+///
+/// # Errors
+/// As [`min_delta_toward`]; [`ErrorKind::Unresolvable`] if `k·|Pz| ≥ 1`: the depth step at
+/// `Pz` is larger than the whole remaining depth range behind it, so no finite shift away
+/// from the camera reaches the next stored value; [`ErrorKind::Overflow`] if δ overflows.
+pub fn max_delta_away(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
+    let planes = Planes::new(n, f)?;
+    planes.check_eye_z(pz)?;
+    let u = crate::precision::steps_per_distance(&planes, depth_steps(bits)?, -pz);
+    if u >= 1.0 {
+        return Err(Error::new(
+            ErrorKind::Unresolvable,
+            "k*|Pz| >= 1: no shift away from the camera changes the stored depth",
+        ));
+    }
+    representable(pz * (u / (1.0 - u)), "delta overflows f64")
+}
+
+/// The `glFrustum` matrix with element 10 scaled by `1 + ε(δ, Pz)`: the drop-in for the seed's
+/// `LoadOffsetMatrix` (eq. 4.1.3), returning the matrix instead of loading it.
+///
+/// Every element but 10 is bit-identical to [`crate::projection::frustum`]'s. Element 10 is
+/// rounded away from the plain element: with `p = f32(m10)` and `o = m10·ε` (exactly
+/// `2fnδ / ((f−n)·Pz·(Pz+δ))`), the result `x` satisfies `|o| ≤ |x − p| ≤ |o| + ulp(x)` and
+/// `x − p` has the sign of `o`. The seed's f32 `m[10] *= 1 + ε` loses offsets below half an
+/// ulp of `m10`; this one never does. `o` is evaluated in double-double arithmetic (≈ 2⁻¹⁰⁴
+/// relative error), which decides the rounding direction.
+///
+/// # Errors
+/// As [`Frustum::new`] and [`epsilon`]; [`ErrorKind::Overflow`] if element 10 leaves f32.
+pub fn load_offset_matrix(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<Mat4> {
+    let frustum = Frustum::new(l, r, b, t, n, f)?;
+    Ok(Mat4::from_cols_array(&offset_matrix(&frustum, delta, pz)?))
+}
+
+/// [`load_offset_matrix`] for an already validated [`Frustum`], as a column-major array.
+///
+/// # Errors
+/// As [`load_offset_matrix`].
+pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
+    let planes = frustum.planes();
+    shifted_depth(&planes, delta, pz)?;
+    let mut m = frustum.to_cols_array()?;
+    m[10] = offset_element(m[10], ndc_offset_of_shift(&planes, delta, pz))?;
+    Ok(m)
+}
+
+/// The `glFrustum` matrix with element 10 scaled by `1 + ε` for a given ε, rounded away from
+/// the plain element as in [`offset_matrix`]: `|o| ≤ |x − p| ≤ |o| + ulp(x)` with `o = m10·ε`.
+///
+/// # Errors
+/// As [`Frustum::to_cols_array`]; [`ErrorKind::NotFinite`] if ε is NaN or infinite;
+/// [`ErrorKind::Overflow`] if element 10 leaves f32.
+pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
+    finite(epsilon, "epsilon is NaN or infinite")?;
+    let planes = frustum.planes();
+    let mut m = frustum.to_cols_array()?;
+    m[10] = offset_element(m[10], ndc_offset_of_epsilon(&planes, epsilon))?;
+    Ok(m)
+}
+
+/// Checks `δ` and returns `Pz + δ`, which must stay in front of the eye.
+fn shifted_depth(planes: &Planes, delta: f64, pz: f64) -> Result<f64> {
+    finite(delta, "the eye-space shift delta is NaN or infinite")?;
+    planes.check_eye_z(pz)?;
+    let shifted = pz + delta;
+    if shifted >= 0.0 {
+        return Err(crate::domain::domain(
+            "Pz + delta must stay in front of the eye (< 0)",
+        ));
+    }
+    Ok(shifted)
+}
+
+/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))` in double-double. `f + n` cancels, and the formula is
+/// homogeneous of degree 0, so the inputs are first scaled by a power of two that keeps every
+/// product in range.
+fn ndc_offset_of_shift(planes: &Planes, delta: f64, pz: f64) -> DoubleDouble {
+    let s = unit_scale(pz);
+    let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
+    let two_n_delta = DoubleDouble::product(2.0 * n, delta);
+    let depth_product = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
+    if planes.is_infinite() {
+        return two_n_delta.div(depth_product);
+    }
+    let f = planes.far() * s;
+    let numerator = two_n_delta.mul(DoubleDouble::from_f64(f));
+    numerator.div(depth_product.mul(DoubleDouble::sum(f, -n)))
+}
+
+/// `o = m10·ε = −ε·(f+n)/(f−n)` in double-double; `−ε` when `f = +∞`.
+fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> DoubleDouble {
+    if planes.is_infinite() {
+        return DoubleDouble::from_f64(-epsilon);
+    }
+    let s = unit_scale(planes.far());
+    let (f, n) = (planes.far() * s, planes.near() * s);
+    let numerator = DoubleDouble::sum(f, n).mul(DoubleDouble::from_f64(-epsilon));
+    numerator.div(DoubleDouble::sum(f, -n))
+}
+
+/// Rounds `plain + offset` to f32 away from `plain`, so the offset the GPU sees is never
+/// smaller than the one asked for and at most one f32 ulp larger.
+fn offset_element(plain: f32, offset: DoubleDouble) -> Result<f32> {
+    if !offset.is_finite() {
+        return Err(Error::new(ErrorKind::Overflow, "the depth offset overflows f64"));
+    }
+    if offset.hi == 0.0 {
+        return Ok(plain);
+    }
+    let target = DoubleDouble::from_f64(plain as f64).add(offset);
+    let x = target.to_f32_directed(offset.hi > 0.0);
+    if !x.is_finite() {
+        return Err(Error::new(
+            ErrorKind::Overflow,
+            "the offset element 10 overflows f32",
+        ));
+    }
+    Ok(x)
+}
