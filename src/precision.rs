@@ -49,5 +49,10 @@ pub(crate) fn steps_per_distance(planes: &Planes, steps: f64, d: f64) -> f64 {
 /// `Δd = d·u/(1+u)`, written so that no intermediate exceeds `d`.
 pub(crate) fn depth_step_toward(planes: &Planes, steps: f64, d: f64) -> Result<f64> {
     let u = steps_per_distance(planes, steps, d);
+    if u.is_infinite() {
+        // `d/n` overflowed (n near f64::MIN_POSITIVE): u/(1+u) is 1 to within 2^-1000, and
+        // ∞/∞ would give NaN.
+        return Ok(d);
+    }
     Ok(d * (u / (1.0 + u)))
 }
