@@ -5,6 +5,12 @@
 //! output buffer is left untouched and the returned [`ZshiftStatus`] says what was wrong;
 //! [`zshift_status_message`] gives it in words. Output pointers need no particular alignment.
 //! All functions are reentrant and thread-safe: they keep no state.
+//!
+//! Memory: every input is passed by value, so an output can never overlap an input, and the
+//! only memory a function touches is its one output (8 bytes for a double, 64 for a float[16]),
+//! written once, after the computation, with `write_unaligned` or a byte copy from a local.
+//! These promises are checked by `tests/threads.rs`, `tests/miri_ffi.rs` (under Miri:
+//! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (README, Hardening).
 
 use std::ffi::c_char;
 use std::panic::{catch_unwind, UnwindSafe};
