@@ -61,8 +61,12 @@ fn inputs(u: &mut Unstructured) -> Result<Inputs> {
     let d = pick(u, inside)?;
     let pz = pick(u, |u| Ok(-inside(u)?))?;
     let delta = pick(u, |u| {
-        let sign = if u.ratio(1, 4)? { -1.0 } else { 1.0 };
-        Ok(sign * pz.abs() * decades(u, -16.0, 0.0)?)
+        Ok(match u.int_in_range(0..=3u8)? {
+            // Just short of the eye: Pz + delta -> 0-, where epsilon and element 10 overflow.
+            0 => pz.abs() * (1.0 - decades(u, -17.0, -1.0)?),
+            1 => -pz.abs() * decades(u, -16.0, 3.0)?,
+            _ => pz.abs() * decades(u, -16.0, 0.0)?,
+        })
     })?;
     let half = |u: &mut Unstructured| Ok(n * decades(u, -3.0, 3.0)?);
     let (l, r, b, t) = (
@@ -76,7 +80,11 @@ fn inputs(u: &mut Unstructured) -> Result<Inputs> {
     } else {
         u.int_in_range(1..=32)?
     };
-    let status = u.arbitrary()?;
+    let status = if u.ratio(1, 2)? {
+        u.int_in_range(-1..=7)?
+    } else {
+        u.arbitrary()?
+    };
     Ok(Inputs {
         l,
         r,
