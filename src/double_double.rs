@@ -25,12 +25,18 @@ impl DoubleDouble {
     /// The exact product `a · b` (TwoProd with a fused multiply-add).
     pub fn product(a: f64, b: f64) -> Self {
         let p = a * b;
-        Self { hi: p, lo: a.mul_add(b, -p) }
+        Self {
+            hi: p,
+            lo: a.mul_add(b, -p),
+        }
     }
 
     fn renormalized(hi: f64, lo: f64) -> Self {
         let s = hi + lo;
-        Self { hi: s, lo: lo - (s - hi) }
+        Self {
+            hi: s,
+            lo: lo - (s - hi),
+        }
     }
 
     pub fn add(self, other: Self) -> Self {
@@ -44,7 +50,10 @@ impl DoubleDouble {
     }
 
     pub fn neg(self) -> Self {
-        Self { hi: -self.hi, lo: -self.lo }
+        Self {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
 
     /// `self / other` by three steps of long division.

@@ -184,7 +184,10 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> DoubleDouble {
 /// smaller than the one asked for and at most one f32 ulp larger.
 fn offset_element(plain: f32, offset: DoubleDouble) -> Result<f32> {
     if !offset.is_finite() {
-        return Err(Error::new(ErrorKind::Overflow, "the depth offset overflows f64"));
+        return Err(Error::new(
+            ErrorKind::Overflow,
+            "the depth offset overflows f64",
+        ));
     }
     if offset.hi == 0.0 {
         return Ok(plain);
