@@ -9,6 +9,8 @@ use crate::precision::{DepthFormat, DepthMapping};
 /// The window-depth margin [`tight_planes`] keeps between the scene and each clip plane:
 /// `2⁻²²`, four f32 ulps of 1 — more than the f32 rounding of the matrix, the clip-space
 /// product and the divide can move a vertex's depth, so no vertex of the scene is clipped.
+///
+/// cbindgen:ignore
 pub const PLANE_MARGIN: f64 = 1.0 / 4_194_304.0;
 
 /// The tightest planes for a scene whose geometry lies between eye distances `nearest` and

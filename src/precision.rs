@@ -108,7 +108,7 @@ pub(crate) fn depth_step_toward(planes: &Planes, steps: f64, d: f64) -> Result<f
 // reversed; s = 0 except for Kooima's median projection), so one step formula serves them all.
 // ---------------------------------------------------------------------------------------------
 
-use crate::domain::{domain, finite, representable};
+use crate::domain::{domain, finite};
 use crate::error::{Error, ErrorKind};
 use crate::projection::ClipDepth;
 

@@ -254,6 +254,8 @@ pub fn perspective(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Mat
 /// a factor `1 + 2⁻²⁴`, so `ε > 2·2⁻²⁴ + 2⁻⁴⁸` keeps `z_clip < w`; `2⁻²²` doubles that to cover
 /// a GPU whose multiply-add is off by one ulp instead of half. Lengyel (GDC 2007, "Projection
 /// Matrix Tricks") uses the same value; `tweakedInfinitePerspective` in GLM takes it as `ep`.
+///
+/// cbindgen:ignore
 pub const MIN_INFINITE_TWEAK: f64 = 1.0 / 4_194_304.0;
 
 /// The tweaked infinite projection (Lengyel, GDC 2007; GLM `tweakedInfinitePerspective`):
