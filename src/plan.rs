@@ -133,7 +133,11 @@ pub fn range_offset(
     steps: f64,
 ) -> Result<RangeOffset> {
     finite(steps, "the number of depth steps is NaN or infinite")?;
-    if steps < 1.0 || !(lo <= hi) {
+    if steps < 1.0
+        || lo.partial_cmp(&hi) == Some(std::cmp::Ordering::Greater)
+        || lo.is_nan()
+        || hi.is_nan()
+    {
         return Err(domain("need steps >= 1 and lo <= hi"));
     }
     let mut needed = 0.0f64;

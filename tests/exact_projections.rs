@@ -165,7 +165,7 @@ fn perspective_matches_glu_perspective() {
             .to_cols_array_f64()
             .unwrap();
         // gluPerspective: cot(fovy/2)/aspect and cot(fovy/2), centred (elements 8, 9 zero).
-        let cot = 1.0 / (fovy as f64 / 2.0).to_radians().tan();
+        let cot = 1.0 / (fovy / 2.0).to_radians().tan();
         assert!(((m[0] - cot / aspect) / m[0]).abs() < 1e-14, "m0 {fovy}");
         assert!(((m[5] - cot) / m[5]).abs() < 1e-14, "m5 {fovy}");
         assert_eq!((m[8], m[9]), (0.0, 0.0));
