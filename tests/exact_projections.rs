@@ -702,3 +702,216 @@ fn stacked_layers_multiply_and_stop_at_the_gap() {
     .unwrap_err();
     assert_eq!(err.kind(), ErrorKind::Unresolvable);
 }
+
+mod c_abi {
+    use super::*;
+    use zshift::ffi::*;
+
+    #[test]
+    fn entry_points_match_the_rust_functions_and_leave_output_untouched_on_error() {
+        assert_eq!(ZSHIFT_MIN_INFINITE_TWEAK, MIN_INFINITE_TWEAK);
+        let fr = Frustum::new(-1.0, 1.0, -0.5, 0.5, 0.1, 100.0).unwrap();
+        let mut m = [7.0f32; 16];
+        let clips = [
+            (ZSHIFT_CLIP_NEG_ONE_TO_ONE, ClipDepth::NegOneToOne),
+            (ZSHIFT_CLIP_ZERO_TO_ONE, ClipDepth::ZeroToOne),
+            (
+                ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+                ClipDepth::ReversedZeroToOne,
+            ),
+        ];
+        for (c, clip) in clips {
+            assert_eq!(
+                zshift_projection(-1.0, 1.0, -0.5, 0.5, 0.1, 100.0, c, m.as_mut_ptr()),
+                ZSHIFT_OK
+            );
+            assert_eq!(m, projection(&fr, clip).unwrap());
+            let st = zshift_offset_projection(
+                -1.0,
+                1.0,
+                -0.5,
+                0.5,
+                0.1,
+                100.0,
+                c,
+                0.01,
+                -5.0,
+                m.as_mut_ptr(),
+            );
+            assert_eq!(st, ZSHIFT_OK);
+            assert_eq!(m, offset_projection(&fr, clip, 0.01, -5.0).unwrap());
+        }
+        let before = m;
+        assert_eq!(
+            zshift_projection(-1.0, 1.0, -0.5, 0.5, 0.1, 100.0, 3, m.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(
+            zshift_perspective(0.0, 1.0, 0.1, 10.0, m.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(
+            zshift_tweaked_infinite(-1.0, 1.0, -1.0, 1.0, 0.1, 1.0, m.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(m, before, "output untouched on error");
+        assert_eq!(
+            zshift_perspective(60.0, 1.0, 0.1, 10.0, std::ptr::null_mut()),
+            ZSHIFT_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            zshift_perspective(60.0, 1.5, 0.1, 10.0, m.as_mut_ptr()),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            m,
+            perspective_frustum(60.0, 1.5, 0.1, 10.0)
+                .unwrap()
+                .to_cols_array()
+                .unwrap()
+        );
+        let st = zshift_offset_perspective(
+            60.0,
+            1.5,
+            0.1,
+            10.0,
+            ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+            0.01,
+            -2.0,
+            m.as_mut_ptr(),
+        );
+        assert_eq!(st, ZSHIFT_OK);
+        let pf = perspective_frustum(60.0, 1.5, 0.1, 10.0).unwrap();
+        assert_eq!(
+            m,
+            offset_projection(&pf, ClipDepth::ReversedZeroToOne, 0.01, -2.0).unwrap()
+        );
+        assert_eq!(
+            zshift_tweaked_infinite(
+                -1.0,
+                1.0,
+                -1.0,
+                1.0,
+                0.1,
+                MIN_INFINITE_TWEAK,
+                m.as_mut_ptr()
+            ),
+            ZSHIFT_OK
+        );
+        let inf = Frustum::new(-1.0, 1.0, -1.0, 1.0, 0.1, f64::INFINITY).unwrap();
+        assert_eq!(m, tweaked_infinite(&inf, MIN_INFINITE_TWEAK).unwrap());
+
+        let mut x = 42.0f64;
+        let fmt = ZSHIFT_FORMAT_FLOAT32;
+        assert_eq!(
+            zshift_depth_step(
+                0.1,
+                100.0,
+                ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+                fmt,
+                3.0,
+                &mut x
+            ),
+            ZSHIFT_OK
+        );
+        let m_rev = DepthMapping::projection(0.1, 100.0, ClipDepth::ReversedZeroToOne).unwrap();
+        assert_eq!(x, m_rev.depth_step(3.0, DepthFormat::Float32).unwrap());
+        assert_eq!(
+            zshift_depth_step(0.1, 100.0, 0, 9, 3.0, &mut x),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(
+            zshift_depth_step(0.1, 100.0, 0, 1, 300.0, &mut x),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(
+            x,
+            m_rev.depth_step(3.0, DepthFormat::Float32).unwrap(),
+            "untouched"
+        );
+        assert_eq!(
+            zshift_median_depth_step(10.0, ZSHIFT_FORMAT_UNORM24, 5.0, &mut x),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            x,
+            DepthMapping::median(10.0)
+                .unwrap()
+                .depth_step(5.0, DepthFormat::Unorm24)
+                .unwrap()
+        );
+        assert_eq!(zshift_median_ndc_offset(10.0, 0.1, -5.0, &mut x), ZSHIFT_OK);
+        assert_eq!(x, median_ndc_offset(10.0, 0.1, -5.0).unwrap());
+        assert_eq!(
+            zshift_window_depth_clip(0.1, 100.0, 2, 0.1, &mut x),
+            ZSHIFT_OK
+        );
+        assert_eq!(x, 1.0);
+        assert_eq!(
+            zshift_min_ndc_offset(0.1, 100.0, 0, ZSHIFT_FORMAT_UNORM16, 1.0, &mut x),
+            ZSHIFT_OK
+        );
+        assert!(rel_err(x, &(int(2) / int(65535))) < 1e-15);
+        assert_eq!(
+            zshift_min_relative_epsilon(0.1, 100.0, 2, fmt, 1.0, &mut x),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            x,
+            m_rev
+                .min_relative_epsilon(1.0, DepthFormat::Float32)
+                .unwrap()
+        );
+        let std = DepthMapping::projection(0.1, 100.0, ClipDepth::NegOneToOne).unwrap();
+        assert_eq!(
+            zshift_bias_of_shift(0.1, 100.0, 0, 1, ZSHIFT_BIAS_VULKAN, 0.01, -5.0, &mut x),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            x,
+            bias_of_shift(&std, DepthFormat::Unorm24, BiasApi::Vulkan, 0.01, -5.0).unwrap()
+        );
+        let bias = x;
+        assert_eq!(
+            zshift_shift_of_bias(0.1, 100.0, 0, 1, ZSHIFT_BIAS_VULKAN, bias, -5.0, &mut x),
+            ZSHIFT_OK
+        );
+        assert!((x - 0.01).abs() < 1e-9);
+        assert_eq!(
+            zshift_bias_of_shift(0.1, 100.0, 0, 1, 7, 0.01, -5.0, &mut x),
+            ZSHIFT_ERR_DOMAIN
+        );
+
+        let mut two = [0.0f64; 2];
+        assert_eq!(zshift_tight_planes(0.5, 20.0, two.as_mut_ptr()), ZSHIFT_OK);
+        let p = tight_planes(0.5, 20.0).unwrap();
+        assert_eq!(two, [p.near(), p.far()]);
+        assert_eq!(
+            zshift_tight_planes(0.0, 20.0, two.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+        let mut three = [0.0f64; 3];
+        let st = zshift_range_offset(
+            0.1,
+            100.0,
+            0,
+            1,
+            ZSHIFT_OFFSET_NDC,
+            1.0,
+            50.0,
+            2.0,
+            three.as_mut_ptr(),
+        );
+        assert_eq!(st, ZSHIFT_OK);
+        let o = range_offset(&std, DepthFormat::Unorm24, OffsetKind::Ndc, 1.0, 50.0, 2.0).unwrap();
+        assert_eq!(three, [o.offset, o.shift_near, o.shift_far]);
+        assert_eq!(
+            zshift_range_offset(0.1, 100.0, 0, 1, 5, 1.0, 50.0, 2.0, three.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+        assert_eq!(
+            zshift_range_offset(0.1, 100.0, 0, 1, 0, 1.0, 50.0, 2.0, std::ptr::null_mut()),
+            ZSHIFT_ERR_NULL_POINTER
+        );
+    }
+}
