@@ -59,6 +59,7 @@ impl MdpProgram {
     }
 
     /// Draws `quad` through `zshift_ftransform_mdp`, with depth test `depth_func` and writes on.
+    #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &self,
         gl: &Gl,
@@ -117,7 +118,7 @@ pub enum Drawer<'a> {
 pub const COLUMNS: usize = 256;
 
 /// Measures the depth step at eye distance `d`: draws `COLUMNS` facing strips, one per pixel
-/// column, at distances `d − k·h` (`h = expected/8`, rounded to f32 as vertex z), stores each
+/// column, at distances `d + (127.5 − k)·h` (`h = expected/8`, rounded to f32 as vertex z), stores each
 /// with `GL_ALWAYS`, reads the depth back and divides the distance spanned by the number of
 /// distinct stored values less one (robust to evaluation noise that makes the stored value
 /// go back and forth between neighbours). The target must be `COLUMNS × 2` with the format of interest,
@@ -150,7 +151,8 @@ pub fn measure_step(
     gl.clear([0.0, 0.0, 0.0, 1.0], 0.5)?;
     let mut zs = Vec::with_capacity(COLUMNS);
     for k in 0..COLUMNS {
-        let z = (-(d - k as f64 * h)) as f32;
+        // Centred on d, so a step that grows with distance averages to its value at d.
+        let z = (-(d + (0.5 * (COLUMNS - 1) as f64 - k as f64) * h)) as f32;
         zs.push(z);
         let dk = -f64::from(z);
         // Window x in [k + 0.25, k + 0.75] contains only pixel k's centre.
