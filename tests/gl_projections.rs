@@ -363,3 +363,42 @@ fn measured_depth_step_matches_the_prediction() {
     }
     let _ = ndc_offset_matrix; // the constant-offset path is exercised by the decal tests above
 }
+
+#[test]
+fn perspective_frames_the_field_of_view() {
+    let mut gl = context();
+    gl.set_target(SIZE, SIZE / 2, GlFormat::D24).unwrap();
+    gl.clip_control(GlClip::NegativeOneToOne).unwrap();
+    let (fovy, aspect) = (60.0f64, 2.0f64);
+    let m = zshift::projection::perspective(fovy, aspect, 0.1, 100.0)
+        .unwrap()
+        .to_cols_array();
+    for d in [0.5, 40.0] {
+        // Half the view's height and width at distance d: the middle half of each axis.
+        let half_h = 0.5 * d * (fovy.to_radians() / 2.0).tan();
+        let half_w = half_h * aspect;
+        let quad = Quad::rect(
+            -half_w as f32,
+            half_w as f32,
+            -half_h as f32,
+            half_h as f32,
+            -d as f32,
+        );
+        gl.clear([0.0, 0.0, 0.0, 1.0], 1.0).unwrap();
+        gl.draw_quad(&quad, &m, BASE, &DrawState::default())
+            .unwrap();
+        let px = gl.read_color().unwrap().count(rgba8(BASE), None);
+        assert_eq!(px, (SIZE as usize / 2) * (SIZE as usize / 4), "d={d}");
+        // Its offset variant moves depth only: every element but 10 is unchanged.
+        let off = zshift::clip_offset::offset_projection(
+            &zshift::projection::perspective_frustum(fovy, aspect, 0.1, 100.0).unwrap(),
+            ClipDepth::NegOneToOne,
+            0.01 * d,
+            -d,
+        )
+        .unwrap();
+        for i in (0..16).filter(|&i| i != 10) {
+            assert_eq!(off[i].to_bits(), m[i].to_bits());
+        }
+    }
+}
