@@ -6,7 +6,7 @@
 
 mod projections_gl;
 
-use projections_gl::{eye_z_spacing, measure_step, Drawer, MdpProgram, COLUMNS};
+use projections_gl::{eye_z_spacing, measure_step, Drawer, MdpProgram, BASE, COLUMNS, DECAL};
 use zshift::clip_offset::{ndc_offset_matrix, offset_projection, offset_tweaked_infinite};
 use zshift::polygon_offset::{bias_of_shift, BiasApi};
 use zshift::precision::{DepthFormat, DepthMapping};
@@ -17,8 +17,6 @@ use zshift_harness::{
 };
 
 const SIZE: u32 = 96;
-const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
-const DECAL: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
 
 fn context() -> Gl {
     Gl::new(Profile::Core)
@@ -29,9 +27,6 @@ fn frustum(n: f64, f: f64) -> Frustum {
     Frustum::new(-0.5 * n, 0.5 * n, -0.5 * n, 0.5 * n, n, f).unwrap()
 }
 
-/// A base quad and a smaller decal on the same facing plane at distance `d` (different
-/// vertices, as real decals have), the decal drawn with `decal_proj`. Returns the decal pixels
-/// lost to the base.
 fn decal_loss(
     gl: &mut Gl,
     base_proj: &[f32; 16],
@@ -39,32 +34,7 @@ fn decal_loss(
     d: f64,
     reversed: bool,
 ) -> usize {
-    let (clear, func) = if reversed {
-        (0.0, glow::GREATER)
-    } else {
-        (1.0, glow::LESS)
-    };
-    gl.clear([0.0, 0.0, 0.0, 1.0], clear).unwrap();
-    let s = 0.45 * d;
-    let base = Quad::rect(-s as f32, s as f32, -s as f32, s as f32, -d as f32);
-    let t = 0.3 * d;
-    let decal = Quad::on_plane(-t, 0.77 * t, -0.91 * t, t, |_, _| -d);
-    let state = DrawState {
-        depth_func: func,
-        ..Default::default()
-    };
-    gl.draw_quad(&base, base_proj, BASE, &state).unwrap();
-    gl.draw_quad(&decal, decal_proj, DECAL, &state).unwrap();
-    // Where the decal is: draw it alone into a fresh buffer.
-    let image = gl.read_color().unwrap();
-    gl.clear([0.0, 0.0, 0.0, 1.0], clear).unwrap();
-    gl.draw_quad(&decal, decal_proj, DECAL, &state).unwrap();
-    let mask = gl.read_color().unwrap().mask_of(rgba8(DECAL));
-    assert!(
-        mask.iter().filter(|&&m| m).count() > 500,
-        "the decal covers too few pixels"
-    );
-    image.count_not_in_mask(&mask, rgba8(DECAL))
+    projections_gl::decal_loss(gl, base_proj, decal_proj, d, 0.0, reversed).unwrap()
 }
 
 #[test]
@@ -399,6 +369,48 @@ fn perspective_frames_the_field_of_view() {
         .unwrap();
         for i in (0..16).filter(|&i| i != 10) {
             assert_eq!(off[i].to_bits(), m[i].to_bits());
+        }
+    }
+}
+
+/// One relative ε (element 14) serves decals at every distance under reversed Z with float depth,
+/// and shifts far decals hundreds of times less than the constant offset that also serves them.
+#[test]
+fn one_relative_epsilon_serves_every_distance_under_reversed_float() {
+    use zshift::clip_offset::relative_offset_matrix;
+    use zshift::plan::{range_offset, OffsetKind};
+    use zshift::projection::projection_f64;
+    let mut gl = context();
+    gl.set_target(SIZE, SIZE, GlFormat::D32F).unwrap();
+    gl.clip_control(GlClip::ZeroToOne).unwrap();
+    let fr = frustum(0.5, f64::INFINITY);
+    let mapping =
+        DepthMapping::projection(0.5, f64::INFINITY, ClipDepth::ReversedZeroToOne).unwrap();
+    let (fmt, steps) = (DepthFormat::Float32, 8.0);
+    let relative = range_offset(&mapping, fmt, OffsetKind::Relative, 1.0, 500.0, steps).unwrap();
+    let constant = range_offset(&mapping, fmt, OffsetKind::Ndc, 1.0, 500.0, steps).unwrap();
+    println!(
+        "relative eps {:e}: shift {:e} at 1, {:e} at 500",
+        relative.offset, relative.shift_near, relative.shift_far
+    );
+    println!(
+        "constant c {:e}: shift {:e} at 1, {:e} at 500",
+        constant.offset, constant.shift_near, constant.shift_far
+    );
+    assert!(relative.shift_far * 100.0 < constant.shift_far);
+    let plain = projection(&fr, ClipDepth::ReversedZeroToOne).unwrap();
+    let decal = relative_offset_matrix(
+        &projection_f64(&fr, ClipDepth::ReversedZeroToOne).unwrap(),
+        relative.offset,
+    )
+    .unwrap();
+    for d in [1.0, 30.0, 500.0] {
+        for slope in [0.0, 3.0] {
+            let lost = projections_gl::decal_loss(&mut gl, &plain, &decal, d, slope, true).unwrap();
+            assert_eq!(
+                lost, 0,
+                "d={d} slope={slope}: one relative epsilon lost pixels"
+            );
         }
     }
 }

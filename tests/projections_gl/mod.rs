@@ -6,7 +6,12 @@
 
 use glow::HasContext;
 use zshift::median::FTRANSFORM_MDP_GLSL;
-use zshift_harness::{Gl, Quad};
+use zshift_harness::{rgba8, DrawState, Gl, Quad};
+
+/// The base surface's colour.
+pub const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
+/// The decal's colour.
+pub const DECAL: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
 
 /// A program whose vertex shader is the shipped `bindings/glsl/ftransform_mdp.glsl`.
 pub struct MdpProgram {
@@ -192,4 +197,43 @@ pub fn measure_step(
 pub fn eye_z_spacing(d: f64) -> f64 {
     let z = d as f32;
     f64::from(z.next_up() - z)
+}
+
+/// A base quad and a smaller decal on the same plane through eye distance `d` on the view axis,
+/// tilted by `slope` (eye-space dz/dy), with different vertices as real decals have; the decal
+/// drawn with `decal_proj` after the base (depth test `GL_LESS`, or `GL_GREATER` with clear 0
+/// when `reversed`). Returns the decal pixels lost to the base.
+pub fn decal_loss(
+    gl: &mut Gl,
+    base_proj: &[f32; 16],
+    decal_proj: &[f32; 16],
+    d: f64,
+    slope: f64,
+    reversed: bool,
+) -> Result<usize, String> {
+    let (clear, func) = if reversed {
+        (0.0, glow::GREATER)
+    } else {
+        (1.0, glow::LESS)
+    };
+    let plane = |_: f64, y: f64| -d + slope * y;
+    let (s, t) = (0.45 * d, 0.3 * d);
+    let base = Quad::on_plane(-s, s, -s, s, plane);
+    let decal = Quad::on_plane(-t, 0.77 * t, -0.91 * t, t, plane);
+    let state = DrawState {
+        depth_func: func,
+        ..Default::default()
+    };
+    gl.clear([0.0, 0.0, 0.0, 1.0], clear)?;
+    gl.draw_quad(&base, base_proj, BASE, &state)?;
+    gl.draw_quad(&decal, decal_proj, DECAL, &state)?;
+    let image = gl.read_color()?;
+    // Where the decal is: draw it alone into a fresh buffer.
+    gl.clear([0.0, 0.0, 0.0, 1.0], clear)?;
+    gl.draw_quad(&decal, decal_proj, DECAL, &state)?;
+    let mask = gl.read_color()?.mask_of(rgba8(DECAL));
+    if mask.iter().filter(|&&m| m).count() < 200 {
+        return Err("the decal covers too few pixels".into());
+    }
+    Ok(image.count_not_in_mask(&mask, rgba8(DECAL)))
 }
