@@ -348,7 +348,7 @@ ZshiftStatus zshift_shift_of_bias(double n,
                                   double *out);
 
 // Writes the tightest planes for a scene between eye distances `nearest` and `farthest`:
-// out[0] = n, out[1] = f (possibly +INFINITY: then use the tweaked infinite projection or
+// `out[0]` = n, `out[1]` = f (possibly +INFINITY: then use the tweaked infinite projection or
 // reversed Z), keeping a window-depth margin of 2^-22 inside each plane so f32 rounding clips
 // no vertex.
 //
@@ -357,13 +357,13 @@ ZshiftStatus zshift_shift_of_bias(double n,
 ZshiftStatus zshift_tight_planes(double nearest, double farthest, double *out);
 
 // Writes the smallest single offset that moves stored depth by at least `steps` steps at every
-// distance in [lo, hi]: out[0] = the offset (`kind` ZSHIFT_OFFSET_NDC: a signed NDC offset
+// distance in `[lo, hi]`: `out[0]` = the offset (`kind` ZSHIFT_OFFSET_NDC: a signed NDC offset
 // toward the camera for element 10; ZSHIFT_OFFSET_RELATIVE: epsilon for element 14),
-// out[1], out[2] = the eye-space shifts it makes at lo and at hi. Multiply out[0] by k for
-// the k-th stacked decal layer; keep k * out[2] below the gap where decals bleed through.
+// `out[1]`, `out[2]` = the eye-space shifts it makes at lo and at hi. Multiply `out[0]` by k for
+// the k-th stacked decal layer; keep k * `out[2]` below the gap where decals bleed through.
 //
 // Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, range
-// outside [n, f] or lo > hi, steps < 1, unknown enum), ZSHIFT_ERR_UNRESOLVABLE.
+// outside `[n, f]` or lo > hi, steps < 1, unknown enum), ZSHIFT_ERR_UNRESOLVABLE.
 // `out[0..3]` untouched on error.
 ZshiftStatus zshift_range_offset(double n,
                                  double f,
