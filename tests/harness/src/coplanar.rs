@@ -112,6 +112,18 @@ impl Setup {
         self.quad(self.decal_extent(), gap)
     }
 
+    /// An occluder over the decal whose eye distance at every pixel is at least `gap` less than
+    /// the base's there. Moving a plane of slope `s` by `G` along z changes the distance along
+    /// a line of sight `y = k·d` by `G/(1 + s·k)`, so the shift is `gap·(1 + s·max k)`.
+    pub fn occluder_with_depth_gap(&self, gap: f64) -> Quad {
+        let e = self.decal_extent();
+        let k_max = [e.y0, e.y1]
+            .map(|y| y / self.distance_at(y))
+            .into_iter()
+            .fold(0.0, f64::max);
+        self.occluder(gap * (1.0 + self.slope * k_max))
+    }
+
     /// The decal's nearest and farthest eye distance (of its exact corners).
     pub fn decal_depth_range(&self) -> (f64, f64) {
         let e = self.decal_extent();
@@ -205,14 +217,15 @@ impl<'a> Bench<'a> {
         })
     }
 
-    /// Decal pixels drawn over an occluder `gap` eye-space units in front of the base, among the
-    /// pixels both cover (bleed-through).
+    /// Decal pixels drawn over an occluder at least `gap` eye-space units nearer than the base at
+    /// every pixel ([`Setup::occluder_with_depth_gap`]), among the pixels both cover
+    /// (bleed-through).
     ///
     /// # Errors
     /// GL failures.
     pub fn bleed(&mut self, decal_proj: &[f32; 16], gap: f64) -> Result<Count, String> {
         let s = self.setup;
-        let occluder = s.occluder(gap);
+        let occluder = s.occluder_with_depth_gap(gap);
         let occ_mask = self.coverage(&occluder)?;
         let both: Vec<bool> = occ_mask
             .iter()
