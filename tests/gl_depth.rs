@@ -190,3 +190,68 @@ fn d24_planes_sort_at_the_quantum_plus_transform_error() {
     }
     println!("D24: planes one depth_resolution apart failed to sort at {one_step_failures} of {total} depths");
 }
+
+/// The recommendation's per-quad error model checked pixel by pixel on sloped planes (D32F, so
+/// storage adds at most half an f32 step): every depth read back lies within
+/// `q/2 + T + V + I` of the exact plane's window depth along that pixel centre's line of sight.
+#[test]
+fn sloped_plane_depth_stays_within_the_models_per_quad_bound() {
+    use zshift_harness::coplanar::Setup;
+    let mut gl = context();
+    let mut worst = 0.0f64;
+    for ratio in [10.0, 1e3, 1e6] {
+        for p in [0.2, 0.9] {
+            for slope in [0.3, 1.0, 3.0] {
+                let s = Setup {
+                    n: 1.0,
+                    f: ratio,
+                    tan_half: TAN_HALF,
+                    size: 64,
+                    format: DepthFormat::D32F,
+                    depth_fraction: p,
+                    slope,
+                };
+                let m = projection(1.0, ratio);
+                gl.set_target(s.size, s.size, s.format).unwrap();
+                gl.clear([0.0; 4], 1.0).unwrap();
+                gl.draw_quad(&s.base(), &m, [1.0; 4], &DrawState::default())
+                    .unwrap();
+                let depth = gl.read_depth().unwrap();
+                // The base spans the plane's visible depth range; bound its terms over it.
+                let (mut d_near, mut d_far) = (f64::MAX, 0.0f64);
+                for c in s.base().corners {
+                    let d = -f64::from(c[2]);
+                    d_near = d_near.min(d);
+                    d_far = d_far.max(d);
+                }
+                let e = TAN_HALF;
+                let scene = zshift::recommend::Scene {
+                    frustum: zshift::Frustum::new(-e, e, -e, e, 1.0, ratio).unwrap(),
+                    viewport: [s.size, s.size],
+                    format: zshift::recommend::DepthFormat::Float32,
+                    depth_range: [d_near, d_far],
+                    slope,
+                    exact_depth: false,
+                    snapping: zshift::recommend::Snapping::Unsnapped,
+                };
+                let t = zshift::recommend::error_terms(&scene).unwrap();
+                let per_quad = 0.5 * t.quantum + t.transform + t.vertex + t.interpolation;
+                let size = s.size as usize;
+                let covered = depth.iter().filter(|&&r| r < 1.0).count();
+                assert!(
+                    covered > 100,
+                    "{}: the base covers only {covered} pixels",
+                    s.label()
+                );
+                for (i, &read) in depth.iter().enumerate().filter(|(_, &r)| r < 1.0) {
+                    let y_ndc = 2.0 * ((i / size) as f64 + 0.5) / size as f64 - 1.0;
+                    let d = s.axis_depth() / (1.0 + slope * y_ndc * TAN_HALF);
+                    let err = (f64::from(read) - window_depth(1.0, ratio, d)).abs();
+                    worst = worst.max(err / per_quad);
+                    assert!(err <= per_quad, "{} pixel {i}: depth {read} is {err:e} from the plane's, above the model's {per_quad:e}", s.label());
+                }
+            }
+        }
+    }
+    println!("largest per-pixel error as a fraction of the model's per-quad bound: {worst:.2}");
+}
