@@ -238,3 +238,39 @@ fn c_entry_points_match_the_rust_recommendation() {
     );
     assert_eq!(keep, [7.0; 16]);
 }
+
+/// The recommendation's glPolygonOffset equivalent works too: the decal drawn with the plain
+/// matrix and glPolygonOffset(−factor, −units) loses no pixel.
+#[test]
+fn the_polygon_offset_equivalent_loses_no_pixel() {
+    let mut gl = context();
+    let snapping = snapping_of(&gl);
+    for format in DepthFormat::ALL {
+        for s in grid(format) {
+            let rec =
+                zshift::recommend::recommend(&scene_of(&s, snapping)).expect("recommendation");
+            let [factor, units] = rec.polygon_offset;
+            let plain = gl_common::frustum_of(&s).to_cols_array().unwrap();
+            let mut bench = zshift_harness::coplanar::Bench::new(&mut gl, s, plain).expect("bench");
+            let state = zshift_harness::DrawState {
+                polygon_offset: Some((-factor as f32, -units as f32)),
+                ..Default::default()
+            };
+            let lost = bench.lost_with(&plain, &state).unwrap();
+            println!(
+                "{}: glPolygonOffset(-{factor}, -{units:.2}) lost {}/{}",
+                s.label(),
+                lost.hit,
+                lost.of
+            );
+            assert_eq!(
+                lost.hit,
+                0,
+                "{}: glPolygonOffset(-{factor}, -{units}) lost {} of {} pixels",
+                s.label(),
+                lost.hit,
+                lost.of
+            );
+        }
+    }
+}

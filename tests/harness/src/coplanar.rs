@@ -203,12 +203,23 @@ impl<'a> Bench<'a> {
     /// # Errors
     /// GL failures.
     pub fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+        self.lost_with(decal_proj, &DrawState::default())
+    }
+
+    /// As [`Bench::lost`], with the decal drawn under `state` (e.g. a polygon offset).
+    ///
+    /// # Errors
+    /// GL failures.
+    pub fn lost_with(
+        &mut self,
+        decal_proj: &[f32; 16],
+        state: &DrawState,
+    ) -> Result<Count, String> {
         let s = self.setup;
         self.gl.clear(CLEAR, 1.0)?;
         self.gl
             .draw_quad(&s.base(), &self.plain, BASE, &DrawState::default())?;
-        self.gl
-            .draw_quad(&s.decal(), decal_proj, DECAL, &DrawState::default())?;
+        self.gl.draw_quad(&s.decal(), decal_proj, DECAL, state)?;
         let image = self.gl.read_color()?;
         let hit = image.count_not_in_mask(&self.mask, crate::rgba8(DECAL));
         Ok(Count {
