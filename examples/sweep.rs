@@ -3,7 +3,8 @@
 //! at the corrected bound (c = 2) and at zshift's recommendation, and the smallest offset that
 //! works (bisection over f32 steps of element 10) beside the recommended one.
 //!
-//! `cargo run --release --example sweep [size]` (default 256 × 256).
+//! `cargo run --release --example sweep [size]` (default 256 × 256). Exits with an error if the
+//! recommendation loses a pixel anywhere.
 
 #[path = "../tests/gl_common/mod.rs"]
 mod common;
@@ -41,5 +42,10 @@ fn main() -> Result<(), String> {
         }
     }
     println!("configurations losing pixels at the recommendation: {failures}; largest rec/min: {worst_ratio:.1}");
+    if failures > 0 {
+        return Err(format!(
+            "the recommendation lost pixels in {failures} configurations"
+        ));
+    }
     Ok(())
 }

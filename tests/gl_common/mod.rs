@@ -117,19 +117,21 @@ pub fn setup(format: DepthFormat, ratio: f64, depth_fraction: f64, slope: f64, s
     }
 }
 
-/// The table header and a row, as `examples/sweep.rs` prints them.
-pub const HEADER: &str = "configuration                          | px   | lost: none  c=1    c=2    rec    | min NDC (bisect) | rec NDC   | rec/min";
+/// The table header and a row, as `examples/sweep.rs` prints them. ε values are
+/// `−Δndc/|m10|` for the NDC offset the f32 matrix actually carries.
+pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec | eps min (bisect) |    eps rec | rec/min";
 
 pub fn format_row(r: &Row) -> String {
     let pct = |c: &Count| format!("{:5.1}%", 100.0 * c.fraction());
-    let min = r
-        .min_ndc
-        .map_or("none <2^20 ulp".to_string(), |m| format!("{m:.3e}"));
+    let m10 = (r.setup.f + r.setup.n) / (r.setup.f - r.setup.n);
+    let min = r.min_ndc.map_or("none <2^20 ulp".to_string(), |m| {
+        format!("{:.3e}", -m / m10)
+    });
     let ratio = r
         .min_ndc
         .map_or("-".to_string(), |m| format!("{:.1}", r.rec_ndc / m));
     format!(
-        "{} | {:4} | {} {} {} {} | {:>16} | {:.3e} | {}",
+        "{} | {:5} | {} {} {} {} | {:>16} | {:.3e} | {:>5}",
         r.setup.label(),
         r.none.of,
         pct(&r.none),
@@ -137,7 +139,7 @@ pub fn format_row(r: &Row) -> String {
         pct(&r.c2),
         pct(&r.rec),
         min,
-        r.rec_ndc,
+        -r.rec_ndc / m10,
         ratio
     )
 }
