@@ -17,6 +17,7 @@
 //! | [`projection`] | the `glFrustum` matrix, finite or infinite far; `gluPerspective`, `[0, 1]` and reversed clip depth, tweaked infinite | 000 eq. 4.1.1, 003 |
 //! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
 //! | [`precision`] | window depth and the exact depth step at a distance; per clip convention and depth format (`DepthMapping`, `DepthFormat`) | 001 |
+//! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
 //! | [`clip_offset`] | offsets for every convention: constant NDC (element 10) or relative (element 14) | 000 eq. 4.1.3–4.1.7 |
 //! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |
@@ -35,6 +36,7 @@ pub mod plan;
 pub mod polygon_offset;
 pub mod precision;
 pub mod projection;
+pub mod recommend;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};
