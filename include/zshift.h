@@ -372,6 +372,21 @@ ZshiftStatus zshift_min_ndc_offset(double n,
                                    double d,
                                    double *out);
 
+// Writes the smallest |epsilon| for Lengyel's element-10 scaling m10 (1 + epsilon) (seed 000,
+// eq. 4.1.3) that changes the stored depth at `d` under `clip` and `format`: the minimum NDC
+// offset / |m10|. [-1, 1], UNORM: 2/(2^m - 1) (f - n)/(f + n) (eq. 4.1.8 as corrected by seed
+// 002); [0, 1], UNORM: 1/(2^m - 1) (f - n)/f; reversed: r (f - n)/n.
+//
+// Errors: as `zshift_depth_step`; ZSHIFT_ERR_UNRESOLVABLE for reversed Z with f = +INFINITY,
+// where m10 = 0 and scaling it offsets nothing (use `zshift_min_relative_epsilon`).
+// `*out` untouched on error.
+ZshiftStatus zshift_min_epsilon_clip(double n,
+                                     double f,
+                                     int32_t clip,
+                                     int32_t format,
+                                     double d,
+                                     double *out);
+
 // Writes the smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the
 // stored depth at `d`: r d / b. About 2^-23 at every distance for FLOAT32 under reversed Z.
 //

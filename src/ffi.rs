@@ -576,6 +576,28 @@ pub extern "C" fn zshift_min_ndc_offset(
     })
 }
 
+/// Writes the smallest |epsilon| for Lengyel's element-10 scaling m10 (1 + epsilon) (seed 000,
+/// eq. 4.1.3) that changes the stored depth at `d` under `clip` and `format`: the minimum NDC
+/// offset / |m10|. [-1, 1], UNORM: 2/(2^m - 1) (f - n)/(f + n) (eq. 4.1.8 as corrected by seed
+/// 002); [0, 1], UNORM: 1/(2^m - 1) (f - n)/f; reversed: r (f - n)/n.
+///
+/// Errors: as `zshift_depth_step`; ZSHIFT_ERR_UNRESOLVABLE for reversed Z with f = +INFINITY,
+/// where m10 = 0 and scaling it offsets nothing (use `zshift_min_relative_epsilon`).
+/// `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_min_epsilon_clip(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.min_epsilon(d, format_of(format)?)
+    })
+}
+
 /// Writes the smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the
 /// stored depth at `d`: r d / b. About 2^-23 at every distance for FLOAT32 under reversed Z.
 ///

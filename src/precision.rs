@@ -394,6 +394,36 @@ impl DepthMapping {
         Ok(r / self.window_per_ndc())
     }
 
+    /// The smallest `|ε|` for Lengyel's element-10 scaling `m10·(1 + ε)` (seed 000, eq. 4.1.3)
+    /// that changes the stored depth at `d`: [`Self::min_ndc_offset`]` / |m10|`.
+    ///
+    /// Under `NegOneToOne` with a UNORM format this is the corrected eq. 4.1.8 (seed 002),
+    /// `2/(2^m − 1)·(f − n)/(f + n)`; under `ZeroToOne` it is `1/(2^m − 1)·(f − n)/f` (half the
+    /// NDC quantum, a smaller `|m10|`); under reversed Z it is `r·(f − n)/n`, useless for large
+    /// `f/n` — and with an infinite far plane `m10 = 0`, so no ε exists.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Unresolvable`] when `m10 = 0` (reversed Z with
+    /// `f = ∞`: scaling element 10 does nothing; use [`Self::min_relative_epsilon`]);
+    /// [`ErrorKind::Domain`] for the median projection, which has no matrix.
+    pub fn min_epsilon(&self, d: f64, format: DepthFormat) -> Result<f64> {
+        let m10 = match self.shape {
+            Shape::Projection(planes, clip) => crate::projection::depth_row(&planes, clip).0,
+            Shape::Tweaked { tweak, .. } => tweak - 1.0,
+            Shape::Median { .. } => {
+                return Err(domain("the median projection has no element 10 to scale"))
+            }
+        };
+        let c = self.min_ndc_offset(d, format)?;
+        if m10 == 0.0 {
+            return Err(Error::new(
+                ErrorKind::Unresolvable,
+                "element 10 is 0 (reversed Z, infinite far): scaling it offsets nothing",
+            ));
+        }
+        representable(c / m10.abs(), "epsilon overflows f64")
+    }
+
     /// The smallest relative offset `ε` (projection element 14 scaled by `1 + ε`, which moves
     /// every point from `d` to `d/(1 + ε)`) that changes the stored depth at `d`: `r·d/b`.
     /// For `Float32` under reversed Z this is about `2⁻²³` at every distance.

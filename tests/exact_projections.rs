@@ -915,3 +915,49 @@ mod c_abi {
         );
     }
 }
+
+#[test]
+fn min_epsilon_per_convention_has_its_own_quantum() {
+    for (n, f) in [(0.1, 1000.0), (1.0, 3.0)] {
+        for bits in [16u32, 24] {
+            let fmt = if bits == 16 {
+                DepthFormat::Unorm16
+            } else {
+                DepthFormat::Unorm24
+            };
+            let qm = Q::one() / Q::from_integer((BigInt::one() << bits) - 1);
+            let (qn, qf) = (q(n), q(f));
+            let std = DepthMapping::projection(n, f, ClipDepth::NegOneToOne).unwrap();
+            let e = std.min_epsilon(f / 2.0, fmt).unwrap();
+            assert!(rel_err(e, &(int(2) * &qm * (&qf - &qn) / (&qf + &qn))) < 1e-14);
+            assert!(((e - zshift::min_epsilon(n, f, bits).unwrap()) / e).abs() < 1e-14);
+            let zo = DepthMapping::projection(n, f, ClipDepth::ZeroToOne).unwrap();
+            let e = zo.min_epsilon(f / 2.0, fmt).unwrap();
+            assert!(rel_err(e, &(&qm * (&qf - &qn) / &qf)) < 1e-14);
+            let rev = DepthMapping::projection(n, f, ClipDepth::ReversedZeroToOne).unwrap();
+            let e = rev.min_epsilon(f / 2.0, fmt).unwrap();
+            assert!(rel_err(e, &(&qm * (&qf - &qn) / &qn)) < 1e-14);
+        }
+    }
+    let rev_inf =
+        DepthMapping::projection(0.1, f64::INFINITY, ClipDepth::ReversedZeroToOne).unwrap();
+    let err = rev_inf.min_epsilon(3.0, DepthFormat::Float32).unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Unresolvable);
+    let mut x = 5.0;
+    assert_eq!(
+        zshift::ffi::zshift_min_epsilon_clip(0.1, f64::INFINITY, 2, 3, 3.0, &mut x),
+        zshift::ffi::ZSHIFT_ERR_UNRESOLVABLE
+    );
+    assert_eq!(x, 5.0);
+    assert_eq!(
+        zshift::ffi::zshift_min_epsilon_clip(0.1, 100.0, 1, 1, 3.0, &mut x),
+        zshift::ffi::ZSHIFT_OK
+    );
+    assert_eq!(
+        x,
+        DepthMapping::projection(0.1, 100.0, ClipDepth::ZeroToOne)
+            .unwrap()
+            .min_epsilon(3.0, DepthFormat::Unorm24)
+            .unwrap()
+    );
+}
