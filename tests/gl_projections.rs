@@ -331,7 +331,6 @@ fn measured_depth_step_matches_the_prediction() {
             assert!((0.6..=1.6).contains(&ratio), "{name} d={d}: measured {measured:e} vs predicted {predicted:e} (eye-z spacing {floor:e})");
         }
     }
-    let _ = ndc_offset_matrix; // the constant-offset path is exercised by the decal tests above
 }
 
 #[test]
@@ -412,5 +411,27 @@ fn one_relative_epsilon_serves_every_distance_under_reversed_float() {
                 "d={d} slope={slope}: one relative epsilon lost pixels"
             );
         }
+    }
+}
+
+/// `[0, 1]` depth has its own ε bound: `1/(2^m − 1)·(f − n)/f`, half the `[−1, 1]` NDC quantum
+/// over a smaller `|m10|`. Element 10 scaled by exactly `1 − ε_min` separates a facing decal.
+#[test]
+fn zero_to_one_min_epsilon_separates_a_facing_decal_on_d24() {
+    use zshift::projection::projection_f64;
+    let mut gl = context();
+    gl.set_target(SIZE, SIZE, GlFormat::D24).unwrap();
+    gl.clip_control(GlClip::ZeroToOne).unwrap();
+    let fr = frustum(0.1, 1000.0);
+    let m64 = projection_f64(&fr, ClipDepth::ZeroToOne).unwrap();
+    let plain = projection(&fr, ClipDepth::ZeroToOne).unwrap();
+    let mapping = DepthMapping::projection(0.1, 1000.0, ClipDepth::ZeroToOne).unwrap();
+    for d in [0.7, 30.0, 900.0] {
+        let eps = mapping.min_epsilon(d, DepthFormat::Unorm24).unwrap();
+        // m10·(1 − ε) = m10 − c with c = −ε·m10 < 0 (toward the camera).
+        let decal = ndc_offset_matrix(&m64, eps * m64[10]).unwrap();
+        let lost = decal_loss(&mut gl, &plain, &decal, d, false);
+        println!("[0,1] D24 d={d}: eps_min {eps:e}, lost {lost}");
+        assert_eq!(lost, 0, "d={d}");
     }
 }
