@@ -961,3 +961,19 @@ fn min_epsilon_per_convention_has_its_own_quantum() {
             .unwrap()
     );
 }
+
+#[test]
+fn median_f32_reference_tracks_the_exact_depth() {
+    let proj = zshift::projection::perspective(60.0, 1.0, 0.1, 100.0).unwrap();
+    for (median, d) in [(10.0f32, 3.0f32), (10.0, 250.0), (0.5, 0.01)] {
+        let eye = glam::Vec4::new(0.2, -0.1, -d, 1.0);
+        let c = zshift::median::ftransform_mdp_f32(&proj, eye, median, 0.0);
+        let exact = (q32(d) - q32(median)) / (q32(d) + q32(median));
+        // Two roundings (z and w) and the divide: a few f32 ulps of the larger of d and m.
+        let z = q32(c.z) / q32(c.w);
+        let tol = q(4.0 * f64::from(f32::EPSILON));
+        assert!((z - &exact).abs() <= tol, "median {median} d {d}");
+        let x_std = (proj * eye).x / d;
+        assert!((c.x / c.w - x_std).abs() <= 4.0 * f32::EPSILON * x_std.abs().max(1.0));
+    }
+}
