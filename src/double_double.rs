@@ -102,12 +102,15 @@ impl DoubleDouble {
 }
 
 /// A power of two `s` with `|x|·s` in `[1, 2)`, so that scaling a homogeneous formula's inputs by
-/// `s` is exact and keeps its products far from overflow. 1 for zero, subnormal or extreme `x`.
+/// `s` is exact and keeps its products far from overflow. 1 for zero, subnormal or tiny `x`
+/// (below 2^-1000); 2^-1000 for `|x| ≥ 2^1001` (then `|x|·s < 2^24`), since 2^-exponent is not a
+/// normal number there and leaving such `x` unscaled made its products overflow.
 pub(crate) fn unit_scale(x: f64) -> f64 {
     let exponent = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    if !(-1000..=1000).contains(&exponent) {
+    if exponent < -1000 {
         return 1.0;
     }
+    let exponent = exponent.min(1000);
     f64::from_bits(((1023 - exponent) as u64) << 52)
 }
 

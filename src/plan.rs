@@ -148,10 +148,11 @@ pub fn range_offset(
         OffsetKind::Ndc if !mapping.is_reversed() => -needed,
         _ => needed,
     };
+    let fits = |x: f64| crate::domain::representable(x, "the range offset overflows f64");
     Ok(RangeOffset {
-        offset,
-        shift_near: shift_made(mapping, kind, offset, lo)?,
-        shift_far: shift_made(mapping, kind, offset, hi)?,
+        offset: fits(offset)?,
+        shift_near: fits(shift_made(mapping, kind, offset, lo)?)?,
+        shift_far: fits(shift_made(mapping, kind, offset, hi)?)?,
     })
 }
 

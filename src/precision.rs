@@ -12,7 +12,7 @@ use crate::error::Result;
 ///
 /// `f(d) = (f+n)/(2(f−n)) − f·n/(d(f−n)) + 1/2`,
 ///
-/// evaluated in the equivalent form `f·(d−n) / (d·(f−n))` in double-double arithmetic, so the
+/// evaluated in the equivalent form `(d−n)/d · f/(f−n)` in double-double arithmetic, so the
 /// result is the correctly rounded f64 but for near-ties (≤ 0.5 ulp + 2⁻¹⁰⁰ relative), with no
 /// cancellation at either plane. `f(n) = 0`, `f(f) = 1`; with `f = +∞`, `1 − n/d`.
 ///
@@ -21,15 +21,18 @@ use crate::error::Result;
 pub fn window_depth(n: f64, f: f64, d: f64) -> Result<f64> {
     let planes = Planes::new(n, f)?;
     planes.check_distance(d)?;
-    let s = unit_scale(n);
-    let (n, d) = (n * s, d * s);
-    let depth_past_near = DoubleDouble::sum(d, -n);
+    // As the product of two ratios, (d − n)/d ≤ 1 and f/(f − n) ≥ 1, each scaled by its own
+    // power of two, so that nothing overflows at any magnitude: the products f·(d − n) and
+    // d·(f − n) did for f near f64::MAX even after scaling by n (∞/∞ returned NaN with
+    // ZSHIFT_OK). Still ≈ 2⁻¹⁰⁴ relative error.
+    let s = unit_scale(d);
+    let depth_past_near = DoubleDouble::sum(d * s, -n * s).div(DoubleDouble::from_f64(d * s));
     if planes.is_infinite() {
-        return Ok(depth_past_near.div(DoubleDouble::from_f64(d)).to_f64());
+        return Ok(depth_past_near.to_f64());
     }
-    let f = planes.far() * s;
-    let numerator = depth_past_near.mul_f64(f);
-    Ok(numerator.div(DoubleDouble::sum(f, -n).mul_f64(d)).to_f64())
+    let s = unit_scale(f);
+    let far_over_span = DoubleDouble::from_f64(f * s).div(DoubleDouble::sum(f * s, -n * s));
+    Ok(depth_past_near.mul(far_over_span).to_f64())
 }
 
 /// The exact size of one depth step at eye distance `d`: the `Δd > 0` with
@@ -61,10 +64,15 @@ pub(crate) struct StepTerms {
 
 impl StepTerms {
     pub(crate) fn new(planes: &Planes, steps: f64, d: f64) -> Self {
-        let scale = unit_scale(planes.near());
+        // Scaled by d, the middle of n ≤ d ≤ f: scaling by n overflowed d·scale when d/n > 2^1023
+        // (a valid input answered ZSHIFT_ERR_OVERFLOW). If n·scale underflows, k·d > 2^1000 and
+        // the step is d to rounding whatever n's low bits are.
+        let scale = unit_scale(d);
         let (n, d) = (planes.near() * scale, d * scale);
         // With f = +∞ both terms are divided by f: reach = d, base = n·(2^m − 1).
-        let (reach, base) = if planes.is_infinite() {
+        // f/d > 2^1022 (f·scale overflows): (f − n)/f is 1 to within 2^-1022, so the f = +∞
+        // terms are exact to rounding, where the finite ones would overflow.
+        let (reach, base) = if planes.is_infinite() || (planes.far() * scale).is_infinite() {
             (DoubleDouble::from_f64(d), DoubleDouble::product(n, steps))
         } else {
             let f = planes.far() * scale;

@@ -186,13 +186,15 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
         Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
         Snapping::Unsnapped => 0.0,
     };
+    // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
+    let fits = |x: f64| representable(x, "a recommended value overflows f64");
     Ok(Recommendation {
         epsilon,
-        ndc_offset: 2.0 * window_offset,
-        window_offset,
-        delta_at_far,
-        bleed_gap,
-        polygon_offset: [factor, units],
+        ndc_offset: fits(2.0 * window_offset)?,
+        window_offset: fits(window_offset)?,
+        delta_at_far: fits(delta_at_far)?,
+        bleed_gap: fits(bleed_gap)?,
+        polygon_offset: [fits(factor)?, fits(units)?],
         terms,
     })
 }
@@ -297,6 +299,10 @@ fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
 fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     let planes = scene.frustum.planes();
     let x = dw * d / (planes.far_over_span() * planes.near());
+    if x.is_infinite() {
+        // A near plane so small that x overflows: x/(1 + x) → 1 (∞/∞ gave NaN).
+        return d;
+    }
     d * (x / (1.0 + x))
 }
 
