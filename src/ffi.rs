@@ -6,9 +6,12 @@
 //! [`zshift_status_message`] gives it in words. Output pointers need no particular alignment.
 //! All functions are reentrant and thread-safe: they keep no state.
 //!
-//! Memory: every input is passed by value, so an output can never overlap an input, and the
-//! only memory a function touches is its one output (8 bytes for a double, 64 for a float[16]),
-//! written once, after the computation, with `write_unaligned` or a byte copy from a local.
+//! Memory: every input is passed by value but the `ZshiftScene` of `zshift_recommend` and
+//! `zshift_recommend_matrix`, which is copied (`read_unaligned`) before anything is computed, so
+//! an output may even overlap that scene. Each function touches only its inputs and its one
+//! output (a double, double[N], float[16] or ZshiftRecommendation), which it writes once, after
+//! the computation, with `write_unaligned` or a byte copy from a local; neither pointer needs
+//! any alignment.
 //! These promises are checked by `tests/threads.rs`, `tests/miri_ffi.rs` (under Miri:
 //! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (README, Hardening).
 
