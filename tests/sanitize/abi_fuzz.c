@@ -24,22 +24,52 @@
 #include "zshift.h"
 
 struct inputs {
-    double l, r, b, t, n, f, delta, pz, d;
+    double l, r, b, t, n, f, delta, pz, d, fovy, aspect, tweak, median, bias, nearest, farthest,
+        lo, hi, steps;
     uint32_t bits;
-    int32_t status;
+    int32_t status, clip, format, api, kind;
+    ZshiftScene scene;
 };
 
-/* X(name, element type, element count, arguments before the output pointer) */
+#define REC_DOUBLES (sizeof(ZshiftRecommendation) / sizeof(double))
+
+/* X(name, element type, element count, element that may be +INFINITY or -1, arguments before
+ * the output pointer) */
 #define ZSHIFT_WRITERS(X)                                                                      \
-    X(zshift_frustum, float, 16, in->l, in->r, in->b, in->t, in->n, in->f)                    \
-    X(zshift_load_offset_matrix, float, 16, in->l, in->r, in->b, in->t, in->n, in->f,         \
+    X(zshift_frustum, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f)                \
+    X(zshift_load_offset_matrix, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f,     \
       in->delta, in->pz)                                                                       \
-    X(zshift_epsilon, double, 1, in->n, in->f, in->delta, in->pz)                              \
-    X(zshift_min_epsilon, double, 1, in->n, in->f, in->bits)                                   \
-    X(zshift_min_delta_toward, double, 1, in->n, in->f, in->bits, in->pz)                      \
-    X(zshift_max_delta_away, double, 1, in->n, in->f, in->bits, in->pz)                        \
-    X(zshift_window_depth, double, 1, in->n, in->f, in->d)                                     \
-    X(zshift_depth_resolution, double, 1, in->n, in->f, in->bits, in->d)
+    X(zshift_epsilon, double, 1, -1, in->n, in->f, in->delta, in->pz)                          \
+    X(zshift_min_epsilon, double, 1, -1, in->n, in->f, in->bits)                               \
+    X(zshift_min_delta_toward, double, 1, -1, in->n, in->f, in->bits, in->pz)                  \
+    X(zshift_max_delta_away, double, 1, -1, in->n, in->f, in->bits, in->pz)                    \
+    X(zshift_window_depth, double, 1, -1, in->n, in->f, in->d)                                 \
+    X(zshift_depth_resolution, double, 1, -1, in->n, in->f, in->bits, in->d)                   \
+    X(zshift_perspective, float, 16, -1, in->fovy, in->aspect, in->n, in->f)                   \
+    X(zshift_projection, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f, in->clip)   \
+    X(zshift_offset_projection, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f,      \
+      in->clip, in->delta, in->pz)                                                             \
+    X(zshift_offset_perspective, float, 16, -1, in->fovy, in->aspect, in->n, in->f, in->clip, \
+      in->delta, in->pz)                                                                       \
+    X(zshift_tweaked_infinite, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->tweak)   \
+    X(zshift_offset_tweaked_infinite, float, 16, -1, in->l, in->r, in->b, in->t, in->n,       \
+      in->tweak, in->delta, in->pz)                                                            \
+    X(zshift_median_ndc_offset, double, 1, -1, in->median, in->delta, in->pz)                  \
+    X(zshift_window_depth_clip, double, 1, -1, in->n, in->f, in->clip, in->d)                  \
+    X(zshift_depth_step, double, 1, -1, in->n, in->f, in->clip, in->format, in->d)             \
+    X(zshift_median_depth_step, double, 1, -1, in->median, in->format, in->d)                  \
+    X(zshift_min_ndc_offset, double, 1, -1, in->n, in->f, in->clip, in->format, in->d)         \
+    X(zshift_min_epsilon_clip, double, 1, -1, in->n, in->f, in->clip, in->format, in->d)       \
+    X(zshift_min_relative_epsilon, double, 1, -1, in->n, in->f, in->clip, in->format, in->d)   \
+    X(zshift_bias_of_shift, double, 1, -1, in->n, in->f, in->clip, in->format, in->api,        \
+      in->delta, in->pz)                                                                       \
+    X(zshift_shift_of_bias, double, 1, -1, in->n, in->f, in->clip, in->format, in->api,        \
+      in->bias, in->pz)                                                                        \
+    X(zshift_tight_planes, double, 2, 1, in->nearest, in->farthest)                            \
+    X(zshift_range_offset, double, 3, -1, in->n, in->f, in->clip, in->format, in->kind,        \
+      in->lo, in->hi, in->steps)                                                               \
+    X(zshift_recommend, double, REC_DOUBLES, -1, &in->scene)                                   \
+    X(zshift_recommend_matrix, float, 16, -1, &in->scene)
 
 /* X(name, arguments) for functions that return a static C string */
 #define ZSHIFT_TEXTS(X)                                                                        \
@@ -54,16 +84,19 @@ struct writer {
     const char *name;
     enum elem elem;
     size_t size, count;
+    long inf_ok;
     ZshiftStatus (*call)(const struct inputs *in, unsigned char *out);
 };
 
-#define WRAP_WRITER(name, type, count, ...)                                                    \
+/* void * converts to the parameter's type (float *, double *, ZshiftRecommendation *). */
+#define WRAP_WRITER(name, type, count, inf_ok, ...)                                            \
     static ZshiftStatus call_##name(const struct inputs *in, unsigned char *out) {             \
-        return name(__VA_ARGS__, (type *)(void *)out);                                         \
+        return name(__VA_ARGS__, (void *)out);                                                 \
     }
 ZSHIFT_WRITERS(WRAP_WRITER)
 
-#define LIST_WRITER(name, type, count, ...) {#name, ELEM_OF_##type, sizeof(type), count, call_##name},
+#define LIST_WRITER(name, type, count, inf_ok, ...)                                            \
+    {#name, ELEM_OF_##type, sizeof(type), count, inf_ok, call_##name},
 static const struct writer WRITERS[] = {ZSHIFT_WRITERS(LIST_WRITER)};
 
 struct text {
@@ -124,7 +157,8 @@ static void check_writer(const struct writer *w, const struct inputs *in, size_t
             } else {
                 memcpy(&x, out + k * sizeof x, sizeof x);
             }
-            if (!isfinite(x)) fail(w->name, in, "NaN or infinity in an OK result", s);
+            int inf_ok = (long)k == w->inf_ok && x == INFINITY; /* documented +INFINITY */
+            if (!isfinite(x) && !inf_ok) fail(w->name, in, "NaN or infinity in an OK result", s);
         }
     } else {
         errors++;
@@ -157,13 +191,37 @@ static void check_all(const struct inputs *in) {
     for (size_t i = 0; i < NTEXTS; i++) check_text(&TEXTS[i], in);
 }
 
-static const struct inputs VALID = {-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, 0.01, -50.0, 50.0, 24, 0};
+static const struct inputs VALID = {
+    .l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0, .delta = 0.01,
+    .pz = -50.0, .d = 50.0, .fovy = 60.0, .aspect = 4.0 / 3.0, .tweak = 1e-6, .median = 10.0,
+    .bias = -2.0, .nearest = 0.5, .farthest = 800.0, .lo = 10.0, .hi = 100.0, .steps = 1.0,
+    .bits = 24, .status = 0, .clip = 0, .format = 1, .api = 0, .kind = 0,
+    .scene = {.l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0,
+              .viewport_width = 1920, .viewport_height = 1080, .depth_format = 0x81A6,
+              .decal_near = 49.0, .decal_far = 51.0, .slope = 0.5, .exact_depth = 0,
+              .subpixel_bits = 8}};
 
+/* Every double input, the scene's included, by index. */
 static double *field(struct inputs *in, int k) {
-    double *fields[] = {&in->l, &in->r, &in->b, &in->t, &in->n, &in->f, &in->delta, &in->pz, &in->d};
+    double *fields[] = {&in->l, &in->r, &in->b, &in->t, &in->n, &in->f, &in->delta, &in->pz,
+                        &in->d, &in->fovy, &in->aspect, &in->tweak, &in->median, &in->bias,
+                        &in->nearest, &in->farthest, &in->lo, &in->hi, &in->steps, &in->scene.l,
+                        &in->scene.r, &in->scene.b, &in->scene.t, &in->scene.n, &in->scene.f,
+                        &in->scene.decal_near, &in->scene.decal_far, &in->scene.slope};
     return fields[k];
 }
-enum { NFIELDS = 9 };
+enum { NFIELDS = 28 };
+
+/* Every integer input, by index, through a uint32_t view (int32_t fields take the same bits). */
+static uint32_t *int_field(struct inputs *in, int k) {
+    uint32_t *fields[] = {&in->bits, (uint32_t *)&in->status, (uint32_t *)&in->clip,
+                          (uint32_t *)&in->format, (uint32_t *)&in->api, (uint32_t *)&in->kind,
+                          &in->scene.viewport_width, &in->scene.viewport_height,
+                          &in->scene.depth_format, &in->scene.exact_depth,
+                          (uint32_t *)&in->scene.subpixel_bits};
+    return fields[k];
+}
+enum { NINTS = 11 };
 
 /* Deterministic xorshift, so a failure repeats. */
 static uint64_t rng_state = 0x9e3779b97f4a7c15u;
@@ -175,49 +233,86 @@ static uint64_t next_u64(void) {
 }
 static double unit(void) { return (double)(next_u64() >> 11) / 9007199254740992.0; }
 static double decades(double lo, double hi) { return pow(10.0, lo + unit() * (hi - lo)); }
+static double sign(void) { return next_u64() % 2 ? 1.0 : -1.0; }
+
+/* The scene may lie anywhere relative to the output: it is read before anything is written.
+ * The recommendation is written over the scene itself and must equal the separate answer. */
+static void check_overlap(const struct inputs *in) {
+    ZshiftRecommendation want;
+    ZshiftStatus s = zshift_recommend(&in->scene, &want);
+    for (size_t shift = 0; shift < 16; shift++) {
+        size_t size = sizeof(ZshiftScene) > sizeof want ? sizeof(ZshiftScene) : sizeof want;
+        unsigned char *buf = malloc(size + shift + 1);
+        if (!buf) abort();
+        memcpy(buf + 1, &in->scene, sizeof in->scene); /* misaligned scene */
+        ZshiftStatus t = zshift_recommend((void *)(buf + 1), (void *)(buf + 1 + shift));
+        calls++;
+        if (t != s || (s == ZSHIFT_OK && memcmp(buf + 1 + shift, &want, sizeof want) != 0))
+            fail("zshift_recommend", in, "output overlapping the scene differs", t);
+        free(buf);
+    }
+}
 
 int main(int argc, char **argv) {
     long random_cases = argc > 1 ? atol(argv[1]) : 2000;
-    const double edges[] = {0.0,     -0.0,     1.0,  -1.0,   DBL_MIN, -DBL_MIN, 5e-324,
-                            DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, NAN, 1e300, -1e-300};
-    const uint32_t edge_bits[] = {0, 1, 16, 24, 32, 33, UINT32_MAX};
-    const int32_t edge_status[] = {-1, 0, 1, 2, 3, 4, 5, 6, 7, INT32_MIN, INT32_MAX};
+    const double edges[] = {0.0,     -0.0,     1.0,      -1.0,      DBL_MIN, -DBL_MIN, 5e-324,
+                            DBL_MAX, -DBL_MAX, INFINITY, -INFINITY, NAN,     1e300,    -1e-300};
+    const uint32_t edge_ints[] = {0, 1, 2, 3, 4, 24, 32, 33, 0x81A5, 0x8CAC, UINT32_MAX, 0x80000000u};
+    const size_t nedges = sizeof edges / sizeof edges[0], nints = sizeof edge_ints / sizeof edge_ints[0];
     long cases = 0;
 
     check_all(&VALID), cases++;
+    check_overlap(&VALID);
     for (int k = 0; k < NFIELDS; k++)
-        for (size_t e = 0; e < sizeof edges / sizeof edges[0]; e++) {
+        for (size_t e = 0; e < nedges; e++) {
             struct inputs in = VALID;
             *field(&in, k) = edges[e];
             check_all(&in), cases++;
         }
-    for (size_t e = 0; e < sizeof edge_bits / sizeof edge_bits[0]; e++) {
-        struct inputs in = VALID;
-        in.bits = edge_bits[e];
-        check_all(&in), cases++;
-    }
-    for (size_t e = 0; e < sizeof edge_status / sizeof edge_status[0]; e++) {
-        struct inputs in = VALID;
-        in.status = edge_status[e];
-        check_all(&in), cases++;
-    }
-    /* Plausible frusta over many decades, one in eight with a field set to an edge value. */
+    for (int k = 0; k < NINTS; k++)
+        for (size_t e = 0; e < nints; e++) {
+            struct inputs in = VALID;
+            *int_field(&in, k) = edge_ints[e];
+            check_all(&in), cases++;
+        }
+    /* Plausible inputs over many decades, some with fields set to edge values. */
     for (long c = 0; c < random_cases; c++) {
-        struct inputs in;
-        in.n = decades(-30, 30);
-        in.f = next_u64() % 8 == 0 ? INFINITY : in.n * decades(0, 12);
+        struct inputs in = VALID;
+        in.n = decades(-12, 12);
+        in.f = next_u64() % 8 == 0 ? INFINITY : in.n * decades(0.0001, 10);
         double far = isfinite(in.f) ? in.f : in.n * 1e12;
         in.d = in.n + unit() * (far - in.n);
         in.pz = -(in.n + unit() * (far - in.n));
         in.delta = (next_u64() % 4 == 0 ? -1 : 1) * -in.pz * decades(-16, 0);
         in.l = -in.n * decades(-3, 3), in.r = in.n * decades(-3, 3);
         in.b = -in.n * decades(-3, 3), in.t = in.n * decades(-3, 3);
+        in.fovy = 180 * unit(), in.aspect = decades(-3, 3);
+        in.tweak = next_u64() % 2 ? unit() : 2.4e-7 * decades(0, 4);
+        in.median = decades(-6, 6), in.bias = sign() * decades(-3, 6);
+        in.nearest = in.n, in.farthest = in.n * decades(0, 10);
+        double a = in.n + unit() * (far - in.n), b = in.n + unit() * (far - in.n);
+        in.lo = a < b ? a : b, in.hi = a < b ? b : a;
+        in.steps = 1 + (double)(next_u64() % 8);
         in.bits = 1 + (uint32_t)(next_u64() % 32);
         in.status = (int32_t)(next_u64() % 9) - 1;
-        if (next_u64() % 8 == 0) *field(&in, (int)(next_u64() % NFIELDS)) = edges[next_u64() % (sizeof edges / sizeof edges[0])];
+        in.clip = (int32_t)(next_u64() % 3), in.format = (int32_t)(next_u64() % 4);
+        in.api = (int32_t)(next_u64() % 3), in.kind = (int32_t)(next_u64() % 2);
+        const uint32_t formats[] = {0x81A5, 0x81A6, 0x81A7, 0x8CAC};
+        in.scene = (ZshiftScene){.l = in.l, .r = in.r, .b = in.b, .t = in.t, .n = in.n, .f = in.f,
+                                 .viewport_width = 1 + (uint32_t)(next_u64() % 4096),
+                                 .viewport_height = 1 + (uint32_t)(next_u64() % 4096),
+                                 .depth_format = formats[next_u64() % 4],
+                                 .decal_near = in.lo, .decal_far = in.hi,
+                                 .slope = next_u64() % 3 ? decades(-3, 1) : 0.0,
+                                 .exact_depth = 0,
+                                 .subpixel_bits = (int32_t)(next_u64() % 14) - 1};
+        if (next_u64() % 4 == 0) *field(&in, (int)(next_u64() % NFIELDS)) = edges[next_u64() % nedges];
+        if (next_u64() % 8 == 0) *int_field(&in, (int)(next_u64() % NINTS)) = edge_ints[next_u64() % nints];
         check_all(&in), cases++;
+        if (c % 16 == 0) check_overlap(&in);
     }
-    printf("abi_fuzz: %zu functions, %ld input sets, %ld calls (%ld OK, %ld errors, %ld NULL/text), %ld failures\n",
+    printf("abi_fuzz: %zu functions, %ld input sets, %ld calls (%ld OK, %ld errors, %ld NULL/text/overlap), "
+           "%ld failures\n",
            NWRITERS + NTEXTS, cases, calls, oks, errors, calls - oks - errors, failures);
     return failures ? 1 : 0;
 }
