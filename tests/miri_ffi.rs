@@ -38,12 +38,12 @@ fn every_function_writes_exactly_its_output_at_every_alignment() {
 
 #[test]
 fn every_function_checks_its_contract_on_edge_and_random_inputs() {
+    // Miri interprets every call (about 0.2 s per input for all 29 functions): a third of the
+    // edge inputs and a few random ones keep `scripts/miri` near two minutes.
+    let (step, random) = if cfg!(miri) { (3, 20) } else { (1, 600) };
     let mut all = edge_inputs();
-    all.extend(random_inputs(
-        0x3141_5926,
-        if cfg!(miri) { 60 } else { 600 },
-    ));
-    for (k, inputs) in all.iter().enumerate() {
+    all.extend(random_inputs(0x3141_5926, random));
+    for (k, inputs) in all.iter().enumerate().step_by(step) {
         for entry in CATALOGUE {
             call_checked(entry, inputs, k);
             call_null(entry, inputs);
