@@ -332,3 +332,144 @@ fn check(scene: &Scene) -> Result<()> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ErrorKind;
+
+    fn scene(format: DepthFormat, slope: f64, snapping: Snapping) -> Scene {
+        let e = 0.577_350_269_189_625_7;
+        Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
+            viewport: [256, 256],
+            format,
+            depth_range: [80.0, 120.0],
+            slope,
+            exact_depth: false,
+            snapping,
+        }
+    }
+
+    /// ε, δ and the NDC offset agree through the seed's own equations (4.1.4 and 4.1.7, the
+    /// latter through `offset::epsilon`, an independent implementation).
+    #[test]
+    fn the_forms_of_the_offset_agree_through_the_seed_equations() {
+        let s = scene(
+            DepthFormat::Unorm { bits: 24 },
+            1.0,
+            Snapping::SubpixelBits(8),
+        );
+        let r = recommend(&s).unwrap();
+        let m10 = (1e3 + 1.0) / (1e3 - 1.0);
+        assert!((-r.epsilon * m10 - r.ndc_offset).abs() <= 1e-15 * r.ndc_offset);
+        assert_eq!(r.ndc_offset, 2.0 * r.window_offset);
+        let eps = crate::offset::epsilon(1.0, 1e3, r.delta_at_far, -120.0).unwrap();
+        assert!(
+            (eps - r.epsilon).abs() <= 1e-12 * r.epsilon.abs(),
+            "{eps} vs {}",
+            r.epsilon
+        );
+    }
+
+    /// The bleed gap is the eye distance whose window-depth difference (Walker's f(d), through
+    /// `precision::window_depth`) is `2Δw − q` at the far end of the decal.
+    #[test]
+    fn the_bleed_gap_spans_twice_the_offset_less_a_quantum_in_window_depth() {
+        let s = scene(
+            DepthFormat::Unorm { bits: 16 },
+            3.0,
+            Snapping::SubpixelBits(8),
+        );
+        let r = recommend(&s).unwrap();
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+        let dw = w(120.0) - w(120.0 - r.bleed_gap);
+        let want = 2.0 * r.window_offset - r.terms.quantum;
+        assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
+    }
+
+    /// Terms that the model says vanish do, and the ones that grow with slope do.
+    #[test]
+    fn terms_vanish_and_grow_where_the_model_says() {
+        let facing = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Float32, 0.0, Snapping::SubpixelBits(8))
+        };
+        let t = error_terms(&facing).unwrap();
+        assert_eq!((t.vertex, t.interpolation, t.snap), (0.0, 0.0, 0.0));
+        assert_eq!(
+            t.quantum,
+            2f64.powi(-24),
+            "window depths near 1 have f32 spacing 2^-24"
+        );
+        let unsnapped =
+            error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::Unsnapped)).unwrap();
+        assert_eq!(unsnapped.snap, 0.0);
+        let s1 = error_terms(&scene(DepthFormat::Float32, 1.0, Snapping::SubpixelBits(8))).unwrap();
+        let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
+        assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
+        assert!(s3.vertex > s1.vertex);
+    }
+
+    #[test]
+    fn bad_scenes_are_refused_with_their_kind() {
+        let good = scene(DepthFormat::Unorm { bits: 24 }, 1.0, Snapping::Unsnapped);
+        let kind = |s: Scene| recommend(&s).unwrap_err().kind();
+        assert_eq!(
+            kind(Scene {
+                slope: f64::NAN,
+                ..good
+            }),
+            ErrorKind::NotFinite
+        );
+        assert_eq!(
+            kind(Scene {
+                slope: -1.0,
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                exact_depth: true,
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                depth_range: [120.0, 80.0],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                depth_range: [0.5, 80.0],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                viewport: [0, 256],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                format: DepthFormat::Unorm { bits: 33 },
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                snapping: Snapping::SubpixelBits(40),
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+    }
+}
