@@ -65,6 +65,8 @@ pub struct Row {
     pub c1: Count,
     pub c2: Count,
     pub rec: Count,
+    /// Lost with `zshift_load_offset_matrix(…, delta_at_far, −d₂)`, the seed-shaped entry point.
+    pub rec_via_delta: Count,
     pub recommendation: Recommendation,
     /// NDC offset of the recommended matrix (element 10 difference, as the GPU sees it).
     pub rec_ndc: f64,
@@ -89,6 +91,12 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
     let c1 = bench.lost(&m1)?;
     let c2 = bench.lost(&m2)?;
     let rec = bench.lost(&rec_matrix)?;
+    let (l, r, b, t, n, f) = s.frustum();
+    let (_, d2) = s.decal_depth_range();
+    let via_delta = zshift::load_offset_matrix(l, r, b, t, n, f, recommendation.delta_at_far, -d2)
+        .map_err(|e| e.to_string())?
+        .to_cols_array();
+    let rec_via_delta = bench.lost(&via_delta)?;
     let k = smallest_working_ulps(&mut bench, 1 << 20)?;
     let min_ndc = k.map(|k| (with_ulps_toward_camera(&plain, k)[10] - plain[10]) as f64);
     let rec_ndc = (rec_matrix[10] - plain[10]) as f64;
@@ -98,6 +106,7 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
         c1,
         c2,
         rec,
+        rec_via_delta,
         recommendation,
         rec_ndc,
         min_ndc,
