@@ -1,0 +1,313 @@
+/* The C ABI contract of include/zshift.h, exercised from C: every function with valid inputs
+ * (against the seed formulas evaluated here in long double, independent of zshift's code), NULL
+ * output pointers, NaN and infinite inputs, domain errors, the output left untouched on every
+ * error, the status messages and the version strings. Prints each failure and exits nonzero if
+ * any check failed. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "zshift.h"
+
+#ifndef EXPECTED_VERSION
+#error "build with -DEXPECTED_VERSION=\"x.y.z\" (the version in Cargo.toml)"
+#endif
+
+static int checks, failures;
+
+#define CHECK(cond, ...)                                   \
+  do {                                                     \
+    checks++;                                              \
+    if (!(cond)) {                                         \
+      failures++;                                          \
+      fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+      fprintf(stderr, __VA_ARGS__);                        \
+      fputc('\n', stderr);                                 \
+    }                                                      \
+  } while (0)
+
+/* A status must be exactly `expected`; names both in words on failure. */
+#define CHECK_STATUS(call, expected)                                                        \
+  do {                                                                                      \
+    ZshiftStatus got_ = (call);                                                             \
+    CHECK(got_ == (expected), "%s returned %d (%s), expected %d (%s)", #call, (int)got_,   \
+          zshift_status_message(got_), (int)(expected), zshift_status_message(expected)); \
+  } while (0)
+
+/* ---- output left untouched on error: fill with a pattern, call, compare ---- */
+
+static const unsigned char PATTERN = 0xA5;
+
+static int untouched(const void *out, size_t size) {
+  const unsigned char *bytes = out;
+  size_t i;
+  for (i = 0; i < size; i++)
+    if (bytes[i] != PATTERN) return 0;
+  return 1;
+}
+
+/* Runs a matrix call on a pattern-filled buffer; it must fail with `expected` and write nothing. */
+#define CHECK_MATRIX_ERROR(expected, fn, ...)                                           \
+  do {                                                                                  \
+    float out_[16];                                                                     \
+    memset(out_, PATTERN, sizeof out_);                                                 \
+    CHECK_STATUS(fn(__VA_ARGS__, out_), expected);                                      \
+    CHECK(untouched(out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+#define CHECK_SCALAR_ERROR(expected, fn, ...)                                           \
+  do {                                                                                  \
+    double out_;                                                                        \
+    memset(&out_, PATTERN, sizeof out_);                                                \
+    CHECK_STATUS(fn(__VA_ARGS__, &out_), expected);                                     \
+    CHECK(untouched(&out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+/* ---- references: the seed formulas in long double ---- */
+
+static long double steps(unsigned bits) { return ldexpl(1.0L, (int)bits) - 1.0L; }
+
+/* glFrustum's matrix (seed 000, eq. 4.1.1), column-major. */
+static void reference_frustum(long double l, long double r, long double b, long double t,
+                              long double n, long double f, long double m[16]) {
+  int i;
+  for (i = 0; i < 16; i++) m[i] = 0.0L;
+  m[0] = 2.0L * n / (r - l);
+  m[5] = 2.0L * n / (t - b);
+  m[8] = (r + l) / (r - l);
+  m[9] = (t + b) / (t - b);
+  m[10] = -(f + n) / (f - n);
+  m[11] = -1.0L;
+  m[14] = -2.0L * f * n / (f - n);
+}
+
+/* Eq. 4.1.7. */
+static long double reference_epsilon(long double n, long double f, long double delta, long double pz) {
+  return -2.0L * f * n / (f + n) * (delta / (pz * (pz + delta)));
+}
+
+/* k of eq. 4.1.11 as corrected by seed 002. */
+static long double reference_k(long double n, long double f, unsigned bits) {
+  return (f - n) / (f * n * steps(bits));
+}
+
+/* Walker's f(d) (seed 001) in its printed form. */
+static long double reference_window_depth(long double n, long double f, long double d) {
+  return (f + n) / (2.0L * (f - n)) - f * n / (d * (f - n)) + 0.5L;
+}
+
+static double relative_error(double got, long double want) {
+  return (double)(fabsl((long double)got - want) / fabsl(want));
+}
+
+/* Whether `got` is one of the two floats around `want` (within 1 ulp of the exact value). */
+static int within_one_float_ulp(float got, long double want) {
+  float nearest = (float)want;
+  return got == nearest || got == nextafterf(nearest, INFINITY) || got == nextafterf(nearest, -INFINITY);
+}
+
+/* ---- the functions ---- */
+
+static void test_frustum(void) {
+  static const double cases[][6] = {
+      {-1, 1, -1, 1, 1, 100}, {-0.1, 0.3, -0.2, 0.1, 0.1, 1e4}, {-2, 2, -1.5, 1.5, 0.01, 1e6}};
+  size_t c;
+  int i;
+  float out[16];
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    const double *p = cases[c];
+    long double want[16];
+    reference_frustum(p[0], p[1], p[2], p[3], p[4], p[5], want);
+    CHECK_STATUS(zshift_frustum(p[0], p[1], p[2], p[3], p[4], p[5], out), ZSHIFT_OK);
+    for (i = 0; i < 16; i++)
+      CHECK(within_one_float_ulp(out[i], want[i]), "frustum case %zu element %d: %.9g vs %.12Lg", c,
+            i, (double)out[i], want[i]);
+  }
+  /* Infinite far plane: element 10 -> -1, element 14 -> -2n (seed 003). */
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 0.5, INFINITY, out), ZSHIFT_OK);
+  CHECK(out[10] == -1.0f && out[14] == -1.0f && out[11] == -1.0f, "infinite far: m10 %g m14 %g",
+        (double)out[10], (double)out[14]);
+
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 1, 100, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, NAN, 1, -1, 1, 1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, 1, NAN);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, INFINITY, INFINITY);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, 1, -INFINITY);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -INFINITY, 1, -1, 1, 1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, 1, 1, -1, 1, 1, 100);  /* l == r */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, 2, 2, 1, 100);  /* b == t */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 0, 100); /* n == 0 */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, -1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 5, 5);   /* f == n */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 5, 4);   /* f < n */
+  /* 2n/(r - l) = 2e40 does not fit a float. */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_OVERFLOW, zshift_frustum, 0, 1e-40, -1, 1, 1, 100);
+}
+
+static void test_load_offset_matrix(void) {
+  static const double cases[][8] = {/* l r b t n f delta pz */
+                                    {-1, 1, -1, 1, 1, 100, 0.01, -50},
+                                    {-0.1, 0.1, -0.1, 0.1, 0.1, 1e4, 2.0, -5e3},
+                                    {-1, 1, -1, 1, 1, 1e6, -10.0, -1e3}};
+  size_t c;
+  int i;
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    const double *p = cases[c];
+    float plain[16], shifted[16];
+    long double want[16], offset, moved;
+    reference_frustum(p[0], p[1], p[2], p[3], p[4], p[5], want);
+    CHECK_STATUS(zshift_frustum(p[0], p[1], p[2], p[3], p[4], p[5], plain), ZSHIFT_OK);
+    CHECK_STATUS(zshift_load_offset_matrix(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], shifted),
+                 ZSHIFT_OK);
+    for (i = 0; i < 16; i++)
+      if (i != 10)
+        CHECK(shifted[i] == plain[i], "offset case %zu element %d differs from zshift_frustum's", c, i);
+    /* Element 10 scaled by 1 + epsilon (eq. 4.1.3): the offset the GPU sees is at least the exact
+     * one and at most one float ulp more, in the same direction. */
+    offset = want[10] * reference_epsilon(p[4], p[5], p[6], p[7]);
+    moved = (long double)shifted[10] - (long double)plain[10];
+    CHECK(moved * offset > 0.0L, "offset case %zu: element 10 moved %Lg, expected the sign of %Lg", c,
+          moved, offset);
+    CHECK(fabsl(moved) >= fabsl(offset) * (1.0L - 1e-12L) &&
+              fabsl(moved) <= fabsl(offset) + (long double)(nextafterf(fabsf(shifted[10]), INFINITY) -
+                                                            fabsf(shifted[10])),
+          "offset case %zu: element 10 moved %Lg for an exact offset %Lg", c, moved, offset);
+  }
+  CHECK_STATUS(zshift_load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.1, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, NAN, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, NAN);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, INFINITY, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, -0.5);  /* pz > -n */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, -200);  /* pz < -f */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 50, -50);    /* pz + delta == 0 */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, 1, 1, -1, 1, 1, 100, 0.1, -50);
+}
+
+static void test_epsilon(void) {
+  double out;
+  CHECK_STATUS(zshift_epsilon(0.1, 1000, 0.5, -20, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, reference_epsilon(0.1L, 1000, 0.5L, -20)) < 1e-14, "epsilon %.17g", out);
+  CHECK(out < 0, "delta > 0 (toward the camera) must give epsilon < 0, got %g", out);
+  CHECK_STATUS(zshift_epsilon(1, INFINITY, 0.5, -20, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, -2.0L * 0.5L / (-20.0L * -19.5L)) < 1e-14, "epsilon f=inf %.17g", out);
+  CHECK_STATUS(zshift_epsilon(1, 100, 0.5, -20, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, NAN, 100, 0.5, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, 1, 100, NAN, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, 1, 100, 0.5, -INFINITY);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 1, 100, 0.5, -0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 1, 100, 30, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 100, 1, 0.5, -20);
+}
+
+static void test_min_epsilon(void) {
+  double out;
+  unsigned bits;
+  for (bits = 1; bits <= 32; bits += 7) {
+    long double want = 2.0L / steps(bits) * (1000.0L - 0.1L) / (1000.0L + 0.1L);
+    CHECK_STATUS(zshift_min_epsilon(0.1, 1000, bits, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, want) < 1e-14, "min_epsilon bits %u: %.17g", bits, out);
+  }
+  CHECK_STATUS(zshift_min_epsilon(0.1, INFINITY, 24, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, 2.0L / steps(24)) < 1e-15, "min_epsilon f=inf %.17g", out);
+  CHECK_STATUS(zshift_min_epsilon(1, 100, 24, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 1, 100, 0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 1, 100, 33);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_epsilon, NAN, 100, 24);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 0, 100, 24);
+}
+
+static void test_deltas(void) {
+  double toward, away, resolution;
+  long double k = reference_k(0.1L, 1000, 16), pz = -300;
+  CHECK_STATUS(zshift_min_delta_toward(0.1, 1000, 16, -300, &toward), ZSHIFT_OK);
+  CHECK(relative_error(toward, k * pz * pz / (1 - k * pz)) < 1e-13, "min_delta_toward %.17g", toward);
+  /* Seeds 000 (with 002) and 001 agree: the minimum shift is Walker's depth step at d = -pz. */
+  CHECK_STATUS(zshift_depth_resolution(0.1, 1000, 16, 300, &resolution), ZSHIFT_OK);
+  CHECK(relative_error(toward, resolution) < 1e-13, "min_delta_toward %.17g vs depth_resolution %.17g",
+        toward, resolution);
+  pz = -2;
+  CHECK_STATUS(zshift_max_delta_away(0.1, 1000, 16, -2, &away), ZSHIFT_OK);
+  CHECK(relative_error(away, -k * pz * pz / (1 + k * pz)) < 1e-12 && away < 0, "max_delta_away %.17g", away);
+  /* With 1 bit, k*|pz| >= 1 far from the camera: no shift away can change the stored depth. */
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_UNRESOLVABLE, zshift_max_delta_away, 1, 1e6, 1, -1e5);
+  CHECK_STATUS(zshift_min_delta_toward(1, 100, 24, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_max_delta_away(1, 100, 24, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 24, -101);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 24, 50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 0, -50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_delta_toward, 1, 100, 24, NAN);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_max_delta_away, 1, 100, 24, -0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_max_delta_away, NAN, 100, 24, -50);
+}
+
+static void test_precision(void) {
+  double depth, step, before;
+  CHECK_STATUS(zshift_window_depth(1, 100, 1, &depth), ZSHIFT_OK);
+  CHECK(depth == 0.0, "window depth at the near plane is %.17g, not 0", depth);
+  CHECK_STATUS(zshift_window_depth(1, 100, 100, &depth), ZSHIFT_OK);
+  CHECK(fabs(depth - 1.0) < 1e-15, "window depth at the far plane is %.17g, not 1", depth);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 37, &depth), ZSHIFT_OK);
+  CHECK(relative_error(depth, reference_window_depth(0.1L, 1000, 37)) < 1e-14, "window depth %.17g", depth);
+  /* One depth step back from d lowers the window depth by exactly one quantum (Walker's eq. 3). */
+  CHECK_STATUS(zshift_depth_resolution(0.1, 1000, 16, 300, &step), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 300, &depth), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 300 - step, &before), ZSHIFT_OK);
+  CHECK(fabs((depth - before) * (double)steps(16) - 1.0) < 1e-9, "one step moves window depth by %.17g quanta",
+        (depth - before) * (double)steps(16));
+  CHECK_STATUS(zshift_window_depth(1, 100, 50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_depth_resolution(1, 100, 24, 50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth, 1, 100, 0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth, 1, 100, 101);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth, 1, 100, NAN);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_resolution, 1, 100, 33, 50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_resolution, 1, 100, 24, 0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_resolution, 1, NAN, 24, 50);
+}
+
+static void test_status_messages(void) {
+  static const ZshiftStatus known[] = {ZSHIFT_OK,          ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE,
+                                       ZSHIFT_ERR_DOMAIN,  ZSHIFT_ERR_UNRESOLVABLE, ZSHIFT_ERR_OVERFLOW,
+                                       ZSHIFT_ERR_INTERNAL};
+  static const ZshiftStatus unknown[] = {-1, 7, INT32_MAX, INT32_MIN};
+  const char *unknown_text = "unknown zshift status";
+  size_t i, j;
+  CHECK(ZSHIFT_OK == 0, "ZSHIFT_OK must be 0");
+  for (i = 0; i < sizeof known / sizeof known[0]; i++) {
+    const char *text = zshift_status_message(known[i]);
+    CHECK(text != NULL && text[0] != '\0' && strcmp(text, unknown_text) != 0,
+          "status %d has no message of its own", (int)known[i]);
+    for (j = 0; j < i; j++)
+      CHECK(text != NULL && strcmp(text, zshift_status_message(known[j])) != 0,
+            "statuses %d and %d share a message", (int)known[i], (int)known[j]);
+  }
+  for (i = 0; i < sizeof unknown / sizeof unknown[0]; i++) {
+    const char *text = zshift_status_message(unknown[i]);
+    CHECK(text != NULL && strcmp(text, unknown_text) == 0, "status %d: \"%s\"", (int)unknown[i],
+          text ? text : "(null)");
+  }
+}
+
+static void test_versions(void) {
+  const char *version = zshift_version();
+  CHECK(version != NULL && strcmp(version, EXPECTED_VERSION) == 0, "zshift_version() is \"%s\", Cargo.toml says \"%s\"",
+        version ? version : "(null)", EXPECTED_VERSION);
+  CHECK(ZSHIFT_ABI_VERSION == 1, "ZSHIFT_ABI_VERSION is %d; this test was written for 1", ZSHIFT_ABI_VERSION);
+}
+
+int main(void) {
+  test_frustum();
+  test_load_offset_matrix();
+  test_epsilon();
+  test_min_epsilon();
+  test_deltas();
+  test_precision();
+  test_status_messages();
+  test_versions();
+  if (failures != 0) {
+    fprintf(stderr, "abi_test: %d of %d checks failed\n", failures, checks);
+    return 1;
+  }
+  printf("abi_test: all %d checks passed\n", checks);
+  return 0;
+}
