@@ -63,24 +63,6 @@ impl Planes {
         }
     }
 
-    /// `(f − n) / f`, the reciprocal of [`Self::far_over_span`]; 1 when `f = +∞`.
-    pub(crate) fn span_over_far(&self) -> f64 {
-        if self.is_infinite() {
-            1.0
-        } else {
-            (self.far - self.near) / self.far
-        }
-    }
-
-    /// `f / (f + n)`; 1 when `f = +∞`.
-    pub(crate) fn far_over_sum(&self) -> f64 {
-        if self.is_infinite() {
-            return 1.0;
-        }
-        let (f, n) = halved_if_huge(self.far, self.near);
-        f / (f + n)
-    }
-
     /// `(f + n) / (f − n)`, the magnitude of projection element 10; 1 when `f = +∞`.
     pub(crate) fn sum_over_span(&self) -> f64 {
         if self.is_infinite() {

@@ -25,12 +25,18 @@ impl DoubleDouble {
     /// The exact product `a · b` (TwoProd with a fused multiply-add).
     pub fn product(a: f64, b: f64) -> Self {
         let p = a * b;
-        Self { hi: p, lo: a.mul_add(b, -p) }
+        Self {
+            hi: p,
+            lo: a.mul_add(b, -p),
+        }
     }
 
     fn renormalized(hi: f64, lo: f64) -> Self {
         let s = hi + lo;
-        Self { hi: s, lo: lo - (s - hi) }
+        Self {
+            hi: s,
+            lo: lo - (s - hi),
+        }
     }
 
     pub fn add(self, other: Self) -> Self {
@@ -43,16 +49,32 @@ impl DoubleDouble {
         Self::renormalized(p.hi, p.lo + self.hi * other.lo + self.lo * other.hi)
     }
 
+    pub fn mul_f64(self, x: f64) -> Self {
+        self.mul(Self::from_f64(x))
+    }
+
+    pub fn sub(self, other: Self) -> Self {
+        self.add(other.neg())
+    }
+
+    /// The f64 nearest `hi + lo` (they are kept renormalized, so this is `hi`).
+    pub fn to_f64(self) -> f64 {
+        self.hi
+    }
+
     pub fn neg(self) -> Self {
-        Self { hi: -self.hi, lo: -self.lo }
+        Self {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
     }
 
     /// `self / other` by three steps of long division.
     pub fn div(self, other: Self) -> Self {
         let q1 = self.hi / other.hi;
-        let r = self.add(other.mul(Self::from_f64(q1)).neg());
+        let r = self.sub(other.mul_f64(q1));
         let q2 = r.hi / other.hi;
-        let r = r.add(other.mul(Self::from_f64(q2)).neg());
+        let r = r.sub(other.mul_f64(q2));
         let q3 = r.hi / other.hi;
         Self::from_f64(q1).add(Self::renormalized(q2, q3))
     }

@@ -70,7 +70,10 @@ fn checked<T, P>(
     }
 }
 
-fn checked_scalar(out: *mut f64, compute: impl FnOnce() -> Result<f64> + UnwindSafe) -> ZshiftStatus {
+fn checked_scalar(
+    out: *mut f64,
+    compute: impl FnOnce() -> Result<f64> + UnwindSafe,
+) -> ZshiftStatus {
     // SAFETY: `checked` has refused NULL; the caller promises `out` points to a writable
     // double, and write_unaligned needs no alignment.
     checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
@@ -146,7 +149,13 @@ pub extern "C" fn zshift_load_offset_matrix(
 /// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz
 /// outside [-f, -n], pz + delta >= 0), ZSHIFT_ERR_OVERFLOW. `*out` is untouched on error.
 #[no_mangle]
-pub extern "C" fn zshift_epsilon(n: f64, f: f64, delta: f64, pz: f64, out: *mut f64) -> ZshiftStatus {
+pub extern "C" fn zshift_epsilon(
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
     checked_scalar(out, || crate::offset::epsilon(n, f, delta, pz))
 }
 

@@ -10,16 +10,16 @@ use glam::Mat4;
 use crate::domain::{depth_steps, finite, representable, Planes};
 use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::{Error, ErrorKind, Result};
-use crate::precision::depth_step_toward;
+use crate::precision::{depth_step_toward, StepTerms};
 use crate::projection::Frustum;
 
 /// ε for an eye-space shift `δ` of a point at eye-space depth `Pz` (eq. 4.1.7):
 ///
 /// `ε = −(2fn/(f+n)) · δ / (Pz·(Pz+δ))`
 ///
-/// With `f = +∞` the factor `2fn/(f+n)` becomes its limit `2n`. Computed in f64 in an order
-/// that never forms `f·n` or `Pz²`, within a few ulp of the exact value (measured in the
-/// exact-arithmetic tests); `Pz + δ` is exact near the singularity `δ → −Pz` (Sterbenz).
+/// With `f = +∞` the factor `2fn/(f+n)` becomes its limit `2n`. Evaluated as one ratio in
+/// double-double arithmetic (inputs first scaled by a power of two), so the result is the
+/// correctly rounded f64 but for near-ties, even at the singularity `δ → −Pz`.
 ///
 /// # Errors
 /// [`ErrorKind::NotFinite`] for NaN or infinite inputs (except `f = +∞`);
@@ -27,8 +27,17 @@ use crate::projection::Frustum;
 /// point would be at or behind the eye); [`ErrorKind::Overflow`] if ε overflows f64.
 pub fn epsilon(n: f64, f: f64, delta: f64, pz: f64) -> Result<f64> {
     let planes = Planes::new(n, f)?;
-    let shifted = shifted_depth(&planes, delta, pz)?;
-    let eps = -2.0 * n * planes.far_over_sum() * ((delta / pz) / shifted);
+    shifted_depth(&planes, delta, pz)?;
+    let s = unit_scale(pz);
+    let (n, delta, pz) = (n * s, delta * s, pz * s);
+    let mut numerator = DoubleDouble::product(-2.0 * n, delta);
+    let mut denominator = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
+    if !planes.is_infinite() {
+        let f = f * s;
+        numerator = numerator.mul_f64(f);
+        denominator = denominator.mul(DoubleDouble::sum(f, n));
+    }
+    let eps = numerator.div(denominator).to_f64();
     representable(eps, "epsilon overflows f64: Pz + delta is too close to 0")
 }
 
@@ -44,7 +53,15 @@ pub fn epsilon(n: f64, f: f64, delta: f64, pz: f64) -> Result<f64> {
 pub fn min_epsilon(n: f64, f: f64, bits: u32) -> Result<f64> {
     let planes = Planes::new(n, f)?;
     let steps = depth_steps(bits)?;
-    Ok(2.0 / (steps * planes.sum_over_span()))
+    if planes.is_infinite() {
+        return Ok(2.0 / steps);
+    }
+    let s = unit_scale(f);
+    let (f, n) = (f * s, n * s);
+    let numerator = DoubleDouble::sum(f, -n).mul_f64(2.0);
+    Ok(numerator
+        .div(DoubleDouble::sum(f, n).mul_f64(steps))
+        .to_f64())
 }
 
 /// The smallest shift toward the camera that changes the stored depth of a point at `Pz`
@@ -68,8 +85,10 @@ pub fn min_delta_toward(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
 ///
 /// `δ = −k·Pz² / (1 + k·Pz)`, negative.
 ///
-/// Ill-conditioned as `k·|Pz| → 1`: the relative error grows like the condition number
-/// `k|Pz| / (1 − k|Pz|)` times a few ulp, and no faster.
+/// Ill-conditioned as `k·|Pz| → 1` (condition number `k|Pz| / (1 − k|Pz|)`), so it is evaluated
+/// as one ratio in double-double arithmetic: the 2⁻¹⁰⁴ relative error of the intermediate
+/// terms is multiplied by the condition number, leaving the result correctly rounded unless
+/// `k|Pz|` is within about 1e-15 of 1.
 ///
 /// # Errors
 /// As [`min_delta_toward`]; [`ErrorKind::Unresolvable`] if `k·|Pz| ≥ 1`: the depth step at
@@ -78,14 +97,14 @@ pub fn min_delta_toward(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
 pub fn max_delta_away(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
     let planes = Planes::new(n, f)?;
     planes.check_eye_z(pz)?;
-    let u = crate::precision::steps_per_distance(&planes, depth_steps(bits)?, -pz);
-    if u >= 1.0 {
+    let terms = StepTerms::new(&planes, depth_steps(bits)?, -pz);
+    if terms.unresolvable_away() {
         return Err(Error::new(
             ErrorKind::Unresolvable,
             "k*|Pz| >= 1: no shift away from the camera changes the stored depth",
         ));
     }
-    representable(pz * (u / (1.0 - u)), "delta overflows f64")
+    Ok(-terms.step(false)?)
 }
 
 /// The `glFrustum` matrix with element 10 scaled by `1 + ε(δ, Pz)`: the drop-in for the seed's
@@ -100,6 +119,7 @@ pub fn max_delta_away(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
 ///
 /// # Errors
 /// As [`Frustum::new`] and [`epsilon`]; [`ErrorKind::Overflow`] if element 10 leaves f32.
+#[allow(clippy::too_many_arguments)] // the seed's LoadOffsetMatrix takes these eight
 pub fn load_offset_matrix(
     l: f64,
     r: f64,
@@ -184,7 +204,10 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> DoubleDouble {
 /// smaller than the one asked for and at most one f32 ulp larger.
 fn offset_element(plain: f32, offset: DoubleDouble) -> Result<f32> {
     if !offset.is_finite() {
-        return Err(Error::new(ErrorKind::Overflow, "the depth offset overflows f64"));
+        return Err(Error::new(
+            ErrorKind::Overflow,
+            "the depth offset overflows f64",
+        ));
     }
     if offset.hi == 0.0 {
         return Ok(plain);

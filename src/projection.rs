@@ -42,7 +42,13 @@ impl Frustum {
         if b == t {
             return Err(domain("the frustum has zero height: b = t"));
         }
-        Ok(Self { left: l, right: r, bottom: b, top: t, planes })
+        Ok(Self {
+            left: l,
+            right: r,
+            bottom: b,
+            top: t,
+            planes,
+        })
     }
 
     /// The validated near and far planes.

@@ -1,0 +1,57 @@
+//! A real OpenGL context can be made with no window (EGL surfaceless): prints what it is.
+//! Fails, with the reason, if no context can be made — it never skips.
+
+use zshift_harness::{DepthFormat, Gl, Profile};
+
+#[test]
+fn core_and_compatibility_contexts_exist() {
+    for profile in [Profile::Core, Profile::Compatibility] {
+        let mut gl = Gl::new(profile).unwrap_or_else(|e| panic!("no {profile:?} GL context: {e}"));
+        println!(
+            "{profile:?}: renderer {:?}, version {:?}, GL_SUBPIXEL_BITS {}",
+            gl.renderer(),
+            gl.version(),
+            gl.subpixel_bits()
+        );
+        assert!(!gl.renderer().is_empty(), "GL_RENDERER is empty");
+        for format in DepthFormat::ALL {
+            gl.set_target(8, 8, format)
+                .unwrap_or_else(|e| panic!("{format:?} target: {e}"));
+            let bits = gl.depth_bits().expect("depth bits");
+            println!("  {format:?}: GL reports {bits} depth bits");
+            assert_eq!(
+                bits,
+                format.bits(),
+                "{format:?} attachment reports {bits} bits"
+            );
+        }
+    }
+}
+
+/// A facing quad drawn through the shader path covers the viewport's middle and writes the
+/// window depth of its plane: checks draw, colour and depth readback end to end.
+#[test]
+fn a_drawn_quad_reads_back() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    gl.set_target(16, 16, DepthFormat::D32F).expect("target");
+    gl.clear([0.0, 0.0, 0.0, 1.0], 1.0).expect("clear");
+    // glFrustum(-1, 1, -1, 1, 1, 3) by hand: m10 = -(3+1)/(3-1) = -2, m14 = -2*3*1/(3-1) = -3.
+    let proj = [
+        1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -2.0, -1.0, 0.0, 0.0, -3.0, 0.0,
+    ];
+    // At z = -2 the quad [-1, 1]^2 projects to NDC [-0.5, 0.5]^2: window pixels 4..12.
+    let quad = zshift_harness::Quad::rect(-1.0, 1.0, -1.0, 1.0, -2.0);
+    let red = [1.0, 0.0, 0.0, 1.0];
+    gl.draw_quad(&quad, &proj, red, &Default::default())
+        .expect("draw");
+    let image = gl.read_color().expect("colour");
+    assert_eq!(
+        image.count(zshift_harness::rgba8(red), None),
+        64,
+        "the quad covers 8x8 pixels"
+    );
+    let depth = gl.read_depth().expect("depth");
+    // NDC z = (-2*-2 - 3)/2 = 0.5, window depth 0.75 (exact in f32).
+    assert_eq!(depth[8 * 16 + 8], 0.75);
+    assert_eq!(depth[0], 1.0);
+}
