@@ -1,0 +1,152 @@
+// zshift.hpp: a header-only C++17 wrapper over the zshift C ABI (include/zshift.h).
+//
+// Matrices come back as `zshift::Matrix` (std::array<float, 16>, column-major, what glLoadMatrixf
+// and glUniformMatrix4fv(loc, 1, GL_FALSE, m.data()) take); scalars as double. A failing call
+// throws `zshift::Error`, which carries the C status and its message; nothing else throws.
+//
+// Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
+// [-1, 1], window depth [0, 1]; n, f, d are positive distances (f may be +infinity where a
+// function says so), pz is an eye-space z (negative in front of the camera); delta > 0 moves
+// geometry toward the camera and gives epsilon < 0. Equation numbers refer to the seed texts.
+//
+// Link with the zshift library (pkg-config zshift, or CMake's zshift::zshift).
+#ifndef ZSHIFT_HPP
+#define ZSHIFT_HPP
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "zshift.h"
+
+static_assert(ZSHIFT_ABI_VERSION == 1, "zshift.hpp wraps version 1 of the zshift C ABI");
+
+namespace zshift {
+
+/// A 4x4 matrix, column-major: element 10 is row 2, column 2.
+using Matrix = std::array<float, 16>;
+
+/// The index in a Matrix of the element at `row`, `column` (0-based): column * 4 + row.
+/// `index(2, 2)` is 10, the element that carries the depth offset.
+constexpr std::size_t index(std::size_t row, std::size_t column) noexcept { return column * 4 + row; }
+
+/// The C ABI version this wrapper was written for (ZSHIFT_ABI_VERSION).
+inline constexpr int abi_version = ZSHIFT_ABI_VERSION;
+
+/// The outcome of a C call, as a scoped enum with the header's values.
+enum class Status : std::int32_t {
+  ok = ZSHIFT_OK,
+  null_pointer = ZSHIFT_ERR_NULL_POINTER,
+  not_finite = ZSHIFT_ERR_NOT_FINITE,
+  domain = ZSHIFT_ERR_DOMAIN,
+  unresolvable = ZSHIFT_ERR_UNRESOLVABLE,
+  overflow = ZSHIFT_ERR_OVERFLOW,
+  internal = ZSHIFT_ERR_INTERNAL,
+};
+
+/// The C status code of a Status.
+constexpr ZshiftStatus to_c(Status status) noexcept { return static_cast<ZshiftStatus>(status); }
+
+/// The library's sentence for a status (never null; unknown codes get "unknown zshift status").
+inline const char *message(Status status) noexcept { return zshift_status_message(to_c(status)); }
+
+/// A zshift call failed. `status()` says how; `what()` is the library's message for it.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(ZshiftStatus status)
+      : std::runtime_error(zshift_status_message(status)), status_(static_cast<Status>(status)) {}
+
+  /// How the call failed (never Status::ok).
+  Status status() const noexcept { return status_; }
+
+ private:
+  Status status_;
+};
+
+namespace detail {
+inline void check(ZshiftStatus status) {
+  if (status != ZSHIFT_OK) throw Error(status);
+}
+
+template <typename Call>
+Matrix matrix(Call call) {
+  Matrix m{};
+  check(call(m.data()));
+  return m;
+}
+
+template <typename Call>
+double scalar(Call call) {
+  double value = 0.0;
+  check(call(&value));
+  return value;
+}
+}  // namespace detail
+
+/// The glFrustum(l, r, b, t, n, f) matrix (seed 000, eq. 4.1.1), each element the float nearest
+/// the exact value. `f` may be +infinity (element 10 is -1, element 14 is -2n).
+/// Throws Error: Status::not_finite for NaN or a stray infinity; Status::domain if l == r,
+/// b == t, n <= 0 or f <= n; Status::overflow if an element does not fit a float.
+inline Matrix frustum(double l, double r, double b, double t, double n, double f) {
+  return detail::matrix([&](float *out) { return zshift_frustum(l, r, b, t, n, f, out); });
+}
+
+/// The drop-in for the seed's LoadOffsetMatrix: frustum() with element 10 scaled by
+/// 1 + epsilon(n, f, delta, pz) (eq. 4.1.3 and 4.1.7) and rounded away from the plain element,
+/// so the offset is never lost to float rounding. Every other element equals frustum()'s.
+/// Throws Error: as frustum(); Status::not_finite for a NaN or infinite delta or pz;
+/// Status::domain if pz is outside [-f, -n] or pz + delta >= 0.
+inline Matrix load_offset_matrix(double l, double r, double b, double t, double n, double f,
+                                 double delta, double pz) {
+  return detail::matrix(
+      [&](float *out) { return zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out); });
+}
+
+/// Epsilon for an eye-space shift delta at eye depth pz (eq. 4.1.7):
+/// -(2fn/(f+n)) * delta / (pz * (pz + delta)). Throws Error: Status::not_finite,
+/// Status::domain (bad planes, pz outside [-f, -n], pz + delta >= 0), Status::overflow.
+inline double epsilon(double n, double f, double delta, double pz) {
+  return detail::scalar([&](double *out) { return zshift_epsilon(n, f, delta, pz, out); });
+}
+
+/// The smallest |epsilon| that moves depth by one step of a `bits`-bit buffer:
+/// 2/(2^bits - 1) * (f - n)/(f + n) (eq. 4.1.8 as corrected by seed 002).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, bits outside 1..=32).
+inline double min_epsilon(double n, double f, std::uint32_t bits) {
+  return detail::scalar([&](double *out) { return zshift_min_epsilon(n, f, bits, out); });
+}
+
+/// The smallest shift toward the camera that changes the stored depth at pz:
+/// k*pz^2/(1 - k*pz), eq. 4.1.9 with seed 002's k = (f - n)/(f*n*(2^bits - 1)).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, pz outside [-f, -n], bits).
+inline double min_delta_toward(double n, double f, std::uint32_t bits, double pz) {
+  return detail::scalar([&](double *out) { return zshift_min_delta_toward(n, f, bits, pz, out); });
+}
+
+/// The largest (least negative) shift away from the camera that still changes the stored depth
+/// at pz: -k*pz^2/(1 + k*pz), eq. 4.1.10 with the corrected k.
+/// Throws Error: as min_delta_toward(); Status::unresolvable if k*|pz| >= 1; Status::overflow.
+inline double max_delta_away(double n, double f, std::uint32_t bits, double pz) {
+  return detail::scalar([&](double *out) { return zshift_max_delta_away(n, f, bits, pz, out); });
+}
+
+/// The window depth in [0, 1] of a point at eye distance d (Walker's f(d), seed 001).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, d outside [n, f]).
+inline double window_depth(double n, double f, double d) {
+  return detail::scalar([&](double *out) { return zshift_window_depth(n, f, d, out); });
+}
+
+/// The exact depth step at eye distance d: q*d^2/(b + q*d), q = 1/(2^bits - 1),
+/// b = fn/(f - n) (Walker's eq. 3, seed 001). Throws Error: Status::not_finite, Status::domain.
+inline double depth_resolution(double n, double f, std::uint32_t bits, double d) {
+  return detail::scalar([&](double *out) { return zshift_depth_resolution(n, f, bits, d, out); });
+}
+
+/// The library version, such as "0.1.0".
+inline std::string version() { return zshift_version(); }
+
+}  // namespace zshift
+
+#endif  // ZSHIFT_HPP

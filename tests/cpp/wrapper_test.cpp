@@ -1,0 +1,134 @@
+// The C++ wrapper (bindings/cpp/zshift.hpp): every function returns what the C call writes,
+// failures throw zshift::Error carrying the C status and its message, and the constexpr parts
+// are usable at compile time. Prints each failure and exits nonzero if any check failed.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <type_traits>
+
+#include "zshift.hpp"
+
+// Compile-time checks: these fail the build, not the run.
+static_assert(zshift::index(2, 2) == 10, "element 10 is row 2, column 2");
+static_assert(zshift::index(2, 3) == 14, "element 14 is row 2, column 3");
+static_assert(zshift::to_c(zshift::Status::domain) == ZSHIFT_ERR_DOMAIN, "Status mirrors the header");
+static_assert(zshift::abi_version == ZSHIFT_ABI_VERSION, "ABI version mirrors the header");
+static_assert(std::is_same_v<zshift::Matrix, std::array<float, 16>>, "Matrix is std::array<float, 16>");
+static_assert(std::is_base_of_v<std::runtime_error, zshift::Error>, "Error is a std::runtime_error");
+
+static int checks, failures;
+
+#define CHECK(cond, ...)                                   \
+  do {                                                     \
+    checks++;                                              \
+    if (!(cond)) {                                         \
+      failures++;                                          \
+      std::fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+      std::fprintf(stderr, __VA_ARGS__);                   \
+      std::fputc('\n', stderr);                            \
+    }                                                      \
+  } while (0)
+
+// The call must throw zshift::Error with `expected` status and the C library's message for it.
+template <typename Call>
+static void check_throws(const char *what, zshift::Status expected, Call call) {
+  try {
+    call();
+    CHECK(false, "%s did not throw", what);
+  } catch (const zshift::Error &e) {
+    CHECK(e.status() == expected, "%s threw status %d, expected %d", what, static_cast<int>(e.status()),
+          static_cast<int>(expected));
+    CHECK(std::strcmp(e.what(), zshift_status_message(zshift::to_c(expected))) == 0,
+          "%s threw \"%s\", not the status message", what, e.what());
+  }
+}
+
+// [quickstart-cpp]
+// The base surface uses the plain projection, the decal the offset one: delta eye-space units
+// toward the camera at eye depth pz, here four of the smallest steps a 24-bit buffer resolves.
+struct Projections {
+  zshift::Matrix base, decal;
+};
+
+Projections decal_projections(double l, double r, double b, double t, double n, double f, double pz) {
+  double delta = 4.0 * zshift::min_delta_toward(n, f, 24, pz);  // throws zshift::Error on bad input
+  return {zshift::frustum(l, r, b, t, n, f), zshift::load_offset_matrix(l, r, b, t, n, f, delta, pz)};
+}
+// Then: glUniformMatrix4fv(location, 1, GL_FALSE, projections.decal.data());
+// [/quickstart-cpp]
+
+static void test_matrices() {
+  const double inf = std::numeric_limits<double>::infinity();
+  float plain[16], shifted[16];
+  Projections p = decal_projections(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, -250.0);
+  double step;
+  zshift_min_delta_toward(0.1, 1000.0, 24, -250.0, &step);
+  CHECK(zshift_frustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, plain) == ZSHIFT_OK, "C zshift_frustum failed");
+  CHECK(zshift_load_offset_matrix(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, 4.0 * step, -250.0, shifted) == ZSHIFT_OK,
+        "C zshift_load_offset_matrix failed");
+  CHECK(std::memcmp(p.base.data(), plain, sizeof plain) == 0, "frustum() differs from zshift_frustum");
+  CHECK(std::memcmp(p.decal.data(), shifted, sizeof shifted) == 0, "load_offset_matrix() differs from the C call");
+  // delta > 0 moves toward the camera: element 10 (negative) moves up, nothing else moves.
+  CHECK(p.decal[zshift::index(2, 2)] > p.base[zshift::index(2, 2)], "the offset did not raise element 10");
+  for (std::size_t i = 0; i < 16; i++)
+    if (i != 10) CHECK(p.decal[i] == p.base[i], "element %zu moved", i);
+  zshift::Matrix infinite = zshift::frustum(-1, 1, -1, 1, 0.5, inf);
+  CHECK(infinite[10] == -1.0f && infinite[14] == -1.0f, "infinite far plane: m10 %g m14 %g",
+        static_cast<double>(infinite[10]), static_cast<double>(infinite[14]));
+
+  check_throws("frustum(l == r)", zshift::Status::domain, [] { zshift::frustum(1, 1, -1, 1, 1, 100); });
+  check_throws("frustum(NaN)", zshift::Status::not_finite, [] { zshift::frustum(std::nan(""), 1, -1, 1, 1, 100); });
+  check_throws("frustum(2n/(r-l) > FLT_MAX)", zshift::Status::overflow, [] { zshift::frustum(0, 1e-40, -1, 1, 1, 100); });
+  check_throws("load_offset_matrix(pz > -n)", zshift::Status::domain,
+               [] { zshift::load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.1, -0.5); });
+  check_throws("load_offset_matrix(pz + delta == 0)", zshift::Status::domain,
+               [] { zshift::load_offset_matrix(-1, 1, -1, 1, 1, 100, 50, -50); });
+}
+
+// Each scalar wrapper returns exactly what its C function writes.
+static void test_scalars() {
+  double c;
+  zshift_epsilon(0.1, 1000, 0.5, -20, &c);
+  CHECK(zshift::epsilon(0.1, 1000, 0.5, -20) == c && c < 0, "epsilon");
+  zshift_min_epsilon(0.1, 1000, 16, &c);
+  CHECK(zshift::min_epsilon(0.1, 1000, 16) == c, "min_epsilon");
+  zshift_min_delta_toward(0.1, 1000, 16, -300, &c);
+  CHECK(zshift::min_delta_toward(0.1, 1000, 16, -300) == c && c > 0, "min_delta_toward");
+  zshift_max_delta_away(0.1, 1000, 16, -2, &c);
+  CHECK(zshift::max_delta_away(0.1, 1000, 16, -2) == c && c < 0, "max_delta_away");
+  zshift_window_depth(0.1, 1000, 37, &c);
+  CHECK(zshift::window_depth(0.1, 1000, 37) == c, "window_depth");
+  zshift_depth_resolution(0.1, 1000, 16, 300, &c);
+  CHECK(zshift::depth_resolution(0.1, 1000, 16, 300) == c, "depth_resolution");
+  // Seeds 000 (with 002) and 001 agree: the minimum shift is Walker's depth step at d = -pz.
+  CHECK(std::fabs(zshift::min_delta_toward(1, 1e4, 24, -700) / zshift::depth_resolution(1, 1e4, 24, 700) - 1) < 1e-14,
+        "min_delta_toward != depth_resolution");
+
+  check_throws("epsilon(NaN)", zshift::Status::not_finite, [] { zshift::epsilon(1, 100, std::nan(""), -20); });
+  check_throws("min_epsilon(bits 0)", zshift::Status::domain, [] { zshift::min_epsilon(1, 100, 0); });
+  check_throws("min_delta_toward(pz < -f)", zshift::Status::domain, [] { zshift::min_delta_toward(1, 100, 24, -101); });
+  check_throws("max_delta_away(k|pz| >= 1)", zshift::Status::unresolvable,
+               [] { zshift::max_delta_away(1, 1e6, 1, -1e5); });
+  check_throws("window_depth(d < n)", zshift::Status::domain, [] { zshift::window_depth(1, 100, 0.5); });
+  check_throws("depth_resolution(bits 33)", zshift::Status::domain, [] { zshift::depth_resolution(1, 100, 33, 50); });
+}
+
+static void test_messages() {
+  CHECK(std::string(zshift::message(zshift::Status::ok)) == zshift_status_message(ZSHIFT_OK), "message(ok)");
+  CHECK(zshift::Error(ZSHIFT_ERR_INTERNAL).status() == zshift::Status::internal, "Error keeps its status");
+  CHECK(zshift::version() == zshift_version() && !zshift::version().empty(), "version()");
+}
+
+int main() {
+  test_matrices();
+  test_scalars();
+  test_messages();
+  if (failures != 0) {
+    std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
+    return 1;
+  }
+  std::printf("wrapper_test: all %d checks passed (zshift %s)\n", checks, zshift::version().c_str());
+  return 0;
+}
