@@ -1,0 +1,233 @@
+"""Tests of the zshift ctypes package against exact rational references (fractions.Fraction,
+evaluating the seed formulas independently of zshift), and of its error and lookup behaviour.
+
+Run from the repository root: python3 -m unittest discover -s bindings/python -t bindings/python
+"""
+
+import math
+import os
+import re
+import struct
+import subprocess
+import sys
+import unittest
+from fractions import Fraction as Q
+from pathlib import Path
+from unittest import mock
+
+import zshift
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def f32(x):
+    """The float32 nearest x (round to nearest even), as a Python float."""
+    return struct.unpack("f", struct.pack("f", float(x)))[0]
+
+
+def f32_neighbours(x):
+    """The float32 values either side of the float32 x."""
+    bits = struct.unpack("I", struct.pack("f", x))[0]
+    up, down = (bits + 1, bits - 1) if x > 0 else (bits - 1, bits + 1)
+    if x == 0:
+        return -1.4e-45, 1.4e-45
+    return tuple(struct.unpack("f", struct.pack("I", b))[0] for b in (down, up))
+
+
+def steps(bits):
+    return Q(2**bits - 1)
+
+
+def exact_frustum(l, r, b, t, n, f):
+    """glFrustum's matrix (seed 000, eq. 4.1.1), column-major, in exact rationals."""
+    l, r, b, t, n, f = map(Q, (l, r, b, t, n, f))
+    m = [Q(0)] * 16
+    m[0], m[5] = 2 * n / (r - l), 2 * n / (t - b)
+    m[8], m[9] = (r + l) / (r - l), (t + b) / (t - b)
+    m[10], m[11], m[14] = -(f + n) / (f - n), Q(-1), -2 * f * n / (f - n)
+    return m
+
+
+def exact_epsilon(n, f, delta, pz):
+    """Eq. 4.1.7."""
+    n, f, delta, pz = map(Q, (n, f, delta, pz))
+    return -2 * f * n / (f + n) * delta / (pz * (pz + delta))
+
+
+def exact_k(n, f, bits):
+    """Eq. 4.1.11 with seed 002's correction."""
+    n, f = Q(n), Q(f)
+    return (f - n) / (f * n * steps(bits))
+
+
+def exact_window_depth(n, f, d):
+    """Walker's f(d) (seed 001) as printed."""
+    n, f, d = map(Q, (n, f, d))
+    return (f + n) / (2 * (f - n)) - f * n / (d * (f - n)) + Q(1, 2)
+
+
+class TupleMatrices(unittest.TestCase):
+    """Matrices without numpy: tuples of 16 Python floats."""
+
+    CASES = [(-1, 1, -1, 1, 1, 100), (-0.1, 0.3, -0.2, 0.1, 0.1, 1e4), (-2, 2, -1.5, 1.5, 0.01, 1e6)]
+
+    def setUp(self):
+        patcher = mock.patch.object(zshift, "_numpy", None)
+        patcher.start()
+        self.addCleanup(patcher.stop)
+
+    def test_frustum_is_nearest_float32_of_exact_matrix(self):
+        for case in self.CASES:
+            m = zshift.frustum(*case)
+            self.assertIsInstance(m, tuple)
+            self.assertEqual(len(m), 16)
+            for i, (got, want) in enumerate(zip(m, exact_frustum(*case))):
+                nearest = f32(want)
+                self.assertIn(got, (nearest, *f32_neighbours(nearest)), f"{case} element {i}")
+
+    def test_infinite_far_plane(self):
+        m = zshift.frustum(-1, 1, -1, 1, 0.5, math.inf)
+        self.assertEqual((m[10], m[11], m[14]), (-1.0, -1.0, -1.0))
+
+    def test_offset_matrix_moves_element_10_by_at_least_the_exact_offset(self):
+        for l, r, b, t, n, f, delta, pz in [
+            (-1, 1, -1, 1, 1, 100, 0.01, -50),
+            (-0.1, 0.1, -0.1, 0.1, 0.1, 1e4, 2.0, -5e3),
+            (-1, 1, -1, 1, 1, 1e6, -10.0, -1e3),
+        ]:
+            plain = zshift.frustum(l, r, b, t, n, f)
+            shifted = zshift.load_offset_matrix(l, r, b, t, n, f, delta, pz)
+            for i in range(16):
+                if i != 10:
+                    self.assertEqual(shifted[i], plain[i], f"element {i}")
+            exact_offset = exact_frustum(l, r, b, t, n, f)[10] * exact_epsilon(n, f, delta, pz)
+            moved = Q(shifted[10]) - Q(plain[10])
+            ulp = max(abs(Q(x) - Q(shifted[10])) for x in f32_neighbours(shifted[10]))
+            self.assertGreater(moved * exact_offset, 0, "offset in the wrong direction")
+            self.assertGreaterEqual(abs(moved), abs(exact_offset))
+            self.assertLessEqual(abs(moved), abs(exact_offset) + ulp)
+
+
+@unittest.skipIf(zshift._numpy is None, "numpy is not installed (.ci/run installs it)")
+class NumpyMatrices(unittest.TestCase):
+    """Matrices with numpy: float32 arrays of shape (16,), the same values as the tuples."""
+
+    def test_arrays_equal_the_tuples(self):
+        array = zshift.load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.5, -50)
+        with mock.patch.object(zshift, "_numpy", None):
+            plain_tuple = zshift.load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.5, -50)
+        self.assertEqual(array.dtype, zshift._numpy.float32)
+        self.assertEqual(array.shape, (16,))
+        self.assertEqual(tuple(float(x) for x in array), plain_tuple)
+
+
+class Scalars(unittest.TestCase):
+    """Each scalar is the f64 nearest the exact value (the library rounds correctly), or within
+    the stated bound."""
+
+    def assert_nearest(self, got, exact, what):
+        self.assertIsInstance(got, float)
+        self.assertEqual(got, float(exact), f"{what}: {got!r} vs exact {float(exact)!r}")
+
+    def test_epsilon(self):
+        self.assert_nearest(zshift.epsilon(0.1, 1000, 0.5, -20), exact_epsilon(0.1, 1000, 0.5, -20), "epsilon")
+        self.assertLess(zshift.epsilon(0.1, 1000, 0.5, -20), 0)
+        pz, delta = Q(-20), Q(0.5)
+        self.assert_nearest(zshift.epsilon(1, math.inf, 0.5, -20), -2 * delta / (pz * (pz + delta)), "f = inf")
+
+    def test_min_epsilon(self):
+        for bits in (1, 16, 24, 32):
+            exact = 2 / steps(bits) * (Q(1000) - Q(0.1)) / (Q(1000) + Q(0.1))
+            self.assert_nearest(zshift.min_epsilon(0.1, 1000, bits), exact, f"bits {bits}")
+
+    def test_min_delta_toward_and_depth_resolution(self):
+        k, pz = exact_k(0.1, 1000, 16), Q(-300)
+        exact = k * pz * pz / (1 - k * pz)
+        self.assert_nearest(zshift.min_delta_toward(0.1, 1000, 16, -300), exact, "min_delta_toward")
+        # Seeds 000 (with 002) and 001 agree: Walker's depth step at d = -pz is the same number.
+        self.assert_nearest(zshift.depth_resolution(0.1, 1000, 16, 300), exact, "depth_resolution")
+
+    def test_max_delta_away(self):
+        k, pz = exact_k(0.1, 1000, 16), Q(-2)
+        self.assert_nearest(zshift.max_delta_away(0.1, 1000, 16, -2), -k * pz * pz / (1 + k * pz), "max_delta_away")
+
+    def test_window_depth(self):
+        self.assert_nearest(zshift.window_depth(0.1, 1000, 37), exact_window_depth(0.1, 1000, 37), "f(37)")
+        self.assertEqual(zshift.window_depth(1, 100, 1), 0.0)
+        self.assertEqual(zshift.window_depth(1, 100, 100), 1.0)
+
+
+class Errors(unittest.TestCase):
+    """Failures raise ZshiftError carrying the status and the library's message."""
+
+    def assert_raises_status(self, status, fn, *args):
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            fn(*args)
+        self.assertEqual(caught.exception.status, status)
+        self.assertEqual(str(caught.exception), zshift.status_message(status))
+        self.assertEqual(caught.exception.message, zshift.status_message(status))
+        self.assertIsInstance(caught.exception, ValueError)
+
+    def test_domain(self):
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, 1, 1, -1, 1, 1, 100)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, -1, 1, -1, 1, 5, 5)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.load_offset_matrix, -1, 1, -1, 1, 1, 100, 50, -50)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.window_depth, 1, 100, 0.5)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_epsilon, 1, 100, 33)
+
+    def test_not_finite(self):
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.frustum, math.nan, 1, -1, 1, 1, 100)
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.epsilon, 1, 100, math.nan, -20)
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.frustum, -1, 1, -1, 1, 1, -math.inf)
+
+    def test_unresolvable_and_overflow(self):
+        self.assert_raises_status(zshift.Status.UNRESOLVABLE, zshift.max_delta_away, 1, 1e6, 1, -1e5)
+        self.assert_raises_status(zshift.Status.OVERFLOW, zshift.frustum, 0, 1e-40, -1, 1, 1, 100)
+
+    def test_bits_outside_uint32_are_refused_not_wrapped(self):
+        # ctypes alone would turn 2**32 + 24 into 24 and answer for a 24-bit buffer.
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_epsilon, 1, 100, 2**32 + 24)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_delta_toward, 1, 100, -1, -50)
+
+    def test_wrong_argument_types_raise_type_errors(self):
+        with self.assertRaises(Exception) as caught:
+            zshift.frustum("left", 1, -1, 1, 1, 100)
+        self.assertNotIsInstance(caught.exception, zshift.ZshiftError)
+
+    def test_status_messages(self):
+        messages = [zshift.status_message(s) for s in zshift.Status]
+        self.assertEqual(len(set(messages)), len(messages), "each status has its own message")
+        self.assertEqual(zshift.status_message(99), "unknown zshift status")
+        self.assertEqual(zshift.ZshiftError(99).status, 99)
+
+
+class Library(unittest.TestCase):
+    """The library lookup and the versions."""
+
+    def test_version_matches_cargo_toml(self):
+        cargo = (ROOT / "Cargo.toml").read_text()
+        self.assertEqual(zshift.version(), re.search(r'^version\s*=\s*"([^"]+)"', cargo, re.M).group(1))
+
+    def test_abi_version_matches_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        self.assertEqual(zshift.ABI_VERSION, int(re.search(r"#define ZSHIFT_ABI_VERSION (\d+)", header).group(1)))
+
+    def run_python(self, code, library):
+        env = dict(os.environ, ZSHIFT_LIBRARY=str(library), PYTHONPATH=str(ROOT / "bindings" / "python"))
+        return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+
+    def test_environment_variable_is_used_first(self):
+        done = self.run_python("import zshift; print(zshift.library_path())", zshift.library_path())
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.strip(), zshift.library_path())
+
+    def test_wrong_environment_variable_fails_loudly(self):
+        missing = ROOT / "target" / "no-such-dir" / "libzshift.so"
+        done = self.run_python("import zshift; zshift.version()", missing)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("LibraryNotFound", done.stderr)
+        self.assertIn(str(missing), done.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,191 @@
+"""zshift for Python: depth offsets through the projection matrix, and exact depth precision.
+
+A thin ctypes layer over zshift's C ABI (``include/zshift.h``); no compiled extension. The library
+is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then ``target/release``,
+then ``target/debug``, then the system path) on the first call.
+
+Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
+[-1, 1], window depth [0, 1]; ``n``, ``f``, ``d`` are positive distances (``f`` may be
+``math.inf`` where a function says so), ``pz`` is an eye-space z (negative in front of the
+camera); ``delta > 0`` moves geometry toward the camera and gives ``epsilon < 0``. Matrices are
+16 floats in column-major order (what ``glLoadMatrixf`` takes; element 10 is row 2, column 2):
+a tuple of Python floats, or a ``numpy.float32`` array of shape (16,) when numpy is installed.
+Scalars are Python floats. Every failure raises :class:`ZshiftError` carrying the C status and
+the library's message for it. Equation numbers refer to the seed texts.
+"""
+
+import ctypes
+import enum
+import functools
+
+from . import _library
+from ._library import LibraryNotFound
+
+try:
+    import numpy as _numpy
+except ImportError:  # numpy is optional: matrices are then tuples
+    _numpy = None
+
+__all__ = [
+    "ABI_VERSION", "Status", "ZshiftError", "LibraryNotFound", "frustum", "load_offset_matrix",
+    "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
+    "depth_resolution", "status_message", "version", "library_path",
+]
+
+#: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
+ABI_VERSION = 1
+
+
+class Status(enum.IntEnum):
+    """The C status codes (``ZSHIFT_OK``, ``ZSHIFT_ERR_*``)."""
+
+    OK = 0
+    NULL_POINTER = 1
+    NOT_FINITE = 2
+    DOMAIN = 3
+    UNRESOLVABLE = 4
+    OVERFLOW = 5
+    INTERNAL = 6
+
+
+class ZshiftError(ValueError):
+    """A zshift call failed. ``status`` says how (a :class:`Status`, or the raw code if unknown);
+    ``message`` (also ``str(error)``) is the library's sentence for it."""
+
+    def __init__(self, status):
+        try:
+            status = Status(status)
+        except ValueError:
+            pass
+        self.status = status
+        self.message = status_message(status)
+        super().__init__(self.message)
+
+
+@functools.lru_cache(maxsize=None)
+def _loaded():
+    return _library.load()
+
+
+def _lib():
+    return _loaded()[0]
+
+
+def library_path():
+    """The path of the shared library in use (loading it if needed)."""
+    return _loaded()[1]
+
+
+def status_message(status):
+    """The library's sentence for a status code (never fails; unknown codes get
+    ``"unknown zshift status"``)."""
+    return _lib().zshift_status_message(int(status)).decode("utf-8")
+
+
+def version():
+    """The library's version string, such as ``"0.1.0"``."""
+    return _lib().zshift_version().decode("utf-8")
+
+
+def _check(status):
+    if status != Status.OK:
+        raise ZshiftError(status)
+
+
+def _bits(bits):
+    # ctypes would wrap an out-of-range int into uint32 silently (2**32 + 24 -> 24).
+    if not isinstance(bits, int) or not 0 <= bits < 2**32:
+        raise ZshiftError(Status.DOMAIN)
+    return bits
+
+
+def _matrix(call):
+    out = (ctypes.c_float * 16)()
+    _check(call(out))
+    if _numpy is not None:
+        return _numpy.array(out, dtype=_numpy.float32)
+    return tuple(out)
+
+
+def _scalar(call):
+    out = ctypes.c_double()
+    _check(call(ctypes.byref(out)))
+    return out.value
+
+
+def frustum(l, r, b, t, n, f):
+    """The ``glFrustum(l, r, b, t, n, f)`` matrix (seed 000, eq. 4.1.1), each element the float32
+    nearest the exact value. ``f`` may be ``math.inf`` (element 10 is -1, element 14 is -2n).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE`` for NaN or a stray infinity; ``DOMAIN`` if
+    ``l == r``, ``b == t``, ``n <= 0`` or ``f <= n``; ``OVERFLOW`` if an element exceeds float32.
+    """
+    return _matrix(lambda out: _lib().zshift_frustum(l, r, b, t, n, f, out))
+
+
+def load_offset_matrix(l, r, b, t, n, f, delta, pz):
+    """The drop-in for the seed's ``LoadOffsetMatrix``: :func:`frustum` with element 10 scaled by
+    ``1 + epsilon(n, f, delta, pz)`` (eq. 4.1.3 and 4.1.7), rounded away from the plain element so
+    the offset is never lost to float32 rounding. Every other element equals :func:`frustum`'s.
+
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``NOT_FINITE`` for a NaN or infinite
+    ``delta`` or ``pz``; ``DOMAIN`` if ``pz`` is outside [-f, -n] or ``pz + delta >= 0``.
+    """
+    return _matrix(lambda out: _lib().zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out))
+
+
+def epsilon(n, f, delta, pz):
+    """Epsilon for an eye-space shift ``delta`` at eye depth ``pz`` (eq. 4.1.7):
+    ``-(2fn/(f+n)) * delta / (pz * (pz + delta))``.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``pz`` outside [-f, -n],
+    ``pz + delta >= 0``); ``OVERFLOW``.
+    """
+    return _scalar(lambda out: _lib().zshift_epsilon(n, f, delta, pz, out))
+
+
+def min_epsilon(n, f, bits):
+    """The smallest ``|epsilon|`` that moves depth by one step of a ``bits``-bit buffer:
+    ``2/(2^bits - 1) * (f - n)/(f + n)`` (eq. 4.1.8 as corrected by seed 002).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_min_epsilon(n, f, _bits(bits), out))
+
+
+def min_delta_toward(n, f, bits, pz):
+    """The smallest shift toward the camera that changes the stored depth at ``pz``:
+    ``k*pz^2/(1 - k*pz)``, eq. 4.1.9 with seed 002's ``k = (f - n)/(f*n*(2^bits - 1))``.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``pz`` outside [-f, -n],
+    ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_min_delta_toward(n, f, _bits(bits), pz, out))
+
+
+def max_delta_away(n, f, bits, pz):
+    """The largest (least negative) shift away from the camera that still changes the stored
+    depth at ``pz``: ``-k*pz^2/(1 + k*pz)``, eq. 4.1.10 with the corrected k.
+
+    Raises :class:`ZshiftError`: as :func:`min_delta_toward`; ``UNRESOLVABLE`` if
+    ``k*|pz| >= 1``; ``OVERFLOW``.
+    """
+    return _scalar(lambda out: _lib().zshift_max_delta_away(n, f, _bits(bits), pz, out))
+
+
+def window_depth(n, f, d):
+    """The window depth in [0, 1] of a point at eye distance ``d`` (Walker's f(d), seed 001).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``d`` outside [n, f]).
+    """
+    return _scalar(lambda out: _lib().zshift_window_depth(n, f, d, out))
+
+
+def depth_resolution(n, f, bits, d):
+    """The exact depth step at eye distance ``d``: ``q*d^2/(b + q*d)`` with ``q = 1/(2^bits - 1)``
+    and ``b = fn/(f - n)`` (Walker's eq. 3, seed 001).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``d`` outside [n, f],
+    ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_depth_resolution(n, f, _bits(bits), d, out))
