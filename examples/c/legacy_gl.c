@@ -18,31 +18,20 @@
 #define OFFSET_STEPS 4.0
 
 /* [quickstart-c-legacy] */
-/* Replaces glFrustum(l, r, b, t, n, f): loads the plain projection for the base geometry. */
-static int load_frustum(double l, double r, double b, double t, double n, double f) {
-  float proj[16];
-  ZshiftStatus status = zshift_frustum(l, r, b, t, n, f, proj);
-  if (status != ZSHIFT_OK) {
-    fprintf(stderr, "zshift_frustum: %s\n", zshift_status_message(status));
+/* Replaces glFrustum(l, r, b, t, n, f) when delta == 0, and the seed's
+ * LoadOffsetMatrix(l, r, b, t, n, f, delta, pz) otherwise: loads the projection that moves
+ * geometry at eye-space depth pz (negative) toward the camera by delta eye-space units. */
+static int load_projection(double l, double r, double b, double t, double n, double f,
+                           double delta, double pz) {
+  float m[16]; /* column-major, as glLoadMatrixf takes it */
+  ZshiftStatus s = delta == 0.0 ? zshift_frustum(l, r, b, t, n, f, m)
+                                : zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, m);
+  if (s != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_status_message(s));
     return 1;
   }
   glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(proj);
-  return 0;
-}
-
-/* Replaces LoadOffsetMatrix(l, r, b, t, n, f, delta, pz): loads the projection that moves
- * geometry at eye depth pz (negative) toward the camera by delta eye-space units. */
-static int load_offset_frustum(double l, double r, double b, double t, double n, double f,
-                               double delta, double pz) {
-  float proj[16];
-  ZshiftStatus status = zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, proj);
-  if (status != ZSHIFT_OK) {
-    fprintf(stderr, "zshift_load_offset_matrix: %s\n", zshift_status_message(status));
-    return 1;
-  }
-  glMatrixMode(GL_PROJECTION);
-  glLoadMatrixf(proj);
+  glLoadMatrixf(m);
   return 0;
 }
 /* [/quickstart-c-legacy] */
@@ -87,12 +76,11 @@ static int render(const struct scene_case *c, enum decal_projection how, double 
   glDepthFunc(GL_LESS);
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity(); /* the quads are given in eye space */
-  if (load_frustum(-n, n, -n, n, n, f) != 0) return 1;
+  if (load_projection(-n, n, -n, n, n, f, 0.0, -d) != 0) return 1;
   draw(base, 0, 255);
   if (how == SEED)
     seed_load_offset_matrix(-n, n, -n, n, n, f, (GLfloat)delta, (GLfloat)-d);
-  else if (how == ZSHIFT ? load_offset_frustum(-n, n, -n, n, n, f, delta, -d) != 0
-                         : load_frustum(-n, n, -n, n, n, f) != 0)
+  else if (load_projection(-n, n, -n, n, n, f, how == ZSHIFT ? delta : 0.0, -d) != 0)
     return 1;
   draw(decal, 255, 0);
   if (headless_read_rgba(pixels) != 0) return 1;

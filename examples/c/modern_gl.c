@@ -122,18 +122,18 @@ static GLuint link_program(void) {
 }
 
 /* [quickstart-c-modern] */
-/* Sets the projection uniform: the plain glFrustum matrix when delta == 0, else the matrix that
- * moves geometry at eye depth pz (negative) toward the camera by delta eye-space units. */
+/* Sets the projection uniform: the glFrustum matrix when delta == 0, else the matrix that moves
+ * geometry at eye-space depth pz (negative) toward the camera by delta eye-space units. */
 static int set_projection(GLint location, double l, double r, double b, double t, double n,
                           double f, double delta, double pz) {
-  float proj[16]; /* column-major, as glUniformMatrix4fv takes it with transpose = GL_FALSE */
-  ZshiftStatus status = delta == 0.0 ? zshift_frustum(l, r, b, t, n, f, proj)
-                                     : zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, proj);
-  if (status != ZSHIFT_OK) {
-    fprintf(stderr, "zshift: %s\n", zshift_status_message(status));
+  float m[16]; /* column-major: glUniformMatrix4fv with transpose = GL_FALSE */
+  ZshiftStatus s = delta == 0.0 ? zshift_frustum(l, r, b, t, n, f, m)
+                                : zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, m);
+  if (s != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_status_message(s));
     return 1;
   }
-  glUniformMatrix4fv(location, 1, GL_FALSE, proj);
+  glUniformMatrix4fv(location, 1, GL_FALSE, m);
   return 0;
 }
 /* [/quickstart-c-modern] */
