@@ -16,8 +16,8 @@
 //!    matrix read back with `glGetFloatv`, ε from eq. 4.1.7 rounded to float, element 10 scaled
 //!    by `1.0F + epsilon` in float — with the δ the seed prints as the minimum (eq. 4.1.9 with
 //!    4.1.11's k, before the errata of seed 002 doubled it).
-//! 3. **zshift**: `zshift::load_offset_matrix` with zshift's recommended δ (see
-//!    [`recommended_delta`]).
+//! 3. **zshift**: `zshift::load_offset_matrix` with the δ of zshift's recommendation
+//!    (`zshift::recommend`, see [`recommendation`]).
 //!
 //! For each it prints how many of the decal's pixels the floor hid, and writes the picture as
 //! PNG. Exits nonzero, with the reason, if no GL context can be made or if zshift's decal loses
@@ -26,6 +26,10 @@
 
 use std::path::{Path, PathBuf};
 
+use zshift::recommend::{
+    DepthFormat as RecommendFormat, Recommendation, Scene as RecommendScene, Snapping,
+};
+use zshift::Frustum;
 use zshift_harness::{rgba8, DepthFormat, DrawState, Gl, Image, Profile, Quad};
 
 /// Framebuffer size: large enough to see the pattern, small enough for a software rasterizer.
@@ -76,15 +80,38 @@ impl Scene {
     }
 }
 
-/// zshift's recommended δ for the decal at eye depth `pz`.
-///
-/// PLACEHOLDER until `zshift::recommend` lands on main: four times the smallest shift that
-/// changes the stored depth (`min_delta_toward`, eq. 4.1.9 with seed 002's k). It ignores the
-/// plane's slope, which the recommendation's rasterizer error model accounts for.
-fn recommended_delta(scene: &Scene, pz: f64) -> Result<f64, String> {
-    let step = zshift::min_delta_toward(scene.n, scene.f, DEPTH.bits(), pz)
-        .map_err(|e| format!("zshift::min_delta_toward: {e}"))?;
-    Ok(4.0 * step)
+/// How the rasterizer sets up depth, as the recommendation's error model takes it: Mesa's
+/// llvmpipe interpolates depth from unsnapped positions (measured, `tests/gl_recommend.rs`);
+/// any other driver is assumed to snap to `GL_SUBPIXEL_BITS`, the conservative case.
+fn snapping_of(gl: &Gl) -> Snapping {
+    if gl.renderer().contains("llvmpipe") {
+        Snapping::Unsnapped
+    } else {
+        Snapping::SubpixelBits(gl.subpixel_bits())
+    }
+}
+
+/// zshift's recommendation for the decal (`zshift::recommend`): what the engine knows of the
+/// scene — frustum, viewport, depth format, the decal's nearest and farthest distance, the
+/// plane's slope, the rasterizer's snapping — in, the offset that its error model guarantees
+/// out; also the decal's farthest distance d₂, where the recommended δ applies.
+fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendation, f64), String> {
+    let (h, n, f) = (scene.half, scene.n, scene.f);
+    let depths = scene.decal().corners.map(|[_, _, z]| -f64::from(z));
+    let nearest = depths.iter().copied().fold(f64::INFINITY, f64::min);
+    let farthest = depths.iter().copied().fold(0.0, f64::max);
+    let model = RecommendScene {
+        frustum: Frustum::new(-h, h, -h, h, n, f).map_err(|e| e.to_string())?,
+        viewport: [SIZE, SIZE],
+        format: RecommendFormat::Unorm { bits: DEPTH.bits() },
+        depth_range: [nearest, farthest],
+        slope: scene.slope.abs(),
+        exact_depth: false,
+        snapping,
+    };
+    let rec =
+        zshift::recommend::recommend(&model).map_err(|e| format!("zshift::recommend: {e}"))?;
+    Ok((rec, farthest))
 }
 
 /// The seed's minimum δ as printed: eq. 4.1.9 with eq. 4.1.11's `k = (f−n)/(2fn(2^m−1))`.
@@ -147,29 +174,32 @@ fn write_png(path: &Path, image: &Image) -> Result<(), String> {
         .map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// One scene's three renders: `(method, δ, element 10, image, decal pixels lost)`.
-type Row = (&'static str, f64, f32, Image, usize);
+/// One scene's three renders: `(method, δ, the Pz it applies at, element 10, image, decal
+/// pixels lost)`.
+type Row = (&'static str, f64, f64, f32, Image, usize);
 
 /// Renders `scene` three ways; returns the rows and the decal's pixel count.
 fn compare(gl: &mut Gl, scene: &Scene) -> Result<(Vec<Row>, usize), String> {
-    let pz = scene.plane_z(0.0); // the decal's centre
+    let pz = scene.plane_z(0.0); // the decal's centre, where the seed's δ is taken
     let (h, n, f) = (scene.half, scene.n, scene.f);
     let mask = decal_mask(gl, scene)?;
     let seed_delta = seed_min_delta(scene, pz);
-    let zshift_delta = recommended_delta(scene, pz)?;
-    let zshift_matrix = zshift::load_offset_matrix(-h, h, -h, h, n, f, zshift_delta, pz)
+    let seed_matrix = seed_load_offset_matrix(gl, scene, seed_delta as f32, pz as f32)?;
+    // The recommendation's δ applies at the decal's farthest point, Pz = −d₂.
+    let (rec, farthest) = recommendation(scene, snapping_of(gl))?;
+    let far_pz = -farthest;
+    let zshift_matrix = zshift::load_offset_matrix(-h, h, -h, h, n, f, rec.delta_at_far, far_pz)
         .map_err(|e| format!("zshift::load_offset_matrix: {e}"))?
         .to_cols_array();
-    let seed_matrix = seed_load_offset_matrix(gl, scene, seed_delta as f32, pz as f32)?;
     let mut rows = Vec::new();
-    for (name, delta, matrix) in [
-        ("none", 0.0, scene.plain()),
-        ("seed", seed_delta, seed_matrix),
-        ("zshift", zshift_delta, zshift_matrix),
+    for (name, delta, at, matrix) in [
+        ("none", 0.0, pz, scene.plain()),
+        ("seed", seed_delta, pz, seed_matrix),
+        ("zshift", rec.delta_at_far, far_pz, zshift_matrix),
     ] {
         let image = render(gl, scene, &matrix)?;
         let lost = image.count_not_in_mask(&mask, rgba8(DECAL));
-        rows.push((name, delta, matrix[10], image, lost));
+        rows.push((name, delta, at, matrix[10], image, lost));
     }
     Ok((rows, mask.iter().filter(|&&m| m).count()))
 }
@@ -188,27 +218,34 @@ const MAIN: Scene = Scene {
 /// decal loses a pixel: that is the claim this demonstration shows.
 fn demonstrate(gl: &mut Gl, out_dir: &Path) -> Result<(), String> {
     let (rows, decal_pixels) = compare(gl, &MAIN)?;
+    let (rec, _) = recommendation(&MAIN, snapping_of(gl))?;
     std::fs::create_dir_all(out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     println!(
         "decal on a floor sloped dz/dy = {}, glFrustum(±{}, ±{}, n = {}, f = {}), decal centre at Pz = {}, {SIZE}x{SIZE} {}, {decal_pixels} decal pixels",
         MAIN.slope, MAIN.half, MAIN.half, MAIN.n, MAIN.f, MAIN.plane_z(0.0), DEPTH.name()
     );
     println!(
-        "{:<8} {:>12} {:>14} {:>17}  picture",
-        "method", "delta", "element 10", "decal pixels lost"
+        "{:<8} {:>18} {:>14} {:>17}  picture",
+        "method", "delta @ Pz", "element 10", "decal pixels lost"
     );
-    for (name, delta, m10, image, lost) in &rows {
+    for (name, delta, at, m10, image, lost) in &rows {
         let path = out_dir.join(format!("{name}.png"));
         write_png(&path, image)?;
         println!(
-            "{name:<8} {delta:>12.5} {m10:>14.9} {lost:>8} ({:>5.1}%)  {}",
+            "{name:<8} {:>18} {m10:>14.9} {lost:>8} ({:>5.1}%)  {}",
+            format!("{delta:.4} @ {at}"),
             100.0 * *lost as f64 / decal_pixels as f64,
             path.display()
         );
     }
+    let t = rec.terms;
+    println!(
+        "zshift's recommendation ({:?}, {}): window offset {:.3e} = quantum {:.3e} + 2 x (transform {:.3e} + vertex {:.3e} + interpolation {:.3e} + snap {:.3e}); bleed gap {:.4} eye units",
+        snapping_of(gl), gl.renderer(), rec.window_offset, t.quantum, t.transform, t.vertex, t.interpolation, t.snap, rec.bleed_gap
+    );
     match rows.iter().find(|r| r.0 == "zshift") {
-        Some((_, _, _, _, 0)) => Ok(()),
-        Some((_, _, _, _, lost)) => Err(format!("zshift's decal lost {lost} pixels")),
+        Some((_, _, _, _, _, 0)) => Ok(()),
+        Some((_, _, _, _, _, lost)) => Err(format!("zshift's decal lost {lost} pixels")),
         None => Err("no zshift row".into()),
     }
 }
@@ -232,7 +269,7 @@ fn sweep(gl: &mut Gl) -> Result<(), String> {
                 let (rows, total) = compare(gl, &scene)?;
                 let pct: Vec<String> = rows
                     .iter()
-                    .map(|r| format!("{:>7.1}", 100.0 * r.4 as f64 / total as f64))
+                    .map(|r| format!("{:>7.1}", 100.0 * r.5 as f64 / total as f64))
                     .collect();
                 println!("{slope:>6} {f:>8.0e} {z0:>7} {}", pct.join(" "));
             }
