@@ -11,12 +11,6 @@
 #include "scene.h"
 #include "zshift.h"
 
-/* The offset used here, in depth steps at the decal's depth (zshift_min_delta_toward). On these
- * camera-facing planes one step already keeps every pixel (the table this program prints shows
- * it); the margin is for real scenes, where a sloped plane's depth moves with sub-pixel vertex
- * snapping (seed 004) and the two quads snap differently. */
-#define OFFSET_STEPS 4.0
-
 /* [quickstart-c-legacy] */
 /* Replaces glFrustum(l, r, b, t, n, f) when delta == 0, and the seed's
  * LoadOffsetMatrix(l, r, b, t, n, f, delta, pz) otherwise: loads the projection that moves
@@ -120,22 +114,30 @@ static double seed_min_delta(const struct scene_case *c, double pz) {
   return k * pz * pz / (1.0 - k * pz);
 }
 
+/* What the rasterizer says about its sub-pixel precision, for zshift_recommend. */
+static int subpixel_bits(void) {
+  GLint bits = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+  return bits;
+}
+
 static int run_case(const struct scene_case *c) {
   struct scene_tally none, seed, one, chosen;
-  double d = scene_distance(c), step;
+  double d = scene_distance(c), step, recommended;
   ZshiftStatus status = zshift_min_delta_toward(c->n, c->f, (uint32_t)c->depth_bits, -d, &step);
   if (status != ZSHIFT_OK) {
     fprintf(stderr, "zshift_min_delta_toward: %s\n", zshift_status_message(status));
     return 1;
   }
+  if (scene_recommended_delta(c, subpixel_bits(), &recommended) != 0) return 1;
   if (check_matches_gl_frustum(c) != 0 || render(c, PLAIN, 0.0, &none) != 0 ||
       render(c, SEED, seed_min_delta(c, -d), &seed) != 0 || render(c, ZSHIFT, step, &one) != 0 ||
-      render(c, ZSHIFT, OFFSET_STEPS * step, &chosen) != 0)
+      render(c, ZSHIFT, recommended, &chosen) != 0)
     return 1;
   printf("D%-3d n=%-5g f=%-7g d=%-9g step=%-10.4g lost of %d: none %4d  seed (its own min) %4d  "
-         "zshift 1 step %4d  zshift %g steps %4d\n",
+         "zshift 1 step %4d  zshift recommended (%.3g steps) %4d\n",
          c->depth_bits, c->n, c->f, d, step, chosen.decal_total, none.decal_lost, seed.decal_lost,
-         one.decal_lost, OFFSET_STEPS, chosen.decal_lost);
+         one.decal_lost, recommended / step, chosen.decal_lost);
   if (none.wrong + seed.wrong + one.wrong + chosen.wrong != 0) {
     fprintf(stderr, "FAIL: %d pixels show neither the base, the decal nor the background\n",
             none.wrong + seed.wrong + one.wrong + chosen.wrong);
@@ -147,7 +149,7 @@ static int run_case(const struct scene_case *c) {
   }
   if (chosen.decal_lost != 0) {
     fprintf(stderr, "FAIL: with zshift's offset of %g steps, %d decal pixels were lost\n",
-            OFFSET_STEPS, chosen.decal_lost);
+            recommended / step, chosen.decal_lost);
     return 1;
   }
   return 0;

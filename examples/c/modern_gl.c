@@ -11,10 +11,6 @@
 #include "scene.h"
 #include "zshift.h"
 
-/* As in legacy_gl.c: one step keeps every pixel of these camera-facing planes; the margin is for
- * sloped planes in real scenes (seed 004). */
-#define OFFSET_STEPS 4.0
-
 static PFNGLCREATESHADERPROC glCreateShader;
 static PFNGLSHADERSOURCEPROC glShaderSource;
 static PFNGLCOMPILESHADERPROC glCompileShader;
@@ -42,6 +38,7 @@ static PFNGLCLEARPROC glClear;
 static PFNGLENABLEPROC glEnable;
 static PFNGLDEPTHFUNCPROC glDepthFunc;
 static PFNGLGETERRORPROC glGetError;
+static PFNGLGETINTEGERVPROC glGetIntegerv;
 
 static int load_gl(void) {
 #define PFN_LOAD(type, name) \
@@ -73,6 +70,7 @@ static int load_gl(void) {
   PFN_LOAD(PFNGLENABLEPROC, glEnable);
   PFN_LOAD(PFNGLDEPTHFUNCPROC, glDepthFunc);
   PFN_LOAD(PFNGLGETERRORPROC, glGetError);
+  PFN_LOAD(PFNGLGETINTEGERVPROC, glGetIntegerv);
 #undef PFN_LOAD
   return 0;
 }
@@ -188,21 +186,29 @@ static int setup(struct renderer *gl) {
   return glGetError() == GL_NO_ERROR ? 0 : 1;
 }
 
+/* What the rasterizer says about its sub-pixel precision, for zshift_recommend. */
+static int subpixel_bits(void) {
+  GLint bits = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+  return bits;
+}
+
 static int run_case(const struct renderer *gl, const struct scene_case *c) {
   struct scene_tally none, one, chosen;
-  double d = scene_distance(c), step;
+  double d = scene_distance(c), step, recommended;
   ZshiftStatus status = zshift_min_delta_toward(c->n, c->f, (uint32_t)c->depth_bits, -d, &step);
   if (status != ZSHIFT_OK) {
     fprintf(stderr, "zshift_min_delta_toward: %s\n", zshift_status_message(status));
     return 1;
   }
+  if (scene_recommended_delta(c, subpixel_bits(), &recommended) != 0) return 1;
   if (render(gl, c, 0.0, &none) != 0 || render(gl, c, step, &one) != 0 ||
-      render(gl, c, OFFSET_STEPS * step, &chosen) != 0)
+      render(gl, c, recommended, &chosen) != 0)
     return 1;
   printf("D%-3d n=%-5g f=%-7g d=%-9g step=%-10.4g lost of %d: none %4d  zshift 1 step %4d  "
-         "zshift %g steps %4d\n",
+         "zshift recommended (%.3g steps) %4d\n",
          c->depth_bits, c->n, c->f, d, step, chosen.decal_total, none.decal_lost, one.decal_lost,
-         OFFSET_STEPS, chosen.decal_lost);
+         recommended / step, chosen.decal_lost);
   if (none.wrong + one.wrong + chosen.wrong != 0) {
     fprintf(stderr, "FAIL: %d pixels show neither the base, the decal nor the background\n",
             none.wrong + one.wrong + chosen.wrong);
@@ -214,7 +220,7 @@ static int run_case(const struct renderer *gl, const struct scene_case *c) {
   }
   if (chosen.decal_lost != 0) {
     fprintf(stderr, "FAIL: with zshift's offset of %g steps, %d decal pixels were lost\n",
-            OFFSET_STEPS, chosen.decal_lost);
+            recommended / step, chosen.decal_lost);
     return 1;
   }
   return 0;

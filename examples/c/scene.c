@@ -1,6 +1,11 @@
 /* The coplanar-decal scene and its pixel check; see scene.h. */
 #include "scene.h"
 
+#include <stdio.h>
+#include <string.h>
+
+#include "zshift.h"
+
 /* f/n from 1e3 to 1e6, planes near and far in the range, 16- and 24-bit depth buffers. */
 const struct scene_case scene_cases[] = {
     {0.1, 1000.0, 0.5, 24}, {1.0, 1e5, 0.2, 24},  {0.01, 1e4, 0.9, 24},
@@ -20,6 +25,39 @@ void scene_quad(double half, double d, float out[6][3]) {
     out[i][2] = (float)(-d);
   }
 }
+
+/* [quickstart-c-recommend] */
+/* What the engine knows about the decal goes in; the shift toward the camera that zshift's
+ * error model of the rasterizer guarantees comes out. */
+int scene_recommended_delta(const struct scene_case *c, int subpixel_bits, double *delta) {
+  double d = scene_distance(c);
+  ZshiftScene scene;
+  ZshiftRecommendation rec;
+  ZshiftStatus s;
+  memset(&scene, 0, sizeof scene);
+  scene.l = -c->n; /* the glFrustum(l, r, b, t, n, f) the base is drawn with */
+  scene.r = c->n;
+  scene.b = -c->n;
+  scene.t = c->n;
+  scene.n = c->n;
+  scene.f = c->f;
+  scene.viewport_width = SCENE_SIZE;
+  scene.viewport_height = SCENE_SIZE;
+  scene.depth_format = c->depth_bits == 16 ? 0x81A5 : 0x81A6; /* GL_DEPTH_COMPONENT16 or 24 */
+  scene.decal_near = d; /* the decal's nearest and farthest eye distance */
+  scene.decal_far = d;
+  scene.slope = 0.0;     /* |dz/dx| + |dz/dy| of its plane in eye space: facing the camera */
+  scene.exact_depth = 1; /* base and decal corners share one float z */
+  scene.subpixel_bits = subpixel_bits;
+  s = zshift_recommend(&scene, &rec);
+  if (s != ZSHIFT_OK) {
+    fprintf(stderr, "zshift_recommend: %s\n", zshift_status_message(s));
+    return 1;
+  }
+  *delta = rec.delta_at_far; /* applies at pz = -decal_far */
+  return 0;
+}
+/* [/quickstart-c-recommend] */
 
 /* Whether pixel index i (center i + 0.5) lies inside NDC [-half, half]. */
 static int inside(int i, double half) {

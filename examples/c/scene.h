@@ -37,6 +37,11 @@ struct scene_tally {
   int wrong;
 };
 
+/* zshift's recommended shift toward the camera for the case's decal (zshift_recommend), for
+ * zshift_load_offset_matrix(..., *delta, -scene_distance(c), m); `subpixel_bits` is what
+ * glGetIntegerv(GL_SUBPIXEL_BITS) reports. Returns 0, or prints the status and returns 1. */
+int scene_recommended_delta(const struct scene_case *c, int subpixel_bits, double *delta);
+
 /* Classifies a SCENE_SIZE x SCENE_SIZE RGBA readback (black clear, blue base, red decal). */
 struct scene_tally scene_check(const unsigned char *rgba);
 

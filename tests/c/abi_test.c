@@ -265,6 +265,154 @@ static void test_precision(void) {
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_resolution, 1, NAN, 24, 50);
 }
 
+/* ---- the recommendation (zshift_recommend, zshift_recommend_matrix) ---- */
+
+static ZshiftScene sloped_scene(void) {
+  ZshiftScene s;
+  memset(&s, 0, sizeof s);
+  s.l = -0.1;
+  s.r = 0.1;
+  s.b = -0.075;
+  s.t = 0.075;
+  s.n = 0.1;
+  s.f = 1000;
+  s.viewport_width = 256;
+  s.viewport_height = 192;
+  s.depth_format = 0x81A6; /* GL_DEPTH_COMPONENT24 */
+  s.decal_near = 40;
+  s.decal_far = 60;
+  s.slope = 1.0;
+  s.exact_depth = 0;
+  s.subpixel_bits = 8;
+  return s;
+}
+
+static ZshiftRecommendation recommend_ok(const ZshiftScene *scene, const char *what) {
+  ZshiftRecommendation r;
+  memset(&r, 0, sizeof r);
+  CHECK(zshift_recommend(scene, &r) == ZSHIFT_OK, "zshift_recommend(%s) failed", what);
+  return r;
+}
+
+/* The recommendation's parts must be the sums and conversions its header documents. */
+static void check_recommendation_consistent(const ZshiftScene *s, const ZshiftRecommendation *r,
+                                            const char *what) {
+  long double m10 = (s->f + (long double)s->n) / (s->f - (long double)s->n);
+  double eps_of_delta;
+  long double window = r->quantum + 2.0L * ((long double)r->transform + r->vertex + r->interpolation + r->snap);
+  CHECK(relative_error(r->window_offset, window) < 1e-15, "%s: window_offset %.17g is not q + 2(T+V+I+S)",
+        what, r->window_offset);
+  CHECK(r->ndc_offset == 2.0 * r->window_offset, "%s: ndc_offset is not 2 * window_offset", what);
+  CHECK(r->epsilon < 0 && relative_error(r->epsilon, -(long double)r->ndc_offset / m10) < 1e-14,
+        "%s: epsilon %.17g is not -ndc_offset/|m10|", what, r->epsilon);
+  CHECK(zshift_epsilon(s->n, s->f, r->delta_at_far, -s->decal_far, &eps_of_delta) == ZSHIFT_OK &&
+            relative_error(eps_of_delta, r->epsilon) < 1e-12,
+        "%s: delta_at_far %.17g at pz = -decal_far gives epsilon %.17g, not %.17g", what, r->delta_at_far,
+        eps_of_delta, r->epsilon);
+  CHECK(r->delta_at_far > 0 && r->bleed_gap > 0, "%s: delta_at_far %g, bleed_gap %g", what, r->delta_at_far,
+        r->bleed_gap);
+}
+
+static void test_recommend(void) {
+  ZshiftScene s = sloped_scene(), t;
+  ZshiftRecommendation snapped, unsnapped, flat, exact, d16, steeper;
+  float plain[16], decal[16];
+  long double offset, moved;
+  int i;
+
+  CHECK(ZSHIFT_SUBPIXEL_UNSNAPPED == -1, "ZSHIFT_SUBPIXEL_UNSNAPPED is %d", ZSHIFT_SUBPIXEL_UNSNAPPED);
+  snapped = recommend_ok(&s, "sloped, 8 subpixel bits");
+  check_recommendation_consistent(&s, &snapped, "sloped, 8 subpixel bits");
+  CHECK(relative_error(snapped.quantum, 1.0L / steps(24)) < 1e-15, "D24 quantum %.17g", snapped.quantum);
+  CHECK(snapped.snap > 0 && snapped.polygon_offset_factor == ldexp(1.0, 1 - 8),
+        "snapping with 8 bits: snap %g, glPolygonOffset factor %g (expected 2^-7)", snapped.snap,
+        snapped.polygon_offset_factor);
+
+  t = s;
+  t.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+  unsnapped = recommend_ok(&t, "unsnapped");
+  check_recommendation_consistent(&t, &unsnapped, "unsnapped");
+  CHECK(unsnapped.snap == 0 && unsnapped.polygon_offset_factor == 0 && unsnapped.window_offset < snapped.window_offset,
+        "unsnapped: snap %g factor %g offset %g (snapped %g)", unsnapped.snap, unsnapped.polygon_offset_factor,
+        unsnapped.window_offset, snapped.window_offset);
+
+  t = s;
+  t.slope = 3.0;
+  steeper = recommend_ok(&t, "slope 3");
+  CHECK(steeper.window_offset > snapped.window_offset, "a steeper plane needs a larger offset (%g vs %g)",
+        steeper.window_offset, snapped.window_offset);
+
+  t = s;
+  t.slope = 0.0;
+  flat = recommend_ok(&t, "facing");
+  t.exact_depth = 1;
+  exact = recommend_ok(&t, "facing, exact depth");
+  check_recommendation_consistent(&t, &exact, "facing, exact depth");
+  CHECK(flat.snap == 0 && exact.vertex == 0 && exact.interpolation == 0 && exact.window_offset < flat.window_offset,
+        "facing plane: snap %g; exact depth: vertex %g interpolation %g", flat.snap, exact.vertex,
+        exact.interpolation);
+
+  t = s;
+  t.depth_format = 0x81A5; /* GL_DEPTH_COMPONENT16 */
+  d16 = recommend_ok(&t, "D16");
+  CHECK(relative_error(d16.quantum, 1.0L / steps(16)) < 1e-15 && d16.window_offset > snapped.window_offset,
+        "D16 quantum %.17g", d16.quantum);
+  t.depth_format = 0x8CAC; /* GL_DEPTH_COMPONENT32F */
+  (void)recommend_ok(&t, "D32F");
+  t.f = INFINITY;
+  (void)recommend_ok(&t, "D32F, infinite far plane");
+
+  /* The matrix: zshift_frustum's, with element 10 moved by at least |m10 * epsilon| toward the
+   * camera and by at most one float ulp more. */
+  CHECK_STATUS(zshift_recommend_matrix(&s, decal), ZSHIFT_OK);
+  CHECK_STATUS(zshift_frustum(s.l, s.r, s.b, s.t, s.n, s.f, plain), ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(decal[i] == plain[i], "recommend_matrix element %d differs from zshift_frustum's", i);
+  offset = -(s.f + (long double)s.n) / (s.f - (long double)s.n) * snapped.epsilon;
+  moved = (long double)decal[10] - (long double)plain[10];
+  CHECK(moved > 0 && moved >= offset * (1.0L - 1e-12L) &&
+            moved <= offset + (long double)(nextafterf(fabsf(decal[10]), INFINITY) - fabsf(decal[10])),
+        "recommend_matrix moved element 10 by %Lg for an exact offset %Lg", moved, offset);
+
+  /* Errors: NULL pointers, NaN, domain; the output untouched. */
+  {
+    ZshiftRecommendation out;
+    float m[16];
+    CHECK_STATUS(zshift_recommend(NULL, &out), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend(&s, NULL), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend_matrix(NULL, m), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend_matrix(&s, NULL), ZSHIFT_ERR_NULL_POINTER);
+  }
+#define CHECK_SCENE_ERROR(expected, field, value)                                                \
+  do {                                                                                           \
+    ZshiftRecommendation out_;                                                                   \
+    float m_[16];                                                                                \
+    t = s;                                                                                       \
+    t.field = value;                                                                             \
+    memset(&out_, PATTERN, sizeof out_);                                                         \
+    memset(m_, PATTERN, sizeof m_);                                                              \
+    CHECK_STATUS(zshift_recommend(&t, &out_), expected);                                         \
+    CHECK_STATUS(zshift_recommend_matrix(&t, m_), expected);                                     \
+    CHECK(untouched(&out_, sizeof out_) && untouched(m_, sizeof m_),                             \
+          "zshift_recommend with %s = %s wrote its output on error", #field, #value);            \
+  } while (0)
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, slope, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, decal_far, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, l, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, slope, -1.0);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, exact_depth, 1);      /* with slope 1 */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, depth_format, 0x1234);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, viewport_width, 0);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_near, 0.05);     /* nearer than n */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_near, 70.0);     /* beyond decal_far */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_far, 2000.0);    /* beyond f */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, subpixel_bits, -2);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, subpixel_bits, 33);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, r, -0.1);             /* l == r */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, n, 0.0);
+#undef CHECK_SCENE_ERROR
+}
+
 static void test_status_messages(void) {
   static const ZshiftStatus known[] = {ZSHIFT_OK,          ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE,
                                        ZSHIFT_ERR_DOMAIN,  ZSHIFT_ERR_UNRESOLVABLE, ZSHIFT_ERR_OVERFLOW,
@@ -302,6 +450,7 @@ int main(void) {
   test_min_epsilon();
   test_deltas();
   test_precision();
+  test_recommend();
   test_status_messages();
   test_versions();
   if (failures != 0) {

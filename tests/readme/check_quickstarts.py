@@ -16,6 +16,7 @@ ROOT = Path(__file__).resolve().parents[2]
 SOURCES = [
     "examples/c/legacy_gl.c",  # make -C examples/c check
     "examples/c/modern_gl.c",  # make -C examples/c check
+    "examples/c/scene.c",  # make -C examples/c check
     "tests/cpp/wrapper_test.cpp",  # make -C tests/cpp check
     "bindings/python/tests/test_quickstart.py",  # python3 -m unittest discover ...
     "tests/packaging/run.sh",  # bash tests/packaging/run.sh
