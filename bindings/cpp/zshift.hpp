@@ -144,6 +144,45 @@ inline double depth_resolution(double n, double f, std::uint32_t bits, double d)
   return detail::scalar([&](double *out) { return zshift_depth_resolution(n, f, bits, d, out); });
 }
 
+/// What a scene knows about one decal and the surface under it (the C `ZshiftScene`): the base's
+/// glFrustum, the viewport, the depth attachment's GL internal format, the decal's nearest and
+/// farthest eye distance, its plane's eye-space slope |dz/dx| + |dz/dy|, whether base and decal
+/// share one float z (`exact_depth`), and GL_SUBPIXEL_BITS (or `subpixel_unsnapped`).
+using Scene = ZshiftScene;
+
+/// The recommended offset in every form an engine may apply it (the C `ZshiftRecommendation`).
+using Recommendation = ZshiftRecommendation;
+
+/// `subpixel_bits` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
+inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
+
+/// A Scene from its fields, in declaration order; usable in constant expressions.
+constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
+                           std::uint32_t viewport_width, std::uint32_t viewport_height,
+                           std::uint32_t depth_format, double decal_near, double decal_far,
+                           double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
+  return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits};
+}
+
+/// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
+/// for `scene` (quantum, f32 rounding of transform, vertices and interpolation, sub-pixel
+/// snapping; seeds 000, 002, 004), with its bleed gap and glPolygonOffset equivalent.
+/// Throws Error: Status::not_finite; Status::domain (bad frustum, zero viewport, unknown
+/// depth_format, decal depths outside [n, f] or decreasing, negative slope, exact_depth with a
+/// slope, subpixel_bits < -1 or > 32); Status::overflow.
+inline Recommendation recommend(const Scene &scene) {
+  Recommendation out{};
+  detail::check(zshift_recommend(&scene, &out));
+  return out;
+}
+
+/// The decal's projection for the recommended offset: frustum() of the scene with element 10
+/// scaled by 1 + recommend(scene).epsilon, rounded outward. Throws Error: as recommend().
+inline Matrix recommend_matrix(const Scene &scene) {
+  return detail::matrix([&](float *out) { return zshift_recommend_matrix(&scene, out); });
+}
+
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }
 

@@ -17,6 +17,7 @@ static_assert(zshift::to_c(zshift::Status::domain) == ZSHIFT_ERR_DOMAIN, "Status
 static_assert(zshift::abi_version == ZSHIFT_ABI_VERSION, "ABI version mirrors the header");
 static_assert(std::is_same_v<zshift::Matrix, std::array<float, 16>>, "Matrix is std::array<float, 16>");
 static_assert(std::is_base_of_v<std::runtime_error, zshift::Error>, "Error is a std::runtime_error");
+static_assert(zshift::subpixel_unsnapped == ZSHIFT_SUBPIXEL_UNSNAPPED, "unsnapped mirrors the header");
 
 static int checks, failures;
 
@@ -46,30 +47,38 @@ static void check_throws(const char *what, zshift::Status expected, Call call) {
 }
 
 // [quickstart-cpp]
-// The base surface uses the plain projection, the decal the offset one: delta eye-space units
-// toward the camera at eye depth pz, here four of the smallest steps a 24-bit buffer resolves.
+// The base surface uses the plain projection, the decal the offset zshift recommends for what
+// the engine knows about it. Both throw zshift::Error (with the status message) on bad input.
 struct Projections {
   zshift::Matrix base, decal;
 };
 
-Projections decal_projections(double l, double r, double b, double t, double n, double f, double pz) {
-  double delta = 4.0 * zshift::min_delta_toward(n, f, 24, pz);  // throws zshift::Error on bad input
-  return {zshift::frustum(l, r, b, t, n, f), zshift::load_offset_matrix(l, r, b, t, n, f, delta, pz)};
+Projections decal_projections(const zshift::Scene &s) {
+  return {zshift::frustum(s.l, s.r, s.b, s.t, s.n, s.f), zshift::recommend_matrix(s)};
 }
-// Then: glUniformMatrix4fv(location, 1, GL_FALSE, projections.decal.data());
+
+// A decal 40 to 60 units away on a floor tilted by |dz/dx| + |dz/dy| = 1, 1280x720, 24-bit depth:
+constexpr zshift::Scene floor_decal =
+    zshift::make_scene(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 1280, 720, 0x81A6 /* GL_DEPTH_COMPONENT24 */,
+                       40.0, 60.0, 1.0, false, 8 /* glGetIntegerv(GL_SUBPIXEL_BITS) */);
+// Then: glUniformMatrix4fv(location, 1, GL_FALSE, decal_projections(floor_decal).decal.data());
 // [/quickstart-cpp]
 
 static void test_matrices() {
   const double inf = std::numeric_limits<double>::infinity();
   float plain[16], shifted[16];
-  Projections p = decal_projections(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, -250.0);
+  Projections p = decal_projections(floor_decal);
   double step;
   zshift_min_delta_toward(0.1, 1000.0, 24, -250.0, &step);
-  CHECK(zshift_frustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, plain) == ZSHIFT_OK, "C zshift_frustum failed");
-  CHECK(zshift_load_offset_matrix(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, 4.0 * step, -250.0, shifted) == ZSHIFT_OK,
-        "C zshift_load_offset_matrix failed");
+  CHECK(zshift_frustum(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, plain) == ZSHIFT_OK, "C zshift_frustum failed");
+  CHECK(zshift_recommend_matrix(&floor_decal, shifted) == ZSHIFT_OK, "C zshift_recommend_matrix failed");
   CHECK(std::memcmp(p.base.data(), plain, sizeof plain) == 0, "frustum() differs from zshift_frustum");
-  CHECK(std::memcmp(p.decal.data(), shifted, sizeof shifted) == 0, "load_offset_matrix() differs from the C call");
+  CHECK(std::memcmp(p.decal.data(), shifted, sizeof shifted) == 0, "recommend_matrix() differs from the C call");
+  CHECK(zshift_load_offset_matrix(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 4.0 * step, -250.0, shifted) == ZSHIFT_OK,
+        "C zshift_load_offset_matrix failed");
+  CHECK(std::memcmp(zshift::load_offset_matrix(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 4.0 * step, -250.0).data(),
+                    shifted, sizeof shifted) == 0,
+        "load_offset_matrix() differs from the C call");
   // delta > 0 moves toward the camera: element 10 (negative) moves up, nothing else moves.
   CHECK(p.decal[zshift::index(2, 2)] > p.base[zshift::index(2, 2)], "the offset did not raise element 10");
   for (std::size_t i = 0; i < 16; i++)
@@ -115,6 +124,24 @@ static void test_scalars() {
   check_throws("depth_resolution(bits 33)", zshift::Status::domain, [] { zshift::depth_resolution(1, 100, 33, 50); });
 }
 
+static void test_recommend() {
+  static_assert(floor_decal.viewport_width == 1280 && floor_decal.exact_depth == 0u, "make_scene is constexpr");
+  ZshiftRecommendation c{};
+  CHECK(zshift_recommend(&floor_decal, &c) == ZSHIFT_OK, "C zshift_recommend failed");
+  zshift::Recommendation r = zshift::recommend(floor_decal);
+  CHECK(std::memcmp(&r, &c, sizeof c) == 0, "recommend() differs from the C call");
+  CHECK(r.epsilon < 0 && r.delta_at_far > 0 && r.snap > 0, "recommend(): epsilon %g delta %g snap %g", r.epsilon,
+        r.delta_at_far, r.snap);
+  zshift::Scene bad = floor_decal;
+  bad.decal_near = 70.0;  // beyond decal_far
+  check_throws("recommend(decal_near > decal_far)", zshift::Status::domain, [&] { zshift::recommend(bad); });
+  check_throws("recommend_matrix(decal_near > decal_far)", zshift::Status::domain,
+               [&] { zshift::recommend_matrix(bad); });
+  bad = floor_decal;
+  bad.slope = std::nan("");
+  check_throws("recommend(NaN slope)", zshift::Status::not_finite, [&] { zshift::recommend(bad); });
+}
+
 static void test_messages() {
   CHECK(std::string(zshift::message(zshift::Status::ok)) == zshift_status_message(ZSHIFT_OK), "message(ok)");
   CHECK(zshift::Error(ZSHIFT_ERR_INTERNAL).status() == zshift::Status::internal, "Error keeps its status");
@@ -124,6 +151,7 @@ static void test_messages() {
 int main() {
   test_matrices();
   test_scalars();
+  test_recommend();
   test_messages();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);

@@ -2,9 +2,9 @@
 
 Draws a blue floor and a smaller red decal in the same plane (eye-space z = -500 - y), base first,
 depth test GL_LESS, 24-bit depth, through a GL 3.3 shader whose projection comes from zshift. Once
-with the plain frustum (the decal z-fights) and once with zshift's offset matrix (four of the
-smallest depth steps toward the camera); counts the decal pixels the floor hides and exits
-nonzero with a message unless the plain decal loses some and zshift's loses none.
+with the plain frustum (the decal z-fights) and once with zshift.recommend_matrix (the offset
+zshift's error model of the rasterizer recommends); counts the decal pixels the floor hides and
+exits nonzero with a message unless the plain decal loses some and zshift's loses none.
 
     PYTHONPATH=bindings/python python3 bindings/python/examples/decal_moderngl.py
 
@@ -72,8 +72,14 @@ def main():
     floor, decal = quad(0.45 * d, -0.3 * d, 0.35 * d), quad(0.2 * d, -0.15 * d, 0.15 * d)
 
     plain = zshift.frustum(-HALF, HALF, -HALF, HALF, N, F)
-    delta = 4 * zshift.min_delta_toward(N, F, 24, Z0)
-    shifted = zshift.load_offset_matrix(-HALF, HALF, -HALF, HALF, N, F, delta, Z0)
+    # What the engine knows about the decal: its depth range on the plane, the plane's slope, and
+    # the rasterizer's sub-pixel precision (snapping assumed: the conservative case).
+    depths = sorted(-(Z0 + SLOPE * y) for y in (-0.15 * d, 0.15 * d))
+    scene = dict(frustum=(-HALF, HALF, -HALF, HALF, N, F), viewport=(SIZE, SIZE),
+                 depth_format=zshift.GL_DEPTH_COMPONENT24, decal_depths=depths, slope=abs(SLOPE),
+                 subpixel_bits=ctx.info["GL_SUBPIXEL_BITS"])
+    shifted = zshift.recommend_matrix(**scene)
+    epsilon = zshift.recommend(**scene).epsilon
     mask = [is_red(p) for p in render(ctx, program, [(decal, plain, RED)])]  # the decal alone
     total = sum(mask)
     lost = {}
@@ -82,7 +88,7 @@ def main():
         lost[name] = sum(1 for m, p in zip(mask, pixels) if m and not is_red(p))
     lost_plain, lost_zshift = lost["plain"], lost["zshift"]
     print(f"{ctx.info['GL_RENDERER']}: {total} decal pixels; lost without offset {lost_plain}, "
-          f"with zshift (delta {delta:.4g}) {lost_zshift}")
+          f"with zshift's recommendation (epsilon {epsilon:.4g}) {lost_zshift}")
     if total == 0 or lost_plain == 0:
         sys.exit("FAIL: the scene does not z-fight without an offset (or shows no decal)")
     if lost_zshift != 0:

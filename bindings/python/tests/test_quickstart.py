@@ -12,14 +12,17 @@ class QuickStart(unittest.TestCase):
             # [quickstart-python]
             import zshift
 
-            n, f, pz = 0.1, 1000.0, -250.0  # near, far, the decal's eye-space z (negative)
-            delta = 4 * zshift.min_delta_toward(n, f, 24, pz)  # four steps of a 24-bit depth buffer
-            base = zshift.frustum(-n, n, -n, n, n, f)  # replaces glFrustum
-            decal = zshift.load_offset_matrix(-n, n, -n, n, n, f, delta, pz)  # replaces LoadOffsetMatrix
+            frustum = (-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0)  # the base's glFrustum(l, r, b, t, n, f)
+            base = zshift.frustum(*frustum)  # replaces glFrustum
+            decal = zshift.recommend_matrix(  # replaces LoadOffsetMatrix, with the offset a rasterizer needs
+                frustum, viewport=(1280, 720), depth_format=zshift.GL_DEPTH_COMPONENT24,
+                decal_depths=(40.0, 60.0),  # the decal's nearest and farthest eye distance
+                slope=1.0,  # |dz/dx| + |dz/dy| of its plane in eye space
+                subpixel_bits=8)  # glGetIntegerv(GL_SUBPIXEL_BITS)
             # moderngl: program["projection"].write(struct.pack("16f", *decal))
 
             try:
-                zshift.load_offset_matrix(-n, n, -n, n, n, f, 300.0, pz)  # pz + delta > 0: behind the eye
+                zshift.load_offset_matrix(*frustum, 300.0, -250.0)  # delta, pz: pz + delta > 0 is behind the eye
             except zshift.ZshiftError as error:
                 print(error.status.name, "-", error)  # DOMAIN - an input was outside the function's domain
             # [/quickstart-python]

@@ -201,6 +201,78 @@ class Errors(unittest.TestCase):
         self.assertEqual(zshift.ZshiftError(99).status, 99)
 
 
+class Recommend(unittest.TestCase):
+    """zshift.recommend: its parts agree with each other and with the seed formulas (exact
+    rationals); recommend_matrix moves element 10 by at least the recommended offset."""
+
+    FRUSTUM = (-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0)
+    ARGS = dict(viewport=(1280, 720), depth_format=zshift.GL_DEPTH_COMPONENT24, decal_depths=(40.0, 60.0),
+                slope=1.0, subpixel_bits=8)
+
+    def test_parts_agree(self):
+        r = zshift.recommend(self.FRUSTUM, **self.ARGS)
+        n, f = Q(0.1), Q(1000.0)
+        self.assertEqual(r.quantum, float(1 / steps(24)))
+        terms = Q(r.quantum) + 2 * (Q(r.transform) + Q(r.vertex) + Q(r.interpolation) + Q(r.snap))
+        self.assertAlmostEqual(float((Q(r.window_offset) - terms) / terms), 0.0, delta=1e-15)
+        self.assertEqual(r.ndc_offset, 2 * r.window_offset)
+        m10 = (f + n) / (f - n)
+        self.assertAlmostEqual(float((Q(r.epsilon) + Q(r.ndc_offset) / m10) / Q(r.epsilon)), 0.0, delta=1e-14)
+        eps_of_delta = exact_epsilon(0.1, 1000.0, r.delta_at_far, -60.0)  # eq. 4.1.7 at pz = -farthest
+        self.assertAlmostEqual(float((eps_of_delta - Q(r.epsilon)) / Q(r.epsilon)), 0.0, delta=1e-12)
+        self.assertEqual(r.polygon_offset_factor, 2.0**-7)  # 2^(1 - GL_SUBPIXEL_BITS)
+        self.assertGreater(r.snap, 0)
+        self.assertGreater(r.bleed_gap, 0)
+
+    def test_unsnapped_and_exact_depth_drop_their_terms(self):
+        unsnapped = zshift.recommend(self.FRUSTUM, **dict(self.ARGS, subpixel_bits=zshift.SUBPIXEL_UNSNAPPED))
+        self.assertEqual((unsnapped.snap, unsnapped.polygon_offset_factor), (0.0, 0.0))
+        exact = zshift.recommend(self.FRUSTUM, **dict(self.ARGS, slope=0.0, exact_depth=True))
+        self.assertEqual((exact.vertex, exact.interpolation, exact.snap), (0.0, 0.0, 0.0))
+        self.assertLess(exact.window_offset, unsnapped.window_offset)
+
+    def test_matrix_moves_element_10_by_the_recommended_offset(self):
+        with mock.patch.object(zshift, "_numpy", None):
+            plain = zshift.frustum(*self.FRUSTUM)
+            decal = zshift.recommend_matrix(self.FRUSTUM, **self.ARGS)
+        r = zshift.recommend(self.FRUSTUM, **self.ARGS)
+        self.assertEqual([decal[i] for i in range(16) if i != 10], [plain[i] for i in range(16) if i != 10])
+        exact_offset = exact_frustum(*self.FRUSTUM)[10] * Q(r.epsilon)  # m10 * epsilon > 0: toward the camera
+        moved = Q(decal[10]) - Q(plain[10])
+        ulp = max(abs(Q(x) - Q(decal[10])) for x in f32_neighbours(decal[10]))
+        self.assertGreaterEqual(moved, exact_offset)
+        self.assertLessEqual(moved, exact_offset + ulp)
+
+    def test_errors(self):
+        domain, not_finite = zshift.Status.DOMAIN, zshift.Status.NOT_FINITE
+        for changes, status in [
+            (dict(decal_depths=(70.0, 60.0)), domain),
+            (dict(decal_depths=(0.05, 60.0)), domain),
+            (dict(slope=-1.0), domain),
+            (dict(slope=math.nan), not_finite),
+            (dict(depth_format=0x1234), domain),
+            (dict(viewport=(0, 720)), domain),
+            (dict(viewport=(2**32 + 1280, 720)), domain),  # refused, not wrapped to 1280
+            (dict(subpixel_bits=-2), domain),
+            (dict(subpixel_bits=33), domain),
+        ]:
+            for fn in (zshift.recommend, zshift.recommend_matrix):
+                with self.assertRaises(zshift.ZshiftError, msg=str(changes)) as caught:
+                    fn(self.FRUSTUM, **dict(self.ARGS, **changes))
+                self.assertEqual(caught.exception.status, status, str(changes))
+
+    def test_structures_match_the_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
+                                 ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
+            body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t) (\w+);", body, re.M)
+            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int"}
+            self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
+            for (c_type, name), (_, field_type) in zip(fields, cls._fields_):
+                self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")
+
+
 class Library(unittest.TestCase):
     """The library lookup and the versions."""
 

@@ -14,6 +14,7 @@ Scalars are Python floats. Every failure raises :class:`ZshiftError` carrying th
 the library's message for it. Equation numbers refer to the seed texts.
 """
 
+import collections
 import ctypes
 import enum
 import functools
@@ -29,11 +30,23 @@ except ImportError:  # numpy is optional: matrices are then tuples
 __all__ = [
     "ABI_VERSION", "Status", "ZshiftError", "LibraryNotFound", "frustum", "load_offset_matrix",
     "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
-    "depth_resolution", "status_message", "version", "library_path",
+    "depth_resolution", "recommend", "recommend_matrix", "Recommendation", "SUBPIXEL_UNSNAPPED",
+    "GL_DEPTH_COMPONENT16", "GL_DEPTH_COMPONENT24", "GL_DEPTH_COMPONENT32", "GL_DEPTH_COMPONENT32F",
+    "status_message", "version", "library_path",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
 ABI_VERSION = 1
+
+#: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
+SUBPIXEL_UNSNAPPED = -1
+
+#: The depth formats :func:`recommend` knows, as GL internal format enums.
+GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT32 = 0x81A5, 0x81A6, 0x81A7
+GL_DEPTH_COMPONENT32F = 0x8CAC
+
+#: What :func:`recommend` returns: the C ``ZshiftRecommendation``'s fields, as floats.
+Recommendation = collections.namedtuple("Recommendation", [name for name, _ in _library.ZshiftRecommendation._fields_])
 
 
 class Status(enum.IntEnum):
@@ -189,3 +202,50 @@ def depth_resolution(n, f, bits, d):
     ``bits`` outside 1..32).
     """
     return _scalar(lambda out: _lib().zshift_depth_resolution(n, f, _bits(bits), d, out))
+
+
+def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+    l, r, b, t, n, f = frustum
+    width, height = viewport
+    near, far = decal_depths
+    for name, value, low, high in (
+        ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
+        ("depth_format", depth_format, 0, 2**32), ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
+    ):
+        # ctypes would wrap out-of-range integers silently.
+        if not isinstance(value, int) or not low <= value < high:
+            raise ZshiftError(Status.DOMAIN)
+    return _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
+                                1 if exact_depth else 0, subpixel_bits)
+
+
+def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+              subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
+    between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
+    interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
+
+    ``frustum`` is the base's ``(l, r, b, t, n, f)`` (``f`` may be ``math.inf``); ``viewport`` the
+    ``(width, height)`` in pixels; ``depth_format`` a GL internal format (``GL_DEPTH_COMPONENT24``
+    ...); ``decal_depths`` the decal's ``(nearest, farthest)`` eye distance; ``slope`` its plane's
+    eye-space ``|dz/dx| + |dz/dy|``; ``exact_depth`` whether base and decal corners share one float
+    z (facing planes only); ``subpixel_bits`` the rasterizer's ``GL_SUBPIXEL_BITS`` or
+    :data:`SUBPIXEL_UNSNAPPED`. Use ``delta_at_far`` with :func:`load_offset_matrix` at
+    ``pz = -farthest``, or :func:`recommend_matrix`.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad frustum, zero viewport, unknown
+    format, decal depths outside [n, f] or decreasing, negative slope, ``exact_depth`` with a
+    slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
+    """
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    out = _library.ZshiftRecommendation()
+    _check(_lib().zshift_recommend(ctypes.byref(scene), ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                     subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
+    scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))

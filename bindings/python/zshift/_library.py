@@ -69,6 +69,29 @@ def load():
     )
 
 
+class ZshiftScene(ctypes.Structure):
+    """The C ``ZshiftScene`` (include/zshift.h), field for field."""
+
+    _fields_ = [
+        ("l", ctypes.c_double), ("r", ctypes.c_double), ("b", ctypes.c_double), ("t", ctypes.c_double),
+        ("n", ctypes.c_double), ("f", ctypes.c_double),
+        ("viewport_width", ctypes.c_uint32), ("viewport_height", ctypes.c_uint32),
+        ("depth_format", ctypes.c_uint32),
+        ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
+        ("exact_depth", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
+    ]
+
+
+class ZshiftRecommendation(ctypes.Structure):
+    """The C ``ZshiftRecommendation``, field for field."""
+
+    _fields_ = [(name, ctypes.c_double) for name in (
+        "epsilon", "ndc_offset", "window_offset", "delta_at_far", "bleed_gap",
+        "polygon_offset_factor", "polygon_offset_units",
+        "quantum", "transform", "vertex", "interpolation", "snap",
+    )]
+
+
 def _declare(lib):
     """Declares argument and result types, so ctypes converts and checks every call."""
     d, u32, status = ctypes.c_double, ctypes.c_uint32, ctypes.c_int32
@@ -87,6 +110,11 @@ def _declare(lib):
         fn = getattr(lib, name)
         fn.argtypes = argtypes
         fn.restype = status
+    scene = ctypes.POINTER(ZshiftScene)
+    lib.zshift_recommend.argtypes = [scene, ctypes.POINTER(ZshiftRecommendation)]
+    lib.zshift_recommend.restype = status
+    lib.zshift_recommend_matrix.argtypes = [scene, float_out]
+    lib.zshift_recommend_matrix.restype = status
     lib.zshift_status_message.argtypes = [status]
     lib.zshift_status_message.restype = ctypes.c_char_p
     lib.zshift_version.argtypes = []
