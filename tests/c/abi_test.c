@@ -265,6 +265,238 @@ static void test_precision(void) {
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_resolution, 1, NAN, 24, 50);
 }
 
+/* ---- projections for every clip convention, Kooima's median, bias conversions, planning ---- */
+
+/* Runs a call writing `count` doubles on a pattern-filled buffer; it must fail with `expected`
+ * and write nothing. */
+#define CHECK_ARRAY_ERROR(expected, count, fn, ...)                                           \
+  do {                                                                                        \
+    double out_[count];                                                                       \
+    memset(out_, PATTERN, sizeof out_);                                                       \
+    CHECK_STATUS(fn(__VA_ARGS__, out_), expected);                                            \
+    CHECK(untouched(out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+static void check_matrix_within_one_ulp(const float *got, const long double want[16], const char *what) {
+  int i;
+  for (i = 0; i < 16; i++)
+    CHECK(within_one_float_ulp(got[i], want[i]), "%s element %d: %.9g vs %.12Lg", what, i, (double)got[i], want[i]);
+}
+
+static void test_projections(void) {
+  static const int32_t clips[] = {ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_CLIP_ZERO_TO_ONE,
+                                  ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE};
+  const long double n = 0.5L, f = 200.0L;
+  long double want[16];
+  float out[16], plain[16], shifted[16], gl[16];
+  size_t c;
+  int i;
+
+  /* gluPerspective(fovy, aspect, n, f): m0 = cot(fovy/2)/aspect, m5 = cot(fovy/2). */
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, out), ZSHIFT_OK);
+  reference_frustum(-1, 1, -1, 1, n, f, want);
+  want[5] = 1.0L / tanl(30.0L * 3.14159265358979323846264338327950288L / 180.0L);
+  want[0] = want[5] / 1.5L;
+  check_matrix_within_one_ulp(out, want, "zshift_perspective");
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_perspective, NAN, 1.5, 0.5, 200.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_perspective, 180.0, 1.5, 0.5, 200.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_perspective, 60.0, 0.0, 0.5, 200.0);
+
+  /* The depth row of each clip convention, as the header states it. */
+  for (c = 0; c < 3; c++) {
+    reference_frustum(-1, 1, -0.75L, 0.75L, n, f, want);
+    if (clips[c] == ZSHIFT_CLIP_ZERO_TO_ONE) {
+      want[10] = -f / (f - n);
+      want[14] = -f * n / (f - n);
+    } else if (clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE) {
+      want[10] = n / (f - n);
+      want[14] = f * n / (f - n);
+    }
+    CHECK_STATUS(zshift_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, clips[c], out), ZSHIFT_OK);
+    check_matrix_within_one_ulp(out, want, "zshift_projection");
+    /* Offset toward the camera: only element 10 (element 14 when reversed) moves. */
+    CHECK_STATUS(zshift_offset_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, clips[c], 0.5, -50.0, shifted),
+                 ZSHIFT_OK);
+    for (i = 0; i < 16; i++) {
+      int moving = clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE ? 14 : 10;
+      CHECK(i == moving ? shifted[i] != out[i] : shifted[i] == out[i],
+            "zshift_offset_projection clip %d element %d (moving element %d)", (int)clips[c], i, moving);
+    }
+  }
+  /* Under [-1, 1] the offset matrix is Lengyel's: element 10 moves up by at least |m10 * epsilon|. */
+  CHECK_STATUS(zshift_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, plain), ZSHIFT_OK);
+  CHECK_STATUS(zshift_offset_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0,
+                                        shifted),
+               ZSHIFT_OK);
+  CHECK((long double)shifted[10] - plain[10] >=
+            fabsl(-(f + n) / (f - n) * reference_epsilon(n, f, 0.5L, -50.0L)) * (1.0L - 1e-12L),
+        "zshift_offset_projection moved element 10 by %g", (double)(shifted[10] - plain[10]));
+  CHECK_STATUS(zshift_projection(-1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_projection, -1, 1, -1, 1, 1, 100, 3);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_projection, -1, 1, -1, NAN, 1, 100, 0);
+  CHECK_STATUS(zshift_offset_projection(-1, 1, -1, 1, 1, 100, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, NAN, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, 0.5, -0.5);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 7, 0.5, -50);
+
+  /* zshift_offset_perspective is zshift_offset_projection on gluPerspective's frustum. */
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, gl), ZSHIFT_OK);
+  CHECK_STATUS(zshift_offset_perspective(60.0, 1.5, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0, out),
+               ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(out[i] == gl[i], "zshift_offset_perspective element %d differs from zshift_perspective's", i);
+  CHECK(out[10] > gl[10], "zshift_offset_perspective did not move element 10 toward the camera");
+  CHECK_STATUS(zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_perspective, 0.0, 1.5, 0.5, 200.0, 0, 0.5, -50.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_perspective, 60.0, NAN, 0.5, 200.0, 0, 0.5, -50.0);
+
+  /* Tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n. */
+  CHECK_STATUS(zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, ZSHIFT_MIN_INFINITE_TWEAK, plain), ZSHIFT_OK);
+  reference_frustum(-1, 1, -1, 1, n, 1, want);
+  want[10] = (long double)ZSHIFT_MIN_INFINITE_TWEAK - 1.0L;
+  want[14] = ((long double)ZSHIFT_MIN_INFINITE_TWEAK - 2.0L) * n;
+  check_matrix_within_one_ulp(plain, want, "zshift_tweaked_infinite");
+  CHECK(ZSHIFT_MIN_INFINITE_TWEAK == ldexp(1.0, -22), "ZSHIFT_MIN_INFINITE_TWEAK is not 2^-22");
+  CHECK_STATUS(zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, ZSHIFT_MIN_INFINITE_TWEAK, 10.0, -1000.0, shifted),
+               ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(shifted[i] == plain[i], "zshift_offset_tweaked_infinite element %d moved", i);
+  CHECK(shifted[10] != plain[10], "zshift_offset_tweaked_infinite did not move element 10");
+  CHECK_STATUS(zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_tweaked_infinite, -1, 1, -1, 1, 0.5, 1.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_tweaked_infinite, -1, 1, -1, 1, 0.5, NAN);
+  CHECK_STATUS(zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 1, -10, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_tweaked_infinite, -1, 1, -1, 1, 0.5, 0.0, 1.0, -0.25);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_tweaked_infinite, -1, 1, -1, 1, 0.5, 0.0, NAN, -10.0);
+}
+
+static void test_clip_precision(void) {
+  const long double n = 0.5L, f = 200.0L, d = 37.0L;
+  double out, walker, reference;
+  /* Window depth: Walker's under [-1, 1] and [0, 1], n(f - d)/((f - n)d) reversed. */
+  CHECK_STATUS(zshift_window_depth(0.5, 200.0, 37.0, &walker), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(out == walker, "window_depth_clip [-1, 1] %.17g vs window_depth %.17g", out, walker);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_ZERO_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(out == walker, "window_depth_clip [0, 1] %.17g vs window_depth %.17g", out, walker);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, n * (f - d) / ((f - n) * d)) < 1e-15, "reversed window depth %.17g", out);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, 0, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 5, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 0, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth_clip, 0.5, 200.0, 0, NAN);
+
+  /* Depth step: Walker's eq. 3 for UNORM under [-1, 1] (zshift_depth_resolution). */
+  CHECK_STATUS(zshift_depth_resolution(0.5, 200.0, 24, 37.0, &reference), ZSHIFT_OK);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, reference) < 1e-15, "depth_step %.17g vs depth_resolution %.17g", out, reference);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_step, 0.5, 200.0, 0, 9, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, 0, 1, 37.0);
+
+  /* Kooima's median projection (seed 003): window depth d/(d + median). */
+  {
+    const long double median = 10.0L, r = 1.0L / steps(24), dm = d + median;
+    CHECK_STATUS(zshift_median_depth_step(10.0, ZSHIFT_FORMAT_UNORM24, 37.0, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, r * dm * dm / (median + r * dm)) < 1e-14, "median_depth_step %.17g", out);
+    CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, -2.0L * median * 0.5L / (dm * (dm - 0.5L))) < 1e-14, "median_ndc_offset %.17g", out);
+  }
+  CHECK_STATUS(zshift_median_depth_step(10.0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_depth_step, 0.0, 1, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_depth_step, 10.0, 1, NAN);
+  CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, -1.0, 0.5, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, 10.0, 0.5, 1.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_ndc_offset, 10.0, NAN, -37.0);
+
+  /* Minimum offsets: seed 002's NDC quantum and eq. 4.1.8 under [-1, 1]. */
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 2.0L / steps(24)) < 1e-15, "min_ndc_offset %.17g", out);
+  CHECK_STATUS(zshift_min_epsilon(0.5, 200.0, 24, &reference), ZSHIFT_OK);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, reference) < 1e-15, "min_epsilon_clip %.17g vs min_epsilon %.17g", out, reference);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 1.0L / steps(24) * (f - n) / f) < 1e-15, "min_epsilon_clip [0, 1] %.17g", out);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_UNRESOLVABLE, zshift_min_epsilon_clip, 0.5, INFINITY,
+                     ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, ZSHIFT_FORMAT_FLOAT32, 37.0);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 1.0L / steps(24) * d / (f * n / (f - n))) < 1e-14, "min_relative_epsilon %.17g", out);
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, 0, 1, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon_clip, 0.5, 200.0, 0, 4, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, 0, 1, NAN);
+}
+
+static void test_bias_and_planning(void) {
+  double bias, shift, planes[2], range[3];
+  /* A shift toward the camera is a negative bias under [-1, 1]; the inverse gives it back. */
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL,
+                                    0.25, -37.0, &bias),
+               ZSHIFT_OK);
+  CHECK(bias < 0, "bias_of_shift toward the camera under [-1, 1] is %g, expected negative", bias);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL,
+                                    bias, -37.0, &shift),
+               ZSHIFT_OK);
+  CHECK(fabs(shift - 0.25) < 1e-9, "shift_of_bias(bias_of_shift(0.25)) = %.17g", shift);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, ZSHIFT_FORMAT_FLOAT32,
+                                    ZSHIFT_BIAS_VULKAN, 0.25, -37.0, &bias),
+               ZSHIFT_OK);
+  CHECK(bias > 0, "bias_of_shift reversed is %g, expected positive", bias);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, 0, 1, 0, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, 0, 1, 0, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 3, 0.25, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 0, 0.25, -300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, 0, 1, 0, NAN, -37.0);
+
+  /* Tight planes enclose the scene. */
+  CHECK_STATUS(zshift_tight_planes(2.0, 500.0, planes), ZSHIFT_OK);
+  CHECK(planes[0] > 0 && planes[0] <= 2.0 && planes[1] >= 500.0, "tight planes [%g, %g] for [2, 500]", planes[0],
+        planes[1]);
+  CHECK_STATUS(zshift_tight_planes(2.0, 500.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 2, zshift_tight_planes, 500.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 2, zshift_tight_planes, 0.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 2, zshift_tight_planes, NAN, 2.0);
+
+  /* One offset for a depth range: at least the steps asked for at both ends. */
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC,
+                                   10.0, 100.0, 2.0, range),
+               ZSHIFT_OK);
+  {
+    /* Two window steps 2q at distance d are the eye shift 2q d^2/(b + 2q d), b = fn/(f - n)
+     * (Walker's eq. 3 with the step doubled). */
+    const long double q2 = 2.0L / steps(24), b = 200.0L * 0.5L / (200.0L - 0.5L);
+    const long double at_lo = q2 * 100.0L / (b + q2 * 10.0L), at_hi = q2 * 10000.0L / (b + q2 * 100.0L);
+    /* out[0] is signed: toward the camera is toward NDC -1 under [-1, 1]. */
+    CHECK(range[0] < 0 && range[1] >= at_lo * (1 - 1e-12L) && range[2] >= at_hi * (1 - 1e-12L),
+          "range_offset %g shifts %.17g at 10 and %.17g at 100 (2 steps: %.17Lg, %.17Lg)", range[0], range[1],
+          range[2], at_lo, at_hi);
+  }
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, 0, 1, 0, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 100.0, 10.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, 0.5);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 9, 10.0, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, NAN);
+  /* A NaN range end is refused as ZSHIFT_ERR_DOMAIN by src/plan.rs (not NOT_FINITE as elsewhere in
+   * the ABI); either way it must fail and leave the output untouched. */
+  {
+    double out_[3];
+    ZshiftStatus got;
+    memset(out_, PATTERN, sizeof out_);
+    got = zshift_range_offset(0.5, 200.0, 0, 1, 0, NAN, 100.0, 2.0, out_);
+    CHECK((got == ZSHIFT_ERR_NOT_FINITE || got == ZSHIFT_ERR_DOMAIN) && untouched(out_, sizeof out_),
+          "zshift_range_offset(lo = NaN) returned %d or wrote its output", (int)got);
+  }
+}
+
 /* ---- the recommendation (zshift_recommend, zshift_recommend_matrix) ---- */
 
 static ZshiftScene sloped_scene(void) {
@@ -450,6 +682,9 @@ int main(void) {
   test_min_epsilon();
   test_deltas();
   test_precision();
+  test_projections();
+  test_clip_precision();
+  test_bias_and_planning();
   test_recommend();
   test_status_messages();
   test_versions();
