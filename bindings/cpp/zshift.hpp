@@ -183,6 +183,190 @@ inline Matrix recommend_matrix(const Scene &scene) {
   return detail::matrix([&](float *out) { return zshift_recommend_matrix(&scene, out); });
 }
 
+// ---- Every clip convention, Kooima's median projection, depth bias, planning ----
+
+/// NDC depth convention (ZSHIFT_CLIP_*): OpenGL's [-1, 1]; [0, 1] (glClipControl ZERO_TO_ONE,
+/// Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; for float depth).
+enum class Clip : std::int32_t {
+  neg_one_to_one = ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+  zero_to_one = ZSHIFT_CLIP_ZERO_TO_ONE,
+  reversed_zero_to_one = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+};
+
+/// Depth attachment format (ZSHIFT_FORMAT_*): 16-, 24-, 32-bit unsigned normalized, 32-bit float.
+enum class Format : std::int32_t {
+  unorm16 = ZSHIFT_FORMAT_UNORM16,
+  unorm24 = ZSHIFT_FORMAT_UNORM24,
+  unorm32 = ZSHIFT_FORMAT_UNORM32,
+  float32 = ZSHIFT_FORMAT_FLOAT32,
+};
+
+/// Whose constant depth bias (ZSHIFT_BIAS_*): glPolygonOffset units, Direct3D DepthBias, Vulkan
+/// depthBiasConstantFactor.
+enum class BiasApi : std::int32_t {
+  opengl = ZSHIFT_BIAS_OPENGL,
+  direct3d = ZSHIFT_BIAS_DIRECT3D,
+  vulkan = ZSHIFT_BIAS_VULKAN,
+};
+
+/// What range_offset() returns (ZSHIFT_OFFSET_*): a signed NDC offset for element 10, or a
+/// relative epsilon for element 14 (reversed Z with float depth).
+enum class OffsetKind : std::int32_t {
+  ndc = ZSHIFT_OFFSET_NDC,
+  relative = ZSHIFT_OFFSET_RELATIVE,
+};
+
+/// The smallest tweak for tweaked_infinite() that keeps far geometry inside the clip volume in
+/// float arithmetic: 2^-22 (Lengyel, GDC 2007).
+inline constexpr double min_infinite_tweak = ZSHIFT_MIN_INFINITE_TWEAK;
+
+/// gluPerspective(fovy, aspect, n, f), fovy in degrees, NDC depth [-1, 1], f may be +infinity.
+/// Throws Error: Status::not_finite; Status::domain unless 0 < fovy < 180, aspect > 0, 0 < n < f.
+inline Matrix perspective(double fovy, double aspect, double n, double f) {
+  return detail::matrix([&](float *out) { return zshift_perspective(fovy, aspect, n, f, out); });
+}
+
+/// glFrustum's x/y rows with the depth row of `clip` (zshift_projection).
+/// Throws Error: as frustum(); Status::domain for an unknown clip.
+inline Matrix projection(double l, double r, double b, double t, double n, double f, Clip clip) {
+  return detail::matrix([&](float *out) {
+    return zshift_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), out);
+  });
+}
+
+/// projection() with geometry at `pz` moved toward the camera by `delta`: a constant NDC offset
+/// through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or element 14
+/// scaled (reversed), rounded outward. Throws Error: as projection(); Status::domain if pz is
+/// outside [-f, -n] or the shifted point leaves [n, f].
+inline Matrix offset_projection(double l, double r, double b, double t, double n, double f, Clip clip,
+                                double delta, double pz) {
+  return detail::matrix([&](float *out) {
+    return zshift_offset_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+  });
+}
+
+/// offset_projection() for gluPerspective parameters. Throws Error: as both.
+inline Matrix offset_perspective(double fovy, double aspect, double n, double f, Clip clip, double delta,
+                                 double pz) {
+  return detail::matrix([&](float *out) {
+    return zshift_offset_perspective(fovy, aspect, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+  });
+}
+
+/// The tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+/// Throws Error: as frustum(); Status::domain unless 0 <= tweak < 1.
+inline Matrix tweaked_infinite(double l, double r, double b, double t, double n, double tweak) {
+  return detail::matrix([&](float *out) { return zshift_tweaked_infinite(l, r, b, t, n, tweak, out); });
+}
+
+/// tweaked_infinite() with geometry at `pz` moved toward the camera by `delta` (element 10,
+/// rounded outward). Throws Error: as tweaked_infinite(); Status::domain if pz or pz + delta > -n.
+inline Matrix offset_tweaked_infinite(double l, double r, double b, double t, double n, double tweak,
+                                      double delta, double pz) {
+  return detail::matrix(
+      [&](float *out) { return zshift_offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz, out); });
+}
+
+/// The `ndc_offset` uniform of bindings/glsl/ftransform_mdp.glsl (Kooima's median projection,
+/// seed 003) that moves geometry at `pz` toward the camera by `delta`.
+/// Throws Error: Status::not_finite; Status::domain unless median > 0, pz <= 0, pz + delta <= 0.
+inline double median_ndc_offset(double median, double delta, double pz) {
+  return detail::scalar([&](double *out) { return zshift_median_ndc_offset(median, delta, pz, out); });
+}
+
+/// The window depth at eye distance d under `clip` (Walker's f(d), seed 001; reversed
+/// n(f - d)/((f - n)d)). Throws Error: Status::not_finite, Status::domain.
+inline double window_depth_clip(double n, double f, Clip clip, double d) {
+  return detail::scalar(
+      [&](double *out) { return zshift_window_depth_clip(n, f, static_cast<std::int32_t>(clip), d, out); });
+}
+
+/// The exact depth step at eye distance d under `clip` and `format` (Walker's eq. 3 for every
+/// convention). Throws Error: Status::not_finite, Status::domain.
+inline double depth_step(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_depth_step(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The depth step at eye distance d (>= 0) under Kooima's median projection (seed 003).
+/// Throws Error: Status::not_finite, Status::domain.
+inline double median_depth_step(double median, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_median_depth_step(median, static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The smallest constant NDC offset (a magnitude) that changes the stored depth at d (seed 002's
+/// quantum 2/(2^m - 1) for UNORM under [-1, 1]). Throws Error: as depth_step().
+inline double min_ndc_offset(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_ndc_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The smallest |epsilon| for element 10's scaling that changes the stored depth at d under
+/// `clip` and `format` (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Throws Error: as
+/// depth_step(); Status::unresolvable for reversed Z with f = +infinity.
+inline double min_epsilon_clip(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_epsilon_clip(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+                                   out);
+  });
+}
+
+/// The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored depth
+/// at d. Throws Error: as depth_step().
+inline double min_relative_epsilon(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_relative_epsilon(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+                                       out);
+  });
+}
+
+/// The constant depth bias of `api` equivalent to moving geometry at pz toward the camera by
+/// delta (negative under [-1, 1] and [0, 1]). Throws Error: Status::not_finite, Status::domain.
+inline double bias_of_shift(double n, double f, Clip clip, Format format, BiasApi api, double delta, double pz) {
+  return detail::scalar([&](double *out) {
+    return zshift_bias_of_shift(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                static_cast<std::int32_t>(api), delta, pz, out);
+  });
+}
+
+/// The eye-space shift toward the camera a constant `bias` of `api` makes at pz (the inverse of
+/// bias_of_shift()). Throws Error: as bias_of_shift(); Status::unresolvable.
+inline double shift_of_bias(double n, double f, Clip clip, Format format, BiasApi api, double bias, double pz) {
+  return detail::scalar([&](double *out) {
+    return zshift_shift_of_bias(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                static_cast<std::int32_t>(api), bias, pz, out);
+  });
+}
+
+/// The tightest clip planes {n, f} for a scene between eye distances `nearest` and `farthest`
+/// (f may be +infinity). Throws Error: Status::not_finite; Status::domain unless
+/// 0 < nearest <= farthest.
+inline std::array<double, 2> tight_planes(double nearest, double farthest) {
+  std::array<double, 2> planes{};
+  detail::check(zshift_tight_planes(nearest, farthest, planes.data()));
+  return planes;
+}
+
+/// range_offset()'s result: the offset, and the eye-space shifts it makes at lo and at hi.
+struct RangeOffset {
+  double offset, shift_at_lo, shift_at_hi;
+};
+
+/// The smallest single offset that moves stored depth by at least `steps` steps at every
+/// distance in [lo, hi]; multiply `offset` by k for the k-th stacked decal layer.
+/// Throws Error: Status::not_finite, Status::domain, Status::unresolvable.
+inline RangeOffset range_offset(double n, double f, Clip clip, Format format, OffsetKind kind, double lo,
+                                double hi, double steps) {
+  std::array<double, 3> out{};
+  detail::check(zshift_range_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                    static_cast<std::int32_t>(kind), lo, hi, steps, out.data()));
+  return {out[0], out[1], out[2]};
+}
+
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }
 

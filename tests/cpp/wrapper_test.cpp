@@ -142,6 +142,81 @@ static void test_recommend() {
   check_throws("recommend(NaN slope)", zshift::Status::not_finite, [&] { zshift::recommend(bad); });
 }
 
+// Each wrapper of the clip-convention, median, bias and planning entry points returns exactly
+// what its C function writes, and throws on the C function's errors.
+static void test_conventions() {
+  using zshift::Clip;
+  using zshift::Format;
+  constexpr auto reversed = static_cast<std::int32_t>(Clip::reversed_zero_to_one);
+  static_assert(reversed == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, "Clip mirrors the header");
+  float c[16];
+  double v;
+  double planes[2], range[3];
+
+  zshift_perspective(60, 1.5, 0.5, 200, c);
+  CHECK(std::memcmp(zshift::perspective(60, 1.5, 0.5, 200).data(), c, sizeof c) == 0, "perspective");
+  zshift_projection(-1, 1, -1, 1, 0.5, 200, reversed, c);
+  CHECK(std::memcmp(zshift::projection(-1, 1, -1, 1, 0.5, 200, Clip::reversed_zero_to_one).data(), c, sizeof c) == 0,
+        "projection");
+  zshift_offset_projection(-1, 1, -1, 1, 0.5, 200, reversed, 0.5, -50, c);
+  CHECK(std::memcmp(zshift::offset_projection(-1, 1, -1, 1, 0.5, 200, Clip::reversed_zero_to_one, 0.5, -50).data(), c,
+                    sizeof c) == 0,
+        "offset_projection");
+  zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, c);
+  CHECK(std::memcmp(zshift::offset_perspective(60, 1.5, 0.5, 200, Clip::neg_one_to_one, 0.5, -50).data(), c,
+                    sizeof c) == 0,
+        "offset_perspective");
+  zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, zshift::min_infinite_tweak, c);
+  CHECK(std::memcmp(zshift::tweaked_infinite(-1, 1, -1, 1, 0.5, zshift::min_infinite_tweak).data(), c, sizeof c) == 0,
+        "tweaked_infinite");
+  zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10, -1000, c);
+  CHECK(std::memcmp(zshift::offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10, -1000).data(), c, sizeof c) == 0,
+        "offset_tweaked_infinite");
+
+  zshift_median_ndc_offset(10, 0.5, -37, &v);
+  CHECK(zshift::median_ndc_offset(10, 0.5, -37) == v, "median_ndc_offset");
+  zshift_window_depth_clip(0.5, 200, reversed, 37, &v);
+  CHECK(zshift::window_depth_clip(0.5, 200, Clip::reversed_zero_to_one, 37) == v, "window_depth_clip");
+  zshift_depth_step(0.5, 200, 1, 3, 37, &v);
+  CHECK(zshift::depth_step(0.5, 200, Clip::zero_to_one, Format::float32, 37) == v, "depth_step");
+  zshift_median_depth_step(10, 1, 37, &v);
+  CHECK(zshift::median_depth_step(10, Format::unorm24, 37) == v, "median_depth_step");
+  zshift_min_ndc_offset(0.5, 200, 0, 0, 37, &v);
+  CHECK(zshift::min_ndc_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm16, 37) == v, "min_ndc_offset");
+  zshift_min_epsilon_clip(0.5, 200, 1, 1, 37, &v);
+  CHECK(zshift::min_epsilon_clip(0.5, 200, Clip::zero_to_one, Format::unorm24, 37) == v, "min_epsilon_clip");
+  zshift_min_relative_epsilon(0.5, 200, reversed, 3, 37, &v);
+  CHECK(zshift::min_relative_epsilon(0.5, 200, Clip::reversed_zero_to_one, Format::float32, 37) == v,
+        "min_relative_epsilon");
+  zshift_bias_of_shift(0.5, 200, 0, 1, 2, 0.25, -37, &v);
+  CHECK(zshift::bias_of_shift(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::vulkan, 0.25, -37) == v,
+        "bias_of_shift");
+  zshift_shift_of_bias(0.5, 200, 0, 1, 0, -3.0, -37, &v);
+  CHECK(zshift::shift_of_bias(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::opengl, -3.0, -37) == v,
+        "shift_of_bias");
+  zshift_tight_planes(2, 500, planes);
+  std::array<double, 2> tight = zshift::tight_planes(2, 500);
+  CHECK(tight[0] == planes[0] && tight[1] == planes[1], "tight_planes");
+  zshift_range_offset(0.5, 200, 0, 1, 0, 10, 100, 2, range);
+  zshift::RangeOffset ro = zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24,
+                                                zshift::OffsetKind::ndc, 10, 100, 2);
+  CHECK(ro.offset == range[0] && ro.shift_at_lo == range[1] && ro.shift_at_hi == range[2], "range_offset");
+
+  check_throws("projection(unknown clip)", zshift::Status::domain,
+               [] { zshift::projection(-1, 1, -1, 1, 1, 100, static_cast<Clip>(7)); });
+  check_throws("perspective(fovy 180)", zshift::Status::domain, [] { zshift::perspective(180, 1, 1, 100); });
+  check_throws("tweaked_infinite(tweak 1)", zshift::Status::domain, [] { zshift::tweaked_infinite(-1, 1, -1, 1, 1, 1.0); });
+  check_throws("min_epsilon_clip(reversed, f = inf)", zshift::Status::unresolvable, [] {
+    zshift::min_epsilon_clip(0.5, std::numeric_limits<double>::infinity(), Clip::reversed_zero_to_one,
+                             Format::float32, 37);
+  });
+  check_throws("tight_planes(nearest > farthest)", zshift::Status::domain, [] { zshift::tight_planes(500, 2); });
+  check_throws("range_offset(steps < 1)", zshift::Status::domain, [] {
+    zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::OffsetKind::ndc, 10, 100, 0.5);
+  });
+  check_throws("median_ndc_offset(NaN)", zshift::Status::not_finite, [] { zshift::median_ndc_offset(10, std::nan(""), -37); });
+}
+
 static void test_messages() {
   CHECK(std::string(zshift::message(zshift::Status::ok)) == zshift_status_message(ZSHIFT_OK), "message(ok)");
   CHECK(zshift::Error(ZSHIFT_ERR_INTERNAL).status() == zshift::Status::internal, "Error keeps its status");
@@ -152,6 +227,7 @@ int main() {
   test_matrices();
   test_scalars();
   test_recommend();
+  test_conventions();
   test_messages();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
