@@ -273,6 +273,98 @@ class Recommend(unittest.TestCase):
                 self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")
 
 
+class Conventions(unittest.TestCase):
+    """The clip-convention, median, bias and planning functions against the seed formulas (exact
+    rationals) or the functions they generalise."""
+
+    def setUp(self):
+        patcher = mock.patch.object(zshift, "_numpy", None)
+        patcher.start()
+        self.addCleanup(patcher.stop)
+
+    def test_enums_match_the_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        for prefix, enum_cls in (("CLIP", zshift.Clip), ("FORMAT", zshift.Format), ("BIAS", zshift.BiasApi),
+                                 ("OFFSET", zshift.OffsetKind)):
+            defined = dict(re.findall(r"#define ZSHIFT_" + prefix + r"_(\w+) (\d+)", header))
+            self.assertEqual({k: int(v) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
+        tweak = re.search(r"#define ZSHIFT_MIN_INFINITE_TWEAK (\S+)", header).group(1)
+        self.assertEqual(zshift.MIN_INFINITE_TWEAK, float(tweak))
+
+    def test_projection_depth_rows(self):
+        n, f = Q(0.5), Q(200)
+        rows = {zshift.Clip.NEG_ONE_TO_ONE: (-(f + n) / (f - n), -2 * f * n / (f - n)),
+                zshift.Clip.ZERO_TO_ONE: (-f / (f - n), -f * n / (f - n)),
+                zshift.Clip.REVERSED_ZERO_TO_ONE: (n / (f - n), f * n / (f - n))}
+        for clip, (m10, m14) in rows.items():
+            m = zshift.projection(-1, 1, -1, 1, 0.5, 200.0, clip)
+            for got, want in ((m[10], m10), (m[14], m14)):
+                self.assertIn(got, (f32(want), *f32_neighbours(f32(want))), clip.name)
+        self.assertEqual(zshift.projection(-1, 1, -1, 1, 0.5, 200.0, zshift.Clip.NEG_ONE_TO_ONE),
+                         zshift.frustum(-1, 1, -1, 1, 0.5, 200.0))
+
+    def test_perspective_and_offsets(self):
+        m = zshift.perspective(90.0, 2.0, 0.5, 200.0)  # cot(45 degrees) = 1
+        self.assertEqual((m[0], m[5]), (0.5, 1.0))
+        shifted = zshift.offset_perspective(90.0, 2.0, 0.5, 200.0, zshift.Clip.NEG_ONE_TO_ONE, 0.5, -50.0)
+        self.assertEqual([shifted[i] for i in range(16) if i != 10], [m[i] for i in range(16) if i != 10])
+        self.assertGreater(shifted[10], m[10])
+        reversed_ = zshift.Clip.REVERSED_ZERO_TO_ONE
+        plain = zshift.projection(-1, 1, -1, 1, 0.5, 200.0, reversed_)
+        moved = zshift.offset_projection(-1, 1, -1, 1, 0.5, 200.0, reversed_, 0.5, -50.0)
+        self.assertEqual([moved[i] for i in range(16) if i != 14], [plain[i] for i in range(16) if i != 14])
+        tweaked = zshift.tweaked_infinite(-1, 1, -1, 1, 0.5, zshift.MIN_INFINITE_TWEAK)
+        self.assertEqual(tweaked[10], f32(Q(zshift.MIN_INFINITE_TWEAK) - 1))
+        self.assertEqual(tweaked[14], f32((Q(zshift.MIN_INFINITE_TWEAK) - 2) * Q(0.5)))
+        self.assertNotEqual(zshift.offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10.0, -1000.0)[10],
+                            zshift.tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0)[10])
+
+    def test_depths_and_steps(self):
+        neg, reversed_, unorm24 = zshift.Clip.NEG_ONE_TO_ONE, zshift.Clip.REVERSED_ZERO_TO_ONE, zshift.Format.UNORM24
+        self.assertEqual(zshift.window_depth_clip(0.5, 200.0, neg, 37.0), zshift.window_depth(0.5, 200.0, 37.0))
+        n, f, d = Q(0.5), Q(200), Q(37)
+        self.assertAlmostEqual(zshift.window_depth_clip(0.5, 200.0, reversed_, 37.0),
+                               float(n * (f - d) / ((f - n) * d)), delta=1e-16)
+        self.assertAlmostEqual(zshift.depth_step(0.5, 200.0, neg, unorm24, 37.0) /
+                               zshift.depth_resolution(0.5, 200.0, 24, 37.0), 1.0, delta=1e-15)
+        self.assertEqual(zshift.min_ndc_offset(0.5, 200.0, neg, unorm24, 37.0), float(2 / steps(24)))
+        self.assertAlmostEqual(zshift.min_epsilon_clip(0.5, 200.0, neg, unorm24, 37.0) /
+                               zshift.min_epsilon(0.5, 200.0, 24), 1.0, delta=1e-15)
+        r, median = 1 / steps(24), Q(10)
+        self.assertAlmostEqual(zshift.median_depth_step(10.0, unorm24, 37.0) /
+                               float(r * (d + median) ** 2 / (median + r * (d + median))), 1.0, delta=1e-14)
+        self.assertAlmostEqual(zshift.median_ndc_offset(10.0, 0.5, -37.0) /
+                               float(-2 * median * Q(0.5) / ((d + median) * (d + median - Q(0.5)))), 1.0, delta=1e-14)
+        self.assertAlmostEqual(zshift.min_relative_epsilon(0.5, 200.0, neg, unorm24, 37.0) /
+                               float(r * d / (f * n / (f - n))), 1.0, delta=1e-14)
+
+    def test_bias_planning_and_errors(self):
+        neg, unorm24 = zshift.Clip.NEG_ONE_TO_ONE, zshift.Format.UNORM24
+        bias = zshift.bias_of_shift(0.5, 200.0, neg, unorm24, zshift.BiasApi.OPENGL, 0.25, -37.0)
+        self.assertLess(bias, 0)
+        self.assertAlmostEqual(zshift.shift_of_bias(0.5, 200.0, neg, unorm24, zshift.BiasApi.OPENGL, bias, -37.0),
+                               0.25, delta=1e-9)
+        near, far = zshift.tight_planes(2.0, 500.0)
+        self.assertTrue(0 < near <= 2.0 and far >= 500.0)
+        ro = zshift.range_offset(0.5, 200.0, neg, unorm24, zshift.OffsetKind.NDC, 10.0, 100.0, 2.0)
+        self.assertLess(ro.offset, 0)
+        self.assertLess(ro.shift_at_lo, ro.shift_at_hi)
+        for fn, args, status in [
+            (zshift.projection, (-1, 1, -1, 1, 1, 100, 7), zshift.Status.DOMAIN),
+            (zshift.projection, (-1, 1, -1, 1, 1, 100, 2**32), zshift.Status.DOMAIN),  # not wrapped to 0
+            (zshift.perspective, (180.0, 1.0, 1.0, 100.0), zshift.Status.DOMAIN),
+            (zshift.min_epsilon_clip, (0.5, math.inf, zshift.Clip.REVERSED_ZERO_TO_ONE, zshift.Format.FLOAT32, 37.0),
+             zshift.Status.UNRESOLVABLE),
+            (zshift.tight_planes, (500.0, 2.0), zshift.Status.DOMAIN),
+            (zshift.range_offset, (0.5, 200.0, neg, unorm24, zshift.OffsetKind.NDC, 10.0, 100.0, math.nan),
+             zshift.Status.NOT_FINITE),
+            (zshift.median_ndc_offset, (10.0, math.nan, -37.0), zshift.Status.NOT_FINITE),
+        ]:
+            with self.assertRaises(zshift.ZshiftError, msg=fn.__name__) as caught:
+                fn(*args)
+            self.assertEqual(caught.exception.status, status, fn.__name__)
+
+
 class Library(unittest.TestCase):
     """The library lookup and the versions."""
 

@@ -32,6 +32,11 @@ __all__ = [
     "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
     "depth_resolution", "recommend", "recommend_matrix", "Recommendation", "SUBPIXEL_UNSNAPPED",
     "GL_DEPTH_COMPONENT16", "GL_DEPTH_COMPONENT24", "GL_DEPTH_COMPONENT32", "GL_DEPTH_COMPONENT32F",
+    "Clip", "Format", "BiasApi", "OffsetKind", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
+    "offset_projection", "offset_perspective", "tweaked_infinite", "offset_tweaked_infinite",
+    "median_ndc_offset", "window_depth_clip", "depth_step", "median_depth_step", "min_ndc_offset",
+    "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
+    "range_offset",
     "status_message", "version", "library_path",
 ]
 
@@ -249,3 +254,173 @@ def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, e
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
     return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))
+
+
+# ---- Every clip convention, Kooima's median projection, depth bias, planning ----
+
+
+class Clip(enum.IntEnum):
+    """NDC depth convention (``ZSHIFT_CLIP_*``): OpenGL's [-1, 1]; [0, 1] (glClipControl
+    ZERO_TO_ONE, Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; float depth)."""
+
+    NEG_ONE_TO_ONE = 0
+    ZERO_TO_ONE = 1
+    REVERSED_ZERO_TO_ONE = 2
+
+
+class Format(enum.IntEnum):
+    """Depth attachment format (``ZSHIFT_FORMAT_*``)."""
+
+    UNORM16 = 0
+    UNORM24 = 1
+    UNORM32 = 2
+    FLOAT32 = 3
+
+
+class BiasApi(enum.IntEnum):
+    """Whose constant depth bias (``ZSHIFT_BIAS_*``): glPolygonOffset units, Direct3D DepthBias,
+    Vulkan depthBiasConstantFactor."""
+
+    OPENGL = 0
+    DIRECT3D = 1
+    VULKAN = 2
+
+
+class OffsetKind(enum.IntEnum):
+    """What :func:`range_offset` returns (``ZSHIFT_OFFSET_*``): a signed NDC offset for element 10,
+    or a relative epsilon for element 14 (reversed Z with float depth)."""
+
+    NDC = 0
+    RELATIVE = 1
+
+
+#: The smallest tweak for :func:`tweaked_infinite` that keeps far geometry inside the clip volume
+#: in float arithmetic: 2^-22 (Lengyel, GDC 2007).
+MIN_INFINITE_TWEAK = 2.0**-22
+
+#: What :func:`range_offset` returns: the offset and the eye-space shifts it makes at lo and hi.
+RangeOffset = collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
+
+
+def _enum(value):
+    # An int32 for the C call; ctypes would wrap a larger int silently.
+    if not isinstance(value, int) or not -(2**31) <= value < 2**31:
+        raise ZshiftError(Status.DOMAIN)
+    return int(value)
+
+
+def perspective(fovy, aspect, n, f):
+    """``gluPerspective(fovy, aspect, n, f)``, fovy in degrees, NDC depth [-1, 1]; ``f`` may be
+    ``math.inf``. Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` unless 0 < fovy < 180,
+    aspect > 0, 0 < n < f."""
+    return _matrix(lambda out: _lib().zshift_perspective(fovy, aspect, n, f, out))
+
+
+def projection(l, r, b, t, n, f, clip):
+    """glFrustum's x/y rows with the depth row of ``clip`` (a :class:`Clip`).
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` for an unknown clip."""
+    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip), out))
+
+
+def offset_projection(l, r, b, t, n, f, clip, delta, pz):
+    """:func:`projection` with geometry at ``pz`` moved toward the camera by ``delta``: a constant
+    NDC offset through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or
+    element 14 scaled (reversed), rounded outward. Raises :class:`ZshiftError`: as
+    :func:`projection`; ``DOMAIN`` if pz is outside [-f, -n] or the shifted point leaves [n, f]."""
+    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip), delta, pz, out))
+
+
+def offset_perspective(fovy, aspect, n, f, clip, delta, pz):
+    """:func:`offset_projection` for gluPerspective parameters. Errors as both."""
+    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip), delta, pz, out))
+
+
+def tweaked_infinite(l, r, b, t, n, tweak):
+    """The tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` unless 0 <= tweak < 1."""
+    return _matrix(lambda out: _lib().zshift_tweaked_infinite(l, r, b, t, n, tweak, out))
+
+
+def offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz):
+    """:func:`tweaked_infinite` with geometry at ``pz`` moved toward the camera by ``delta``
+    (element 10, rounded outward). Raises :class:`ZshiftError`: as :func:`tweaked_infinite`;
+    ``DOMAIN`` if pz or pz + delta > -n."""
+    return _matrix(lambda out: _lib().zshift_offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz, out))
+
+
+def median_ndc_offset(median, delta, pz):
+    """The ``ndc_offset`` uniform of bindings/glsl/ftransform_mdp.glsl (Kooima's median
+    projection, seed 003) that moves geometry at ``pz`` toward the camera by ``delta``.
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` unless median > 0, pz <= 0 and
+    pz + delta <= 0."""
+    return _scalar(lambda out: _lib().zshift_median_ndc_offset(median, delta, pz, out))
+
+
+def window_depth_clip(n, f, clip, d):
+    """The window depth at eye distance ``d`` under ``clip`` (Walker's f(d), seed 001; reversed
+    n(f - d)/((f - n)d)). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip), d, out))
+
+
+def depth_step(n, f, clip, format, d):
+    """The exact depth step at eye distance ``d`` under ``clip`` and ``format`` (a :class:`Format`;
+    Walker's eq. 3 for every convention). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip), _enum(format), d, out))
+
+
+def median_depth_step(median, format, d):
+    """The depth step at eye distance ``d`` (>= 0) under Kooima's median projection (seed 003).
+    Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format), d, out))
+
+
+def min_ndc_offset(n, f, clip, format, d):
+    """The smallest constant NDC offset (a magnitude) that changes the stored depth at ``d``
+    (seed 002's 2/(2^m - 1) for UNORM under [-1, 1]). Raises :class:`ZshiftError`: as
+    :func:`depth_step`."""
+    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip), _enum(format), d, out))
+
+
+def min_epsilon_clip(n, f, clip, format, d):
+    """The smallest |epsilon| for element 10's scaling that changes the stored depth at ``d``
+    (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Raises :class:`ZshiftError`: as
+    :func:`depth_step`; ``UNRESOLVABLE`` for reversed Z with ``f = math.inf``."""
+    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip), _enum(format), d, out))
+
+
+def min_relative_epsilon(n, f, clip, format, d):
+    """The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored
+    depth at ``d``. Raises :class:`ZshiftError`: as :func:`depth_step`."""
+    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip), _enum(format), d, out))
+
+
+def bias_of_shift(n, f, clip, format, api, delta, pz):
+    """The constant depth bias of ``api`` (a :class:`BiasApi`) equivalent to moving geometry at
+    ``pz`` toward the camera by ``delta`` (negative under [-1, 1] and [0, 1]).
+    Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip), _enum(format), _enum(api), delta, pz, out))
+
+
+def shift_of_bias(n, f, clip, format, api, bias, pz):
+    """The eye-space shift toward the camera that a constant ``bias`` of ``api`` makes at ``pz``
+    (the inverse of :func:`bias_of_shift`). Raises :class:`ZshiftError`: as
+    :func:`bias_of_shift`; ``UNRESOLVABLE``."""
+    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip), _enum(format), _enum(api), bias, pz, out))
+
+
+def tight_planes(nearest, farthest):
+    """The tightest clip planes ``(n, f)`` for a scene between eye distances ``nearest`` and
+    ``farthest`` (``f`` may be ``math.inf``). Raises :class:`ZshiftError`: ``NOT_FINITE``;
+    ``DOMAIN`` unless 0 < nearest <= farthest."""
+    out = (ctypes.c_double * 2)()
+    _check(_lib().zshift_tight_planes(nearest, farthest, out))
+    return tuple(out)
+
+
+def range_offset(n, f, clip, format, kind, lo, hi, steps):
+    """The smallest single offset that moves stored depth by at least ``steps`` steps at every
+    distance in [lo, hi], as a :data:`RangeOffset`; multiply ``offset`` by k for the k-th stacked
+    decal layer. Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``, ``UNRESOLVABLE``."""
+    out = (ctypes.c_double * 3)()
+    _check(_lib().zshift_range_offset(n, f, _enum(clip), _enum(format), _enum(kind), lo, hi, steps, out))
+    return RangeOffset(*out)

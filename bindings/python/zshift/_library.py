@@ -94,7 +94,7 @@ class ZshiftRecommendation(ctypes.Structure):
 
 def _declare(lib):
     """Declares argument and result types, so ctypes converts and checks every call."""
-    d, u32, status = ctypes.c_double, ctypes.c_uint32, ctypes.c_int32
+    d, u32, i32, status = ctypes.c_double, ctypes.c_uint32, ctypes.c_int32, ctypes.c_int32
     float_out, double_out = ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_double)
     signatures = {
         "zshift_frustum": [d] * 6 + [float_out],
@@ -105,6 +105,23 @@ def _declare(lib):
         "zshift_max_delta_away": [d, d, u32, d, double_out],
         "zshift_window_depth": [d, d, d, double_out],
         "zshift_depth_resolution": [d, d, u32, d, double_out],
+        "zshift_perspective": [d] * 4 + [float_out],
+        "zshift_projection": [d] * 6 + [i32, float_out],
+        "zshift_offset_projection": [d] * 6 + [i32, d, d, float_out],
+        "zshift_offset_perspective": [d] * 4 + [i32, d, d, float_out],
+        "zshift_tweaked_infinite": [d] * 6 + [float_out],
+        "zshift_offset_tweaked_infinite": [d] * 8 + [float_out],
+        "zshift_median_ndc_offset": [d] * 3 + [double_out],
+        "zshift_window_depth_clip": [d, d, i32, d, double_out],
+        "zshift_depth_step": [d, d, i32, i32, d, double_out],
+        "zshift_median_depth_step": [d, i32, d, double_out],
+        "zshift_min_ndc_offset": [d, d, i32, i32, d, double_out],
+        "zshift_min_epsilon_clip": [d, d, i32, i32, d, double_out],
+        "zshift_min_relative_epsilon": [d, d, i32, i32, d, double_out],
+        "zshift_bias_of_shift": [d, d, i32, i32, i32, d, d, double_out],
+        "zshift_shift_of_bias": [d, d, i32, i32, i32, d, d, double_out],
+        "zshift_tight_planes": [d, d, double_out],
+        "zshift_range_offset": [d, d, i32, i32, i32, d, d, d, double_out],
     }
     for name, argtypes in signatures.items():
         fn = getattr(lib, name)
