@@ -54,13 +54,19 @@
 //! element 10) on sloped D16 planes and 4–15× on sloped D24/D32F planes, where the f32 terms
 //! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
 //!
+//! The model covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`, `glDepthRange(0, 1)`),
+//! the one the rasterizer tests measure; the other conventions of
+//! [`crate::precision::DepthMapping`] (`[0, 1]`, reversed Z) change `T` and `q` and are not
+//! covered yet.
+//!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
 //! largest depth gradient per pixel and `r` the format's smallest resolvable difference. (R1)
 //! is the same shape: `q` and `2(T + V + I)` are constants (`units = (q + 2(T+V+I))/r`) and the
 //! snapping term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one
 //! constant for the whole decal, so zshift evaluates the slope term at the decal's worst depth
-//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair.
+//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r`
+//! as [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
 //!
 //! # Bleed-through
 //! An occluder in front of the base must not lose to the decal. Its computed depth has the same
