@@ -1,7 +1,9 @@
 //! The full coplanar-quads sweep on a real rasterizer (headless EGL): for every configuration,
 //! the fraction of decal pixels lost to the base with no offset, at the seed's bound (c = 1),
 //! at the corrected bound (c = 2) and at zshift's recommendation, and the smallest offset that
-//! works (bisection over f32 steps of element 10) beside the recommended one.
+//! works (bisection over f32 steps of element 10) beside the recommended one; then the
+//! documented bleed gap G (as a fraction of the decal's farthest distance) and the fraction of
+//! shared pixels where the decal bleeds past an occluder G/4 and G in front of the base.
 //!
 //! `cargo run --release --example sweep [size]` (default 256 × 256). Exits with an error if the
 //! recommendation loses a pixel anywhere.

@@ -72,6 +72,10 @@ pub struct Row {
     pub rec_ndc: f64,
     /// Smallest NDC offset (whole f32 steps of element 10) with no lost pixel, by bisection.
     pub min_ndc: Option<f64>,
+    /// Bleed-through at the recommendation past an occluder a quarter of the documented gap
+    /// in front of the base, and past one the full gap in front.
+    pub bleed_quarter: Count,
+    pub bleed_gap: Count,
 }
 
 /// Renders the setup with no offset, at c = 1, c = 2, at the recommendation, and bisects.
@@ -97,6 +101,8 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
         .map_err(|e| e.to_string())?
         .to_cols_array();
     let rec_via_delta = bench.lost(&via_delta)?;
+    let bleed_quarter = bench.bleed(&rec_matrix, 0.25 * recommendation.bleed_gap)?;
+    let bleed_gap = bench.bleed(&rec_matrix, recommendation.bleed_gap)?;
     let k = smallest_working_ulps(&mut bench, 1 << 20)?;
     let min_ndc = k.map(|k| (with_ulps_toward_camera(&plain, k)[10] - plain[10]) as f64);
     let rec_ndc = (rec_matrix[10] - plain[10]) as f64;
@@ -110,6 +116,8 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
         recommendation,
         rec_ndc,
         min_ndc,
+        bleed_quarter,
+        bleed_gap,
     })
 }
 
@@ -128,7 +136,7 @@ pub fn setup(format: DepthFormat, ratio: f64, depth_fraction: f64, slope: f64, s
 
 /// The table header and a row, as `examples/sweep.rs` prints them. ε values are
 /// `−Δndc/|m10|` for the NDC offset the f32 matrix actually carries.
-pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec | eps min (bisect) |    eps rec | rec/min";
+pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec | eps min (bisect) |    eps rec | rec/min | gap/d2  | bleed: G/4    G";
 
 pub fn format_row(r: &Row) -> String {
     let pct = |c: &Count| format!("{:5.1}%", 100.0 * c.fraction());
@@ -140,7 +148,7 @@ pub fn format_row(r: &Row) -> String {
         .min_ndc
         .map_or("-".to_string(), |m| format!("{:.1}", r.rec_ndc / m));
     format!(
-        "{} | {:5} | {} {} {} {} | {:>16} | {:.3e} | {:>5}",
+        "{} | {:5} | {} {} {} {} | {:>16} | {:.3e} | {:>7} | {:.1e} | {} {}",
         r.setup.label(),
         r.none.of,
         pct(&r.none),
@@ -149,6 +157,9 @@ pub fn format_row(r: &Row) -> String {
         pct(&r.rec),
         min,
         -r.rec_ndc / m10,
-        ratio
+        ratio,
+        r.recommendation.bleed_gap / r.setup.decal_depth_range().1,
+        pct(&r.bleed_quarter),
+        pct(&r.bleed_gap)
     )
 }
