@@ -85,8 +85,11 @@ const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 /// What the depth attachment stores.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DepthFormat {
-    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`): `bits` in 1..=32.
-    Unorm { bits: u32 },
+    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`).
+    Unorm {
+        /// m, in 1..=32.
+        bits: u32,
+    },
     /// `GL_DEPTH_COMPONENT32F` under the standard `[−1, 1]` NDC depth mapping.
     Float32,
 }
