@@ -14,17 +14,21 @@
 
 use crate::{DepthFormat, DrawState, Gl, Image, Quad};
 
-/// Base colour (blue), decal colour (red), occluder colour (green), clear colour (black).
+/// Base colour: blue.
 pub const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
+/// Decal colour: red.
 pub const DECAL: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
+/// Occluder colour: green.
 pub const OCCLUDER: [f32; 4] = [0.0, 1.0, 0.0, 1.0];
+/// Clear colour: black.
 pub const CLEAR: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 /// One configuration of the experiment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setup {
-    /// Near and far plane distances.
+    /// Near plane distance.
     pub n: f64,
+    /// Far plane distance.
     pub f: f64,
     /// `tan` of the half field of view (both axes).
     pub tan_half: f64,
@@ -155,7 +159,9 @@ pub struct Bench<'a> {
 /// Counts from one render: `hit` of `of` pixels (lost decal pixels, or bled ones).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Count {
+    /// Pixels counted (lost, or bled).
     pub hit: usize,
+    /// Pixels they were counted among (the decal's coverage, or decal ∩ occluder).
     pub of: usize,
 }
 

@@ -171,17 +171,24 @@ impl Default for DrawState {
 /// `glReadPixels` returns rows).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Region {
+    /// First column inside.
     pub x0: usize,
+    /// First row inside.
     pub y0: usize,
+    /// First column past the region.
     pub x1: usize,
+    /// First row past the region.
     pub y1: usize,
 }
 
 /// Colour pixels read back from the target, RGBA8, rows bottom-up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: usize,
+    /// Height in pixels.
     pub height: usize,
+    /// `width × height` RGBA8 pixels, row by row from the bottom.
     pub pixels: Vec<[u8; 4]>,
 }
 
