@@ -51,7 +51,7 @@
 //! rounding or snapping step. The bound is loose where the worst cases do not line up: on
 //! llvmpipe a quad's per-pixel depth error reaches at most 27% of `q/2 + T + V + I`, and the
 //! recommendation is 1.0–4.0× the smallest offset that works (bisection over f32 steps of
-//! element 10) on sloped D16 planes and 4–15× on sloped D24/D32F planes, where the f32 terms
+//! element 10) on sloped D16 planes and 3.5–15× on sloped D24/D32F planes, where the f32 terms
 //! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
 //!
 //! The model covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`, `glDepthRange(0, 1)`),
