@@ -933,6 +933,15 @@ impl Gl {
         Ok(bits as u32)
     }
 
+    /// The address of a GL entry point (`eglGetProcAddress`), or null: for callers that must
+    /// call GL directly, without the harness's per-call `glGetError` (e.g. a benchmark of the
+    /// seed's `glFrustum` path). The pointer is valid while this context lives.
+    pub fn proc_address(&self, name: &str) -> *const c_void {
+        self.egl
+            .get_proc_address(name)
+            .map_or(std::ptr::null(), |f| f as *const c_void)
+    }
+
     /// Clears the stencil buffer to `value` (with all stencil bits writable).
     ///
     /// # Errors
