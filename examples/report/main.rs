@@ -231,10 +231,17 @@ fn summarize(methods: &[gpu::Method], outcomes: &[gpu::Outcome]) -> Vec<plots::M
             let ms = mine.iter().map(|o| o.frame_ms).sum::<f64>() / mine.len() as f64;
             let wrong: usize = mine.iter().map(|o| o.lost + o.bleed).sum();
             let total: usize = mine.iter().map(|o| o.visible + o.hidden).sum();
+            let lost: usize = mine.iter().map(|o| o.lost).sum();
+            let visible: usize = mine.iter().map(|o| o.visible).sum();
+            let bleed: usize = mine.iter().map(|o| o.bleed).sum();
+            let hidden: usize = mine.iter().map(|o| o.hidden).sum();
             plots::MethodPoint {
                 label,
                 frame_ms: ms,
                 error_pct: 100.0 * wrong as f64 / total.max(1) as f64,
+                lost_pct: pct(lost, visible),
+                bleed_pct: pct(bleed, hidden),
+                scenes_clean: mine.iter().filter(|o| o.lost + o.bleed == 0).count(),
             }
         })
         .collect()
@@ -276,6 +283,7 @@ fn markdown(r: &Report) -> String {
     headline(w, r);
     cpu_table(w, r);
     numeric_table(w, r);
+    numeric_by_planes(w, r);
     gpu_tables(w, r);
     depth_step_table(w, r);
     s
@@ -417,6 +425,28 @@ fn numeric_table(w: &mut String, r: &Report) {
     let _ = writeln!(w);
 }
 
+/// Lost + short offsets per plane set, a column per variant.
+fn numeric_by_planes(w: &mut String, r: &Report) {
+    let _ = writeln!(w, "Offsets lost / short, per plane set:\n");
+    let _ = write!(w, "| planes |");
+    for v in r.numeric {
+        let _ = write!(w, " {} |", v.name);
+    }
+    let _ = writeln!(w, "\n|---|{}", "---:|".repeat(r.numeric.len()));
+    let Some(first) = r.numeric.first() else {
+        return;
+    };
+    for (i, &(planes, _, _, total)) in first.by_planes.iter().enumerate() {
+        let _ = write!(w, "| {planes} ({total} cases) |");
+        for v in r.numeric {
+            let (_, lost, short, _) = v.by_planes[i];
+            let _ = write!(w, " {lost} / {short} |");
+        }
+        let _ = writeln!(w);
+    }
+    let _ = writeln!(w);
+}
+
 fn sci(x: f64) -> String {
     if x.is_finite() && x.abs() < 1e4 {
         format!("{x:.3}")
@@ -448,18 +478,22 @@ fn gpu_tables(w: &mut String, r: &Report) {
     let _ = writeln!(w, "### Summary over all scenes\n");
     let _ = writeln!(
         w,
-        "| method | mean frame ms | × no offset | wrong pixels % |"
+        "| method | mean frame ms | × no offset | wrong pixels % | lost % | bleed % | scenes with no wrong pixel |"
     );
-    let _ = writeln!(w, "|---|---:|---:|---:|");
+    let _ = writeln!(w, "|---|---:|---:|---:|---:|---:|---:|");
     let none = r.summary.first().map_or(1.0, |m| m.frame_ms);
     for m in r.summary {
         let _ = writeln!(
             w,
-            "| {} | {:.3} | {:.2} | {:.2} |",
+            "| {} | {:.3} | {:.2} | {:.2} | {:.2} | {:.2} | {} / {} |",
             m.label,
             m.frame_ms,
             m.frame_ms / none,
-            m.error_pct
+            m.error_pct,
+            m.lost_pct,
+            m.bleed_pct,
+            m.scenes_clean,
+            r.scenes.len()
         );
     }
     let _ = writeln!(w, "\n### Per scene\n");
