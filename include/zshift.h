@@ -9,10 +9,76 @@
 // incompatibly.
 #define ZSHIFT_ABI_VERSION 1
 
+// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
+// vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
+#define ZSHIFT_SUBPIXEL_UNSNAPPED -1
+
 // The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 //
 // A plain 32-bit integer, so any value a caller passes to `zshift_status_message` is valid.
 typedef int32_t ZshiftStatus;
+
+// What a scene knows about one decal and the surface under it, for `zshift_recommend`.
+//
+// Convention: OpenGL right-handed eye space, NDC depth [-1, 1]; the base is drawn with
+// `glFrustum(l, r, b, t, n, f)` (or `zshift_frustum`), the decal with element 10 scaled by
+// 1 + epsilon (seed 000, eq. 4.1.3), depth test GL_LESS or GL_LEQUAL.
+typedef struct {
+  // The `glFrustum` parameters of the base's projection (f may be +INFINITY).
+  double l;
+  double r;
+  double b;
+  double t;
+  double n;
+  double f;
+  // `glViewport` width and height in pixels (nonzero).
+  uint32_t viewport_width;
+  uint32_t viewport_height;
+  // The depth attachment's GL internal format: GL_DEPTH_COMPONENT16 (0x81A5),
+  // GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7) or
+  // GL_DEPTH_COMPONENT32F (0x8CAC).
+  uint32_t depth_format;
+  // The decal's nearest and farthest eye distance (positive, n <= near <= far <= f).
+  // `decal_near` also stands for where the decal's plane crosses the view axis.
+  double decal_near;
+  double decal_far;
+  // Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
+  double slope;
+  // Nonzero when every corner of base and decal has the same float eye-space z (a plane
+  // facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+  uint32_t exact_depth;
+  // GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+  int32_t subpixel_bits;
+} ZshiftScene;
+
+// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
+// error terms it was built from (window-depth units; see the README, "Verified on a
+// rasterizer").
+typedef struct {
+  // epsilon for element 10 (negative: toward the camera); use with the matrix from
+  // `zshift_recommend_matrix`.
+  double epsilon;
+  // The NDC depth offset -epsilon * m10 (= 2 * window_offset).
+  double ndc_offset;
+  // The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+  double window_offset;
+  // The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
+  // (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
+  double delta_at_far;
+  // Occluders nearer than the base by at least this eye-space distance (along the line of
+  // sight) are never overdrawn by the decal.
+  double bleed_gap;
+  // The equivalent glPolygonOffset(-factor, -units).
+  double polygon_offset_factor;
+  double polygon_offset_units;
+  // The model's terms: depth quantum, f32 rounding of the transform, of the vertex
+  // coordinates and of the depth interpolation, and sub-pixel snapping.
+  double quantum;
+  double transform;
+  double vertex;
+  double interpolation;
+  double snap;
+} ZshiftRecommendation;
 
 // Success: the output was written.
 #define ZSHIFT_OK 0
@@ -128,6 +194,29 @@ const char *zshift_status_message(ZshiftStatus status);
 
 // The library version, a static NUL-terminated string such as "0.1.0". Never NULL.
 const char *zshift_version(void);
+
+// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+// base on a real rasterizer, by an error model whose every term is a worst-case bound: the
+// depth quantum, f32 rounding of the vertex transform, of the vertex coordinates and of the
+// depth interpolation, and sub-pixel snapping of sloped planes (seed 004); seed 000's eq.
+// 4.1.3/4.1.7 with seed 002's quantum. Also the bleed-through gap and the glPolygonOffset
+// equivalent. Verified on Mesa llvmpipe with D16, D24 and D32F (tests/gl_recommend.rs).
+//
+// Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
+// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
+// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
+// negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
+// ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
+
+// Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
+// `scene` with element 10 scaled by 1 + epsilon of `zshift_recommend`, rounded away from the
+// plain element (the offset is never lost to float rounding). Column-major, 16 floats, for
+// glLoadMatrixf or glUniformMatrix4fv(.., GL_FALSE, ..).
+//
+// Errors: as `zshift_recommend`; ZSHIFT_ERR_OVERFLOW if element 10 leaves float. `out` is
+// untouched on error.
+ZshiftStatus zshift_recommend_matrix(const ZshiftScene *scene, float *out);
 
 #ifdef __cplusplus
 }  // extern "C"

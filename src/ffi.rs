@@ -256,3 +256,186 @@ pub extern "C" fn zshift_status_message(status: ZshiftStatus) -> *const c_char {
 pub extern "C" fn zshift_version() -> *const c_char {
     concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
 }
+
+// ---- The recommended offset for a real rasterizer (src/recommend.rs) ----
+
+/// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
+/// vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
+pub const ZSHIFT_SUBPIXEL_UNSNAPPED: i32 = -1;
+
+/// What a scene knows about one decal and the surface under it, for `zshift_recommend`.
+///
+/// Convention: OpenGL right-handed eye space, NDC depth [-1, 1]; the base is drawn with
+/// `glFrustum(l, r, b, t, n, f)` (or `zshift_frustum`), the decal with element 10 scaled by
+/// 1 + epsilon (seed 000, eq. 4.1.3), depth test GL_LESS or GL_LEQUAL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftScene {
+    /// The `glFrustum` parameters of the base's projection (f may be +INFINITY).
+    pub l: f64,
+    pub r: f64,
+    pub b: f64,
+    pub t: f64,
+    pub n: f64,
+    pub f: f64,
+    /// `glViewport` width and height in pixels (nonzero).
+    pub viewport_width: u32,
+    pub viewport_height: u32,
+    /// The depth attachment's GL internal format: GL_DEPTH_COMPONENT16 (0x81A5),
+    /// GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7) or
+    /// GL_DEPTH_COMPONENT32F (0x8CAC).
+    pub depth_format: u32,
+    /// The decal's nearest and farthest eye distance (positive, n <= near <= far <= f).
+    /// `decal_near` also stands for where the decal's plane crosses the view axis.
+    pub decal_near: f64,
+    pub decal_far: f64,
+    /// Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
+    pub slope: f64,
+    /// Nonzero when every corner of base and decal has the same float eye-space z (a plane
+    /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+    pub exact_depth: u32,
+    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+    pub subpixel_bits: i32,
+}
+
+/// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
+/// error terms it was built from (window-depth units; see the README, "Verified on a
+/// rasterizer").
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftRecommendation {
+    /// epsilon for element 10 (negative: toward the camera); use with the matrix from
+    /// `zshift_recommend_matrix`.
+    pub epsilon: f64,
+    /// The NDC depth offset -epsilon * m10 (= 2 * window_offset).
+    pub ndc_offset: f64,
+    /// The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+    pub window_offset: f64,
+    /// The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
+    /// (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
+    pub delta_at_far: f64,
+    /// Occluders nearer than the base by at least this eye-space distance (along the line of
+    /// sight) are never overdrawn by the decal.
+    pub bleed_gap: f64,
+    /// The equivalent glPolygonOffset(-factor, -units).
+    pub polygon_offset_factor: f64,
+    pub polygon_offset_units: f64,
+    /// The model's terms: depth quantum, f32 rounding of the transform, of the vertex
+    /// coordinates and of the depth interpolation, and sub-pixel snapping.
+    pub quantum: f64,
+    pub transform: f64,
+    pub vertex: f64,
+    pub interpolation: f64,
+    pub snap: f64,
+}
+
+/// Reads a scene the caller passed by pointer (NULL refused, no alignment needed) and converts
+/// it to the Rust model's input.
+fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
+    if scene.is_null() {
+        return None;
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftScene; read_unaligned needs no
+    // alignment and the struct is plain data.
+    Some(unsafe { scene.read_unaligned() })
+}
+
+fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
+    use crate::recommend::{DepthFormat, Scene, Snapping};
+    let format = match s.depth_format {
+        0x81A5 => DepthFormat::Unorm { bits: 16 },
+        0x81A6 => DepthFormat::Unorm { bits: 24 },
+        0x81A7 => DepthFormat::Unorm { bits: 32 },
+        0x8CAC => DepthFormat::Float32,
+        _ => {
+            return Err(crate::domain::domain(
+                "depth_format must be GL_DEPTH_COMPONENT16, 24, 32 or 32F",
+            ))
+        }
+    };
+    let snapping = match s.subpixel_bits {
+        ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
+        b if b >= 0 => Snapping::SubpixelBits(b as u32),
+        _ => {
+            return Err(crate::domain::domain(
+                "subpixel_bits must be >= 0 or ZSHIFT_SUBPIXEL_UNSNAPPED",
+            ))
+        }
+    };
+    Ok(Scene {
+        frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
+        viewport: [s.viewport_width, s.viewport_height],
+        format,
+        depth_range: [s.decal_near, s.decal_far],
+        slope: s.slope,
+        exact_depth: s.exact_depth != 0,
+        snapping,
+    })
+}
+
+/// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+/// base on a real rasterizer, by an error model whose every term is a worst-case bound: the
+/// depth quantum, f32 rounding of the vertex transform, of the vertex coordinates and of the
+/// depth interpolation, and sub-pixel snapping of sloped planes (seed 004); seed 000's eq.
+/// 4.1.3/4.1.7 with seed 002's quantum. Also the bleed-through gap and the glPolygonOffset
+/// equivalent. Verified on Mesa llvmpipe with D16, D24 and D32F (tests/gl_recommend.rs).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
+/// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
+/// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
+/// negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
+/// ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend(
+    scene: *const ZshiftScene,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked(
+        out,
+        move || {
+            let r = crate::recommend::recommend(&to_model(&s)?)?;
+            Ok(ZshiftRecommendation {
+                epsilon: r.epsilon,
+                ndc_offset: r.ndc_offset,
+                window_offset: r.window_offset,
+                delta_at_far: r.delta_at_far,
+                bleed_gap: r.bleed_gap,
+                polygon_offset_factor: r.polygon_offset[0],
+                polygon_offset_units: r.polygon_offset[1],
+                quantum: r.terms.quantum,
+                transform: r.terms.transform,
+                vertex: r.terms.vertex,
+                interpolation: r.terms.interpolation,
+                snap: r.terms.snap,
+            })
+        },
+        // SAFETY: `checked` has refused NULL; the caller promises a writable
+        // ZshiftRecommendation; write_unaligned needs no alignment.
+        |out, v| unsafe { out.write_unaligned(v) },
+    )
+}
+
+/// Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
+/// `scene` with element 10 scaled by 1 + epsilon of `zshift_recommend`, rounded away from the
+/// plain element (the offset is never lost to float rounding). Column-major, 16 floats, for
+/// glLoadMatrixf or glUniformMatrix4fv(.., GL_FALSE, ..).
+///
+/// Errors: as `zshift_recommend`; ZSHIFT_ERR_OVERFLOW if element 10 leaves float. `out` is
+/// untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_matrix(
+    scene: *const ZshiftScene,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_matrix(out, move || {
+        let model = to_model(&s)?;
+        let r = crate::recommend::recommend(&model)?;
+        crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
+    })
+}

@@ -17,6 +17,7 @@
 //! | [`projection`] | the `glFrustum` matrix, finite or infinite far | 000 eq. 4.1.1, 003 |
 //! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
 //! | [`precision`] | window depth and the exact depth step at a distance | 001 |
+//! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
@@ -27,6 +28,7 @@ pub mod ffi;
 pub mod offset;
 pub mod precision;
 pub mod projection;
+pub mod recommend;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};

@@ -39,6 +39,11 @@ use std::ffi::c_void;
 use glow::HasContext;
 use khronos_egl as egl;
 
+/// The glow crate, re-exported so tests can name GL enums (`zshift_harness::glow::ALWAYS`).
+pub use glow;
+
+pub mod coplanar;
+
 /// `EGL_PLATFORM_SURFACELESS_MESA`: a display with no window system.
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
 /// `GL_SUBPIXEL_BITS`: bits of sub-pixel precision the rasterizer snaps window x, y to.

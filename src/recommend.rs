@@ -1,0 +1,334 @@
+//! The offset a real rasterizer needs: an error model of how a decal's stored depth can differ
+//! from its base's, and the smallest projection-matrix offset that beats every term of it.
+//!
+//! # The model
+//! A decal drawn over a coplanar base with `GL_LESS` survives at a pixel when its stored depth is
+//! smaller than the base's. The offset projection (seed 000, eq. 4.1.4) lowers the decal's NDC
+//! depth by the constant `Δndc = −ε·m10 = |ε|·(f+n)/(f−n)`, i.e. window depth by `Δw = Δndc/2`.
+//! Each quad's computed window depth at a pixel differs from the exact depth of the plane by
+//! at most `T + V + I + S` (terms below); stored values keep their order once two computed
+//! values are a quantum `q` apart (the conversion to the stored format is monotone). So no decal
+//! pixel is lost when
+//!
+//! `Δw ≥ q + 2·(T + V + I + S)`                                                    (R1)
+//!
+//! and zshift recommends exactly the right-hand side: `ε = −2·Δw / |m10|`, rounded outward into
+//! element 10 by [`crate::offset::epsilon_matrix`]. With `u = 2⁻²⁴` (the unit roundoff of f32),
+//! all terms in window-depth units, `d₁ ≤ d₂` the decal's nearest and farthest eye distances,
+//! `w(d)` Walker's window depth (seed 001) and `F = f/(f−n)`:
+//!
+//! * `q`, the **depth quantum**: `1/(2^m − 1)` for an m-bit unsigned normalized buffer (seed 002's
+//!   correction is this factor: one window step is `2/(2^m−1)` in NDC); for `GL_DEPTH_COMPONENT32F`
+//!   the spacing of f32 at `w(d₂)`, `2^(⌊log₂ w(d₂)⌋ − 23)` (2⁻²⁴ for `w ≥ ½`, which is why D32F
+//!   under the `[−1, 1]` mapping behaves as D24).
+//! * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
+//!   roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal and
+//!   product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding relative to
+//!   `w`): `T = u·(|m10|/2 + 1.5·|ndc|max + w(d₂))`. It applies even to bit-identical vertices,
+//!   because the decal's element 10 differs from the base's.
+//! * `V`, **f32 rounding of the vertex coordinates**: the decal's corners are not the base's, and
+//!   each eye coordinate is rounded to f32 (relative `u`); rounding z moves depth by `u·d`,
+//!   rounding x or y moves a point of a plane of slope `s` by `s·u·|x|`, `|x| ≤ e·d` inside a
+//!   frustum of half-extent tangent `e = max(|l|, |r|, |b|, |t|)/n`. Through `dw/dd = F·n/d²`:
+//!   `V = u·F·(n/d₁)·(1 + s·e)`. Zero when every corner of base and decal has the same f32 z
+//!   ([`Scene::exact_depth`]).
+//! * `I`, **f32 interpolation**: the rasterizer evaluates the plane `w₀ + ∂w/∂x·Δx + ∂w/∂y·Δy`
+//!   in f32 (three roundings of values at most `w(d₂)`), from gradients set up with a relative
+//!   error of about `3u`, applied across at most the decal's window-depth span:
+//!   `I = u·(3·w(d₂) + 3·(w(d₂) − w(d₁)))`. Zero with [`Scene::exact_depth`]: a constant plane
+//!   has exactly zero gradients, and `w₀ + 0` is exact.
+//! * `S`, **sub-pixel snapping**: a rasterizer that snaps window x, y to `2^-b` pixel
+//!   (`GL_SUBPIXEL_BITS` = b) *before* setting up the depth plane moves each vertex by up to
+//!   `2^-(b+1)` pixel per axis, so the plane's depth moves by up to
+//!   `S = 2^-(b+1)·(gₓ + g_y)`, with the window-depth gradients per pixel of a plane of eye-space
+//!   slope `s` seen at axis distance `d₁`: `g_y = s·F·(t−b)/(H·d₁)` (and `(r−l)/W` for x; the
+//!   tilt direction is unknown, so both use `s`). Mesa's llvmpipe snaps only coverage and sets
+//!   the depth plane up from the unsnapped float positions ([`Snapping::Unsnapped`], `S = 0`):
+//!   measured, the snapped term predicts 700 ulps of element 10 at f/n = 10, slope 3, 128²,
+//!   where 6 suffice.
+//!
+//! No term is a fudge factor and there is no safety margin: each is a worst-case bound on one
+//! rounding or snapping step. The bound is loose where the worst cases do not line up (on
+//! llvmpipe the recommendation is 1–16× the smallest offset that works, measured by bisection
+//! in `tests/gl_recommend.rs`; `examples/sweep.rs` prints the table).
+//!
+//! # Relation to glPolygonOffset
+//! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
+//! largest depth gradient per pixel and `r` the format's smallest resolvable difference. (R1)
+//! is the same shape: `q` and `2(T + V + I)` are constants (`units = (q + 2(T+V+I))/r`) and the
+//! snapping term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one
+//! constant for the whole decal, so zshift evaluates the slope term at the decal's worst depth
+//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair.
+//!
+//! # Bleed-through
+//! An occluder in front of the base must not lose to the decal. Its computed depth has the same
+//! error budget, and a computed decal depth at or above the occluder's stores at or above it
+//! (monotone conversion), so an occluder whose exact window depth is below the base's by at
+//! least `Δw + 2(T + V + I + S) = 2Δw − q` is never overdrawn; [`Recommendation::bleed_gap`] is
+//! that separation as an eye-space distance along the line of sight at `d₂`, where it is largest.
+
+use crate::domain::{depth_steps, domain, finite, representable};
+use crate::error::Result;
+use crate::projection::Frustum;
+
+/// The unit roundoff of f32: half an ulp of 1.
+const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// What the depth attachment stores.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DepthFormat {
+    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`): `bits` in 1..=32.
+    Unorm { bits: u32 },
+    /// `GL_DEPTH_COMPONENT32F` under the standard `[−1, 1]` NDC depth mapping.
+    Float32,
+}
+
+/// Whether the rasterizer snaps vertex positions before setting up the depth plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Snapping {
+    /// Snapped to `2^-bits` pixel, `bits` = `GL_SUBPIXEL_BITS` (the conservative assumption for a
+    /// GPU; adds the slope-scaled term `S`).
+    SubpixelBits(u32),
+    /// Depth interpolated from the unsnapped float positions (measured on Mesa llvmpipe): `S = 0`.
+    Unsnapped,
+}
+
+/// What a scene knows about one decal and the surface under it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene {
+    /// The `glFrustum` the base is drawn with (OpenGL conventions, NDC depth `[−1, 1]`).
+    pub frustum: Frustum,
+    /// Viewport width and height in pixels (`glViewport`).
+    pub viewport: [u32; 2],
+    /// The depth attachment's format.
+    pub format: DepthFormat,
+    /// The decal's nearest and farthest eye distance, `n ≤ d₁ ≤ d₂ ≤ f` (equal for a point
+    /// estimate). `d₁` also stands for the distance at which the decal's plane crosses the view
+    /// axis in the slope term: exact for a decal centred on the axis, conservative when the
+    /// plane's axis crossing is farther than the decal's nearest point.
+    pub depth_range: [f64; 2],
+    /// Eye-space tilt of the plane: `|∂z/∂x| + |∂z/∂y|` (0 facing the camera, 3 ≈ 72°).
+    pub slope: f64,
+    /// Every corner of base and decal has the same f32 eye-space z (a camera-facing plane whose
+    /// vertices reach the vertex shader unrotated): the terms `V` and `I` vanish. Requires
+    /// `slope == 0`.
+    pub exact_depth: bool,
+    /// How the rasterizer positions vertices before depth setup.
+    pub snapping: Snapping,
+}
+
+/// The worst-case error of one quad's computed window depth, term by term (window-depth units),
+/// and the depth quantum. See the module docs for each.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ErrorTerms {
+    /// `q`: the smallest difference the stored format keeps.
+    pub quantum: f64,
+    /// `T`: f32 rounding in the vertex transform and viewport mapping.
+    pub transform: f64,
+    /// `V`: f32 rounding of the decal's eye-space coordinates.
+    pub vertex: f64,
+    /// `I`: f32 rounding in the rasterizer's depth-plane evaluation.
+    pub interpolation: f64,
+    /// `S`: sub-pixel snapping of a sloped plane.
+    pub snap: f64,
+}
+
+impl ErrorTerms {
+    /// The right-hand side of (R1): `q + 2(T + V + I + S)`, in window depth.
+    pub fn window_offset(&self) -> f64 {
+        self.quantum + 2.0 * (self.transform + self.vertex + self.interpolation + self.snap)
+    }
+}
+
+/// The recommended offset for a [`Scene`], in every form an engine may apply it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Recommendation {
+    /// ε for [`crate::offset::epsilon_matrix`] (negative: toward the camera), eq. 4.1.3.
+    pub epsilon: f64,
+    /// The NDC depth offset `−ε·m10 = 2·window_offset`.
+    pub ndc_offset: f64,
+    /// The window-depth offset (R1).
+    pub window_offset: f64,
+    /// The eye-space shift δ (toward the camera) at `Pz = −d₂` that gives the same ε through
+    /// eq. 4.1.7, for `zshift_load_offset_matrix(…, delta, pz = −d₂)`.
+    pub delta_at_far: f64,
+    /// Occluders nearer than the base by at least this eye-space distance along the line of
+    /// sight are never overdrawn by the decal.
+    pub bleed_gap: f64,
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, with `r` = the quantum.
+    pub polygon_offset: [f64; 2],
+    /// The terms the offset was built from.
+    pub terms: ErrorTerms,
+}
+
+/// The smallest offset that model (R1) guarantees ends z-fighting for `scene`, with its bleed gap.
+///
+/// Convention: OpenGL, NDC depth `[−1, 1]`, the decal drawn with element 10 scaled by `1 + ε`
+/// (seed 000 eq. 4.1.3), the base with the plain matrix, depth test `GL_LESS` or `GL_LEQUAL`.
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] for NaN or infinite depths or slope;
+/// [`crate::ErrorKind::Domain`] for a zero viewport, `depth_range` outside `[n, f]` or
+/// decreasing, a negative slope, `exact_depth` with a nonzero slope, or bits outside 1..=32;
+/// [`crate::ErrorKind::Overflow`] if a result overflows.
+pub fn recommend(scene: &Scene) -> Result<Recommendation> {
+    check(scene)?;
+    let terms = error_terms(scene)?;
+    let window_offset = terms.window_offset();
+    let planes = scene.frustum.planes();
+    let m10 = planes.sum_over_span();
+    let epsilon = representable(-2.0 * window_offset / m10, "epsilon overflows")?;
+    let d2 = scene.depth_range[1];
+    let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
+    let bleed_gap = gap_for_window_difference(scene, 2.0 * window_offset - terms.quantum, d2);
+    let units = (terms.window_offset() - 2.0 * terms.snap) / terms.quantum;
+    let factor = match scene.snapping {
+        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::Unsnapped => 0.0,
+    };
+    Ok(Recommendation {
+        epsilon,
+        ndc_offset: 2.0 * window_offset,
+        window_offset,
+        delta_at_far,
+        bleed_gap,
+        polygon_offset: [factor, units],
+        terms,
+    })
+}
+
+/// The model's terms for `scene` (see the module docs), without the final sum.
+///
+/// # Errors
+/// As [`recommend`].
+pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
+    check(scene)?;
+    let u = F32_UNIT_ROUNDOFF;
+    let planes = scene.frustum.planes();
+    let (n, big_f) = (planes.near(), planes.far_over_span());
+    let [d1, d2] = scene.depth_range;
+    let (w1, w2) = (window(scene, d1), window(scene, d2));
+    let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
+    let transform = u * (planes.sum_over_span() / 2.0 + 1.5 * ndc_max + w2);
+    let (vertex, interpolation) = if scene.exact_depth {
+        (0.0, 0.0)
+    } else {
+        let e = half_extent_tangent(&scene.frustum)?;
+        let vertex = u * big_f * (n / d1) * (1.0 + scene.slope * e);
+        (vertex, u * (3.0 * w2 + 3.0 * (w2 - w1)))
+    };
+    Ok(ErrorTerms {
+        quantum: quantum(scene.format, w2)?,
+        transform,
+        vertex,
+        interpolation,
+        snap: snap(scene)?,
+    })
+}
+
+/// The window-depth gradient per pixel `(gₓ, g_y)` of a plane of eye-space slope `s` that
+/// crosses the view axis at distance `d`: `s·F·(r−l)/(W·d)` and `s·F·(t−b)/(H·d)`.
+///
+/// # Errors
+/// As [`recommend`].
+pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
+    let m = scene.frustum.to_cols_array_f64()?;
+    let [w, h] = scene.viewport.map(f64::from);
+    let big_f = scene.frustum.planes().far_over_span();
+    let n = scene.frustum.planes().near();
+    // 2n/(r − l) = m0, so (r − l)/n = 2/m0 (likewise m5 for t − b).
+    let gx = scene.slope * big_f * (2.0 / m[0]).abs() * n / (w * d);
+    let gy = scene.slope * big_f * (2.0 / m[5]).abs() * n / (h * d);
+    Ok([gx, gy])
+}
+
+fn snap(scene: &Scene) -> Result<f64> {
+    match scene.snapping {
+        Snapping::Unsnapped => Ok(0.0),
+        Snapping::SubpixelBits(b) => {
+            let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
+            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy))
+        }
+    }
+}
+
+/// `q` for a format at window depth `w` (the largest the decal reaches).
+fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
+    match format {
+        DepthFormat::Unorm { bits } => Ok(1.0 / depth_steps(bits)?),
+        DepthFormat::Float32 => {
+            // Spacing of f32 at w: 2^(exponent − 23), and no finer than the smallest normal's.
+            let w = w.max(f32::MIN_POSITIVE as f64);
+            Ok(2f64.powi(w.log2().floor() as i32 - 23))
+        }
+    }
+}
+
+/// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
+fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
+    let m = frustum.to_cols_array_f64()?;
+    let ex = (m[8].abs() + 1.0) / m[0].abs();
+    let ey = (m[9].abs() + 1.0) / m[5].abs();
+    Ok(ex.max(ey))
+}
+
+/// Walker's window depth `F·(d − n)/d` (seed 001) with `F = f/(f − n)`.
+fn window(scene: &Scene, d: f64) -> f64 {
+    let planes = scene.frustum.planes();
+    (planes.far_over_span() * ((d - planes.near()) / d)).clamp(0.0, 1.0)
+}
+
+/// δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
+/// `K = 2fn/(f+n)`.
+fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
+    let planes = scene.frustum.planes();
+    let k = 2.0 * planes.near() / planes.sum_over_span() * planes.far_over_span();
+    let denominator = k + epsilon * pz;
+    if denominator <= 0.0 {
+        return Err(domain(
+            "the recommended offset exceeds what element 10 can carry at this depth",
+        ));
+    }
+    representable(-epsilon * pz * (pz / denominator), "delta overflows")
+}
+
+/// The eye-space distance `G` in front of distance `d` whose window depth is lower by `dw`:
+/// `F·n·(1/(d−G) − 1/d) = dw`, so `G = d·x/(1 + x)` with `x = dw·d/(F·n)`.
+fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
+    let planes = scene.frustum.planes();
+    let x = dw * d / (planes.far_over_span() * planes.near());
+    d * (x / (1.0 + x))
+}
+
+fn check(scene: &Scene) -> Result<()> {
+    let planes = scene.frustum.planes();
+    let [d1, d2] = scene.depth_range;
+    planes.check_distance(d1)?;
+    planes.check_distance(d2)?;
+    if d1 > d2 {
+        return Err(domain(
+            "the decal's depth range must be [nearest, farthest]",
+        ));
+    }
+    if scene.viewport.contains(&0) {
+        return Err(domain("the viewport must have a nonzero width and height"));
+    }
+    finite(scene.slope, "the plane slope is NaN or infinite")?;
+    if scene.slope < 0.0 {
+        return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0"));
+    }
+    if scene.exact_depth && scene.slope != 0.0 {
+        return Err(domain(
+            "exact_depth needs a plane facing the camera (slope 0)",
+        ));
+    }
+    if let DepthFormat::Unorm { bits } = scene.format {
+        depth_steps(bits)?;
+    }
+    if let Snapping::SubpixelBits(b) = scene.snapping {
+        if b > 32 {
+            return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
+        }
+    }
+    Ok(())
+}

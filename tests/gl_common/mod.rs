@@ -1,0 +1,145 @@
+//! Shared by the rendered tests (`tests/gl_*.rs`) and `examples/sweep.rs`: the coplanar-quads
+//! experiment of `zshift-harness` measured against zshift's matrices and recommendation.
+#![allow(dead_code)]
+
+use zshift::projection::Frustum;
+use zshift::recommend::{self, DepthFormat as Format, Recommendation, Scene, Snapping};
+use zshift_harness::coplanar::{
+    smallest_working_ulps, with_ulps_toward_camera, Bench, Count, Setup,
+};
+use zshift_harness::{DepthFormat, Gl};
+
+/// The frustum of a setup, validated by zshift.
+pub fn frustum_of(s: &Setup) -> Frustum {
+    let (l, r, b, t, n, f) = s.frustum();
+    Frustum::new(l, r, b, t, n, f).expect("valid setup frustum")
+}
+
+/// zshift's depth format for a GL attachment.
+pub fn format_of(f: DepthFormat) -> Format {
+    match f {
+        DepthFormat::D16 => Format::Unorm { bits: 16 },
+        DepthFormat::D24 => Format::Unorm { bits: 24 },
+        DepthFormat::D32F => Format::Float32,
+    }
+}
+
+/// How this rasterizer positions vertices for depth: llvmpipe sets its depth plane up from the
+/// unsnapped float positions (measured, see `src/recommend.rs`); any other driver is assumed to
+/// snap to GL_SUBPIXEL_BITS first (the conservative choice).
+pub fn snapping_of(gl: &Gl) -> Snapping {
+    if gl.renderer().contains("llvmpipe") {
+        Snapping::Unsnapped
+    } else {
+        Snapping::SubpixelBits(gl.subpixel_bits())
+    }
+}
+
+/// What the scene knows about the setup's decal, as zshift's recommendation takes it.
+pub fn scene_of(s: &Setup, snapping: Snapping) -> Scene {
+    let (d1, d2) = s.decal_depth_range();
+    Scene {
+        frustum: frustum_of(s),
+        viewport: [s.size, s.size],
+        format: format_of(s.format),
+        depth_range: [d1, d2],
+        slope: s.slope,
+        // The setup's facing quads put one f32 z on every corner.
+        exact_depth: s.slope == 0.0,
+        snapping,
+    }
+}
+
+/// The seed's bound (c = 1, seed 000 eq. 4.1.8) or the corrected one (c = 2, seed 002):
+/// ε = −c/(2^m − 1)·(f − n)/(f + n), with m = 24 for D32F (f32 spacing at window depths ≥ ½).
+pub fn seed_epsilon(c: f64, s: &Setup) -> f64 {
+    let m = s.format.bits().min(24);
+    -c / ((1u64 << m) - 1) as f64 * (s.f - s.n) / (s.f + s.n)
+}
+
+/// One row of the table.
+#[derive(Debug, Clone)]
+pub struct Row {
+    pub setup: Setup,
+    pub none: Count,
+    pub c1: Count,
+    pub c2: Count,
+    pub rec: Count,
+    pub recommendation: Recommendation,
+    /// NDC offset of the recommended matrix (element 10 difference, as the GPU sees it).
+    pub rec_ndc: f64,
+    /// Smallest NDC offset (whole f32 steps of element 10) with no lost pixel, by bisection.
+    pub min_ndc: Option<f64>,
+}
+
+/// Renders the setup with no offset, at c = 1, c = 2, at the recommendation, and bisects.
+pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
+    let snapping = snapping_of(gl);
+    let frustum = frustum_of(&s);
+    let plain = frustum.to_cols_array().map_err(|e| e.to_string())?;
+    let recommendation =
+        recommend::recommend(&scene_of(&s, snapping)).map_err(|e| e.to_string())?;
+    let rec_matrix =
+        zshift::epsilon_matrix(&frustum, recommendation.epsilon).map_err(|e| e.to_string())?;
+    let seed =
+        |c: f64| zshift::epsilon_matrix(&frustum, seed_epsilon(c, &s)).map_err(|e| e.to_string());
+    let (m1, m2) = (seed(1.0)?, seed(2.0)?);
+    let mut bench = Bench::new(gl, s, plain)?;
+    let none = bench.lost(&plain)?;
+    let c1 = bench.lost(&m1)?;
+    let c2 = bench.lost(&m2)?;
+    let rec = bench.lost(&rec_matrix)?;
+    let k = smallest_working_ulps(&mut bench, 1 << 20)?;
+    let min_ndc = k.map(|k| (with_ulps_toward_camera(&plain, k)[10] - plain[10]) as f64);
+    let rec_ndc = (rec_matrix[10] - plain[10]) as f64;
+    Ok(Row {
+        setup: s,
+        none,
+        c1,
+        c2,
+        rec,
+        recommendation,
+        rec_ndc,
+        min_ndc,
+    })
+}
+
+/// A setup on the common geometry: 60° field of view, n = 1.
+pub fn setup(format: DepthFormat, ratio: f64, depth_fraction: f64, slope: f64, size: u32) -> Setup {
+    Setup {
+        n: 1.0,
+        f: ratio,
+        tan_half: (30f64).to_radians().tan(),
+        size,
+        format,
+        depth_fraction,
+        slope,
+    }
+}
+
+/// The table header and a row, as `examples/sweep.rs` prints them. ε values are
+/// `−Δndc/|m10|` for the NDC offset the f32 matrix actually carries.
+pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec | eps min (bisect) |    eps rec | rec/min";
+
+pub fn format_row(r: &Row) -> String {
+    let pct = |c: &Count| format!("{:5.1}%", 100.0 * c.fraction());
+    let m10 = (r.setup.f + r.setup.n) / (r.setup.f - r.setup.n);
+    let min = r.min_ndc.map_or("none <2^20 ulp".to_string(), |m| {
+        format!("{:.3e}", -m / m10)
+    });
+    let ratio = r
+        .min_ndc
+        .map_or("-".to_string(), |m| format!("{:.1}", r.rec_ndc / m));
+    format!(
+        "{} | {:5} | {} {} {} {} | {:>16} | {:.3e} | {:>5}",
+        r.setup.label(),
+        r.none.of,
+        pct(&r.none),
+        pct(&r.c1),
+        pct(&r.c2),
+        pct(&r.rec),
+        min,
+        -r.rec_ndc / m10,
+        ratio
+    )
+}

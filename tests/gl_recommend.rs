@@ -1,0 +1,276 @@
+//! zshift's recommended offset checked on a real rasterizer (headless EGL; Mesa llvmpipe in CI):
+//! the coplanar-quads experiment of `zshift-harness` over a small grid of configurations.
+//! References are GL readbacks, never zshift's own numbers. Fails (never skips) without GL.
+//!
+//! The full table: `cargo run --release --example sweep`.
+
+mod gl_common;
+
+use gl_common::{measure, scene_of, setup, snapping_of, Row};
+use zshift_harness::{DepthFormat, Gl, Profile};
+
+/// Viewport size of the CI grid (small: llvmpipe on two shared cores).
+const SIZE: u32 = 96;
+
+/// The stated factor: on sloped planes the recommended NDC offset is at most this many times
+/// the smallest offset that works (bisection over f32 steps of element 10). The model bounds
+/// worst cases that rarely line up; 15× is the largest measured at 256² (examples/sweep.rs).
+const FACTOR_SLOPED: f64 = 20.0;
+/// On facing planes the smallest working offset depends on where the plane's depth falls between
+/// two stored values (anything in (0, 2q] in NDC), so the recommendation is compared with the
+/// worst such phase, one quantum 2q: at most this factor above it (the f32 transform term).
+const FACTOR_FACING: f64 = 10.0;
+
+fn context() -> Gl {
+    Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"))
+}
+
+fn grid(format: DepthFormat) -> Vec<zshift_harness::coplanar::Setup> {
+    let mut v = Vec::new();
+    for ratio in [10.0, 1e4] {
+        for p in [0.2, 0.9] {
+            for slope in [0.0, 1.0, 3.0] {
+                v.push(setup(format, ratio, p, slope, SIZE));
+            }
+        }
+    }
+    v
+}
+
+fn rows(format: DepthFormat) -> Vec<Row> {
+    let mut gl = context();
+    grid(format)
+        .into_iter()
+        .map(|s| measure(&mut gl, s).unwrap_or_else(|e| panic!("{}: {e}", s.label())))
+        .collect()
+}
+
+fn check_format(format: DepthFormat) {
+    let rows = rows(format);
+    let mut sensitive = 0;
+    for r in &rows {
+        println!("{}", gl_common::format_row(r));
+        let label = r.setup.label();
+        assert_eq!(
+            r.rec.hit, 0,
+            "{label}: {} of {} decal pixels lost at the recommendation",
+            r.rec.hit, r.rec.of
+        );
+        if r.setup.slope == 0.0 {
+            assert!(
+                r.none.hit > 0,
+                "{label}: a facing decal with no offset must z-fight"
+            );
+        }
+        sensitive += usize::from(r.none.hit > 0);
+        let min = r
+            .min_ndc
+            .unwrap_or_else(|| panic!("{label}: no offset below 2^20 ulps works"));
+        assert!(
+            r.rec_ndc >= min,
+            "{label}: the recommendation works, so it is at least the minimum"
+        );
+        if r.setup.slope > 0.0 {
+            assert!(
+                r.rec_ndc <= FACTOR_SLOPED * min,
+                "{label}: recommended {:.3e} > {FACTOR_SLOPED} x minimum {min:.3e}",
+                r.rec_ndc
+            );
+        } else {
+            let q = 2.0 * r.recommendation.terms.quantum;
+            assert!(
+                min <= q * (1.0 + 1e-6) + 1.2e-7,
+                "{label}: a facing plane needs at most one quantum (+1 ulp of element 10)"
+            );
+            assert!(
+                r.rec_ndc <= FACTOR_FACING * q,
+                "{label}: recommended {:.3e} > {FACTOR_FACING} x quantum {q:.3e}",
+                r.rec_ndc
+            );
+        }
+    }
+    assert!(
+        sensitive * 2 > rows.len(),
+        "most configurations must z-fight with no offset ({sensitive} of {})",
+        rows.len()
+    );
+}
+
+#[test]
+fn d16_no_lost_pixel_at_the_recommendation() {
+    check_format(DepthFormat::D16);
+}
+
+#[test]
+fn d24_no_lost_pixel_at_the_recommendation() {
+    check_format(DepthFormat::D24);
+}
+
+#[test]
+fn d32f_no_lost_pixel_at_the_recommendation() {
+    check_format(DepthFormat::D32F);
+}
+
+/// The seed's bound (c = 1) loses pixels on D16, as the errata (seed 002) says; the corrected
+/// bound (c = 2) loses none on facing planes.
+#[test]
+fn the_seed_bound_is_too_small_on_d16() {
+    let rows = rows(DepthFormat::D16);
+    assert!(
+        rows.iter().any(|r| r.c1.hit > 0),
+        "c = 1 should lose pixels somewhere on D16"
+    );
+    for r in rows.iter().filter(|r| r.setup.slope == 0.0) {
+        assert_eq!(
+            r.c2.hit,
+            0,
+            "{}: c = 2 loses pixels on a facing plane",
+            r.setup.label()
+        );
+    }
+}
+
+/// No decal pixel is drawn over an occluder at least the documented gap in front of the base;
+/// an occluder a tenth of that gap in front is overdrawn (so the check can fail).
+#[test]
+fn no_bleed_through_beyond_the_documented_gap() {
+    let mut gl = context();
+    let snapping = snapping_of(&gl);
+    let mut bled_when_close = 0;
+    for format in DepthFormat::ALL {
+        for s in grid(format) {
+            let label = s.label();
+            let rec =
+                zshift::recommend::recommend(&scene_of(&s, snapping)).expect("recommendation");
+            let frustum = gl_common::frustum_of(&s);
+            let plain = frustum.to_cols_array().expect("plain");
+            let decal = zshift::epsilon_matrix(&frustum, rec.epsilon).expect("decal matrix");
+            let mut bench = zshift_harness::coplanar::Bench::new(&mut gl, s, plain).expect("bench");
+            let far = bench
+                .bleed(&decal, rec.bleed_gap)
+                .unwrap_or_else(|e| panic!("{label}: {e}"));
+            assert!(far.of > 0, "{label}: the occluder covers no decal pixel");
+            assert_eq!(
+                far.hit, 0,
+                "{label}: {} of {} pixels bleed through an occluder {:.3e} in front",
+                far.hit, far.of, rec.bleed_gap
+            );
+            let near = bench
+                .bleed(&decal, rec.bleed_gap / 10.0)
+                .unwrap_or_else(|e| panic!("{label}: {e}"));
+            bled_when_close += usize::from(near.hit > 0);
+        }
+    }
+    assert!(
+        bled_when_close > 0,
+        "an occluder at a tenth of the gap never bled: the test cannot fail"
+    );
+}
+
+/// The C entry points give the Rust recommendation and its matrix bit for bit.
+#[test]
+fn c_entry_points_match_the_rust_recommendation() {
+    use zshift::ffi::*;
+    let s = setup(DepthFormat::D24, 1e4, 0.5, 1.0, SIZE);
+    let (l, r, b, t, n, f) = s.frustum();
+    let (d1, d2) = s.decal_depth_range();
+    let scene = ZshiftScene {
+        l,
+        r,
+        b,
+        t,
+        n,
+        f,
+        viewport_width: SIZE,
+        viewport_height: SIZE,
+        depth_format: 0x81A6,
+        decal_near: d1,
+        decal_far: d2,
+        slope: 1.0,
+        exact_depth: 0,
+        subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
+    };
+    let rust = zshift::recommend::recommend(&scene_of(&s, zshift::recommend::Snapping::Unsnapped))
+        .unwrap();
+    let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
+    assert_eq!(zshift_recommend(&scene, out.as_mut_ptr()), ZSHIFT_OK);
+    let out = unsafe { out.assume_init() };
+    assert_eq!(
+        (out.epsilon, out.bleed_gap, out.delta_at_far),
+        (rust.epsilon, rust.bleed_gap, rust.delta_at_far)
+    );
+    let mut m = [0.0f32; 16];
+    assert_eq!(zshift_recommend_matrix(&scene, m.as_mut_ptr()), ZSHIFT_OK);
+    assert_eq!(
+        m,
+        zshift::epsilon_matrix(&gl_common::frustum_of(&s), rust.epsilon).unwrap()
+    );
+    // Errors leave the output untouched.
+    let bad = ZshiftScene {
+        depth_format: 0x1234,
+        ..scene
+    };
+    let mut keep = [7.0f32; 16];
+    assert_eq!(
+        zshift_recommend_matrix(&bad, keep.as_mut_ptr()),
+        ZSHIFT_ERR_DOMAIN
+    );
+    assert_eq!(keep, [7.0; 16]);
+    assert_eq!(
+        zshift_recommend_matrix(std::ptr::null(), keep.as_mut_ptr()),
+        ZSHIFT_ERR_NULL_POINTER
+    );
+    let tilted_exact = ZshiftScene {
+        exact_depth: 1,
+        ..scene
+    };
+    assert_eq!(
+        zshift_recommend_matrix(&tilted_exact, keep.as_mut_ptr()),
+        ZSHIFT_ERR_DOMAIN
+    );
+    let nan = ZshiftScene {
+        slope: f64::NAN,
+        ..scene
+    };
+    assert_eq!(
+        zshift_recommend_matrix(&nan, keep.as_mut_ptr()),
+        ZSHIFT_ERR_NOT_FINITE
+    );
+    assert_eq!(keep, [7.0; 16]);
+}
+
+/// The recommendation's glPolygonOffset equivalent works too: the decal drawn with the plain
+/// matrix and glPolygonOffset(−factor, −units) loses no pixel.
+#[test]
+fn the_polygon_offset_equivalent_loses_no_pixel() {
+    let mut gl = context();
+    let snapping = snapping_of(&gl);
+    for format in DepthFormat::ALL {
+        for s in grid(format) {
+            let rec =
+                zshift::recommend::recommend(&scene_of(&s, snapping)).expect("recommendation");
+            let [factor, units] = rec.polygon_offset;
+            let plain = gl_common::frustum_of(&s).to_cols_array().unwrap();
+            let mut bench = zshift_harness::coplanar::Bench::new(&mut gl, s, plain).expect("bench");
+            let state = zshift_harness::DrawState {
+                polygon_offset: Some((-factor as f32, -units as f32)),
+                ..Default::default()
+            };
+            let lost = bench.lost_with(&plain, &state).unwrap();
+            println!(
+                "{}: glPolygonOffset(-{factor}, -{units:.2}) lost {}/{}",
+                s.label(),
+                lost.hit,
+                lost.of
+            );
+            assert_eq!(
+                lost.hit,
+                0,
+                "{}: glPolygonOffset(-{factor}, -{units}) lost {} of {} pixels",
+                s.label(),
+                lost.hit,
+                lost.of
+            );
+        }
+    }
+}

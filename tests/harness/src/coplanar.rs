@@ -1,0 +1,314 @@
+//! The coplanar-quads experiment: a base quad and a smaller decal quad with different vertices
+//! in the same eye-space plane, drawn with `GL_LESS`; the decal pixels the base hides are the
+//! z-fighting, and decal pixels drawn over an occluder in front are the bleed-through.
+//!
+//! The scene (eye space, right-handed, looking down −z): a symmetric frustum of vertical and
+//! horizontal half-angle `atan(tan_half)`, a square viewport, and the plane
+//! `z = −d0 + slope·y`, which meets the view axis at distance `d0` and tilts about the x axis
+//! (`slope` is the eye-space `dz/dy`; 0 faces the camera, 3 is about 72°). The base covers most
+//! of the visible plane without crossing any clip plane (so no clipper-made vertices); the
+//! decal is an off-centre rectangle inside it whose diagonals differ from the base's.
+//!
+//! Matrices come from the caller (`[f32; 16]`, column-major): this crate knows nothing of
+//! zshift, so the tests compare zshift's matrices against the rasterizer, not against itself.
+
+use crate::{DepthFormat, DrawState, Gl, Image, Quad};
+
+/// Base colour (blue), decal colour (red), occluder colour (green), clear colour (black).
+pub const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
+pub const DECAL: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
+pub const OCCLUDER: [f32; 4] = [0.0, 1.0, 0.0, 1.0];
+pub const CLEAR: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+
+/// One configuration of the experiment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Setup {
+    /// Near and far plane distances.
+    pub n: f64,
+    pub f: f64,
+    /// `tan` of the half field of view (both axes).
+    pub tan_half: f64,
+    /// Viewport width and height in pixels.
+    pub size: u32,
+    /// Depth attachment format.
+    pub format: DepthFormat,
+    /// Where the plane meets the view axis, as a fraction of `[n, f]`: `d0 = n + p·(f − n)`.
+    pub depth_fraction: f64,
+    /// Eye-space slope `dz/dy` of the plane (≥ 0).
+    pub slope: f64,
+}
+
+/// An axis-aligned rectangle in the plane's (x, y) eye coordinates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Extent {
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+}
+
+impl Setup {
+    /// The `glFrustum` parameters `(l, r, b, t, n, f)`.
+    pub fn frustum(&self) -> (f64, f64, f64, f64, f64, f64) {
+        let e = self.n * self.tan_half;
+        (-e, e, -e, e, self.n, self.f)
+    }
+
+    /// Distance at which the plane meets the view axis.
+    pub fn axis_depth(&self) -> f64 {
+        self.n + self.depth_fraction * (self.f - self.n)
+    }
+
+    /// Eye distance of the plane at eye-space height `y`.
+    pub fn distance_at(&self, y: f64) -> f64 {
+        self.axis_depth() - self.slope * y
+    }
+
+    fn base_extent(&self) -> Extent {
+        let (d0, s, t) = (self.axis_depth(), self.slope, self.tan_half);
+        // Upward the plane approaches the eye: stay inside the top plane and 2% beyond near.
+        let mut y1 = 0.85 * d0 * t / (1.0 + s * t);
+        let mut y0 = -0.85 * d0 * t;
+        if s > 0.0 {
+            y1 = y1.min((d0 - 1.02 * self.n) / s);
+            y0 = y0.max(-(0.98 * self.f - d0) / s);
+        }
+        let x = 0.85 * self.distance_at(y1) * t;
+        Extent {
+            x0: -x,
+            x1: x,
+            y0,
+            y1,
+        }
+    }
+
+    fn decal_extent(&self) -> Extent {
+        let b = self.base_extent();
+        Extent {
+            x0: 0.55 * b.x0,
+            x1: 0.6 * b.x1,
+            y0: 0.6 * b.y0,
+            y1: 0.5 * b.y1,
+        }
+    }
+
+    fn quad(&self, e: Extent, toward: f64) -> Quad {
+        let (d0, s) = (self.axis_depth(), self.slope);
+        Quad::on_plane(e.x0, e.x1, e.y0, e.y1, |_, y| -d0 + s * y + toward)
+    }
+
+    /// The base quad.
+    pub fn base(&self) -> Quad {
+        self.quad(self.base_extent(), 0.0)
+    }
+
+    /// The decal quad: same plane, different vertices.
+    pub fn decal(&self) -> Quad {
+        self.quad(self.decal_extent(), 0.0)
+    }
+
+    /// An occluder: the decal's rectangle moved `gap` eye-space units toward the camera along z.
+    pub fn occluder(&self, gap: f64) -> Quad {
+        self.quad(self.decal_extent(), gap)
+    }
+
+    /// An occluder over the decal whose eye distance at every pixel is at least `gap` less than
+    /// the base's there. Moving a plane of slope `s` by `G` along z changes the distance along
+    /// a line of sight `y = k·d` by `G/(1 + s·k)`, so the shift is `gap·(1 + s·max k)`.
+    pub fn occluder_with_depth_gap(&self, gap: f64) -> Quad {
+        let e = self.decal_extent();
+        let k_max = [e.y0, e.y1]
+            .map(|y| y / self.distance_at(y))
+            .into_iter()
+            .fold(0.0, f64::max);
+        self.occluder(gap * (1.0 + self.slope * k_max))
+    }
+
+    /// The decal's nearest and farthest eye distance (of its exact corners).
+    pub fn decal_depth_range(&self) -> (f64, f64) {
+        let e = self.decal_extent();
+        let (a, b) = (self.distance_at(e.y0), self.distance_at(e.y1));
+        (a.min(b), a.max(b))
+    }
+
+    /// A one-line label for tables.
+    pub fn label(&self) -> String {
+        format!(
+            "{:<4} f/n={:<7.0e} d0={:>3.0}% slope={:<3}",
+            self.format.name(),
+            self.f / self.n,
+            self.depth_fraction * 100.0,
+            self.slope
+        )
+    }
+}
+
+/// A configured experiment on one context: the target is made and the decal's coverage known.
+pub struct Bench<'a> {
+    gl: &'a mut Gl,
+    setup: Setup,
+    plain: [f32; 16],
+    mask: Vec<bool>,
+    covered: usize,
+}
+
+/// Counts from one render: `hit` of `of` pixels (lost decal pixels, or bled ones).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Count {
+    pub hit: usize,
+    pub of: usize,
+}
+
+impl Count {
+    /// `hit / of` (0 when `of` is 0).
+    pub fn fraction(&self) -> f64 {
+        if self.of == 0 {
+            0.0
+        } else {
+            self.hit as f64 / self.of as f64
+        }
+    }
+}
+
+impl<'a> Bench<'a> {
+    /// Makes the target for `setup` and records which pixels the decal covers (drawn alone
+    /// with `plain`; the offset changes only depth, never coverage).
+    ///
+    /// # Errors
+    /// GL failures, or a decal that covers no pixel.
+    pub fn new(gl: &'a mut Gl, setup: Setup, plain: [f32; 16]) -> Result<Self, String> {
+        gl.set_target(setup.size, setup.size, setup.format)?;
+        let mut bench = Bench {
+            gl,
+            setup,
+            plain,
+            mask: Vec::new(),
+            covered: 0,
+        };
+        bench.mask = bench.coverage(&setup.decal())?;
+        bench.covered = bench.mask.iter().filter(|&&m| m).count();
+        if bench.covered == 0 {
+            return Err(format!("{}: the decal covers no pixel", setup.label()));
+        }
+        Ok(bench)
+    }
+
+    /// The setup this bench renders.
+    pub fn setup(&self) -> Setup {
+        self.setup
+    }
+
+    /// Decal pixels lost to the base when the decal is drawn with `decal_proj` (z-fighting).
+    ///
+    /// # Errors
+    /// GL failures.
+    pub fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+        self.lost_with(decal_proj, &DrawState::default())
+    }
+
+    /// As [`Bench::lost`], with the decal drawn under `state` (e.g. a polygon offset).
+    ///
+    /// # Errors
+    /// GL failures.
+    pub fn lost_with(
+        &mut self,
+        decal_proj: &[f32; 16],
+        state: &DrawState,
+    ) -> Result<Count, String> {
+        let s = self.setup;
+        self.gl.clear(CLEAR, 1.0)?;
+        self.gl
+            .draw_quad(&s.base(), &self.plain, BASE, &DrawState::default())?;
+        self.gl.draw_quad(&s.decal(), decal_proj, DECAL, state)?;
+        let image = self.gl.read_color()?;
+        let hit = image.count_not_in_mask(&self.mask, crate::rgba8(DECAL));
+        Ok(Count {
+            hit,
+            of: self.covered,
+        })
+    }
+
+    /// Decal pixels drawn over an occluder at least `gap` eye-space units nearer than the base at
+    /// every pixel ([`Setup::occluder_with_depth_gap`]), among the pixels both cover
+    /// (bleed-through).
+    ///
+    /// # Errors
+    /// GL failures.
+    pub fn bleed(&mut self, decal_proj: &[f32; 16], gap: f64) -> Result<Count, String> {
+        let s = self.setup;
+        let occluder = s.occluder_with_depth_gap(gap);
+        let occ_mask = self.coverage(&occluder)?;
+        let both: Vec<bool> = occ_mask
+            .iter()
+            .zip(&self.mask)
+            .map(|(a, b)| *a && *b)
+            .collect();
+        self.gl.clear(CLEAR, 1.0)?;
+        self.gl
+            .draw_quad(&s.base(), &self.plain, BASE, &DrawState::default())?;
+        self.gl
+            .draw_quad(&occluder, &self.plain, OCCLUDER, &DrawState::default())?;
+        self.gl
+            .draw_quad(&s.decal(), decal_proj, DECAL, &DrawState::default())?;
+        let image = self.gl.read_color()?;
+        let red = crate::rgba8(DECAL);
+        let hit = image
+            .pixels
+            .iter()
+            .zip(&both)
+            .filter(|(p, &m)| m && p[..3] == red[..3])
+            .count();
+        Ok(Count {
+            hit,
+            of: both.iter().filter(|&&m| m).count(),
+        })
+    }
+
+    fn coverage(&mut self, quad: &Quad) -> Result<Vec<bool>, String> {
+        self.gl.clear(CLEAR, 1.0)?;
+        let state = DrawState {
+            depth_func: glow::ALWAYS,
+            ..DrawState::default()
+        };
+        self.gl.draw_quad(quad, &self.plain, DECAL, &state)?;
+        let image: Image = self.gl.read_color()?;
+        Ok(image.mask_of(crate::rgba8(DECAL)))
+    }
+}
+
+/// Element 10 moved `k` f32 steps toward zero (the decal toward the camera by `k` ulps of
+/// element 10 in NDC): the finest offset a projection matrix can carry.
+pub fn with_ulps_toward_camera(plain: &[f32; 16], k: u32) -> [f32; 16] {
+    let mut m = *plain;
+    // m10 < 0; stepping its bits down moves it toward 0, which lowers NDC depth by the step.
+    let bits = m[10].to_bits();
+    assert!(
+        m[10] < 0.0 && k < bits & 0x7FFF_FFFF,
+        "element 10 must be negative and k small"
+    );
+    m[10] = f32::from_bits(bits - k);
+    m
+}
+
+/// The smallest `k` (see [`with_ulps_toward_camera`]) in `1..=max_k` at which no decal pixel is
+/// lost, by bisection (assumes losses only shrink as the offset grows), or `None` if even
+/// `max_k` loses pixels.
+///
+/// # Errors
+/// GL failures.
+pub fn smallest_working_ulps(bench: &mut Bench, max_k: u32) -> Result<Option<u32>, String> {
+    let plain = bench.plain;
+    if bench.lost(&with_ulps_toward_camera(&plain, max_k))?.hit > 0 {
+        return Ok(None);
+    }
+    let (mut lo, mut hi) = (0u32, max_k); // lo fails (k = 0 is no offset), hi works
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if bench.lost(&with_ulps_toward_camera(&plain, mid))?.hit == 0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(Some(hi))
+}
