@@ -81,6 +81,22 @@ fn cpu_builders(c: &mut Criterion) {
             status
         })
     });
+    g.bench_function("zshift_recommend_epsilon_matrix", |b| {
+        let frustum = zshift::Frustum::new(k.l, k.r, k.b, k.t, k.n, k.f).unwrap();
+        b.iter(|| {
+            let scene = zshift::recommend::Scene {
+                frustum: black_box(frustum),
+                viewport: [1920, 1080],
+                format: zshift::recommend::DepthFormat::Unorm { bits: 24 },
+                depth_range: [black_box(-k.pz), -k.pz],
+                slope: black_box(1.0),
+                exact_depth: false,
+                snapping: zshift::recommend::Snapping::SubpixelBits(8),
+            };
+            let rec = zshift::recommend::recommend(&scene).unwrap();
+            zshift::epsilon_matrix(&frustum, rec.epsilon).unwrap()
+        })
+    });
     g.bench_function("zshift_frustum_plain", |b| {
         b.iter(|| {
             zshift::frustum(

@@ -12,7 +12,12 @@ pub struct Timing {
 }
 
 /// The criterion benches of benches/cpu.rs, with the label the report gives each.
-const CRITERION: [(&str, &str, &str); 7] = [
+const CRITERION: [(&str, &str, &str); 8] = [
+    (
+        "offset_matrix",
+        "zshift_recommend_epsilon_matrix",
+        "zshift recommend + epsilon_matrix (Rust API, slope 1, 1920×1080)",
+    ),
     (
         "offset_matrix",
         "zshift_rust",

@@ -5,6 +5,9 @@
 
 use std::time::Instant;
 
+use zshift::recommend::{
+    recommend, DepthFormat as RecFormat, Recommendation, Scene as RecScene, Snapping,
+};
 use zshift::Frustum;
 use zshift_harness::{rgba8, DepthFormat, DrawState, Gl, Image, Quad};
 
@@ -17,7 +20,7 @@ const GRID: usize = 6;
 /// The occluder sits this fraction of the plane's distance in front of it.
 pub const GAP_FRACTION: f64 = 0.005;
 /// Timed frames per method and scene (after two warm-up frames), interleaved across methods.
-pub const ROUNDS: usize = 15;
+pub const ROUNDS: usize = 41;
 
 const BACKGROUND: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
@@ -125,7 +128,7 @@ impl Scene {
     }
 
     /// The decal rectangles in plane coordinates (x range, y range), and each centre's eye z.
-    fn decals(&self) -> Vec<((f64, f64), (f64, f64), f64)> {
+    fn decals(&self) -> Vec<DecalRect> {
         let (y0, y1) = self.decal_rows();
         let cell_y = (y1 - y0) / GRID as f64;
         let mut out = Vec::new();
@@ -143,6 +146,11 @@ impl Scene {
         out
     }
 }
+
+/// A decal's x range and y range on the plane, and its centre's eye z.
+type DecalRect = ((f64, f64), (f64, f64), f64);
+/// A [`DecalRect`] with the minimum δ toward the camera at its centre.
+type DecalShift = ((f64, f64), (f64, f64), f64, f64);
 
 /// The scenes of the report: facing and tilted planes, near and far, D24 and D32F (every
 /// method needs a stencil buffer in the same target, and GL has no packed D16 + stencil).
@@ -172,6 +180,13 @@ pub enum Method {
     PolygonOffsetZshiftEquivalent { k: f64 },
     /// Every decal vertex moved toward the eye along its ray by the eye-space δ of zshift at k.
     EyeSpaceMove { k: f64 },
+    /// zshift's recommended offset (`zshift::recommend::recommend`, model R1) per decal, through
+    /// `epsilon_matrix`.
+    ZshiftRecommended,
+    /// `glPolygonOffset(−factor, −units)` from the recommendation's equivalent pair.
+    PolygonOffsetRecommended,
+    /// Every decal vertex moved toward the eye by the recommendation's δ at the decal's far end.
+    EyeSpaceMoveRecommended,
     /// Seed 004's three passes: base without depth writes, decal without depth writes, base
     /// again with depth writes and no colour.
     ThreePassDepthMask,
@@ -191,6 +206,9 @@ impl Method {
                 format!("glPolygonOffset(0, zshift-equiv. {k}×min)")
             }
             Method::EyeSpaceMove { k } => format!("eye-space move, δ = {k}×min"),
+            Method::ZshiftRecommended => "zshift matrix, recommended (R1)".into(),
+            Method::PolygonOffsetRecommended => "glPolygonOffset at zshift's recommendation".into(),
+            Method::EyeSpaceMoveRecommended => "eye-space move, recommended δ".into(),
             Method::ThreePassDepthMask => "three-pass depth mask (004)".into(),
             Method::Stencil => "stencil".into(),
         }
@@ -199,7 +217,7 @@ impl Method {
 
 /// The methods of the report, with zshift at the stated multiples `ks` of the minimum δ.
 pub fn methods(ks: &[f64]) -> Vec<Method> {
-    let mut m = vec![Method::NoOffset];
+    let mut m = vec![Method::NoOffset, Method::ZshiftRecommended];
     for &k in ks {
         m.push(Method::ZshiftMatrix { k });
     }
@@ -217,8 +235,12 @@ pub fn methods(ks: &[f64]) -> Vec<Method> {
             units: -1.0,
         },
     ]);
+    m.push(Method::PolygonOffsetRecommended);
     for &k in ks {
         m.push(Method::PolygonOffsetZshiftEquivalent { k });
+    }
+    m.push(Method::EyeSpaceMoveRecommended);
+    for &k in ks {
         m.push(Method::EyeSpaceMove { k });
     }
     m.extend([Method::ThreePassDepthMask, Method::Stencil]);
@@ -306,7 +328,9 @@ struct Plan {
     base: Quad,
     occluder: Quad,
     /// Per decal: rectangle, centre eye z, and the minimum δ toward the camera there.
-    decals: Vec<((f64, f64), (f64, f64), f64, f64)>,
+    decals: Vec<DecalShift>,
+    /// Per decal: zshift's recommendation for it.
+    recommended: Vec<Recommendation>,
     frustum: Frustum,
     bits: u32,
 }
@@ -325,7 +349,13 @@ impl Plan {
                 Ok((x, y, pz, min))
             })
             .collect::<Result<_, String>>()?;
+        let recommended = scene
+            .decals()
+            .into_iter()
+            .map(|(x, y, _)| recommendation(scene, &frustum, x, y))
+            .collect::<Result<_, String>>()?;
         Ok(Plan {
+            recommended,
             plain: frustum.to_cols_array().map_err(|e| e.to_string())?,
             base: scene.base(),
             occluder: scene.occluder(),
@@ -343,6 +373,46 @@ impl Plan {
         let window = (m10 * eps).abs() / 2.0;
         -(window * ((1u64 << self.bits) - 1) as f64) as f32
     }
+}
+
+/// The largest of zshift's `bleed_gap` over the scene's decals: occluders nearer than the base
+/// by at least this are never overdrawn at the recommendation (model R1).
+pub fn recommended_bleed_gap(scene: &Scene) -> Result<f64, String> {
+    let plan = Plan::new(scene)?;
+    Ok(plan
+        .recommended
+        .iter()
+        .map(|r| r.bleed_gap)
+        .fold(0.0, f64::max))
+}
+
+/// zshift's recommendation for one decal: its corners' eye distances, the plane's slope, the
+/// viewport and format, and llvmpipe's unsnapped depth setup (measured by the gl helper; a GPU
+/// run would use `Snapping::SubpixelBits(GL_SUBPIXEL_BITS)`).
+fn recommendation(
+    scene: &Scene,
+    frustum: &Frustum,
+    x: (f64, f64),
+    y: (f64, f64),
+) -> Result<Recommendation, String> {
+    let quad = scene.quad(x, y, 0.0, 0.0);
+    let distances = quad.corners.map(|c| -(c[2] as f64));
+    let d1 = distances.iter().copied().fold(f64::MAX, f64::min);
+    let d2 = distances.iter().copied().fold(0.0, f64::max);
+    let format = match scene.format {
+        DepthFormat::D32F => RecFormat::Float32,
+        other => RecFormat::Unorm { bits: other.bits() },
+    };
+    recommend(&RecScene {
+        frustum: *frustum,
+        viewport: [SIZE, SIZE],
+        format,
+        depth_range: [d1, d2],
+        slope: scene.slope,
+        exact_depth: scene.slope == 0.0,
+        snapping: Snapping::Unsnapped,
+    })
+    .map_err(|e| format!("recommend for decal at {y:?}: {e}"))
 }
 
 /// The decals only, then the occluder only, on a cleared target: the masks of where the decal
@@ -418,8 +488,9 @@ fn draw_frame(gl: &mut Gl, scene: &Scene, plan: &Plan, method: &Method) -> Resul
         Method::Stencil => stencil(gl, scene, plan),
         _ => {
             gl.draw_quad(&plan.base, &plan.plain, BASE, &normal)?;
-            for &(x, y, pz, min) in &plan.decals {
-                draw_offset_decal(gl, scene, plan, method, x, y, pz, min)?;
+            for (i, &(x, y, pz, min)) in plan.decals.iter().enumerate() {
+                let rec = &plan.recommended[i];
+                draw_offset_decal(gl, scene, plan, method, x, y, pz, min, rec)?;
             }
             Ok(())
         }
@@ -436,6 +507,7 @@ fn draw_offset_decal(
     y: (f64, f64),
     pz: f64,
     min: f64,
+    rec: &Recommendation,
 ) -> Result<(), String> {
     let normal = DrawState::default();
     let flat = scene.quad(x, y, 0.0, 0.0);
@@ -462,6 +534,23 @@ fn draw_offset_decal(
         }
         Method::EyeSpaceMove { k } => {
             let moved = scene.quad(x, y, 0.0, k * min);
+            gl.draw_quad(&moved, &plan.plain, DECAL, &normal)
+        }
+        Method::ZshiftRecommended => {
+            let m =
+                zshift::epsilon_matrix(&plan.frustum, rec.epsilon).map_err(|e| e.to_string())?;
+            gl.draw_quad(&flat, &m, DECAL, &normal)
+        }
+        Method::PolygonOffsetRecommended => {
+            let [factor, units] = rec.polygon_offset;
+            let state = DrawState {
+                polygon_offset: Some((-factor as f32, -units as f32)),
+                ..normal
+            };
+            gl.draw_quad(&flat, &plan.plain, DECAL, &state)
+        }
+        Method::EyeSpaceMoveRecommended => {
+            let moved = scene.quad(x, y, 0.0, rec.delta_at_far);
             gl.draw_quad(&moved, &plan.plain, DECAL, &normal)
         }
         Method::ThreePassDepthMask | Method::Stencil => unreachable!("drawn by their own passes"),
