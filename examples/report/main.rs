@@ -567,8 +567,11 @@ fn depth_step_table(w: &mut String, r: &Report) {
     let _ = writeln!(
         w,
         "n = 0.1, f = 1e4. UNORM rows: zshift's exact step (`depth_resolution`, Walker's eq. 3 \
-         at any d). Float rows: f32 spacing of the stored window depth over |dw/dd| (a \
-         first-order model, not a rasterizer measurement).\n"
+         at any d). Float rows: a first-order model, not a rasterizer measurement: the largest of \
+         the f32 spacing of the stored window depth w, half the f32 spacing of the NDC value \
+         2w − 1 (standard mapping only), both carried to eye space through |dw/dd|, and the \
+         f32 spacing of the eye depth d itself. Near d = n the standard D32F row is limited by \
+         the NDC value near −1; at d = f the reversed-Z rows by the eye depth.\n"
     );
     let _ = writeln!(w, "![depth step](depth_step.png)\n");
     let marks: [f64; 6] = [0.1, 1.0, 10.0, 100.0, 1000.0, 1e4];
