@@ -257,6 +257,455 @@ pub extern "C" fn zshift_version() -> *const c_char {
     concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
 }
 
+// ---------------------------------------------------------------------------------------------
+// Issue 4: every projection an engine uses, precision per convention and format, polygon-offset
+// equivalence and scene planning. Enumerations cross the ABI as int32_t constants; an unknown
+// value is ZSHIFT_ERR_DOMAIN.
+// ---------------------------------------------------------------------------------------------
+
+use crate::plan::OffsetKind;
+use crate::polygon_offset::BiasApi;
+use crate::precision::{DepthFormat, DepthMapping};
+use crate::projection::ClipDepth;
+
+/// `clip`: OpenGL's default NDC depth [-1, 1] (near -1, far +1), depth test GL_LESS.
+pub const ZSHIFT_CLIP_NEG_ONE_TO_ONE: i32 = 0;
+/// `clip`: NDC depth [0, 1] (near 0, far 1): glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+/// Direct3D and Vulkan clip space; depth test GL_LESS.
+pub const ZSHIFT_CLIP_ZERO_TO_ONE: i32 = 1;
+/// `clip`: reversed NDC depth [0, 1] (near 1, far 0): glClipControl(GL_LOWER_LEFT,
+/// GL_ZERO_TO_ONE), glDepthFunc(GL_GREATER), glClearDepth(0); meant for 32-bit float depth.
+pub const ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE: i32 = 2;
+
+/// `format`: GL_DEPTH_COMPONENT16 (16-bit unsigned normalized).
+pub const ZSHIFT_FORMAT_UNORM16: i32 = 0;
+/// `format`: GL_DEPTH_COMPONENT24 (24-bit unsigned normalized).
+pub const ZSHIFT_FORMAT_UNORM24: i32 = 1;
+/// `format`: GL_DEPTH_COMPONENT32 (32-bit unsigned normalized).
+pub const ZSHIFT_FORMAT_UNORM32: i32 = 2;
+/// `format`: GL_DEPTH_COMPONENT32F (32-bit float; spacing 2^(e-23) at a depth of exponent e).
+pub const ZSHIFT_FORMAT_FLOAT32: i32 = 3;
+
+/// `api`: glPolygonOffset units (r = 1/(2^m - 1) for UNORM; implementations may apply more:
+/// Mesa's llvmpipe applies 2/(2^m - 1)).
+pub const ZSHIFT_BIAS_OPENGL: i32 = 0;
+/// `api`: Direct3D DepthBias (r = 1/(2^m - 1) for UNORM).
+pub const ZSHIFT_BIAS_DIRECT3D: i32 = 1;
+/// `api`: Vulkan depthBiasConstantFactor (r = 2^-m for UNORM).
+pub const ZSHIFT_BIAS_VULKAN: i32 = 2;
+
+/// `kind`: a constant NDC depth offset through element 10 (for UNORM buffers).
+pub const ZSHIFT_OFFSET_NDC: i32 = 0;
+/// `kind`: a relative offset, element 14 scaled by 1 + epsilon (for reversed Z with float depth).
+pub const ZSHIFT_OFFSET_RELATIVE: i32 = 1;
+
+/// The smallest tweak epsilon for `zshift_tweaked_infinite` that keeps far geometry inside the
+/// clip volume in float arithmetic: 2^-22 (Lengyel, GDC 2007).
+pub const ZSHIFT_MIN_INFINITE_TWEAK: f64 = 2.384185791015625e-7;
+
+fn clip_of(clip: i32) -> Result<ClipDepth> {
+    match clip {
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE => Ok(ClipDepth::NegOneToOne),
+        ZSHIFT_CLIP_ZERO_TO_ONE => Ok(ClipDepth::ZeroToOne),
+        ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE => Ok(ClipDepth::ReversedZeroToOne),
+        _ => Err(crate::domain::domain("unknown ZSHIFT_CLIP_* value")),
+    }
+}
+
+fn format_of(format: i32) -> Result<DepthFormat> {
+    match format {
+        ZSHIFT_FORMAT_UNORM16 => Ok(DepthFormat::Unorm16),
+        ZSHIFT_FORMAT_UNORM24 => Ok(DepthFormat::Unorm24),
+        ZSHIFT_FORMAT_UNORM32 => Ok(DepthFormat::Unorm32),
+        ZSHIFT_FORMAT_FLOAT32 => Ok(DepthFormat::Float32),
+        _ => Err(crate::domain::domain("unknown ZSHIFT_FORMAT_* value")),
+    }
+}
+
+fn api_of(api: i32) -> Result<BiasApi> {
+    match api {
+        ZSHIFT_BIAS_OPENGL => Ok(BiasApi::OpenGl),
+        ZSHIFT_BIAS_DIRECT3D => Ok(BiasApi::Direct3d),
+        ZSHIFT_BIAS_VULKAN => Ok(BiasApi::Vulkan),
+        _ => Err(crate::domain::domain("unknown ZSHIFT_BIAS_* value")),
+    }
+}
+
+fn kind_of(kind: i32) -> Result<OffsetKind> {
+    match kind {
+        ZSHIFT_OFFSET_NDC => Ok(OffsetKind::Ndc),
+        ZSHIFT_OFFSET_RELATIVE => Ok(OffsetKind::Relative),
+        _ => Err(crate::domain::domain("unknown ZSHIFT_OFFSET_* value")),
+    }
+}
+
+fn checked_doubles<const N: usize>(
+    out: *mut f64,
+    compute: impl FnOnce() -> Result<[f64; N]> + UnwindSafe,
+) -> ZshiftStatus {
+    checked(out, compute, |out, v| {
+        // SAFETY: `checked` has refused NULL; the caller promises N writable doubles. A byte
+        // copy needs no alignment, and `v` is a local, so the regions cannot overlap.
+        unsafe { std::ptr::copy_nonoverlapping(v.as_ptr().cast::<u8>(), out.cast::<u8>(), N * 8) }
+    })
+}
+
+/// Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
+///
+/// Convention: right-handed, NDC depth [-1, 1]; fovy in degrees; `f` may be +INFINITY. The
+/// frustum is t = n tan(fovy/2), r = t aspect, centred; each element the nearest float.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE (NaN or infinity other than f);
+/// ZSHIFT_ERR_DOMAIN unless 0 < fovy < 180, aspect > 0, 0 < n < f. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_perspective(
+    fovy: f64,
+    aspect: f64,
+    n: f64,
+    f: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        crate::projection::perspective_frustum(fovy, aspect, n, f)?.to_cols_array()
+    })
+}
+
+/// Writes the glFrustum(l, r, b, t, n, f) matrix with the depth row of `clip` (a ZSHIFT_CLIP_*):
+/// m10, m14 = -(f+n)/(f-n), -2fn/(f-n) for [-1, 1]; -f/(f-n), -fn/(f-n) for [0, 1];
+/// n/(f-n), fn/(f-n) reversed; with f = +INFINITY: -1, -2n; -1, -n; 0, n.
+///
+/// Errors: as `zshift_frustum`; ZSHIFT_ERR_DOMAIN for an unknown `clip`. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_projection(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: i32,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        crate::projection::projection(&Frustum::new(l, r, b, t, n, f)?, clip_of(clip)?)
+    })
+}
+
+/// Writes `zshift_projection`'s matrix with geometry at eye depth `pz` (in [-f, -n]) moved toward
+/// the camera by `delta` (negative: away). [-1, 1] and [0, 1]: a constant NDC offset
+/// c = z_ndc(-pz - delta) - z_ndc(-pz) through element 10 (seed 000 eq. 4.1.3-4.1.7 generalised).
+/// Reversed: element 14 scaled by 1 + delta/(-pz - delta), which moves every point to
+/// d/(1 + epsilon): the offset that exists when element 10 is 0 and suits float depth.
+/// The offset element is rounded away from the plain one, so the offset is never lost.
+///
+/// Errors: as `zshift_projection`; ZSHIFT_ERR_DOMAIN if pz is outside [-f, -n] or the shifted
+/// point leaves [n, f] (or the eye). `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_projection(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: i32,
+    delta: f64,
+    pz: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        let frustum = Frustum::new(l, r, b, t, n, f)?;
+        crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
+    })
+}
+
+/// `zshift_offset_projection` for gluPerspective parameters (fovy in degrees).
+///
+/// Errors: as `zshift_perspective` and `zshift_offset_projection`. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_perspective(
+    fovy: f64,
+    aspect: f64,
+    n: f64,
+    f: f64,
+    clip: i32,
+    delta: f64,
+    pz: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        let frustum = crate::projection::perspective_frustum(fovy, aspect, n, f)?;
+        crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
+    })
+}
+
+/// Writes the tweaked infinite projection (Lengyel, GDC 2007; GLM tweakedInfinitePerspective):
+/// the glFrustum(l, r, b, t, n, -) x/y rows, m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+/// With tweak >= ZSHIFT_MIN_INFINITE_TWEAK geometry at any distance stays inside the clip volume
+/// in float arithmetic (the plain infinite projection puts it on the far plane, where GL_LESS
+/// against a cleared 1.0 rejects it).
+///
+/// Errors: as `zshift_frustum` (with f = +INFINITY); ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
+/// unless 0 <= tweak < 1. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_tweaked_infinite(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    tweak: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        crate::projection::tweaked_infinite(&Frustum::new(l, r, b, t, n, f64::INFINITY)?, tweak)
+    })
+}
+
+/// Writes `zshift_tweaked_infinite`'s matrix with geometry at `pz` moved toward the camera by
+/// `delta` (a constant NDC offset through element 10, rounded outward).
+///
+/// Errors: as `zshift_tweaked_infinite`; ZSHIFT_ERR_DOMAIN if pz > -n or pz + delta > -n.
+/// `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_tweaked_infinite(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    tweak: f64,
+    delta: f64,
+    pz: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_matrix(out, || {
+        let frustum = Frustum::new(l, r, b, t, n, f64::INFINITY)?;
+        crate::clip_offset::offset_tweaked_infinite(&frustum, tweak, delta, pz)
+    })
+}
+
+/// Writes the `ndc_offset` uniform of bindings/glsl/ftransform_mdp.glsl (Kooima's median
+/// projection, seed 003) that moves geometry at `pz` toward the camera by `delta`:
+/// -2 median delta / ((d + median)(d + median - delta)), d = -pz.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN unless median > 0,
+/// pz <= 0 and pz + delta <= 0. `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_median_ndc_offset(
+    median: f64,
+    delta: f64,
+    pz: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || crate::median::ndc_offset(median, delta, pz))
+}
+
+/// Writes the window depth in [0, 1] stored at eye distance `d` (in [n, f]) under `clip`
+/// (glDepthRange(0, 1)): f(d - n)/((f - n)d) for [-1, 1] and [0, 1] (Walker, seed 001),
+/// n(f - d)/((f - n)d) reversed.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, d
+/// outside [n, f], unknown clip). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_window_depth_clip(
+    n: f64,
+    f: f64,
+    clip: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.window_depth(d)
+    })
+}
+
+/// Writes the exact depth step at eye distance `d` under `clip` and `format`: the shift toward
+/// the camera that moves the window depth by the format's spacing r at w(d) (1/(2^m - 1), or
+/// 2^(e-23) for FLOAT32): r d^2/(b + r d), b = fn/(f - n) (n if f = +INFINITY). Walker's eq. (3)
+/// for every convention; also the minimum delta toward the camera.
+///
+/// Errors: as `zshift_window_depth_clip`; ZSHIFT_ERR_DOMAIN for an unknown format.
+/// `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_depth_step(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.depth_step(d, format_of(format)?)
+    })
+}
+
+/// Writes the depth step at eye distance `d` (>= 0) under Kooima's median projection:
+/// r (d + median)^2 / (median + r (d + median)), window depth d/(d + median).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (median <= 0,
+/// d < 0, unknown format). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_median_depth_step(
+    median: f64,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::median(median)?.depth_step(d, format_of(format)?)
+    })
+}
+
+/// Writes the smallest constant NDC offset (a magnitude) that changes the stored depth at `d`:
+/// r / (window per NDC unit); 2/(2^m - 1) for UNORM under [-1, 1] (seed 002's quantum).
+///
+/// Errors: as `zshift_depth_step`. `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_min_ndc_offset(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.min_ndc_offset(d, format_of(format)?)
+    })
+}
+
+/// Writes the smallest |epsilon| for Lengyel's element-10 scaling m10 (1 + epsilon) (seed 000,
+/// eq. 4.1.3) that changes the stored depth at `d` under `clip` and `format`: the minimum NDC
+/// offset / |m10|. [-1, 1], UNORM: 2/(2^m - 1) (f - n)/(f + n) (eq. 4.1.8 as corrected by seed
+/// 002); [0, 1], UNORM: 1/(2^m - 1) (f - n)/f; reversed: r (f - n)/n.
+///
+/// Errors: as `zshift_depth_step`; ZSHIFT_ERR_UNRESOLVABLE for reversed Z with f = +INFINITY,
+/// where m10 = 0 and scaling it offsets nothing (use `zshift_min_relative_epsilon`).
+/// `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_min_epsilon_clip(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.min_epsilon(d, format_of(format)?)
+    })
+}
+
+/// Writes the smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the
+/// stored depth at `d`: r d / b. About 2^-23 at every distance for FLOAT32 under reversed Z.
+///
+/// Errors: as `zshift_depth_step`. `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_min_relative_epsilon(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        DepthMapping::projection(n, f, clip_of(clip)?)?.min_relative_epsilon(d, format_of(format)?)
+    })
+}
+
+/// Writes the constant depth bias of `api` (a ZSHIFT_BIAS_*: glPolygonOffset units, Direct3D
+/// DepthBias before rounding, Vulkan depthBiasConstantFactor) equivalent to moving geometry at
+/// `pz` toward the camera by `delta`: (w(d - delta) - w(d)) / r, d = -pz. Negative under
+/// [-1, 1] and [0, 1], positive reversed. For Direct3D round away from zero.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz or
+/// pz + delta outside [-f, -n], unknown enum). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_bias_of_shift(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    api: i32,
+    delta: f64,
+    pz: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        let mapping = DepthMapping::projection(n, f, clip_of(clip)?)?;
+        crate::polygon_offset::bias_of_shift(&mapping, format_of(format)?, api_of(api)?, delta, pz)
+    })
+}
+
+/// Writes the eye-space shift toward the camera that a constant `bias` of `api` makes at `pz`:
+/// the inverse of `zshift_bias_of_shift`.
+///
+/// Errors: as `zshift_bias_of_shift`; ZSHIFT_ERR_UNRESOLVABLE if the biased depth is stored at
+/// no distance. `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_shift_of_bias(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    api: i32,
+    bias: f64,
+    pz: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        let mapping = DepthMapping::projection(n, f, clip_of(clip)?)?;
+        crate::polygon_offset::shift_of_bias(&mapping, format_of(format)?, api_of(api)?, bias, pz)
+    })
+}
+
+/// Writes the tightest planes for a scene between eye distances `nearest` and `farthest`:
+/// `out[0]` = n, `out[1]` = f (possibly +INFINITY: then use the tweaked infinite projection or
+/// reversed Z), keeping a window-depth margin of 2^-22 inside each plane so f32 rounding clips
+/// no vertex.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN unless
+/// 0 < nearest <= farthest. `out[0..2]` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_tight_planes(nearest: f64, farthest: f64, out: *mut f64) -> ZshiftStatus {
+    checked_doubles(out, || {
+        let planes = crate::plan::tight_planes(nearest, farthest)?;
+        Ok([planes.near(), planes.far()])
+    })
+}
+
+/// Writes the smallest single offset that moves stored depth by at least `steps` steps at every
+/// distance in `[lo, hi]`: `out[0]` = the offset (`kind` ZSHIFT_OFFSET_NDC: a signed NDC offset
+/// toward the camera for element 10; ZSHIFT_OFFSET_RELATIVE: epsilon for element 14),
+/// `out[1]`, `out[2]` = the eye-space shifts it makes at lo and at hi. Multiply `out[0]` by k for
+/// the k-th stacked decal layer; keep k * `out[2]` below the gap where decals bleed through.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, range
+/// outside `[n, f]` or lo > hi, steps < 1, unknown enum), ZSHIFT_ERR_UNRESOLVABLE.
+/// `out[0..3]` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_range_offset(
+    n: f64,
+    f: f64,
+    clip: i32,
+    format: i32,
+    kind: i32,
+    lo: f64,
+    hi: f64,
+    steps: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_doubles(out, || {
+        let mapping = DepthMapping::projection(n, f, clip_of(clip)?)?;
+        let o =
+            crate::plan::range_offset(&mapping, format_of(format)?, kind_of(kind)?, lo, hi, steps)?;
+        Ok([o.offset, o.shift_near, o.shift_far])
+    })
+}
+
 // ---- The recommended offset for a real rasterizer (src/recommend.rs) ----
 
 /// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float

@@ -14,18 +14,26 @@
 //! ## Map of the modules
 //! | module | computes | seeds |
 //! |---|---|---|
-//! | [`projection`] | the `glFrustum` matrix, finite or infinite far | 000 eq. 4.1.1, 003 |
+//! | [`projection`] | the `glFrustum` matrix, finite or infinite far; `gluPerspective`, `[0, 1]` and reversed clip depth, tweaked infinite | 000 eq. 4.1.1, 003 |
 //! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
-//! | [`precision`] | window depth and the exact depth step at a distance | 001 |
+//! | [`precision`] | window depth and the exact depth step at a distance; per clip convention and depth format (`DepthMapping`, `DepthFormat`) | 001 |
 //! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
+//! | [`clip_offset`] | offsets for every convention: constant NDC (element 10) or relative (element 14) | 000 eq. 4.1.3–4.1.7 |
+//! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |
+//! | [`polygon_offset`] | eye-space δ ↔ `glPolygonOffset` units, D3D `DepthBias`, Vulkan `depthBiasConstantFactor` | 004 |
+//! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
+pub mod clip_offset;
 pub mod domain;
 mod double_double;
 pub mod error;
 pub mod ffi;
+pub mod median;
 pub mod offset;
+pub mod plan;
+pub mod polygon_offset;
 pub mod precision;
 pub mod projection;
 pub mod recommend;

@@ -4,9 +4,11 @@
 //! Conventions: OpenGL's standard mapping, NDC depth `[−1, 1]`, `glDepthRange(0, 1)`, an m-bit
 //! unsigned normalized depth buffer whose steps are `1/(2^m − 1)` of window depth.
 
-use crate::domain::{depth_steps, representable, Planes};
+use crate::domain::{check_tweak, depth_steps, domain, finite, representable, Planes};
 use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::Result;
+use crate::error::{Error, ErrorKind};
+use crate::projection::ClipDepth;
 
 /// Window depth (what the depth buffer stores, in `[0, 1]`) at eye distance `d`: Walker's
 ///
@@ -100,4 +102,378 @@ impl StepTerms {
 /// `Δd = q·d² / (b + q·d)`, the step toward the camera at `d`.
 pub(crate) fn depth_step_toward(planes: &Planes, steps: f64, d: f64) -> Result<f64> {
     StepTerms::new(planes, steps, d).step(true)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Precision per clip-depth convention and depth format. Every projection here stores a window
+// depth of the form w(d) = α + σ·b/(d + s) (σ = −1 when depth grows with distance, +1 when
+// reversed; s = 0 except for Kooima's median projection), so one step formula serves them all.
+// ---------------------------------------------------------------------------------------------
+
+/// A depth-buffer format: how window depth in `[0, 1]` is quantised.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DepthFormat {
+    /// `GL_DEPTH_COMPONENT16`: 16-bit unsigned normalized, steps of `1/(2^16 − 1)`.
+    Unorm16,
+    /// `GL_DEPTH_COMPONENT24` (and D24S8): steps of `1/(2^24 − 1)`.
+    Unorm24,
+    /// `GL_DEPTH_COMPONENT32`: steps of `1/(2^32 − 1)` (the f32 pipeline feeding it is coarser).
+    Unorm32,
+    /// `GL_DEPTH_COMPONENT32F`: IEEE binary32, spacing `r = 2^(e − 23)` at a depth with exponent
+    /// `e`, as Direct3D and Vulkan define the minimum resolvable difference of float depth.
+    Float32,
+}
+
+impl DepthFormat {
+    /// Bits per depth value.
+    pub fn bits(self) -> u32 {
+        match self {
+            Self::Unorm16 => 16,
+            Self::Unorm24 => 24,
+            Self::Unorm32 | Self::Float32 => 32,
+        }
+    }
+
+    /// Whether the format is unsigned normalized (fixed point).
+    pub fn is_unorm(self) -> bool {
+        self != Self::Float32
+    }
+
+    /// The spacing of stored values at window depth `w`: `1/(2^m − 1)` for UNORM formats;
+    /// for `Float32`, `r = 2^(e − 23)` with `e` the exponent of `w` rounded to f32
+    /// (`2^e ≤ f32(w) < 2^(e+1)`), and `2⁻¹⁴⁹` below the normal range (subnormals and 0).
+    ///
+    /// A window depth moved by at least this much, in either direction, stores a different value.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotFinite`] for NaN; [`ErrorKind::Domain`] unless `0 ≤ w ≤ 1`.
+    pub fn spacing_at(self, w: f64) -> Result<f64> {
+        finite(w, "the window depth w is NaN or infinite")?;
+        if !(0.0..=1.0).contains(&w) {
+            return Err(domain("the window depth w must lie in [0, 1]"));
+        }
+        if self.is_unorm() {
+            return Ok(1.0 / depth_steps(self.bits())?);
+        }
+        let stored = w as f32;
+        if stored < f32::MIN_POSITIVE {
+            return Ok(f64::from(f32::from_bits(1)));
+        }
+        let exponent = ((stored.to_bits() >> 23) & 0xff) as i32 - 127;
+        Ok(2f64.powi(exponent - 23))
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Shape {
+    Projection(Planes, ClipDepth),
+    Tweaked { near: f64, tweak: f64 },
+    Median { median: f64 },
+}
+
+/// The window depth a projection stores as a function of eye distance `d`, in a form that
+/// every convention shares: `w(d) = α + σ·b/(d + s)`.
+///
+/// | mapping | window depth | σ | b | s |
+/// |---|---|---|---|---|
+/// | `glFrustum`, `NegOneToOne` or `ZeroToOne` | `f(d−n)/((f−n)d)` (Walker, seed 001) | −1 | `fn/(f−n)` (`n` if `f = ∞`) | 0 |
+/// | `ReversedZeroToOne` | `n(f−d)/((f−n)d)` | +1 | as above | 0 |
+/// | tweaked infinite, tweak `ε` | `1 − ε/2 − (1 − ε/2)·n/d` | −1 | `(1 − ε/2)·n` | 0 |
+/// | Kooima median `m` (seed 003) | `d/(d + m)` | −1 | `m` | `m` |
+///
+/// `NegOneToOne` and `ZeroToOne` store the same window depth (with `glDepthRange(0, 1)`); they
+/// differ in how NDC maps to it ([`Self::window_per_ndc`]) and so in where an offset goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DepthMapping {
+    shape: Shape,
+}
+
+impl DepthMapping {
+    /// The mapping of a `glFrustum`-family projection with planes `n`, `f` (`f` may be `+∞`)
+    /// under `clip`.
+    ///
+    /// # Errors
+    /// As [`Planes::new`].
+    pub fn projection(n: f64, f: f64, clip: ClipDepth) -> Result<Self> {
+        Ok(Self {
+            shape: Shape::Projection(Planes::new(n, f)?, clip),
+        })
+    }
+
+    /// The mapping of the tweaked infinite projection
+    /// ([`crate::projection::tweaked_infinite`]) with near plane `n`, NDC depth `[−1, 1]`.
+    ///
+    /// # Errors
+    /// As [`Planes::new`]; [`ErrorKind::Domain`] unless `0 ≤ tweak < 1`.
+    pub fn tweaked_infinite(n: f64, tweak: f64) -> Result<Self> {
+        Planes::new(n, f64::INFINITY)?;
+        check_tweak(tweak)?;
+        Ok(Self {
+            shape: Shape::Tweaked { near: n, tweak },
+        })
+    }
+
+    /// The mapping of Kooima's median-distance projection (seed 003, `ftransform_mdp`): NDC
+    /// depth `(d − m)/(d + m)`, window depth `d/(d + m)`, half the buffer on each side of `m`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotFinite`] for NaN or ±∞; [`ErrorKind::Domain`] unless `m > 0`.
+    pub fn median(m: f64) -> Result<Self> {
+        finite(m, "the median distance is NaN or infinite")?;
+        if m <= 0.0 {
+            return Err(domain("the median distance must be greater than 0"));
+        }
+        Ok(Self {
+            shape: Shape::Median { median: m },
+        })
+    }
+
+    /// Whether window depth grows toward the camera (reversed Z; compare with `GL_GREATER`).
+    pub fn is_reversed(&self) -> bool {
+        matches!(
+            self.shape,
+            Shape::Projection(_, ClipDepth::ReversedZeroToOne)
+        )
+    }
+
+    /// Window depth per unit of NDC depth: ½ for NDC `[−1, 1]` (`glDepthRange(0, 1)` maps it
+    /// as `(z + 1)/2`), 1 for the `[0, 1]` conventions.
+    pub fn window_per_ndc(&self) -> f64 {
+        match self.shape {
+            Shape::Projection(_, ClipDepth::ZeroToOne | ClipDepth::ReversedZeroToOne) => 1.0,
+            _ => 0.5,
+        }
+    }
+
+    /// `(b, s)` of `w(d) = α + σ·b/(d + s)`.
+    fn scale_and_shift(&self) -> (f64, f64) {
+        match self.shape {
+            Shape::Projection(planes, _) => (planes.near() * planes.far_over_span(), 0.0),
+            Shape::Tweaked { near, tweak } => ((1.0 - 0.5 * tweak) * near, 0.0),
+            Shape::Median { median } => (median, median),
+        }
+    }
+
+    /// The nearest distance the mapping covers (`n`, or 0 for the median projection).
+    pub fn near(&self) -> f64 {
+        match self.shape {
+            Shape::Projection(planes, _) => planes.near(),
+            Shape::Tweaked { near, .. } => near,
+            Shape::Median { .. } => 0.0,
+        }
+    }
+
+    /// The farthest distance the mapping covers (`f`, or `+∞`).
+    pub fn far(&self) -> f64 {
+        match self.shape {
+            Shape::Projection(planes, _) => planes.far(),
+            _ => f64::INFINITY,
+        }
+    }
+
+    fn check_distance(&self, d: f64) -> Result<()> {
+        finite(d, "the eye distance d is NaN or infinite")?;
+        if d < self.near() || d > self.far() {
+            return Err(domain(
+                "the eye distance d must lie in the projection's [near, far]",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The window depth stored at eye distance `d` (see the table on [`DepthMapping`]), in
+    /// forms without cancellation near either end, clamped to `[0, 1]`.
+    ///
+    /// # Errors
+    /// [`ErrorKind::NotFinite`] for NaN or ±∞; [`ErrorKind::Domain`] for `d` outside the
+    /// mapping's range.
+    pub fn window_depth(&self, d: f64) -> Result<f64> {
+        self.check_distance(d)?;
+        let w = match self.shape {
+            Shape::Projection(planes, clip) => {
+                let n = planes.near();
+                match clip {
+                    ClipDepth::ReversedZeroToOne if planes.is_infinite() => n / d,
+                    ClipDepth::ReversedZeroToOne => {
+                        (n / d) * ((planes.far() - d) / (planes.far() - n))
+                    }
+                    _ => planes.far_over_span() * ((d - n) / d),
+                }
+            }
+            Shape::Tweaked { near, tweak } => (1.0 - 0.5 * tweak) * ((d - near) / d),
+            Shape::Median { median } => d / (d + median),
+        };
+        Ok(w.clamp(0.0, 1.0))
+    }
+
+    /// The exact size of one stored-depth step at eye distance `d`: the shift toward the camera
+    /// `Δ > 0` with `|w(d − Δ) − w(d)| = r`, where `r` is `format`'s spacing at `w(d)`
+    /// ([`DepthFormat::spacing_at`]):
+    ///
+    /// `Δ = r·(d + s)² / (b + r·(d + s))`
+    ///
+    /// — Walker's eq. (3) (seed 001) for every convention and format. It is also the minimum
+    /// eye-space δ toward the camera (the corrected eq. 4.1.9, seeds 000/002): a point moved
+    /// by at least `Δ` is guaranteed to store a different depth.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Unresolvable`] if no such shift exists (reversed
+    /// depth within one step of 1, where the near plane is closer than one step).
+    pub fn depth_step(&self, d: f64, format: DepthFormat) -> Result<f64> {
+        let w = self.window_depth(d)?;
+        let r = format.spacing_at(w)?;
+        let (b, s) = self.scale_and_shift();
+        let ds = d + s;
+        let u = (ds / b) * r;
+        representable(ds * (u / (1.0 + u)), "the depth step overflows f64")
+    }
+
+    /// The signed window-depth change when a point at distance `d` moves toward the camera by
+    /// `δ`: `w(d − δ) − w(d) = −σ·b·δ / ((d + s)(d + s − δ))` (negative unless reversed).
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Domain`] if `d − δ` leaves the mapping's range.
+    pub fn window_change_of_shift(&self, delta: f64, d: f64) -> Result<f64> {
+        self.check_distance(d)?;
+        finite(delta, "the eye-space shift delta is NaN or infinite")?;
+        self.check_distance(d - delta)?;
+        let (b, s) = self.scale_and_shift();
+        let magnitude = (b / (d + s)) * (delta / (d + s - delta));
+        let change = if self.is_reversed() {
+            magnitude
+        } else {
+            -magnitude
+        };
+        representable(change, "the window-depth change overflows f64")
+    }
+
+    /// The inverse of [`Self::window_change_of_shift`]: the shift toward the camera `δ` that
+    /// changes the window depth at `d` by `dw` (signed, as there).
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Unresolvable`] if no distance stores
+    /// `w(d) + dw` (the change reaches past the eye or past infinity).
+    pub fn shift_of_window_change(&self, dw: f64, d: f64) -> Result<f64> {
+        self.check_distance(d)?;
+        finite(dw, "the window-depth change is NaN or infinite")?;
+        let (b, s) = self.scale_and_shift();
+        let ds = d + s;
+        // 1/(d' + s) = 1/(d + s) + t, with t = −σ·dw/b.
+        let t = if self.is_reversed() { dw / b } else { -dw / b };
+        let scaled = 1.0 + ds * t; // (d + s)/(d' + s)
+        if scaled <= 0.0 {
+            return Err(Error::new(
+                ErrorKind::Unresolvable,
+                "the window-depth change reaches beyond infinity or the eye",
+            ));
+        }
+        representable(
+            ds * ((ds * t) / scaled),
+            "the eye-space shift overflows f64",
+        )
+    }
+
+    /// The smallest constant NDC depth offset (a magnitude) that changes the stored depth at
+    /// `d`: `r / window_per_ndc` with `r` the spacing at `w(d)`. For UNORM formats under
+    /// `NegOneToOne` this is `2/(2^m − 1)` everywhere: the corrected quantum of seed 002.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`].
+    pub fn min_ndc_offset(&self, d: f64, format: DepthFormat) -> Result<f64> {
+        let r = format.spacing_at(self.window_depth(d)?)?;
+        Ok(r / self.window_per_ndc())
+    }
+
+    /// The smallest `|ε|` for Lengyel's element-10 scaling `m10·(1 + ε)` (seed 000, eq. 4.1.3)
+    /// that changes the stored depth at `d`: [`Self::min_ndc_offset`]` / |m10|`.
+    ///
+    /// Under `NegOneToOne` with a UNORM format this is the corrected eq. 4.1.8 (seed 002),
+    /// `2/(2^m − 1)·(f − n)/(f + n)`; under `ZeroToOne` it is `1/(2^m − 1)·(f − n)/f` (half the
+    /// NDC quantum, a smaller `|m10|`); under reversed Z it is `r·(f − n)/n`, useless for large
+    /// `f/n` — and with an infinite far plane `m10 = 0`, so no ε exists.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Unresolvable`] when `m10 = 0` (reversed Z with
+    /// `f = ∞`: scaling element 10 does nothing; use [`Self::min_relative_epsilon`]);
+    /// [`ErrorKind::Domain`] for the median projection, which has no matrix.
+    pub fn min_epsilon(&self, d: f64, format: DepthFormat) -> Result<f64> {
+        let m10 = match self.shape {
+            Shape::Projection(planes, clip) => crate::projection::depth_row(&planes, clip).0,
+            Shape::Tweaked { tweak, .. } => tweak - 1.0,
+            Shape::Median { .. } => {
+                return Err(domain("the median projection has no element 10 to scale"))
+            }
+        };
+        let c = self.min_ndc_offset(d, format)?;
+        if m10 == 0.0 {
+            return Err(Error::new(
+                ErrorKind::Unresolvable,
+                "element 10 is 0 (reversed Z, infinite far): scaling it offsets nothing",
+            ));
+        }
+        representable(c / m10.abs(), "epsilon overflows f64")
+    }
+
+    /// The smallest relative offset `ε` (projection element 14 scaled by `1 + ε`, which moves
+    /// every point from `d` to `d/(1 + ε)`) that changes the stored depth at `d`: `r·d/b`.
+    /// For `Float32` under reversed Z this is about `2⁻²³` at every distance.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`]; [`ErrorKind::Domain`] for the median projection, whose depth
+    /// is not a function of `m14/d`.
+    pub fn min_relative_epsilon(&self, d: f64, format: DepthFormat) -> Result<f64> {
+        if let Shape::Median { .. } = self.shape {
+            return Err(domain(
+                "the median projection has no relative (element 14) offset",
+            ));
+        }
+        let r = format.spacing_at(self.window_depth(d)?)?;
+        let (b, _) = self.scale_and_shift();
+        representable((d / b) * r, "the relative epsilon overflows f64")
+    }
+
+    /// The eye distance at which the window depth is `w` (the inverse of
+    /// [`Self::window_depth`]); `+∞` where `w` is only reached at infinity.
+    ///
+    /// # Errors
+    /// [`ErrorKind::Domain`] if no distance in the mapping's range stores `w`.
+    pub fn distance_at_window(&self, w: f64) -> Result<f64> {
+        finite(w, "the window depth w is NaN or infinite")?;
+        let lo = self.window_depth(self.near())?;
+        let hi = if self.far().is_finite() {
+            self.window_depth(self.far())?
+        } else {
+            self.window_at_infinity()
+        };
+        let (lo, hi) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+        if w < lo || w > hi {
+            return Err(domain(
+                "no distance in the projection's range stores this window depth",
+            ));
+        }
+        let alpha = self.window_at_infinity();
+        let (b, s) = self.scale_and_shift();
+        if w == alpha {
+            return Ok(f64::INFINITY);
+        }
+        let sigma = if self.is_reversed() { 1.0 } else { -1.0 };
+        let d = (sigma * b / (w - alpha) - s).clamp(self.near(), self.far());
+        Ok(d)
+    }
+
+    /// `α`: the window depth the mapping approaches as `d → ∞`.
+    fn window_at_infinity(&self) -> f64 {
+        match self.shape {
+            Shape::Projection(planes, ClipDepth::ReversedZeroToOne) => {
+                if planes.is_infinite() {
+                    0.0
+                } else {
+                    -planes.near() / (planes.far() - planes.near())
+                }
+            }
+            Shape::Projection(planes, _) => planes.far_over_span(),
+            Shape::Tweaked { tweak, .. } => 1.0 - 0.5 * tweak,
+            Shape::Median { .. } => 1.0,
+        }
+    }
 }

@@ -7,7 +7,7 @@
 
 use glam::{DMat4, Mat4};
 
-use crate::domain::{domain, finite, representable, Planes};
+use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::error::{Error, ErrorKind, Result};
 
 /// The six parameters of `glFrustum`, validated.
@@ -137,4 +137,151 @@ pub(crate) fn to_f32(m: &[f64; 16]) -> Result<[f32; 16]> {
         }
     }
     Ok(out)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Every projection an engine uses: gluPerspective parameters, [0,1] clip depth, reversed Z and
+// the tweaked infinite projection. Each shares the x/y rows of `glFrustum`; only the depth row
+// (elements 10 and 14) differs, because NDC depth is `z_ndc = −m10 + m14/d` at eye distance d.
+// ---------------------------------------------------------------------------------------------
+
+/// Which clip-space depth range a projection targets, and which way it runs.
+///
+/// All three keep OpenGL's right-handed eye space (looking down −z) and `w = −z_eye`; they
+/// differ in the depth row only. The C ABI passes them as `ZSHIFT_CLIP_*` integers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ClipDepth {
+    /// OpenGL's default: NDC depth `[−1, 1]`, near → −1, far → +1 (`glFrustum`,
+    /// `gluPerspective`; `glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE)`).
+    NegOneToOne,
+    /// NDC depth `[0, 1]`, near → 0, far → 1: `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`,
+    /// as Direct3D and Vulkan define clip space. Depth test `GL_LESS`.
+    ZeroToOne,
+    /// NDC depth `[0, 1]` reversed, near → 1, far → 0: `glClipControl(.., GL_ZERO_TO_ONE)` with
+    /// `glDepthFunc(GL_GREATER)` and `glClearDepth(0)`. With a 32-bit float depth buffer the
+    /// float's relative spacing cancels the projection's 1/d, so precision is nearly uniform
+    /// in relative distance.
+    ReversedZeroToOne,
+}
+
+/// The depth row `(m10, m14)` of a projection with planes `n`, `f` (`f` may be `+∞`) under a
+/// clip-depth convention, in f64.
+///
+/// | convention | m10 | m14 | `f = +∞` |
+/// |---|---|---|---|
+/// | `NegOneToOne` | `−(f+n)/(f−n)` | `−2fn/(f−n)` | `−1`, `−2n` |
+/// | `ZeroToOne` | `−f/(f−n)` | `−fn/(f−n)` | `−1`, `−n` |
+/// | `ReversedZeroToOne` | `n/(f−n)` | `fn/(f−n)` | `0`, `n` |
+///
+/// The first row is seed 000 eq. 4.1.1; the infinite limits are Kooima's (seed 003).
+pub fn depth_row(planes: &Planes, clip: ClipDepth) -> (f64, f64) {
+    let n = planes.near();
+    let far_over_span = planes.far_over_span();
+    let near_over_span = if planes.is_infinite() {
+        0.0
+    } else {
+        n / (planes.far() - n)
+    };
+    match clip {
+        ClipDepth::NegOneToOne => (-planes.sum_over_span(), -2.0 * n * far_over_span),
+        ClipDepth::ZeroToOne => (-far_over_span, -n * far_over_span),
+        ClipDepth::ReversedZeroToOne => (near_over_span, n * far_over_span),
+    }
+}
+
+/// The `glFrustum` matrix with the depth row of `clip`, in f64, column-major.
+///
+/// `NegOneToOne` gives exactly [`Frustum::to_cols_array_f64`].
+///
+/// # Errors
+/// As [`Frustum::to_cols_array_f64`].
+pub fn projection_f64(frustum: &Frustum, clip: ClipDepth) -> Result<[f64; 16]> {
+    let mut m = frustum.to_cols_array_f64()?;
+    (m[10], m[14]) = depth_row(&frustum.planes(), clip);
+    Ok(m)
+}
+
+/// The projection of `frustum` under `clip`, each element the nearest f32: what to pass to
+/// `glLoadMatrixf` or `glUniformMatrix4fv` after `glClipControl` has selected `clip`.
+///
+/// # Errors
+/// As [`projection_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+pub fn projection(frustum: &Frustum, clip: ClipDepth) -> Result<[f32; 16]> {
+    to_f32(&projection_f64(frustum, clip)?)
+}
+
+/// The frustum `gluPerspective(fovy, aspect, n, f)` describes: `t = n·tan(fovy/2)`, `b = −t`,
+/// `r = t·aspect`, `l = −r`.
+///
+/// Its matrix matches `gluPerspective`'s (`m0 = cot(fovy/2)/aspect`, `m5 = cot(fovy/2)`) to a
+/// few f64 ulp; `f` may be `+∞`. Use it with every builder and offset that takes a [`Frustum`].
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] for NaN or infinite `fovy`, `aspect` or `n`;
+/// [`ErrorKind::Domain`] unless `0 < fovy < 180` degrees and `aspect > 0`, and as [`Planes::new`].
+pub fn perspective_frustum(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Frustum> {
+    finite(fovy_degrees, "the field of view fovy is NaN or infinite")?;
+    finite(aspect, "the aspect ratio is NaN or infinite")?;
+    Planes::new(n, f)?;
+    if !(fovy_degrees > 0.0 && fovy_degrees < 180.0) {
+        return Err(domain(
+            "the field of view fovy must lie in (0, 180) degrees",
+        ));
+    }
+    if aspect <= 0.0 {
+        return Err(domain("the aspect ratio must be greater than 0"));
+    }
+    let top = n * (fovy_degrees.to_radians() * 0.5).tan();
+    let right = top * aspect;
+    Frustum::new(-right, right, -top, top, n, f)
+}
+
+/// The `gluPerspective` matrix in f32, column-major (right-handed, NDC depth `[−1, 1]`).
+///
+/// # Errors
+/// As [`perspective_frustum`] and [`Frustum::to_cols_array`].
+pub fn perspective(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Mat4> {
+    perspective_frustum(fovy_degrees, aspect, n, f)?.to_mat4()
+}
+
+/// The smallest tweak that keeps geometry at any distance inside the clip volume of the
+/// infinite projection when the GPU evaluates it in f32: `2⁻²²`.
+///
+/// Why: the plain infinite projection gives `z_clip = d − 2n` and `w = d`; in f32, once
+/// `2n < ulp(d)/2`, `z_clip` rounds to `w` and far geometry sits on the far clip plane, where
+/// rasterizer rounding clips it. The tweak sets `m10 = ε − 1`, so `z_clip ≤ (1−ε)·d` before
+/// rounding. Two correctly rounded f32 operations (the product and the sum) can each raise it by
+/// a factor `1 + 2⁻²⁴`, so `ε > 2·2⁻²⁴ + 2⁻⁴⁸` keeps `z_clip < w`; `2⁻²²` doubles that to cover
+/// a GPU whose multiply-add is off by one ulp instead of half. Lengyel (GDC 2007, "Projection
+/// Matrix Tricks") uses the same value; `tweakedInfinitePerspective` in GLM takes it as `ep`.
+///
+/// cbindgen:ignore
+pub const MIN_INFINITE_TWEAK: f64 = 1.0 / 4_194_304.0;
+
+/// The tweaked infinite projection (Lengyel, GDC 2007; GLM `tweakedInfinitePerspective`):
+/// the `glFrustum` x/y rows with `m10 = ε − 1` and `m14 = (ε − 2)·n`, NDC depth `[−1, 1]`.
+///
+/// Depth is `z_ndc = 1 − ε + (ε − 2)·n/d`: −1 at `d = n`, and `1 − ε` at infinity, so far
+/// geometry stays strictly inside the clip volume when `ε ≥` [`MIN_INFINITE_TWEAK`]. The
+/// frustum's `f` is ignored (the far plane is at infinity).
+///
+/// # Errors
+/// As [`Frustum::to_cols_array_f64`]; [`ErrorKind::NotFinite`] if `tweak` is NaN or infinite;
+/// [`ErrorKind::Domain`] unless `0 ≤ tweak < 1`.
+pub fn tweaked_infinite_f64(frustum: &Frustum, tweak: f64) -> Result<[f64; 16]> {
+    check_tweak(tweak)?;
+    let mut m = frustum.to_cols_array_f64()?;
+    let n = frustum.planes().near();
+    m[10] = tweak - 1.0;
+    m[14] = (tweak - 2.0) * n;
+    Ok(m)
+}
+
+/// [`tweaked_infinite_f64`] rounded to f32 (element 10 is exact whenever `ε` is a multiple of
+/// `2⁻²⁴`, as [`MIN_INFINITE_TWEAK`] is).
+///
+/// # Errors
+/// As [`tweaked_infinite_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+pub fn tweaked_infinite(frustum: &Frustum, tweak: f64) -> Result<[f32; 16]> {
+    to_f32(&tweaked_infinite_f64(frustum, tweak)?)
 }

@@ -1,0 +1,136 @@
+//! Depth offsets for every projection convention: where the offset belongs, and its f32 rounding.
+//!
+//! Every `glFrustum`-family projection gives NDC depth `z_ndc = −m10 + m14/d` at eye distance
+//! `d` (x, y and `w = d` do not involve elements 10 and 14). That leaves two places for an
+//! offset that moves depth without moving pixels:
+//!
+//! * **Element 10, additively** — `m10 → m10 − c` adds the constant `c` to every NDC depth.
+//!   Lengyel's `m10·(1 + ε)` (seed 000, eq. 4.1.3) is the case `c = −ε·m10`; it needs
+//!   `m10 ≠ 0`. A constant offset suits UNORM buffers, whose steps are constant in depth.
+//! * **Element 14, multiplicatively** — `m14 → m14·(1 + ε)` gives `z_ndc = −m10 + m14/(d/(1+ε))`:
+//!   exactly the depth of the point moved to `d/(1 + ε)`, a shift toward the camera of the
+//!   fixed fraction `ε/(1 + ε)` of its distance, in every convention. This is the offset for
+//!   reversed Z with float depth, where element 10 is 0 for the infinite projection (scaling it
+//!   does nothing) and the buffer's spacing `2^(e−23)` is itself relative to the stored
+//!   `w ≈ n/d`: one relative ε of a few `2⁻²³` works at every distance.
+//!
+//! Both are rounded outward in f32 (double-double decides the direction), so the offset the GPU
+//! sees is never smaller than the one asked for, and at most one f32 ulp of the element larger.
+
+use crate::domain::{finite, representable};
+use crate::double_double::DoubleDouble;
+use crate::error::Result;
+use crate::offset::rounded_outward;
+use crate::precision::DepthMapping;
+use crate::projection::{projection_f64, to_f32, tweaked_infinite_f64, ClipDepth, Frustum};
+
+/// The f32 projection with `c` added to every NDC depth through element 10 (`m10 − c`).
+///
+/// `m` is any column-major perspective matrix with `w = −z_eye` (the `glFrustum` family, any
+/// [`ClipDepth`], the tweaked infinite projection). Every element but 10 is the nearest f32;
+/// element 10 is `p − x` with `p = f32(m10)` and `x` the f32 satisfying `|c| ≤ |x| ≤ |c| + ulp`,
+/// same sign as `c`. `c < 0` moves depth toward the camera under `NegOneToOne`/`ZeroToOne`;
+/// `c > 0` under reversed Z.
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] if `c` is NaN or infinite; [`ErrorKind::Overflow`] if an element
+/// leaves f32.
+pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
+    finite(c, "the NDC depth offset c is NaN or infinite")?;
+    let mut out = to_f32(m)?;
+    out[10] = rounded_outward(out[10], DoubleDouble::from_f64(-c))?;
+    Ok(out)
+}
+
+/// The f32 projection with element 14 scaled by `1 + ε`: every point's depth becomes that of
+/// the point at `d/(1 + ε)` (toward the camera for `ε > 0`), in every convention.
+///
+/// Element 14 is rounded away from `p = f32(m14)` so that `x/p ≥ 1 + ε` for `ε > 0` (and
+/// `≤` for `ε < 0`), within one f32 ulp.
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] if `ε` is NaN or infinite; [`ErrorKind::Domain`] unless `ε > −1`;
+/// [`ErrorKind::Overflow`] if an element leaves f32.
+pub fn relative_offset_matrix(m: &[f64; 16], epsilon: f64) -> Result<[f32; 16]> {
+    finite(epsilon, "the relative offset epsilon is NaN or infinite")?;
+    if epsilon <= -1.0 {
+        return Err(crate::domain::domain(
+            "the relative offset epsilon must be greater than -1",
+        ));
+    }
+    let mut out = to_f32(m)?;
+    let plain = out[14];
+    out[14] = rounded_outward(plain, DoubleDouble::product(f64::from(plain), epsilon))?;
+    Ok(out)
+}
+
+/// The relative offset `ε = δ/(d − δ)` (with `d = −Pz`) that moves a point at eye-space depth
+/// `Pz` toward the camera by `δ` through element 14 ([`relative_offset_matrix`]); every other
+/// point moves by the same fraction `δ/d` of its distance.
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] for NaN or ±∞; [`ErrorKind::Domain`] unless `Pz < 0` and
+/// `Pz + δ < 0`.
+pub fn relative_epsilon(delta: f64, pz: f64) -> Result<f64> {
+    finite(delta, "the eye-space shift delta is NaN or infinite")?;
+    finite(pz, "the eye-space depth Pz is NaN or infinite")?;
+    if pz >= 0.0 || pz + delta >= 0.0 {
+        return Err(crate::domain::domain(
+            "Pz and Pz + delta must be in front of the eye (< 0)",
+        ));
+    }
+    representable(delta / (-pz - delta), "the relative epsilon overflows f64")
+}
+
+/// The constant NDC offset `c = z_ndc(d − δ) − z_ndc(d)` that moves a point at `Pz` (`d = −Pz`)
+/// toward the camera by `δ` under `mapping`: the generalisation of seed 000 eq. 4.1.6–4.1.7
+/// (for `NegOneToOne`, `c = −ε·m10` with Lengyel's ε).
+///
+/// # Errors
+/// As [`DepthMapping::window_change_of_shift`].
+pub fn ndc_offset_of_shift(mapping: &DepthMapping, delta: f64, pz: f64) -> Result<f64> {
+    finite(pz, "the eye-space depth Pz is NaN or infinite")?;
+    Ok(mapping.window_change_of_shift(delta, -pz)? / mapping.window_per_ndc())
+}
+
+/// The offset variant of [`crate::projection::projection`]: the projection of `frustum` under
+/// `clip`, moving geometry at `Pz` toward the camera by `δ` (`δ < 0` moves it away).
+///
+/// `NegOneToOne` and `ZeroToOne` use the constant NDC offset through element 10 (identical to
+/// [`crate::offset::offset_matrix`] for `NegOneToOne` up to the f32 rounding of the same
+/// value); `ReversedZeroToOne` uses the relative offset through element 14, which exists even
+/// where `m10 = 0` and matches float depth's relative spacing.
+///
+/// # Errors
+/// As [`Frustum::to_cols_array_f64`], [`ndc_offset_of_shift`] and [`relative_epsilon`].
+pub fn offset_projection(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    let planes = frustum.planes();
+    let m = projection_f64(frustum, clip)?;
+    if clip == ClipDepth::ReversedZeroToOne {
+        planes.check_eye_z(pz)?;
+        return relative_offset_matrix(&m, relative_epsilon(delta, pz)?);
+    }
+    let mapping = DepthMapping::projection(planes.near(), planes.far(), clip)?;
+    ndc_offset_matrix(&m, ndc_offset_of_shift(&mapping, delta, pz)?)
+}
+
+/// The offset variant of [`crate::projection::tweaked_infinite`]: moves geometry at `Pz`
+/// toward the camera by `δ` with a constant NDC offset through element 10.
+///
+/// # Errors
+/// As [`tweaked_infinite_f64`] and [`ndc_offset_of_shift`].
+pub fn offset_tweaked_infinite(
+    frustum: &Frustum,
+    tweak: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    let m = tweaked_infinite_f64(frustum, tweak)?;
+    let mapping = DepthMapping::tweaked_infinite(frustum.planes().near(), tweak)?;
+    ndc_offset_matrix(&m, ndc_offset_of_shift(&mapping, delta, pz)?)
+}
