@@ -67,23 +67,31 @@ typedef int32_t ZshiftStatus;
 // `glFrustum(l, r, b, t, n, f)` (or `zshift_frustum`), the decal with element 10 scaled by
 // 1 + epsilon (seed 000, eq. 4.1.3), depth test GL_LESS or GL_LEQUAL.
 typedef struct {
-  // The `glFrustum` parameters of the base's projection (f may be +INFINITY).
+  // `glFrustum` left extent on the near plane of the base's projection.
   double l;
+  // `glFrustum` right extent.
   double r;
+  // `glFrustum` bottom extent.
   double b;
+  // `glFrustum` top extent.
   double t;
+  // Near plane distance (> 0).
   double n;
+  // Far plane distance (> n; may be +INFINITY).
   double f;
-  // `glViewport` width and height in pixels (nonzero).
+  // `glViewport` width in pixels (nonzero).
   uint32_t viewport_width;
+  // `glViewport` height in pixels (nonzero).
   uint32_t viewport_height;
   // The depth attachment's GL internal format: GL_DEPTH_COMPONENT16 (0x81A5),
   // GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7) or
   // GL_DEPTH_COMPONENT32F (0x8CAC).
   uint32_t depth_format;
-  // The decal's nearest and farthest eye distance (positive, n <= near <= far <= f).
-  // `decal_near` also stands for where the decal's plane crosses the view axis.
+  // The decal's nearest eye distance (positive, n <= decal_near <= decal_far). It also
+  // stands for where the decal's plane crosses the view axis (exact for a decal centred on
+  // it), which sets the slope term.
   double decal_near;
+  // The decal's farthest eye distance (decal_far <= f).
   double decal_far;
   // Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
   double slope;
@@ -111,15 +119,20 @@ typedef struct {
   // Occluders nearer than the base by at least this eye-space distance (along the line of
   // sight) are never overdrawn by the decal.
   double bleed_gap;
-  // The equivalent glPolygonOffset(-factor, -units).
+  // The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
+  // 0 when unsnapped.
   double polygon_offset_factor;
+  // The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
   double polygon_offset_units;
-  // The model's terms: depth quantum, f32 rounding of the transform, of the vertex
-  // coordinates and of the depth interpolation, and sub-pixel snapping.
+  // Term q: the smallest difference the stored format keeps (window depth).
   double quantum;
+  // Term T: f32 rounding of the vertex transform and viewport mapping, per vertex.
   double transform;
+  // Term V: f32 rounding of the decal's eye-space coordinates.
   double vertex;
+  // Term I: f32 rounding of the rasterizer's depth-plane evaluation.
   double interpolation;
+  // Term S: sub-pixel snapping of a sloped plane before depth setup.
   double snap;
 } ZshiftRecommendation;
 

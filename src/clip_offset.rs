@@ -19,32 +19,10 @@
 
 use crate::domain::{finite, representable};
 use crate::double_double::DoubleDouble;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::Result;
+use crate::offset::rounded_outward;
 use crate::precision::DepthMapping;
 use crate::projection::{projection_f64, to_f32, tweaked_infinite_f64, ClipDepth, Frustum};
-
-/// Rounds `plain + offset` to f32 away from `plain`.
-fn rounded_outward(plain: f32, offset: DoubleDouble) -> Result<f32> {
-    if !offset.is_finite() {
-        return Err(Error::new(
-            ErrorKind::Overflow,
-            "the depth offset overflows f64",
-        ));
-    }
-    if offset.hi == 0.0 {
-        return Ok(plain);
-    }
-    let x = DoubleDouble::from_f64(f64::from(plain))
-        .add(offset)
-        .to_f32_directed(offset.hi > 0.0);
-    if !x.is_finite() {
-        return Err(Error::new(
-            ErrorKind::Overflow,
-            "the offset element overflows f32",
-        ));
-    }
-    Ok(x)
-}
 
 /// The f32 projection with `c` added to every NDC depth through element 10 (`m10 − c`).
 ///

@@ -123,6 +123,20 @@ pub fn depth_steps(bits: u32) -> Result<f64> {
     Ok(((1u64 << bits) - 1) as f64)
 }
 
+/// Checks the ε of the tweaked infinite projection (Lengyel, GDC 2007): finite, `0 ≤ ε < 1`.
+pub(crate) fn check_tweak(tweak: f64) -> Result<f64> {
+    finite(
+        tweak,
+        "the infinite-projection tweak epsilon is NaN or infinite",
+    )?;
+    if !(0.0..1.0).contains(&tweak) {
+        return Err(domain(
+            "the infinite-projection tweak epsilon must lie in [0, 1)",
+        ));
+    }
+    Ok(tweak)
+}
+
 pub(crate) fn finite(x: f64, detail: &'static str) -> Result<f64> {
     if x.is_finite() {
         Ok(x)

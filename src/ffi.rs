@@ -729,23 +729,31 @@ pub const ZSHIFT_SUBPIXEL_UNSNAPPED: i32 = -1;
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ZshiftScene {
-    /// The `glFrustum` parameters of the base's projection (f may be +INFINITY).
+    /// `glFrustum` left extent on the near plane of the base's projection.
     pub l: f64,
+    /// `glFrustum` right extent.
     pub r: f64,
+    /// `glFrustum` bottom extent.
     pub b: f64,
+    /// `glFrustum` top extent.
     pub t: f64,
+    /// Near plane distance (> 0).
     pub n: f64,
+    /// Far plane distance (> n; may be +INFINITY).
     pub f: f64,
-    /// `glViewport` width and height in pixels (nonzero).
+    /// `glViewport` width in pixels (nonzero).
     pub viewport_width: u32,
+    /// `glViewport` height in pixels (nonzero).
     pub viewport_height: u32,
     /// The depth attachment's GL internal format: GL_DEPTH_COMPONENT16 (0x81A5),
     /// GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7) or
     /// GL_DEPTH_COMPONENT32F (0x8CAC).
     pub depth_format: u32,
-    /// The decal's nearest and farthest eye distance (positive, n <= near <= far <= f).
-    /// `decal_near` also stands for where the decal's plane crosses the view axis.
+    /// The decal's nearest eye distance (positive, n <= decal_near <= decal_far). It also
+    /// stands for where the decal's plane crosses the view axis (exact for a decal centred on
+    /// it), which sets the slope term.
     pub decal_near: f64,
+    /// The decal's farthest eye distance (decal_far <= f).
     pub decal_far: f64,
     /// Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
     pub slope: f64,
@@ -775,15 +783,20 @@ pub struct ZshiftRecommendation {
     /// Occluders nearer than the base by at least this eye-space distance (along the line of
     /// sight) are never overdrawn by the decal.
     pub bleed_gap: f64,
-    /// The equivalent glPolygonOffset(-factor, -units).
+    /// The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
+    /// 0 when unsnapped.
     pub polygon_offset_factor: f64,
+    /// The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
     pub polygon_offset_units: f64,
-    /// The model's terms: depth quantum, f32 rounding of the transform, of the vertex
-    /// coordinates and of the depth interpolation, and sub-pixel snapping.
+    /// Term q: the smallest difference the stored format keeps (window depth).
     pub quantum: f64,
+    /// Term T: f32 rounding of the vertex transform and viewport mapping, per vertex.
     pub transform: f64,
+    /// Term V: f32 rounding of the decal's eye-space coordinates.
     pub vertex: f64,
+    /// Term I: f32 rounding of the rasterizer's depth-plane evaluation.
     pub interpolation: f64,
+    /// Term S: sub-pixel snapping of a sloped plane before depth setup.
     pub snap: f64,
 }
 

@@ -142,7 +142,7 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
     let planes = frustum.planes();
     shifted_depth(&planes, delta, pz)?;
     let mut m = frustum.to_cols_array()?;
-    m[10] = offset_element(m[10], ndc_offset_of_shift(&planes, delta, pz))?;
+    m[10] = rounded_outward(m[10], ndc_offset_of_shift(&planes, delta, pz))?;
     Ok(m)
 }
 
@@ -156,7 +156,7 @@ pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
     finite(epsilon, "epsilon is NaN or infinite")?;
     let planes = frustum.planes();
     let mut m = frustum.to_cols_array()?;
-    m[10] = offset_element(m[10], ndc_offset_of_epsilon(&planes, epsilon))?;
+    m[10] = rounded_outward(m[10], ndc_offset_of_epsilon(&planes, epsilon))?;
     Ok(m)
 }
 
@@ -201,8 +201,9 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> DoubleDouble {
 }
 
 /// Rounds `plain + offset` to f32 away from `plain`, so the offset the GPU sees is never
-/// smaller than the one asked for and at most one f32 ulp larger.
-fn offset_element(plain: f32, offset: DoubleDouble) -> Result<f32> {
+/// smaller than the one asked for and at most one f32 ulp larger. Shared by every offset matrix
+/// (element 10 here, elements 10 and 14 in [`crate::clip_offset`]).
+pub(crate) fn rounded_outward(plain: f32, offset: DoubleDouble) -> Result<f32> {
     if !offset.is_finite() {
         return Err(Error::new(
             ErrorKind::Overflow,
@@ -217,7 +218,7 @@ fn offset_element(plain: f32, offset: DoubleDouble) -> Result<f32> {
     if !x.is_finite() {
         return Err(Error::new(
             ErrorKind::Overflow,
-            "the offset element 10 overflows f32",
+            "the offset matrix element overflows f32",
         ));
     }
     Ok(x)

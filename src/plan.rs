@@ -122,6 +122,7 @@ fn shift_made(mapping: &DepthMapping, kind: OffsetKind, offset: f64, d: f64) -> 
 /// `../shared/NOTES.md`: 2 for surfaces facing the camera, more on slopes).
 ///
 /// # Errors
+/// [`ErrorKind::NotFinite`] if `lo`, `hi` or `steps` is NaN or infinite;
 /// [`ErrorKind::Domain`] unless `steps ≥ 1` and `lo ≤ hi` lie in the mapping's range;
 /// as [`DepthMapping::min_relative_epsilon`] for `Relative` on the median projection.
 pub fn range_offset(
@@ -133,11 +134,9 @@ pub fn range_offset(
     steps: f64,
 ) -> Result<RangeOffset> {
     finite(steps, "the number of depth steps is NaN or infinite")?;
-    if steps < 1.0
-        || lo.partial_cmp(&hi) == Some(std::cmp::Ordering::Greater)
-        || lo.is_nan()
-        || hi.is_nan()
-    {
+    finite(lo, "the nearest decal distance lo is NaN or infinite")?;
+    finite(hi, "the farthest decal distance hi is NaN or infinite")?;
+    if steps < 1.0 || lo > hi {
         return Err(domain("need steps >= 1 and lo <= hi"));
     }
     let mut needed = 0.0f64;

@@ -4,9 +4,11 @@
 //! Conventions: OpenGL's standard mapping, NDC depth `[−1, 1]`, `glDepthRange(0, 1)`, an m-bit
 //! unsigned normalized depth buffer whose steps are `1/(2^m − 1)` of window depth.
 
-use crate::domain::{depth_steps, representable, Planes};
+use crate::domain::{check_tweak, depth_steps, domain, finite, representable, Planes};
 use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::Result;
+use crate::error::{Error, ErrorKind};
+use crate::projection::ClipDepth;
 
 /// Window depth (what the depth buffer stores, in `[0, 1]`) at eye distance `d`: Walker's
 ///
@@ -116,10 +118,6 @@ pub(crate) fn depth_step_toward(planes: &Planes, steps: f64, d: f64) -> Result<f
 // reversed; s = 0 except for Kooima's median projection), so one step formula serves them all.
 // ---------------------------------------------------------------------------------------------
 
-use crate::domain::{domain, finite};
-use crate::error::{Error, ErrorKind};
-use crate::projection::ClipDepth;
-
 /// A depth-buffer format: how window depth in `[0, 1]` is quantised.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum DepthFormat {
@@ -217,15 +215,7 @@ impl DepthMapping {
     /// As [`Planes::new`]; [`ErrorKind::Domain`] unless `0 ≤ tweak < 1`.
     pub fn tweaked_infinite(n: f64, tweak: f64) -> Result<Self> {
         Planes::new(n, f64::INFINITY)?;
-        finite(
-            tweak,
-            "the infinite-projection tweak epsilon is NaN or infinite",
-        )?;
-        if !(0.0..1.0).contains(&tweak) {
-            return Err(domain(
-                "the infinite-projection tweak epsilon must lie in [0, 1)",
-            ));
-        }
+        check_tweak(tweak)?;
         Ok(Self {
             shape: Shape::Tweaked { near: n, tweak },
         })

@@ -7,7 +7,7 @@
 
 use glam::{DMat4, Mat4};
 
-use crate::domain::{domain, finite, representable, Planes};
+use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::error::{Error, ErrorKind, Result};
 
 /// The six parameters of `glFrustum`, validated.
@@ -269,15 +269,7 @@ pub const MIN_INFINITE_TWEAK: f64 = 1.0 / 4_194_304.0;
 /// As [`Frustum::to_cols_array_f64`]; [`ErrorKind::NotFinite`] if `tweak` is NaN or infinite;
 /// [`ErrorKind::Domain`] unless `0 ≤ tweak < 1`.
 pub fn tweaked_infinite_f64(frustum: &Frustum, tweak: f64) -> Result<[f64; 16]> {
-    finite(
-        tweak,
-        "the infinite-projection tweak epsilon is NaN or infinite",
-    )?;
-    if !(0.0..1.0).contains(&tweak) {
-        return Err(domain(
-            "the infinite-projection tweak epsilon must lie in [0, 1)",
-        ));
-    }
+    check_tweak(tweak)?;
     let mut m = frustum.to_cols_array_f64()?;
     let n = frustum.planes().near();
     m[10] = tweak - 1.0;

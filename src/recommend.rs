@@ -44,13 +44,20 @@
 //!   slope `s` seen at axis distance `d₁`: `g_y = s·F·(t−b)/(H·d₁)` (and `(r−l)/W` for x; the
 //!   tilt direction is unknown, so both use `s`). Mesa's llvmpipe snaps only coverage and sets
 //!   the depth plane up from the unsnapped float positions ([`Snapping::Unsnapped`], `S = 0`):
-//!   measured, the snapped term predicts 700 ulps of element 10 at f/n = 10, slope 3, 128²,
-//!   where 6 suffice.
+//!   measured (`examples/sweep.rs`, last line), the snapped term alone asks 963 f32 steps of
+//!   element 10 at f/n = 10, slope 3, 256², where 2 suffice.
 //!
 //! No term is a fudge factor and there is no safety margin: each is a worst-case bound on one
-//! rounding or snapping step. The bound is loose where the worst cases do not line up (on
-//! llvmpipe the recommendation is 1–16× the smallest offset that works, measured by bisection
-//! in `tests/gl_recommend.rs`; `examples/sweep.rs` prints the table).
+//! rounding or snapping step. The bound is loose where the worst cases do not line up: on
+//! llvmpipe a quad's per-pixel depth error reaches at most 27% of `q/2 + T + V + I`, and the
+//! recommendation is 1.0–4.0× the smallest offset that works (bisection over f32 steps of
+//! element 10) on sloped D16 planes and 3.5–15× on sloped D24/D32F planes, where the f32 terms
+//! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
+//!
+//! The model covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`, `glDepthRange(0, 1)`),
+//! the one the rasterizer tests measure; the other conventions of
+//! [`crate::precision::DepthMapping`] (`[0, 1]`, reversed Z) change `T` and `q` and are not
+//! covered yet.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
@@ -58,7 +65,8 @@
 //! is the same shape: `q` and `2(T + V + I)` are constants (`units = (q + 2(T+V+I))/r`) and the
 //! snapping term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one
 //! constant for the whole decal, so zshift evaluates the slope term at the decal's worst depth
-//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair.
+//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r`
+//! as [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
 //!
 //! # Bleed-through
 //! An occluder in front of the base must not lose to the decal. Its computed depth has the same
@@ -77,8 +85,11 @@ const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 /// What the depth attachment stores.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DepthFormat {
-    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`): `bits` in 1..=32.
-    Unorm { bits: u32 },
+    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`).
+    Unorm {
+        /// m, in 1..=32.
+        bits: u32,
+    },
     /// `GL_DEPTH_COMPONENT32F` under the standard `[−1, 1]` NDC depth mapping.
     Float32,
 }
@@ -337,4 +348,145 @@ fn check(scene: &Scene) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ErrorKind;
+
+    fn scene(format: DepthFormat, slope: f64, snapping: Snapping) -> Scene {
+        let e = 0.577_350_269_189_625_7;
+        Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
+            viewport: [256, 256],
+            format,
+            depth_range: [80.0, 120.0],
+            slope,
+            exact_depth: false,
+            snapping,
+        }
+    }
+
+    /// ε, δ and the NDC offset agree through the seed's own equations (4.1.4 and 4.1.7, the
+    /// latter through `offset::epsilon`, an independent implementation).
+    #[test]
+    fn the_forms_of_the_offset_agree_through_the_seed_equations() {
+        let s = scene(
+            DepthFormat::Unorm { bits: 24 },
+            1.0,
+            Snapping::SubpixelBits(8),
+        );
+        let r = recommend(&s).unwrap();
+        let m10 = (1e3 + 1.0) / (1e3 - 1.0);
+        assert!((-r.epsilon * m10 - r.ndc_offset).abs() <= 1e-15 * r.ndc_offset);
+        assert_eq!(r.ndc_offset, 2.0 * r.window_offset);
+        let eps = crate::offset::epsilon(1.0, 1e3, r.delta_at_far, -120.0).unwrap();
+        assert!(
+            (eps - r.epsilon).abs() <= 1e-12 * r.epsilon.abs(),
+            "{eps} vs {}",
+            r.epsilon
+        );
+    }
+
+    /// The bleed gap is the eye distance whose window-depth difference (Walker's f(d), through
+    /// `precision::window_depth`) is `2Δw − q` at the far end of the decal.
+    #[test]
+    fn the_bleed_gap_spans_twice_the_offset_less_a_quantum_in_window_depth() {
+        let s = scene(
+            DepthFormat::Unorm { bits: 16 },
+            3.0,
+            Snapping::SubpixelBits(8),
+        );
+        let r = recommend(&s).unwrap();
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+        let dw = w(120.0) - w(120.0 - r.bleed_gap);
+        let want = 2.0 * r.window_offset - r.terms.quantum;
+        assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
+    }
+
+    /// Terms that the model says vanish do, and the ones that grow with slope do.
+    #[test]
+    fn terms_vanish_and_grow_where_the_model_says() {
+        let facing = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Float32, 0.0, Snapping::SubpixelBits(8))
+        };
+        let t = error_terms(&facing).unwrap();
+        assert_eq!((t.vertex, t.interpolation, t.snap), (0.0, 0.0, 0.0));
+        assert_eq!(
+            t.quantum,
+            2f64.powi(-24),
+            "window depths near 1 have f32 spacing 2^-24"
+        );
+        let unsnapped =
+            error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::Unsnapped)).unwrap();
+        assert_eq!(unsnapped.snap, 0.0);
+        let s1 = error_terms(&scene(DepthFormat::Float32, 1.0, Snapping::SubpixelBits(8))).unwrap();
+        let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
+        assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
+        assert!(s3.vertex > s1.vertex);
+    }
+
+    #[test]
+    fn bad_scenes_are_refused_with_their_kind() {
+        let good = scene(DepthFormat::Unorm { bits: 24 }, 1.0, Snapping::Unsnapped);
+        let kind = |s: Scene| recommend(&s).unwrap_err().kind();
+        assert_eq!(
+            kind(Scene {
+                slope: f64::NAN,
+                ..good
+            }),
+            ErrorKind::NotFinite
+        );
+        assert_eq!(
+            kind(Scene {
+                slope: -1.0,
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                exact_depth: true,
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                depth_range: [120.0, 80.0],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                depth_range: [0.5, 80.0],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                viewport: [0, 256],
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                format: DepthFormat::Unorm { bits: 33 },
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+        assert_eq!(
+            kind(Scene {
+                snapping: Snapping::SubpixelBits(40),
+                ..good
+            }),
+            ErrorKind::Domain
+        );
+    }
 }

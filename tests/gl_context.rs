@@ -55,3 +55,20 @@ fn a_drawn_quad_reads_back() {
     assert_eq!(depth[8 * 16 + 8], 0.75);
     assert_eq!(depth[0], 1.0);
 }
+
+/// The depth-stencil target attaches and reports 8 stencil bits (the stencil decal method in
+/// the report needs it); a plain target reports none.
+#[test]
+fn depth_stencil_targets_have_eight_stencil_bits() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    for format in [DepthFormat::D24, DepthFormat::D32F] {
+        gl.set_target_with_stencil(8, 8, format)
+            .unwrap_or_else(|e| panic!("{format:?} + stencil: {e}"));
+        assert_eq!(gl.stencil_bits().expect("stencil bits"), 8, "{format:?}");
+        assert_eq!(gl.depth_bits().expect("depth bits"), format.bits());
+        gl.clear_stencil(1).expect("clear stencil");
+    }
+    assert!(gl.set_target_with_stencil(8, 8, DepthFormat::D16).is_err());
+    gl.set_target(8, 8, DepthFormat::D24).expect("plain target");
+    assert_eq!(gl.stencil_bits().expect("stencil bits"), 0);
+}

@@ -255,3 +255,61 @@ fn sloped_plane_depth_stays_within_the_models_per_quad_bound() {
     }
     println!("largest per-pixel error as a fraction of the model's per-quad bound: {worst:.2}");
 }
+
+/// The slope term's window-depth gradient per pixel (`recommend::window_gradient`) is what the
+/// rasterizer draws: the read-back depth of a tilted plane changes by that much per row.
+#[test]
+fn window_gradient_matches_the_rendered_depth_slope() {
+    use zshift_harness::coplanar::Setup;
+    let mut gl = context();
+    for (ratio, p, slope) in [
+        (10.0, 0.2, 3.0),
+        (1e3, 0.5, 1.0),
+        (1e3, 0.2, 3.0),
+        (1e4, 0.1, 0.3),
+    ] {
+        let s = Setup {
+            n: 1.0,
+            f: ratio,
+            tan_half: TAN_HALF,
+            size: 128,
+            format: DepthFormat::D32F,
+            depth_fraction: p,
+            slope,
+        };
+        gl.set_target(s.size, s.size, s.format).unwrap();
+        gl.clear([0.0; 4], 1.0).unwrap();
+        gl.draw_quad(
+            &s.base(),
+            &projection(1.0, ratio),
+            [1.0; 4],
+            &DrawState::default(),
+        )
+        .unwrap();
+        let depth = gl.read_depth().unwrap();
+        let (c, size) = (64usize, 128usize);
+        // Window depth is affine in window coordinates over a plane: average over 20 rows.
+        let measured =
+            f64::from(depth[(c - 10) * size + c] - depth[(c + 10) * size + c]).abs() / 20.0;
+        let e = TAN_HALF;
+        let scene = zshift::recommend::Scene {
+            frustum: zshift::Frustum::new(-e, e, -e, e, 1.0, ratio).unwrap(),
+            viewport: [128, 128],
+            format: zshift::recommend::DepthFormat::Float32,
+            depth_range: [s.axis_depth(), s.axis_depth()],
+            slope,
+            exact_depth: false,
+            snapping: zshift::recommend::Snapping::SubpixelBits(8),
+        };
+        let [_, gy] = zshift::recommend::window_gradient(&scene, s.axis_depth()).unwrap();
+        println!(
+            "{}: rendered {measured:.6e} per row, window_gradient {gy:.6e}",
+            s.label()
+        );
+        assert!(
+            (measured - gy).abs() <= 0.01 * gy + 4e-7,
+            "{}: rendered {measured:e} vs model {gy:e}",
+            s.label()
+        );
+    }
+}

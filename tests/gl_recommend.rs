@@ -56,6 +56,10 @@ fn check_format(format: DepthFormat) {
             "{label}: {} of {} decal pixels lost at the recommendation",
             r.rec.hit, r.rec.of
         );
+        assert_eq!(
+            r.rec_via_delta.hit, 0,
+            "{label}: pixels lost through zshift_load_offset_matrix(delta_at_far, -d2)"
+        );
         if r.setup.slope == 0.0 {
             assert!(
                 r.none.hit > 0,

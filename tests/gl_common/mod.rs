@@ -5,7 +5,8 @@
 use zshift::projection::Frustum;
 use zshift::recommend::{self, DepthFormat as Format, Recommendation, Scene, Snapping};
 use zshift_harness::coplanar::{
-    smallest_working_ulps, with_ulps_toward_camera, Bench, Count, Setup,
+    smallest_working_ulps, smallest_working_ulps_below, ulps_toward_camera,
+    with_ulps_toward_camera, Bench, Count, Setup,
 };
 use zshift_harness::{DepthFormat, Gl};
 
@@ -65,14 +66,25 @@ pub struct Row {
     pub c1: Count,
     pub c2: Count,
     pub rec: Count,
+    /// Lost with `zshift_load_offset_matrix(…, delta_at_far, −d₂)`, the seed-shaped entry point.
+    pub rec_via_delta: Count,
     pub recommendation: Recommendation,
     /// NDC offset of the recommended matrix (element 10 difference, as the GPU sees it).
     pub rec_ndc: f64,
-    /// Smallest NDC offset (whole f32 steps of element 10) with no lost pixel, by bisection.
+    /// Smallest NDC offset (whole f32 steps of element 10) from which every larger one up to
+    /// the recommendation loses no pixel (scan down from the recommendation).
     pub min_ndc: Option<f64>,
+    /// Smallest working NDC offset found by bisection over 1..=2^20 steps (assumes losses
+    /// shrink monotonically with the offset, which they do only roughly near the threshold).
+    pub bisect_ndc: Option<f64>,
+    /// Bleed-through at the recommendation past an occluder a quarter of the documented gap
+    /// in front of the base, and past one the full gap in front.
+    pub bleed_quarter: Count,
+    pub bleed_gap: Count,
 }
 
-/// Renders the setup with no offset, at c = 1, c = 2, at the recommendation, and bisects.
+/// Renders the setup with no offset, at c = 1, c = 2, at the recommendation, past occluders,
+/// and finds the smallest working offset (scan down from the recommendation, and bisection).
 pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
     let snapping = snapping_of(gl);
     let frustum = frustum_of(&s);
@@ -89,8 +101,19 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
     let c1 = bench.lost(&m1)?;
     let c2 = bench.lost(&m2)?;
     let rec = bench.lost(&rec_matrix)?;
-    let k = smallest_working_ulps(&mut bench, 1 << 20)?;
-    let min_ndc = k.map(|k| (with_ulps_toward_camera(&plain, k)[10] - plain[10]) as f64);
+    let (l, r, b, t, n, f) = s.frustum();
+    let (_, d2) = s.decal_depth_range();
+    let via_delta = zshift::load_offset_matrix(l, r, b, t, n, f, recommendation.delta_at_far, -d2)
+        .map_err(|e| e.to_string())?
+        .to_cols_array();
+    let rec_via_delta = bench.lost(&via_delta)?;
+    let bleed_quarter = bench.bleed(&rec_matrix, 0.25 * recommendation.bleed_gap)?;
+    let bleed_gap = bench.bleed(&rec_matrix, recommendation.bleed_gap)?;
+    let to_ndc =
+        |k: Option<u32>| k.map(|k| (with_ulps_toward_camera(&plain, k)[10] - plain[10]) as f64);
+    let bisect_ndc = to_ndc(smallest_working_ulps(&mut bench, 1 << 20)?);
+    let k_rec = ulps_toward_camera(&plain, &rec_matrix);
+    let min_ndc = to_ndc(smallest_working_ulps_below(&mut bench, k_rec)?);
     let rec_ndc = (rec_matrix[10] - plain[10]) as f64;
     Ok(Row {
         setup: s,
@@ -98,9 +121,13 @@ pub fn measure(gl: &mut Gl, s: Setup) -> Result<Row, String> {
         c1,
         c2,
         rec,
+        rec_via_delta,
         recommendation,
         rec_ndc,
         min_ndc,
+        bisect_ndc,
+        bleed_quarter,
+        bleed_gap,
     })
 }
 
@@ -118,28 +145,31 @@ pub fn setup(format: DepthFormat, ratio: f64, depth_fraction: f64, slope: f64, s
 }
 
 /// The table header and a row, as `examples/sweep.rs` prints them. ε values are
-/// `−Δndc/|m10|` for the NDC offset the f32 matrix actually carries.
-pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec | eps min (bisect) |    eps rec | rec/min";
+/// `−Δndc/|m10|` for the NDC offset the f32 matrix actually carries; "min" is the scan-down
+/// threshold (every offset from it up to the recommendation works), "bisect" the bisection's.
+pub const HEADER: &str = "configuration                      |    px | lost: none    c=1    c=2    rec |    eps min |  eps bisect |    eps rec | rec/min | gap/d2  | bleed: G/4    G";
 
 pub fn format_row(r: &Row) -> String {
     let pct = |c: &Count| format!("{:5.1}%", 100.0 * c.fraction());
     let m10 = (r.setup.f + r.setup.n) / (r.setup.f - r.setup.n);
-    let min = r.min_ndc.map_or("none <2^20 ulp".to_string(), |m| {
-        format!("{:.3e}", -m / m10)
-    });
+    let eps = |x: Option<f64>| x.map_or("none".to_string(), |m| format!("{:.3e}", -m / m10));
     let ratio = r
         .min_ndc
         .map_or("-".to_string(), |m| format!("{:.1}", r.rec_ndc / m));
     format!(
-        "{} | {:5} | {} {} {} {} | {:>16} | {:.3e} | {:>5}",
+        "{} | {:5} | {} {} {} {} | {:>10} | {:>11} | {:.3e} | {:>7} | {:.1e} | {} {}",
         r.setup.label(),
         r.none.of,
         pct(&r.none),
         pct(&r.c1),
         pct(&r.c2),
         pct(&r.rec),
-        min,
+        eps(r.min_ndc),
+        eps(r.bisect_ndc),
         -r.rec_ndc / m10,
-        ratio
+        ratio,
+        r.recommendation.bleed_gap / r.setup.decal_depth_range().1,
+        pct(&r.bleed_quarter),
+        pct(&r.bleed_gap)
     )
 }

@@ -14,17 +14,21 @@
 
 use crate::{DepthFormat, DrawState, Gl, Image, Quad};
 
-/// Base colour (blue), decal colour (red), occluder colour (green), clear colour (black).
+/// Base colour: blue.
 pub const BASE: [f32; 4] = [0.0, 0.0, 1.0, 1.0];
+/// Decal colour: red.
 pub const DECAL: [f32; 4] = [1.0, 0.0, 0.0, 1.0];
+/// Occluder colour: green.
 pub const OCCLUDER: [f32; 4] = [0.0, 1.0, 0.0, 1.0];
+/// Clear colour: black.
 pub const CLEAR: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 /// One configuration of the experiment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Setup {
-    /// Near and far plane distances.
+    /// Near plane distance.
     pub n: f64,
+    /// Far plane distance.
     pub f: f64,
     /// `tan` of the half field of view (both axes).
     pub tan_half: f64,
@@ -155,7 +159,9 @@ pub struct Bench<'a> {
 /// Counts from one render: `hit` of `of` pixels (lost decal pixels, or bled ones).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Count {
+    /// Pixels counted (lost, or bled).
     pub hit: usize,
+    /// Pixels they were counted among (the decal's coverage, or decal ∩ occluder).
     pub of: usize,
 }
 
@@ -311,4 +317,30 @@ pub fn smallest_working_ulps(bench: &mut Bench, max_k: u32) -> Result<Option<u32
         }
     }
     Ok(Some(hi))
+}
+
+/// The smallest `k` such that every offset from `k` up to `k_hi` steps (see
+/// [`with_ulps_toward_camera`]) loses no decal pixel, scanning down from `k_hi`; `None` if `k_hi`
+/// itself loses pixels. Losses are not monotone in `k` near the threshold (each element 10
+/// rounds the transform differently: measured, 1 step can work where 2 lose 19 %), so this is
+/// the robust threshold, never below what [`smallest_working_ulps`]'s bisection may report
+/// by luck.
+///
+/// # Errors
+/// GL failures.
+pub fn smallest_working_ulps_below(bench: &mut Bench, k_hi: u32) -> Result<Option<u32>, String> {
+    let plain = bench.plain;
+    let mut k = k_hi;
+    if bench.lost(&with_ulps_toward_camera(&plain, k))?.hit > 0 {
+        return Ok(None);
+    }
+    while k > 1 && bench.lost(&with_ulps_toward_camera(&plain, k - 1))?.hit == 0 {
+        k -= 1;
+    }
+    Ok(Some(k))
+}
+
+/// The number of f32 steps between the plain element 10 and an offset one (toward the camera).
+pub fn ulps_toward_camera(plain: &[f32; 16], offset: &[f32; 16]) -> u32 {
+    plain[10].to_bits().saturating_sub(offset[10].to_bits())
 }

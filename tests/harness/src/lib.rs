@@ -171,17 +171,24 @@ impl Default for DrawState {
 /// `glReadPixels` returns rows).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Region {
+    /// First column inside.
     pub x0: usize,
+    /// First row inside.
     pub y0: usize,
+    /// First column past the region.
     pub x1: usize,
+    /// First row past the region.
     pub y1: usize,
 }
 
 /// Colour pixels read back from the target, RGBA8, rows bottom-up.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: usize,
+    /// Height in pixels.
     pub height: usize,
+    /// `width × height` RGBA8 pixels, row by row from the bottom.
     pub pixels: Vec<[u8; 4]>,
 }
 
@@ -837,4 +844,127 @@ unsafe fn quad_pipeline(
     gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
     gl.bind_vertex_array(None);
     Ok((program, vao, vbo))
+}
+
+/// Depth-stencil targets, for decal methods that need a stencil buffer. Stencil state is not
+/// part of [`DrawState`]: set it through [`Gl::glow`] and reset it after use.
+impl Gl {
+    /// As [`Gl::set_target`], but the depth attachment is a packed depth-stencil renderbuffer
+    /// with 8 stencil bits: `GL_DEPTH24_STENCIL8` for [`DepthFormat::D24`],
+    /// `GL_DEPTH32F_STENCIL8` for [`DepthFormat::D32F`], attached to
+    /// `GL_DEPTH_STENCIL_ATTACHMENT`.
+    ///
+    /// # Errors
+    /// [`DepthFormat::D16`] (GL has no packed 16-bit depth-stencil format), a zero size, a GL
+    /// error, or an incomplete framebuffer (with its status).
+    pub fn set_target_with_stencil(
+        &mut self,
+        width: u32,
+        height: u32,
+        format: DepthFormat,
+    ) -> Result<(), String> {
+        let internal = match format {
+            DepthFormat::D24 => glow::DEPTH24_STENCIL8,
+            DepthFormat::D32F => glow::DEPTH32F_STENCIL8,
+            DepthFormat::D16 => return Err("no packed depth-stencil format with D16".into()),
+        };
+        if width == 0 || height == 0 {
+            return Err("the render target needs a nonzero width and height".into());
+        }
+        self.drop_target();
+        let (w, h) = (width as i32, height as i32);
+        let gl = &self.gl;
+        unsafe {
+            let fbo = gl.create_framebuffer()?;
+            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let color = gl.create_renderbuffer()?;
+            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(color));
+            gl.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, w, h);
+            gl.framebuffer_renderbuffer(
+                glow::FRAMEBUFFER,
+                glow::COLOR_ATTACHMENT0,
+                glow::RENDERBUFFER,
+                Some(color),
+            );
+            let depth = gl.create_renderbuffer()?;
+            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
+            gl.renderbuffer_storage(glow::RENDERBUFFER, internal, w, h);
+            gl.framebuffer_renderbuffer(
+                glow::FRAMEBUFFER,
+                glow::DEPTH_STENCIL_ATTACHMENT,
+                glow::RENDERBUFFER,
+                Some(depth),
+            );
+            self.target = Some(Target {
+                fbo,
+                color,
+                depth,
+                width: w,
+                height: h,
+                format,
+            });
+            let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
+            if status != glow::FRAMEBUFFER_COMPLETE {
+                return Err(format!(
+                    "framebuffer with {format:?} + stencil incomplete: status 0x{status:04X}"
+                ));
+            }
+            gl.viewport(0, 0, w, h);
+            gl.enable(glow::DEPTH_TEST);
+        }
+        self.check("set_target_with_stencil")
+    }
+
+    /// The stencil bits GL reports for the target (8 after [`Gl::set_target_with_stencil`],
+    /// 0 after [`Gl::set_target`]).
+    ///
+    /// # Errors
+    /// No target, or a GL error.
+    pub fn stencil_bits(&self) -> Result<u32, String> {
+        self.require_target()?;
+        // Querying the size of an empty attachment is GL_INVALID_OPERATION: ask its type first.
+        let kind = unsafe {
+            self.gl.get_framebuffer_attachment_parameter_i32(
+                glow::FRAMEBUFFER,
+                glow::STENCIL_ATTACHMENT,
+                glow::FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE,
+            )
+        };
+        if kind as u32 == glow::NONE {
+            self.check("stencil_bits")?;
+            return Ok(0);
+        }
+        let bits = unsafe {
+            self.gl.get_framebuffer_attachment_parameter_i32(
+                glow::FRAMEBUFFER,
+                glow::STENCIL_ATTACHMENT,
+                glow::FRAMEBUFFER_ATTACHMENT_STENCIL_SIZE,
+            )
+        };
+        self.check("stencil_bits")?;
+        Ok(bits as u32)
+    }
+
+    /// The address of a GL entry point (`eglGetProcAddress`), or null: for callers that must
+    /// call GL directly, without the harness's per-call `glGetError` (e.g. a benchmark of the
+    /// seed's `glFrustum` path). The pointer is valid while this context lives.
+    pub fn proc_address(&self, name: &str) -> *const c_void {
+        self.egl
+            .get_proc_address(name)
+            .map_or(std::ptr::null(), |f| f as *const c_void)
+    }
+
+    /// Clears the stencil buffer to `value` (with all stencil bits writable).
+    ///
+    /// # Errors
+    /// No target, or a GL error.
+    pub fn clear_stencil(&mut self, value: i32) -> Result<(), String> {
+        self.require_target()?;
+        unsafe {
+            self.gl.stencil_mask(0xFF);
+            self.gl.clear_stencil(value);
+            self.gl.clear(glow::STENCIL_BUFFER_BIT);
+        }
+        self.check("clear_stencil")
+    }
 }

@@ -1,0 +1,375 @@
+// zshift.hpp: a header-only C++17 wrapper over the zshift C ABI (include/zshift.h).
+//
+// Matrices come back as `zshift::Matrix` (std::array<float, 16>, column-major, what glLoadMatrixf
+// and glUniformMatrix4fv(loc, 1, GL_FALSE, m.data()) take); scalars as double. A failing call
+// throws `zshift::Error`, which carries the C status and its message; nothing else throws.
+//
+// Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
+// [-1, 1], window depth [0, 1]; n, f, d are positive distances (f may be +infinity where a
+// function says so), pz is an eye-space z (negative in front of the camera); delta > 0 moves
+// geometry toward the camera and gives epsilon < 0. Equation numbers refer to the seed texts.
+//
+// Link with the zshift library (pkg-config zshift, or CMake's zshift::zshift).
+#ifndef ZSHIFT_HPP
+#define ZSHIFT_HPP
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "zshift.h"
+
+static_assert(ZSHIFT_ABI_VERSION == 1, "zshift.hpp wraps version 1 of the zshift C ABI");
+
+namespace zshift {
+
+/// A 4x4 matrix, column-major: element 10 is row 2, column 2.
+using Matrix = std::array<float, 16>;
+
+/// The index in a Matrix of the element at `row`, `column` (0-based): column * 4 + row.
+/// `index(2, 2)` is 10, the element that carries the depth offset.
+constexpr std::size_t index(std::size_t row, std::size_t column) noexcept { return column * 4 + row; }
+
+/// The C ABI version this wrapper was written for (ZSHIFT_ABI_VERSION).
+inline constexpr int abi_version = ZSHIFT_ABI_VERSION;
+
+/// The outcome of a C call, as a scoped enum with the header's values.
+enum class Status : std::int32_t {
+  ok = ZSHIFT_OK,
+  null_pointer = ZSHIFT_ERR_NULL_POINTER,
+  not_finite = ZSHIFT_ERR_NOT_FINITE,
+  domain = ZSHIFT_ERR_DOMAIN,
+  unresolvable = ZSHIFT_ERR_UNRESOLVABLE,
+  overflow = ZSHIFT_ERR_OVERFLOW,
+  internal = ZSHIFT_ERR_INTERNAL,
+};
+
+/// The C status code of a Status.
+constexpr ZshiftStatus to_c(Status status) noexcept { return static_cast<ZshiftStatus>(status); }
+
+/// The library's sentence for a status (never null; unknown codes get "unknown zshift status").
+inline const char *message(Status status) noexcept { return zshift_status_message(to_c(status)); }
+
+/// A zshift call failed. `status()` says how; `what()` is the library's message for it.
+class Error : public std::runtime_error {
+ public:
+  explicit Error(ZshiftStatus status)
+      : std::runtime_error(zshift_status_message(status)), status_(static_cast<Status>(status)) {}
+
+  /// How the call failed (never Status::ok).
+  Status status() const noexcept { return status_; }
+
+ private:
+  Status status_;
+};
+
+namespace detail {
+inline void check(ZshiftStatus status) {
+  if (status != ZSHIFT_OK) throw Error(status);
+}
+
+template <typename Call>
+Matrix matrix(Call call) {
+  Matrix m{};
+  check(call(m.data()));
+  return m;
+}
+
+template <typename Call>
+double scalar(Call call) {
+  double value = 0.0;
+  check(call(&value));
+  return value;
+}
+}  // namespace detail
+
+/// The glFrustum(l, r, b, t, n, f) matrix (seed 000, eq. 4.1.1), each element the float nearest
+/// the exact value. `f` may be +infinity (element 10 is -1, element 14 is -2n).
+/// Throws Error: Status::not_finite for NaN or a stray infinity; Status::domain if l == r,
+/// b == t, n <= 0 or f <= n; Status::overflow if an element does not fit a float.
+inline Matrix frustum(double l, double r, double b, double t, double n, double f) {
+  return detail::matrix([&](float *out) { return zshift_frustum(l, r, b, t, n, f, out); });
+}
+
+/// The drop-in for the seed's LoadOffsetMatrix: frustum() with element 10 scaled by
+/// 1 + epsilon(n, f, delta, pz) (eq. 4.1.3 and 4.1.7) and rounded away from the plain element,
+/// so the offset is never lost to float rounding. Every other element equals frustum()'s.
+/// Throws Error: as frustum(); Status::not_finite for a NaN or infinite delta or pz;
+/// Status::domain if pz is outside [-f, -n] or pz + delta >= 0.
+inline Matrix load_offset_matrix(double l, double r, double b, double t, double n, double f,
+                                 double delta, double pz) {
+  return detail::matrix(
+      [&](float *out) { return zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out); });
+}
+
+/// Epsilon for an eye-space shift delta at eye depth pz (eq. 4.1.7):
+/// -(2fn/(f+n)) * delta / (pz * (pz + delta)). Throws Error: Status::not_finite,
+/// Status::domain (bad planes, pz outside [-f, -n], pz + delta >= 0), Status::overflow.
+inline double epsilon(double n, double f, double delta, double pz) {
+  return detail::scalar([&](double *out) { return zshift_epsilon(n, f, delta, pz, out); });
+}
+
+/// The smallest |epsilon| that moves depth by one step of a `bits`-bit buffer:
+/// 2/(2^bits - 1) * (f - n)/(f + n) (eq. 4.1.8 as corrected by seed 002).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, bits outside 1..=32).
+inline double min_epsilon(double n, double f, std::uint32_t bits) {
+  return detail::scalar([&](double *out) { return zshift_min_epsilon(n, f, bits, out); });
+}
+
+/// The smallest shift toward the camera that changes the stored depth at pz:
+/// k*pz^2/(1 - k*pz), eq. 4.1.9 with seed 002's k = (f - n)/(f*n*(2^bits - 1)).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, pz outside [-f, -n], bits).
+inline double min_delta_toward(double n, double f, std::uint32_t bits, double pz) {
+  return detail::scalar([&](double *out) { return zshift_min_delta_toward(n, f, bits, pz, out); });
+}
+
+/// The largest (least negative) shift away from the camera that still changes the stored depth
+/// at pz: -k*pz^2/(1 + k*pz), eq. 4.1.10 with the corrected k.
+/// Throws Error: as min_delta_toward(); Status::unresolvable if k*|pz| >= 1; Status::overflow.
+inline double max_delta_away(double n, double f, std::uint32_t bits, double pz) {
+  return detail::scalar([&](double *out) { return zshift_max_delta_away(n, f, bits, pz, out); });
+}
+
+/// The window depth in [0, 1] of a point at eye distance d (Walker's f(d), seed 001).
+/// Throws Error: Status::not_finite, Status::domain (bad planes, d outside [n, f]).
+inline double window_depth(double n, double f, double d) {
+  return detail::scalar([&](double *out) { return zshift_window_depth(n, f, d, out); });
+}
+
+/// The exact depth step at eye distance d: q*d^2/(b + q*d), q = 1/(2^bits - 1),
+/// b = fn/(f - n) (Walker's eq. 3, seed 001). Throws Error: Status::not_finite, Status::domain.
+inline double depth_resolution(double n, double f, std::uint32_t bits, double d) {
+  return detail::scalar([&](double *out) { return zshift_depth_resolution(n, f, bits, d, out); });
+}
+
+/// What a scene knows about one decal and the surface under it (the C `ZshiftScene`): the base's
+/// glFrustum, the viewport, the depth attachment's GL internal format, the decal's nearest and
+/// farthest eye distance, its plane's eye-space slope |dz/dx| + |dz/dy|, whether base and decal
+/// share one float z (`exact_depth`), and GL_SUBPIXEL_BITS (or `subpixel_unsnapped`).
+using Scene = ZshiftScene;
+
+/// The recommended offset in every form an engine may apply it (the C `ZshiftRecommendation`).
+using Recommendation = ZshiftRecommendation;
+
+/// `subpixel_bits` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
+inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
+
+/// A Scene from its fields, in declaration order; usable in constant expressions.
+constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
+                           std::uint32_t viewport_width, std::uint32_t viewport_height,
+                           std::uint32_t depth_format, double decal_near, double decal_far,
+                           double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
+  return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits};
+}
+
+/// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
+/// for `scene` (quantum, f32 rounding of transform, vertices and interpolation, sub-pixel
+/// snapping; seeds 000, 002, 004), with its bleed gap and glPolygonOffset equivalent.
+/// Throws Error: Status::not_finite; Status::domain (bad frustum, zero viewport, unknown
+/// depth_format, decal depths outside [n, f] or decreasing, negative slope, exact_depth with a
+/// slope, subpixel_bits < -1 or > 32); Status::overflow.
+inline Recommendation recommend(const Scene &scene) {
+  Recommendation out{};
+  detail::check(zshift_recommend(&scene, &out));
+  return out;
+}
+
+/// The decal's projection for the recommended offset: frustum() of the scene with element 10
+/// scaled by 1 + recommend(scene).epsilon, rounded outward. Throws Error: as recommend().
+inline Matrix recommend_matrix(const Scene &scene) {
+  return detail::matrix([&](float *out) { return zshift_recommend_matrix(&scene, out); });
+}
+
+// ---- Every clip convention, Kooima's median projection, depth bias, planning ----
+
+/// NDC depth convention (ZSHIFT_CLIP_*): OpenGL's [-1, 1]; [0, 1] (glClipControl ZERO_TO_ONE,
+/// Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; for float depth).
+enum class Clip : std::int32_t {
+  neg_one_to_one = ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+  zero_to_one = ZSHIFT_CLIP_ZERO_TO_ONE,
+  reversed_zero_to_one = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+};
+
+/// Depth attachment format (ZSHIFT_FORMAT_*): 16-, 24-, 32-bit unsigned normalized, 32-bit float.
+enum class Format : std::int32_t {
+  unorm16 = ZSHIFT_FORMAT_UNORM16,
+  unorm24 = ZSHIFT_FORMAT_UNORM24,
+  unorm32 = ZSHIFT_FORMAT_UNORM32,
+  float32 = ZSHIFT_FORMAT_FLOAT32,
+};
+
+/// Whose constant depth bias (ZSHIFT_BIAS_*): glPolygonOffset units, Direct3D DepthBias, Vulkan
+/// depthBiasConstantFactor.
+enum class BiasApi : std::int32_t {
+  opengl = ZSHIFT_BIAS_OPENGL,
+  direct3d = ZSHIFT_BIAS_DIRECT3D,
+  vulkan = ZSHIFT_BIAS_VULKAN,
+};
+
+/// What range_offset() returns (ZSHIFT_OFFSET_*): a signed NDC offset for element 10, or a
+/// relative epsilon for element 14 (reversed Z with float depth).
+enum class OffsetKind : std::int32_t {
+  ndc = ZSHIFT_OFFSET_NDC,
+  relative = ZSHIFT_OFFSET_RELATIVE,
+};
+
+/// The smallest tweak for tweaked_infinite() that keeps far geometry inside the clip volume in
+/// float arithmetic: 2^-22 (Lengyel, GDC 2007).
+inline constexpr double min_infinite_tweak = ZSHIFT_MIN_INFINITE_TWEAK;
+
+/// gluPerspective(fovy, aspect, n, f), fovy in degrees, NDC depth [-1, 1], f may be +infinity.
+/// Throws Error: Status::not_finite; Status::domain unless 0 < fovy < 180, aspect > 0, 0 < n < f.
+inline Matrix perspective(double fovy, double aspect, double n, double f) {
+  return detail::matrix([&](float *out) { return zshift_perspective(fovy, aspect, n, f, out); });
+}
+
+/// glFrustum's x/y rows with the depth row of `clip` (zshift_projection).
+/// Throws Error: as frustum(); Status::domain for an unknown clip.
+inline Matrix projection(double l, double r, double b, double t, double n, double f, Clip clip) {
+  return detail::matrix([&](float *out) {
+    return zshift_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), out);
+  });
+}
+
+/// projection() with geometry at `pz` moved toward the camera by `delta`: a constant NDC offset
+/// through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or element 14
+/// scaled (reversed), rounded outward. Throws Error: as projection(); Status::domain if pz is
+/// outside [-f, -n] or the shifted point leaves [n, f].
+inline Matrix offset_projection(double l, double r, double b, double t, double n, double f, Clip clip,
+                                double delta, double pz) {
+  return detail::matrix([&](float *out) {
+    return zshift_offset_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+  });
+}
+
+/// offset_projection() for gluPerspective parameters. Throws Error: as both.
+inline Matrix offset_perspective(double fovy, double aspect, double n, double f, Clip clip, double delta,
+                                 double pz) {
+  return detail::matrix([&](float *out) {
+    return zshift_offset_perspective(fovy, aspect, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+  });
+}
+
+/// The tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+/// Throws Error: as frustum(); Status::domain unless 0 <= tweak < 1.
+inline Matrix tweaked_infinite(double l, double r, double b, double t, double n, double tweak) {
+  return detail::matrix([&](float *out) { return zshift_tweaked_infinite(l, r, b, t, n, tweak, out); });
+}
+
+/// tweaked_infinite() with geometry at `pz` moved toward the camera by `delta` (element 10,
+/// rounded outward). Throws Error: as tweaked_infinite(); Status::domain if pz or pz + delta > -n.
+inline Matrix offset_tweaked_infinite(double l, double r, double b, double t, double n, double tweak,
+                                      double delta, double pz) {
+  return detail::matrix(
+      [&](float *out) { return zshift_offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz, out); });
+}
+
+/// The `ndc_offset` uniform of bindings/glsl/ftransform_mdp.glsl (Kooima's median projection,
+/// seed 003) that moves geometry at `pz` toward the camera by `delta`.
+/// Throws Error: Status::not_finite; Status::domain unless median > 0, pz <= 0, pz + delta <= 0.
+inline double median_ndc_offset(double median, double delta, double pz) {
+  return detail::scalar([&](double *out) { return zshift_median_ndc_offset(median, delta, pz, out); });
+}
+
+/// The window depth at eye distance d under `clip` (Walker's f(d), seed 001; reversed
+/// n(f - d)/((f - n)d)). Throws Error: Status::not_finite, Status::domain.
+inline double window_depth_clip(double n, double f, Clip clip, double d) {
+  return detail::scalar(
+      [&](double *out) { return zshift_window_depth_clip(n, f, static_cast<std::int32_t>(clip), d, out); });
+}
+
+/// The exact depth step at eye distance d under `clip` and `format` (Walker's eq. 3 for every
+/// convention). Throws Error: Status::not_finite, Status::domain.
+inline double depth_step(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_depth_step(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The depth step at eye distance d (>= 0) under Kooima's median projection (seed 003).
+/// Throws Error: Status::not_finite, Status::domain.
+inline double median_depth_step(double median, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_median_depth_step(median, static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The smallest constant NDC offset (a magnitude) that changes the stored depth at d (seed 002's
+/// quantum 2/(2^m - 1) for UNORM under [-1, 1]). Throws Error: as depth_step().
+inline double min_ndc_offset(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_ndc_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+  });
+}
+
+/// The smallest |epsilon| for element 10's scaling that changes the stored depth at d under
+/// `clip` and `format` (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Throws Error: as
+/// depth_step(); Status::unresolvable for reversed Z with f = +infinity.
+inline double min_epsilon_clip(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_epsilon_clip(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+                                   out);
+  });
+}
+
+/// The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored depth
+/// at d. Throws Error: as depth_step().
+inline double min_relative_epsilon(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_min_relative_epsilon(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+                                       out);
+  });
+}
+
+/// The constant depth bias of `api` equivalent to moving geometry at pz toward the camera by
+/// delta (negative under [-1, 1] and [0, 1]). Throws Error: Status::not_finite, Status::domain.
+inline double bias_of_shift(double n, double f, Clip clip, Format format, BiasApi api, double delta, double pz) {
+  return detail::scalar([&](double *out) {
+    return zshift_bias_of_shift(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                static_cast<std::int32_t>(api), delta, pz, out);
+  });
+}
+
+/// The eye-space shift toward the camera a constant `bias` of `api` makes at pz (the inverse of
+/// bias_of_shift()). Throws Error: as bias_of_shift(); Status::unresolvable.
+inline double shift_of_bias(double n, double f, Clip clip, Format format, BiasApi api, double bias, double pz) {
+  return detail::scalar([&](double *out) {
+    return zshift_shift_of_bias(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                static_cast<std::int32_t>(api), bias, pz, out);
+  });
+}
+
+/// The tightest clip planes {n, f} for a scene between eye distances `nearest` and `farthest`
+/// (f may be +infinity). Throws Error: Status::not_finite; Status::domain unless
+/// 0 < nearest <= farthest.
+inline std::array<double, 2> tight_planes(double nearest, double farthest) {
+  std::array<double, 2> planes{};
+  detail::check(zshift_tight_planes(nearest, farthest, planes.data()));
+  return planes;
+}
+
+/// range_offset()'s result: the offset, and the eye-space shifts it makes at lo and at hi.
+struct RangeOffset {
+  double offset, shift_at_lo, shift_at_hi;
+};
+
+/// The smallest single offset that moves stored depth by at least `steps` steps at every
+/// distance in [lo, hi]; multiply `offset` by k for the k-th stacked decal layer.
+/// Throws Error: Status::not_finite, Status::domain, Status::unresolvable.
+inline RangeOffset range_offset(double n, double f, Clip clip, Format format, OffsetKind kind, double lo,
+                                double hi, double steps) {
+  std::array<double, 3> out{};
+  detail::check(zshift_range_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
+                                    static_cast<std::int32_t>(kind), lo, hi, steps, out.data()));
+  return {out[0], out[1], out[2]};
+}
+
+/// The library version, such as "0.1.0".
+inline std::string version() { return zshift_version(); }
+
+}  // namespace zshift
+
+#endif  // ZSHIFT_HPP

@@ -1,0 +1,35 @@
+"""The README's Python quick start, run as written (the marked region is quoted verbatim there)."""
+
+import contextlib
+import io
+import unittest
+
+
+class QuickStart(unittest.TestCase):
+    def test_quickstart(self):
+        printed = io.StringIO()
+        with contextlib.redirect_stdout(printed):
+            # [quickstart-python]
+            import zshift
+
+            frustum = (-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0)  # the base's glFrustum(l, r, b, t, n, f)
+            base = zshift.frustum(*frustum)  # replaces glFrustum
+            decal = zshift.recommend_matrix(  # replaces LoadOffsetMatrix, with the offset a rasterizer needs
+                frustum, viewport=(1280, 720), depth_format=zshift.GL_DEPTH_COMPONENT24,
+                decal_depths=(40.0, 60.0),  # the decal's nearest and farthest eye distance
+                slope=1.0,  # |dz/dx| + |dz/dy| of its plane in eye space
+                subpixel_bits=8)  # glGetIntegerv(GL_SUBPIXEL_BITS)
+            # moderngl: program["projection"].write(struct.pack("16f", *decal))
+
+            try:
+                zshift.load_offset_matrix(*frustum, 300.0, -250.0)  # delta, pz: pz + delta > 0 is behind the eye
+            except zshift.ZshiftError as error:
+                print(error.status.name, "-", error)  # DOMAIN - an input was outside the function's domain
+            # [/quickstart-python]
+        self.assertGreater(decal[10], base[10], "the decal moved toward the camera")
+        self.assertEqual([decal[i] for i in range(16) if i != 10], [base[i] for i in range(16) if i != 10])
+        self.assertEqual(printed.getvalue(), "DOMAIN - an input was outside the function's domain\n")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,397 @@
+"""Tests of the zshift ctypes package against exact rational references (fractions.Fraction,
+evaluating the seed formulas independently of zshift), and of its error and lookup behaviour.
+
+Run from the repository root: python3 -m unittest discover -s bindings/python -t bindings/python
+"""
+
+import math
+import os
+import re
+import struct
+import subprocess
+import sys
+import unittest
+from fractions import Fraction as Q
+from pathlib import Path
+from unittest import mock
+
+import zshift
+
+ROOT = Path(__file__).resolve().parents[3]
+
+
+def f32(x):
+    """The float32 nearest x (round to nearest even), as a Python float."""
+    return struct.unpack("f", struct.pack("f", float(x)))[0]
+
+
+def f32_neighbours(x):
+    """The float32 values either side of the float32 x."""
+    bits = struct.unpack("I", struct.pack("f", x))[0]
+    up, down = (bits + 1, bits - 1) if x > 0 else (bits - 1, bits + 1)
+    if x == 0:
+        return -1.4e-45, 1.4e-45
+    return tuple(struct.unpack("f", struct.pack("I", b))[0] for b in (down, up))
+
+
+def steps(bits):
+    return Q(2**bits - 1)
+
+
+def exact_frustum(l, r, b, t, n, f):
+    """glFrustum's matrix (seed 000, eq. 4.1.1), column-major, in exact rationals."""
+    l, r, b, t, n, f = map(Q, (l, r, b, t, n, f))
+    m = [Q(0)] * 16
+    m[0], m[5] = 2 * n / (r - l), 2 * n / (t - b)
+    m[8], m[9] = (r + l) / (r - l), (t + b) / (t - b)
+    m[10], m[11], m[14] = -(f + n) / (f - n), Q(-1), -2 * f * n / (f - n)
+    return m
+
+
+def exact_epsilon(n, f, delta, pz):
+    """Eq. 4.1.7."""
+    n, f, delta, pz = map(Q, (n, f, delta, pz))
+    return -2 * f * n / (f + n) * delta / (pz * (pz + delta))
+
+
+def exact_k(n, f, bits):
+    """Eq. 4.1.11 with seed 002's correction."""
+    n, f = Q(n), Q(f)
+    return (f - n) / (f * n * steps(bits))
+
+
+def exact_window_depth(n, f, d):
+    """Walker's f(d) (seed 001) as printed."""
+    n, f, d = map(Q, (n, f, d))
+    return (f + n) / (2 * (f - n)) - f * n / (d * (f - n)) + Q(1, 2)
+
+
+class TupleMatrices(unittest.TestCase):
+    """Matrices without numpy: tuples of 16 Python floats."""
+
+    CASES = [(-1, 1, -1, 1, 1, 100), (-0.1, 0.3, -0.2, 0.1, 0.1, 1e4), (-2, 2, -1.5, 1.5, 0.01, 1e6)]
+
+    def setUp(self):
+        patcher = mock.patch.object(zshift, "_numpy", None)
+        patcher.start()
+        self.addCleanup(patcher.stop)
+
+    def test_frustum_is_nearest_float32_of_exact_matrix(self):
+        for case in self.CASES:
+            m = zshift.frustum(*case)
+            self.assertIsInstance(m, tuple)
+            self.assertEqual(len(m), 16)
+            for i, (got, want) in enumerate(zip(m, exact_frustum(*case))):
+                nearest = f32(want)
+                self.assertIn(got, (nearest, *f32_neighbours(nearest)), f"{case} element {i}")
+
+    def test_infinite_far_plane(self):
+        m = zshift.frustum(-1, 1, -1, 1, 0.5, math.inf)
+        self.assertEqual((m[10], m[11], m[14]), (-1.0, -1.0, -1.0))
+
+    def test_offset_matrix_moves_element_10_by_at_least_the_exact_offset(self):
+        for l, r, b, t, n, f, delta, pz in [
+            (-1, 1, -1, 1, 1, 100, 0.01, -50),
+            (-0.1, 0.1, -0.1, 0.1, 0.1, 1e4, 2.0, -5e3),
+            (-1, 1, -1, 1, 1, 1e6, -10.0, -1e3),
+        ]:
+            plain = zshift.frustum(l, r, b, t, n, f)
+            shifted = zshift.load_offset_matrix(l, r, b, t, n, f, delta, pz)
+            for i in range(16):
+                if i != 10:
+                    self.assertEqual(shifted[i], plain[i], f"element {i}")
+            exact_offset = exact_frustum(l, r, b, t, n, f)[10] * exact_epsilon(n, f, delta, pz)
+            moved = Q(shifted[10]) - Q(plain[10])
+            ulp = max(abs(Q(x) - Q(shifted[10])) for x in f32_neighbours(shifted[10]))
+            self.assertGreater(moved * exact_offset, 0, "offset in the wrong direction")
+            self.assertGreaterEqual(abs(moved), abs(exact_offset))
+            self.assertLessEqual(abs(moved), abs(exact_offset) + ulp)
+
+
+@unittest.skipIf(zshift._numpy is None, "numpy is not installed (.ci/run installs it)")
+class NumpyMatrices(unittest.TestCase):
+    """Matrices with numpy: float32 arrays of shape (16,), the same values as the tuples."""
+
+    def test_arrays_equal_the_tuples(self):
+        array = zshift.load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.5, -50)
+        with mock.patch.object(zshift, "_numpy", None):
+            plain_tuple = zshift.load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.5, -50)
+        self.assertEqual(array.dtype, zshift._numpy.float32)
+        self.assertEqual(array.shape, (16,))
+        self.assertEqual(tuple(float(x) for x in array), plain_tuple)
+
+
+class Scalars(unittest.TestCase):
+    """Each scalar is the f64 nearest the exact value (the library rounds correctly), or within
+    the stated bound."""
+
+    def assert_nearest(self, got, exact, what):
+        self.assertIsInstance(got, float)
+        self.assertEqual(got, float(exact), f"{what}: {got!r} vs exact {float(exact)!r}")
+
+    def test_epsilon(self):
+        self.assert_nearest(zshift.epsilon(0.1, 1000, 0.5, -20), exact_epsilon(0.1, 1000, 0.5, -20), "epsilon")
+        self.assertLess(zshift.epsilon(0.1, 1000, 0.5, -20), 0)
+        pz, delta = Q(-20), Q(0.5)
+        self.assert_nearest(zshift.epsilon(1, math.inf, 0.5, -20), -2 * delta / (pz * (pz + delta)), "f = inf")
+
+    def test_min_epsilon(self):
+        for bits in (1, 16, 24, 32):
+            exact = 2 / steps(bits) * (Q(1000) - Q(0.1)) / (Q(1000) + Q(0.1))
+            self.assert_nearest(zshift.min_epsilon(0.1, 1000, bits), exact, f"bits {bits}")
+
+    def test_min_delta_toward_and_depth_resolution(self):
+        k, pz = exact_k(0.1, 1000, 16), Q(-300)
+        exact = k * pz * pz / (1 - k * pz)
+        self.assert_nearest(zshift.min_delta_toward(0.1, 1000, 16, -300), exact, "min_delta_toward")
+        # Seeds 000 (with 002) and 001 agree: Walker's depth step at d = -pz is the same number.
+        self.assert_nearest(zshift.depth_resolution(0.1, 1000, 16, 300), exact, "depth_resolution")
+
+    def test_max_delta_away(self):
+        k, pz = exact_k(0.1, 1000, 16), Q(-2)
+        self.assert_nearest(zshift.max_delta_away(0.1, 1000, 16, -2), -k * pz * pz / (1 + k * pz), "max_delta_away")
+
+    def test_window_depth(self):
+        self.assert_nearest(zshift.window_depth(0.1, 1000, 37), exact_window_depth(0.1, 1000, 37), "f(37)")
+        self.assertEqual(zshift.window_depth(1, 100, 1), 0.0)
+        self.assertEqual(zshift.window_depth(1, 100, 100), 1.0)
+
+
+class Errors(unittest.TestCase):
+    """Failures raise ZshiftError carrying the status and the library's message."""
+
+    def assert_raises_status(self, status, fn, *args):
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            fn(*args)
+        self.assertEqual(caught.exception.status, status)
+        self.assertEqual(str(caught.exception), zshift.status_message(status))
+        self.assertEqual(caught.exception.message, zshift.status_message(status))
+        self.assertIsInstance(caught.exception, ValueError)
+
+    def test_domain(self):
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, 1, 1, -1, 1, 1, 100)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, -1, 1, -1, 1, 5, 5)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.load_offset_matrix, -1, 1, -1, 1, 1, 100, 50, -50)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.window_depth, 1, 100, 0.5)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_epsilon, 1, 100, 33)
+
+    def test_not_finite(self):
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.frustum, math.nan, 1, -1, 1, 1, 100)
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.epsilon, 1, 100, math.nan, -20)
+        self.assert_raises_status(zshift.Status.NOT_FINITE, zshift.frustum, -1, 1, -1, 1, 1, -math.inf)
+
+    def test_unresolvable_and_overflow(self):
+        self.assert_raises_status(zshift.Status.UNRESOLVABLE, zshift.max_delta_away, 1, 1e6, 1, -1e5)
+        self.assert_raises_status(zshift.Status.OVERFLOW, zshift.frustum, 0, 1e-40, -1, 1, 1, 100)
+
+    def test_bits_outside_uint32_are_refused_not_wrapped(self):
+        # ctypes alone would turn 2**32 + 24 into 24 and answer for a 24-bit buffer.
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_epsilon, 1, 100, 2**32 + 24)
+        self.assert_raises_status(zshift.Status.DOMAIN, zshift.min_delta_toward, 1, 100, -1, -50)
+
+    def test_wrong_argument_types_raise_type_errors(self):
+        with self.assertRaises(Exception) as caught:
+            zshift.frustum("left", 1, -1, 1, 1, 100)
+        self.assertNotIsInstance(caught.exception, zshift.ZshiftError)
+
+    def test_status_messages(self):
+        messages = [zshift.status_message(s) for s in zshift.Status]
+        self.assertEqual(len(set(messages)), len(messages), "each status has its own message")
+        self.assertEqual(zshift.status_message(99), "unknown zshift status")
+        self.assertEqual(zshift.ZshiftError(99).status, 99)
+
+
+class Recommend(unittest.TestCase):
+    """zshift.recommend: its parts agree with each other and with the seed formulas (exact
+    rationals); recommend_matrix moves element 10 by at least the recommended offset."""
+
+    FRUSTUM = (-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0)
+    ARGS = dict(viewport=(1280, 720), depth_format=zshift.GL_DEPTH_COMPONENT24, decal_depths=(40.0, 60.0),
+                slope=1.0, subpixel_bits=8)
+
+    def test_parts_agree(self):
+        r = zshift.recommend(self.FRUSTUM, **self.ARGS)
+        n, f = Q(0.1), Q(1000.0)
+        self.assertEqual(r.quantum, float(1 / steps(24)))
+        terms = Q(r.quantum) + 2 * (Q(r.transform) + Q(r.vertex) + Q(r.interpolation) + Q(r.snap))
+        self.assertAlmostEqual(float((Q(r.window_offset) - terms) / terms), 0.0, delta=1e-15)
+        self.assertEqual(r.ndc_offset, 2 * r.window_offset)
+        m10 = (f + n) / (f - n)
+        self.assertAlmostEqual(float((Q(r.epsilon) + Q(r.ndc_offset) / m10) / Q(r.epsilon)), 0.0, delta=1e-14)
+        eps_of_delta = exact_epsilon(0.1, 1000.0, r.delta_at_far, -60.0)  # eq. 4.1.7 at pz = -farthest
+        self.assertAlmostEqual(float((eps_of_delta - Q(r.epsilon)) / Q(r.epsilon)), 0.0, delta=1e-12)
+        self.assertEqual(r.polygon_offset_factor, 2.0**-7)  # 2^(1 - GL_SUBPIXEL_BITS)
+        self.assertGreater(r.snap, 0)
+        self.assertGreater(r.bleed_gap, 0)
+
+    def test_unsnapped_and_exact_depth_drop_their_terms(self):
+        unsnapped = zshift.recommend(self.FRUSTUM, **dict(self.ARGS, subpixel_bits=zshift.SUBPIXEL_UNSNAPPED))
+        self.assertEqual((unsnapped.snap, unsnapped.polygon_offset_factor), (0.0, 0.0))
+        exact = zshift.recommend(self.FRUSTUM, **dict(self.ARGS, slope=0.0, exact_depth=True))
+        self.assertEqual((exact.vertex, exact.interpolation, exact.snap), (0.0, 0.0, 0.0))
+        self.assertLess(exact.window_offset, unsnapped.window_offset)
+
+    def test_matrix_moves_element_10_by_the_recommended_offset(self):
+        with mock.patch.object(zshift, "_numpy", None):
+            plain = zshift.frustum(*self.FRUSTUM)
+            decal = zshift.recommend_matrix(self.FRUSTUM, **self.ARGS)
+        r = zshift.recommend(self.FRUSTUM, **self.ARGS)
+        self.assertEqual([decal[i] for i in range(16) if i != 10], [plain[i] for i in range(16) if i != 10])
+        exact_offset = exact_frustum(*self.FRUSTUM)[10] * Q(r.epsilon)  # m10 * epsilon > 0: toward the camera
+        moved = Q(decal[10]) - Q(plain[10])
+        ulp = max(abs(Q(x) - Q(decal[10])) for x in f32_neighbours(decal[10]))
+        self.assertGreaterEqual(moved, exact_offset)
+        self.assertLessEqual(moved, exact_offset + ulp)
+
+    def test_errors(self):
+        domain, not_finite = zshift.Status.DOMAIN, zshift.Status.NOT_FINITE
+        for changes, status in [
+            (dict(decal_depths=(70.0, 60.0)), domain),
+            (dict(decal_depths=(0.05, 60.0)), domain),
+            (dict(slope=-1.0), domain),
+            (dict(slope=math.nan), not_finite),
+            (dict(depth_format=0x1234), domain),
+            (dict(viewport=(0, 720)), domain),
+            (dict(viewport=(2**32 + 1280, 720)), domain),  # refused, not wrapped to 1280
+            (dict(subpixel_bits=-2), domain),
+            (dict(subpixel_bits=33), domain),
+        ]:
+            for fn in (zshift.recommend, zshift.recommend_matrix):
+                with self.assertRaises(zshift.ZshiftError, msg=str(changes)) as caught:
+                    fn(self.FRUSTUM, **dict(self.ARGS, **changes))
+                self.assertEqual(caught.exception.status, status, str(changes))
+
+    def test_structures_match_the_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
+                                 ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
+            body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t) (\w+);", body, re.M)
+            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int"}
+            self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
+            for (c_type, name), (_, field_type) in zip(fields, cls._fields_):
+                self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")
+
+
+class Conventions(unittest.TestCase):
+    """The clip-convention, median, bias and planning functions against the seed formulas (exact
+    rationals) or the functions they generalise."""
+
+    def setUp(self):
+        patcher = mock.patch.object(zshift, "_numpy", None)
+        patcher.start()
+        self.addCleanup(patcher.stop)
+
+    def test_enums_match_the_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        for prefix, enum_cls in (("CLIP", zshift.Clip), ("FORMAT", zshift.Format), ("BIAS", zshift.BiasApi),
+                                 ("OFFSET", zshift.OffsetKind)):
+            defined = dict(re.findall(r"#define ZSHIFT_" + prefix + r"_(\w+) (\d+)", header))
+            self.assertEqual({k: int(v) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
+        tweak = re.search(r"#define ZSHIFT_MIN_INFINITE_TWEAK (\S+)", header).group(1)
+        self.assertEqual(zshift.MIN_INFINITE_TWEAK, float(tweak))
+
+    def test_projection_depth_rows(self):
+        n, f = Q(0.5), Q(200)
+        rows = {zshift.Clip.NEG_ONE_TO_ONE: (-(f + n) / (f - n), -2 * f * n / (f - n)),
+                zshift.Clip.ZERO_TO_ONE: (-f / (f - n), -f * n / (f - n)),
+                zshift.Clip.REVERSED_ZERO_TO_ONE: (n / (f - n), f * n / (f - n))}
+        for clip, (m10, m14) in rows.items():
+            m = zshift.projection(-1, 1, -1, 1, 0.5, 200.0, clip)
+            for got, want in ((m[10], m10), (m[14], m14)):
+                self.assertIn(got, (f32(want), *f32_neighbours(f32(want))), clip.name)
+        self.assertEqual(zshift.projection(-1, 1, -1, 1, 0.5, 200.0, zshift.Clip.NEG_ONE_TO_ONE),
+                         zshift.frustum(-1, 1, -1, 1, 0.5, 200.0))
+
+    def test_perspective_and_offsets(self):
+        m = zshift.perspective(90.0, 2.0, 0.5, 200.0)  # cot(45 degrees) = 1
+        self.assertEqual((m[0], m[5]), (0.5, 1.0))
+        shifted = zshift.offset_perspective(90.0, 2.0, 0.5, 200.0, zshift.Clip.NEG_ONE_TO_ONE, 0.5, -50.0)
+        self.assertEqual([shifted[i] for i in range(16) if i != 10], [m[i] for i in range(16) if i != 10])
+        self.assertGreater(shifted[10], m[10])
+        reversed_ = zshift.Clip.REVERSED_ZERO_TO_ONE
+        plain = zshift.projection(-1, 1, -1, 1, 0.5, 200.0, reversed_)
+        moved = zshift.offset_projection(-1, 1, -1, 1, 0.5, 200.0, reversed_, 0.5, -50.0)
+        self.assertEqual([moved[i] for i in range(16) if i != 14], [plain[i] for i in range(16) if i != 14])
+        tweaked = zshift.tweaked_infinite(-1, 1, -1, 1, 0.5, zshift.MIN_INFINITE_TWEAK)
+        self.assertEqual(tweaked[10], f32(Q(zshift.MIN_INFINITE_TWEAK) - 1))
+        self.assertEqual(tweaked[14], f32((Q(zshift.MIN_INFINITE_TWEAK) - 2) * Q(0.5)))
+        self.assertNotEqual(zshift.offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10.0, -1000.0)[10],
+                            zshift.tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0)[10])
+
+    def test_depths_and_steps(self):
+        neg, reversed_, unorm24 = zshift.Clip.NEG_ONE_TO_ONE, zshift.Clip.REVERSED_ZERO_TO_ONE, zshift.Format.UNORM24
+        self.assertEqual(zshift.window_depth_clip(0.5, 200.0, neg, 37.0), zshift.window_depth(0.5, 200.0, 37.0))
+        n, f, d = Q(0.5), Q(200), Q(37)
+        self.assertAlmostEqual(zshift.window_depth_clip(0.5, 200.0, reversed_, 37.0),
+                               float(n * (f - d) / ((f - n) * d)), delta=1e-16)
+        self.assertAlmostEqual(zshift.depth_step(0.5, 200.0, neg, unorm24, 37.0) /
+                               zshift.depth_resolution(0.5, 200.0, 24, 37.0), 1.0, delta=1e-15)
+        self.assertEqual(zshift.min_ndc_offset(0.5, 200.0, neg, unorm24, 37.0), float(2 / steps(24)))
+        self.assertAlmostEqual(zshift.min_epsilon_clip(0.5, 200.0, neg, unorm24, 37.0) /
+                               zshift.min_epsilon(0.5, 200.0, 24), 1.0, delta=1e-15)
+        r, median = 1 / steps(24), Q(10)
+        self.assertAlmostEqual(zshift.median_depth_step(10.0, unorm24, 37.0) /
+                               float(r * (d + median) ** 2 / (median + r * (d + median))), 1.0, delta=1e-14)
+        self.assertAlmostEqual(zshift.median_ndc_offset(10.0, 0.5, -37.0) /
+                               float(-2 * median * Q(0.5) / ((d + median) * (d + median - Q(0.5)))), 1.0, delta=1e-14)
+        self.assertAlmostEqual(zshift.min_relative_epsilon(0.5, 200.0, neg, unorm24, 37.0) /
+                               float(r * d / (f * n / (f - n))), 1.0, delta=1e-14)
+
+    def test_bias_planning_and_errors(self):
+        neg, unorm24 = zshift.Clip.NEG_ONE_TO_ONE, zshift.Format.UNORM24
+        bias = zshift.bias_of_shift(0.5, 200.0, neg, unorm24, zshift.BiasApi.OPENGL, 0.25, -37.0)
+        self.assertLess(bias, 0)
+        self.assertAlmostEqual(zshift.shift_of_bias(0.5, 200.0, neg, unorm24, zshift.BiasApi.OPENGL, bias, -37.0),
+                               0.25, delta=1e-9)
+        near, far = zshift.tight_planes(2.0, 500.0)
+        self.assertTrue(0 < near <= 2.0 and far >= 500.0)
+        ro = zshift.range_offset(0.5, 200.0, neg, unorm24, zshift.OffsetKind.NDC, 10.0, 100.0, 2.0)
+        self.assertLess(ro.offset, 0)
+        self.assertLess(ro.shift_at_lo, ro.shift_at_hi)
+        for fn, args, status in [
+            (zshift.projection, (-1, 1, -1, 1, 1, 100, 7), zshift.Status.DOMAIN),
+            (zshift.projection, (-1, 1, -1, 1, 1, 100, 2**32), zshift.Status.DOMAIN),  # not wrapped to 0
+            (zshift.perspective, (180.0, 1.0, 1.0, 100.0), zshift.Status.DOMAIN),
+            (zshift.min_epsilon_clip, (0.5, math.inf, zshift.Clip.REVERSED_ZERO_TO_ONE, zshift.Format.FLOAT32, 37.0),
+             zshift.Status.UNRESOLVABLE),
+            (zshift.tight_planes, (500.0, 2.0), zshift.Status.DOMAIN),
+            (zshift.range_offset, (0.5, 200.0, neg, unorm24, zshift.OffsetKind.NDC, 10.0, 100.0, math.nan),
+             zshift.Status.NOT_FINITE),
+            (zshift.median_ndc_offset, (10.0, math.nan, -37.0), zshift.Status.NOT_FINITE),
+        ]:
+            with self.assertRaises(zshift.ZshiftError, msg=fn.__name__) as caught:
+                fn(*args)
+            self.assertEqual(caught.exception.status, status, fn.__name__)
+
+
+class Library(unittest.TestCase):
+    """The library lookup and the versions."""
+
+    def test_version_matches_cargo_toml(self):
+        cargo = (ROOT / "Cargo.toml").read_text()
+        self.assertEqual(zshift.version(), re.search(r'^version\s*=\s*"([^"]+)"', cargo, re.M).group(1))
+
+    def test_abi_version_matches_header(self):
+        header = (ROOT / "include" / "zshift.h").read_text()
+        self.assertEqual(zshift.ABI_VERSION, int(re.search(r"#define ZSHIFT_ABI_VERSION (\d+)", header).group(1)))
+
+    def run_python(self, code, library):
+        env = dict(os.environ, ZSHIFT_LIBRARY=str(library), PYTHONPATH=str(ROOT / "bindings" / "python"))
+        return subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+
+    def test_environment_variable_is_used_first(self):
+        done = self.run_python("import zshift; print(zshift.library_path())", zshift.library_path())
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual(done.stdout.strip(), zshift.library_path())
+
+    def test_wrong_environment_variable_fails_loudly(self):
+        missing = ROOT / "target" / "no-such-dir" / "libzshift.so"
+        done = self.run_python("import zshift; zshift.version()", missing)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("LibraryNotFound", done.stderr)
+        self.assertIn(str(missing), done.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,426 @@
+"""zshift for Python: depth offsets through the projection matrix, and exact depth precision.
+
+A thin ctypes layer over zshift's C ABI (``include/zshift.h``); no compiled extension. The library
+is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then ``target/release``,
+then ``target/debug``, then the system path) on the first call.
+
+Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
+[-1, 1], window depth [0, 1]; ``n``, ``f``, ``d`` are positive distances (``f`` may be
+``math.inf`` where a function says so), ``pz`` is an eye-space z (negative in front of the
+camera); ``delta > 0`` moves geometry toward the camera and gives ``epsilon < 0``. Matrices are
+16 floats in column-major order (what ``glLoadMatrixf`` takes; element 10 is row 2, column 2):
+a tuple of Python floats, or a ``numpy.float32`` array of shape (16,) when numpy is installed.
+Scalars are Python floats. Every failure raises :class:`ZshiftError` carrying the C status and
+the library's message for it. Equation numbers refer to the seed texts.
+"""
+
+import collections
+import ctypes
+import enum
+import functools
+
+from . import _library
+from ._library import LibraryNotFound
+
+try:
+    import numpy as _numpy
+except ImportError:  # numpy is optional: matrices are then tuples
+    _numpy = None
+
+__all__ = [
+    "ABI_VERSION", "Status", "ZshiftError", "LibraryNotFound", "frustum", "load_offset_matrix",
+    "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
+    "depth_resolution", "recommend", "recommend_matrix", "Recommendation", "SUBPIXEL_UNSNAPPED",
+    "GL_DEPTH_COMPONENT16", "GL_DEPTH_COMPONENT24", "GL_DEPTH_COMPONENT32", "GL_DEPTH_COMPONENT32F",
+    "Clip", "Format", "BiasApi", "OffsetKind", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
+    "offset_projection", "offset_perspective", "tweaked_infinite", "offset_tweaked_infinite",
+    "median_ndc_offset", "window_depth_clip", "depth_step", "median_depth_step", "min_ndc_offset",
+    "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
+    "range_offset",
+    "status_message", "version", "library_path",
+]
+
+#: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
+ABI_VERSION = 1
+
+#: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
+SUBPIXEL_UNSNAPPED = -1
+
+#: The depth formats :func:`recommend` knows, as GL internal format enums.
+GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT32 = 0x81A5, 0x81A6, 0x81A7
+GL_DEPTH_COMPONENT32F = 0x8CAC
+
+#: What :func:`recommend` returns: the C ``ZshiftRecommendation``'s fields, as floats.
+Recommendation = collections.namedtuple("Recommendation", [name for name, _ in _library.ZshiftRecommendation._fields_])
+
+
+class Status(enum.IntEnum):
+    """The C status codes (``ZSHIFT_OK``, ``ZSHIFT_ERR_*``)."""
+
+    OK = 0
+    NULL_POINTER = 1
+    NOT_FINITE = 2
+    DOMAIN = 3
+    UNRESOLVABLE = 4
+    OVERFLOW = 5
+    INTERNAL = 6
+
+
+class ZshiftError(ValueError):
+    """A zshift call failed. ``status`` says how (a :class:`Status`, or the raw code if unknown);
+    ``message`` (also ``str(error)``) is the library's sentence for it."""
+
+    def __init__(self, status):
+        try:
+            status = Status(status)
+        except ValueError:
+            pass
+        self.status = status
+        self.message = status_message(status)
+        super().__init__(self.message)
+
+
+@functools.lru_cache(maxsize=None)
+def _loaded():
+    return _library.load()
+
+
+def _lib():
+    return _loaded()[0]
+
+
+def library_path():
+    """The path of the shared library in use (loading it if needed)."""
+    return _loaded()[1]
+
+
+def status_message(status):
+    """The library's sentence for a status code (never fails; unknown codes get
+    ``"unknown zshift status"``)."""
+    return _lib().zshift_status_message(int(status)).decode("utf-8")
+
+
+def version():
+    """The library's version string, such as ``"0.1.0"``."""
+    return _lib().zshift_version().decode("utf-8")
+
+
+def _check(status):
+    if status != Status.OK:
+        raise ZshiftError(status)
+
+
+def _bits(bits):
+    # ctypes would wrap an out-of-range int into uint32 silently (2**32 + 24 -> 24).
+    if not isinstance(bits, int) or not 0 <= bits < 2**32:
+        raise ZshiftError(Status.DOMAIN)
+    return bits
+
+
+def _matrix(call):
+    out = (ctypes.c_float * 16)()
+    _check(call(out))
+    if _numpy is not None:
+        return _numpy.array(out, dtype=_numpy.float32)
+    return tuple(out)
+
+
+def _scalar(call):
+    out = ctypes.c_double()
+    _check(call(ctypes.byref(out)))
+    return out.value
+
+
+def frustum(l, r, b, t, n, f):
+    """The ``glFrustum(l, r, b, t, n, f)`` matrix (seed 000, eq. 4.1.1), each element the float32
+    nearest the exact value. ``f`` may be ``math.inf`` (element 10 is -1, element 14 is -2n).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE`` for NaN or a stray infinity; ``DOMAIN`` if
+    ``l == r``, ``b == t``, ``n <= 0`` or ``f <= n``; ``OVERFLOW`` if an element exceeds float32.
+    """
+    return _matrix(lambda out: _lib().zshift_frustum(l, r, b, t, n, f, out))
+
+
+def load_offset_matrix(l, r, b, t, n, f, delta, pz):
+    """The drop-in for the seed's ``LoadOffsetMatrix``: :func:`frustum` with element 10 scaled by
+    ``1 + epsilon(n, f, delta, pz)`` (eq. 4.1.3 and 4.1.7), rounded away from the plain element so
+    the offset is never lost to float32 rounding. Every other element equals :func:`frustum`'s.
+
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``NOT_FINITE`` for a NaN or infinite
+    ``delta`` or ``pz``; ``DOMAIN`` if ``pz`` is outside [-f, -n] or ``pz + delta >= 0``.
+    """
+    return _matrix(lambda out: _lib().zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out))
+
+
+def epsilon(n, f, delta, pz):
+    """Epsilon for an eye-space shift ``delta`` at eye depth ``pz`` (eq. 4.1.7):
+    ``-(2fn/(f+n)) * delta / (pz * (pz + delta))``.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``pz`` outside [-f, -n],
+    ``pz + delta >= 0``); ``OVERFLOW``.
+    """
+    return _scalar(lambda out: _lib().zshift_epsilon(n, f, delta, pz, out))
+
+
+def min_epsilon(n, f, bits):
+    """The smallest ``|epsilon|`` that moves depth by one step of a ``bits``-bit buffer:
+    ``2/(2^bits - 1) * (f - n)/(f + n)`` (eq. 4.1.8 as corrected by seed 002).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_min_epsilon(n, f, _bits(bits), out))
+
+
+def min_delta_toward(n, f, bits, pz):
+    """The smallest shift toward the camera that changes the stored depth at ``pz``:
+    ``k*pz^2/(1 - k*pz)``, eq. 4.1.9 with seed 002's ``k = (f - n)/(f*n*(2^bits - 1))``.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``pz`` outside [-f, -n],
+    ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_min_delta_toward(n, f, _bits(bits), pz, out))
+
+
+def max_delta_away(n, f, bits, pz):
+    """The largest (least negative) shift away from the camera that still changes the stored
+    depth at ``pz``: ``-k*pz^2/(1 + k*pz)``, eq. 4.1.10 with the corrected k.
+
+    Raises :class:`ZshiftError`: as :func:`min_delta_toward`; ``UNRESOLVABLE`` if
+    ``k*|pz| >= 1``; ``OVERFLOW``.
+    """
+    return _scalar(lambda out: _lib().zshift_max_delta_away(n, f, _bits(bits), pz, out))
+
+
+def window_depth(n, f, d):
+    """The window depth in [0, 1] of a point at eye distance ``d`` (Walker's f(d), seed 001).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``d`` outside [n, f]).
+    """
+    return _scalar(lambda out: _lib().zshift_window_depth(n, f, d, out))
+
+
+def depth_resolution(n, f, bits, d):
+    """The exact depth step at eye distance ``d``: ``q*d^2/(b + q*d)`` with ``q = 1/(2^bits - 1)``
+    and ``b = fn/(f - n)`` (Walker's eq. 3, seed 001).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad planes, ``d`` outside [n, f],
+    ``bits`` outside 1..32).
+    """
+    return _scalar(lambda out: _lib().zshift_depth_resolution(n, f, _bits(bits), d, out))
+
+
+def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+    l, r, b, t, n, f = frustum
+    width, height = viewport
+    near, far = decal_depths
+    for name, value, low, high in (
+        ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
+        ("depth_format", depth_format, 0, 2**32), ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
+    ):
+        # ctypes would wrap out-of-range integers silently.
+        if not isinstance(value, int) or not low <= value < high:
+            raise ZshiftError(Status.DOMAIN)
+    return _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
+                                1 if exact_depth else 0, subpixel_bits)
+
+
+def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+              subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
+    between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
+    interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
+
+    ``frustum`` is the base's ``(l, r, b, t, n, f)`` (``f`` may be ``math.inf``); ``viewport`` the
+    ``(width, height)`` in pixels; ``depth_format`` a GL internal format (``GL_DEPTH_COMPONENT24``
+    ...); ``decal_depths`` the decal's ``(nearest, farthest)`` eye distance; ``slope`` its plane's
+    eye-space ``|dz/dx| + |dz/dy|``; ``exact_depth`` whether base and decal corners share one float
+    z (facing planes only); ``subpixel_bits`` the rasterizer's ``GL_SUBPIXEL_BITS`` or
+    :data:`SUBPIXEL_UNSNAPPED`. Use ``delta_at_far`` with :func:`load_offset_matrix` at
+    ``pz = -farthest``, or :func:`recommend_matrix`.
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad frustum, zero viewport, unknown
+    format, decal depths outside [n, f] or decreasing, negative slope, ``exact_depth`` with a
+    slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
+    """
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    out = _library.ZshiftRecommendation()
+    _check(_lib().zshift_recommend(ctypes.byref(scene), ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                     subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
+    scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))
+
+
+# ---- Every clip convention, Kooima's median projection, depth bias, planning ----
+
+
+class Clip(enum.IntEnum):
+    """NDC depth convention (``ZSHIFT_CLIP_*``): OpenGL's [-1, 1]; [0, 1] (glClipControl
+    ZERO_TO_ONE, Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; float depth)."""
+
+    NEG_ONE_TO_ONE = 0
+    ZERO_TO_ONE = 1
+    REVERSED_ZERO_TO_ONE = 2
+
+
+class Format(enum.IntEnum):
+    """Depth attachment format (``ZSHIFT_FORMAT_*``)."""
+
+    UNORM16 = 0
+    UNORM24 = 1
+    UNORM32 = 2
+    FLOAT32 = 3
+
+
+class BiasApi(enum.IntEnum):
+    """Whose constant depth bias (``ZSHIFT_BIAS_*``): glPolygonOffset units, Direct3D DepthBias,
+    Vulkan depthBiasConstantFactor."""
+
+    OPENGL = 0
+    DIRECT3D = 1
+    VULKAN = 2
+
+
+class OffsetKind(enum.IntEnum):
+    """What :func:`range_offset` returns (``ZSHIFT_OFFSET_*``): a signed NDC offset for element 10,
+    or a relative epsilon for element 14 (reversed Z with float depth)."""
+
+    NDC = 0
+    RELATIVE = 1
+
+
+#: The smallest tweak for :func:`tweaked_infinite` that keeps far geometry inside the clip volume
+#: in float arithmetic: 2^-22 (Lengyel, GDC 2007).
+MIN_INFINITE_TWEAK = 2.0**-22
+
+#: What :func:`range_offset` returns: the offset and the eye-space shifts it makes at lo and hi.
+RangeOffset = collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
+
+
+def _enum(value):
+    # An int32 for the C call; ctypes would wrap a larger int silently.
+    if not isinstance(value, int) or not -(2**31) <= value < 2**31:
+        raise ZshiftError(Status.DOMAIN)
+    return int(value)
+
+
+def perspective(fovy, aspect, n, f):
+    """``gluPerspective(fovy, aspect, n, f)``, fovy in degrees, NDC depth [-1, 1]; ``f`` may be
+    ``math.inf``. Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` unless 0 < fovy < 180,
+    aspect > 0, 0 < n < f."""
+    return _matrix(lambda out: _lib().zshift_perspective(fovy, aspect, n, f, out))
+
+
+def projection(l, r, b, t, n, f, clip):
+    """glFrustum's x/y rows with the depth row of ``clip`` (a :class:`Clip`).
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` for an unknown clip."""
+    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip), out))
+
+
+def offset_projection(l, r, b, t, n, f, clip, delta, pz):
+    """:func:`projection` with geometry at ``pz`` moved toward the camera by ``delta``: a constant
+    NDC offset through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or
+    element 14 scaled (reversed), rounded outward. Raises :class:`ZshiftError`: as
+    :func:`projection`; ``DOMAIN`` if pz is outside [-f, -n] or the shifted point leaves [n, f]."""
+    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip), delta, pz, out))
+
+
+def offset_perspective(fovy, aspect, n, f, clip, delta, pz):
+    """:func:`offset_projection` for gluPerspective parameters. Errors as both."""
+    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip), delta, pz, out))
+
+
+def tweaked_infinite(l, r, b, t, n, tweak):
+    """The tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+    Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` unless 0 <= tweak < 1."""
+    return _matrix(lambda out: _lib().zshift_tweaked_infinite(l, r, b, t, n, tweak, out))
+
+
+def offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz):
+    """:func:`tweaked_infinite` with geometry at ``pz`` moved toward the camera by ``delta``
+    (element 10, rounded outward). Raises :class:`ZshiftError`: as :func:`tweaked_infinite`;
+    ``DOMAIN`` if pz or pz + delta > -n."""
+    return _matrix(lambda out: _lib().zshift_offset_tweaked_infinite(l, r, b, t, n, tweak, delta, pz, out))
+
+
+def median_ndc_offset(median, delta, pz):
+    """The ``ndc_offset`` uniform of bindings/glsl/ftransform_mdp.glsl (Kooima's median
+    projection, seed 003) that moves geometry at ``pz`` toward the camera by ``delta``.
+    Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` unless median > 0, pz <= 0 and
+    pz + delta <= 0."""
+    return _scalar(lambda out: _lib().zshift_median_ndc_offset(median, delta, pz, out))
+
+
+def window_depth_clip(n, f, clip, d):
+    """The window depth at eye distance ``d`` under ``clip`` (Walker's f(d), seed 001; reversed
+    n(f - d)/((f - n)d)). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip), d, out))
+
+
+def depth_step(n, f, clip, format, d):
+    """The exact depth step at eye distance ``d`` under ``clip`` and ``format`` (a :class:`Format`;
+    Walker's eq. 3 for every convention). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip), _enum(format), d, out))
+
+
+def median_depth_step(median, format, d):
+    """The depth step at eye distance ``d`` (>= 0) under Kooima's median projection (seed 003).
+    Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format), d, out))
+
+
+def min_ndc_offset(n, f, clip, format, d):
+    """The smallest constant NDC offset (a magnitude) that changes the stored depth at ``d``
+    (seed 002's 2/(2^m - 1) for UNORM under [-1, 1]). Raises :class:`ZshiftError`: as
+    :func:`depth_step`."""
+    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip), _enum(format), d, out))
+
+
+def min_epsilon_clip(n, f, clip, format, d):
+    """The smallest |epsilon| for element 10's scaling that changes the stored depth at ``d``
+    (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Raises :class:`ZshiftError`: as
+    :func:`depth_step`; ``UNRESOLVABLE`` for reversed Z with ``f = math.inf``."""
+    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip), _enum(format), d, out))
+
+
+def min_relative_epsilon(n, f, clip, format, d):
+    """The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored
+    depth at ``d``. Raises :class:`ZshiftError`: as :func:`depth_step`."""
+    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip), _enum(format), d, out))
+
+
+def bias_of_shift(n, f, clip, format, api, delta, pz):
+    """The constant depth bias of ``api`` (a :class:`BiasApi`) equivalent to moving geometry at
+    ``pz`` toward the camera by ``delta`` (negative under [-1, 1] and [0, 1]).
+    Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
+    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip), _enum(format), _enum(api), delta, pz, out))
+
+
+def shift_of_bias(n, f, clip, format, api, bias, pz):
+    """The eye-space shift toward the camera that a constant ``bias`` of ``api`` makes at ``pz``
+    (the inverse of :func:`bias_of_shift`). Raises :class:`ZshiftError`: as
+    :func:`bias_of_shift`; ``UNRESOLVABLE``."""
+    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip), _enum(format), _enum(api), bias, pz, out))
+
+
+def tight_planes(nearest, farthest):
+    """The tightest clip planes ``(n, f)`` for a scene between eye distances ``nearest`` and
+    ``farthest`` (``f`` may be ``math.inf``). Raises :class:`ZshiftError`: ``NOT_FINITE``;
+    ``DOMAIN`` unless 0 < nearest <= farthest."""
+    out = (ctypes.c_double * 2)()
+    _check(_lib().zshift_tight_planes(nearest, farthest, out))
+    return tuple(out)
+
+
+def range_offset(n, f, clip, format, kind, lo, hi, steps):
+    """The smallest single offset that moves stored depth by at least ``steps`` steps at every
+    distance in [lo, hi], as a :data:`RangeOffset`; multiply ``offset`` by k for the k-th stacked
+    decal layer. Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``, ``UNRESOLVABLE``."""
+    out = (ctypes.c_double * 3)()
+    _check(_lib().zshift_range_offset(n, f, _enum(clip), _enum(format), _enum(kind), lo, hi, steps, out))
+    return RangeOffset(*out)

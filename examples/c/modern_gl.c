@@ -1,0 +1,251 @@
+/* zshift in an OpenGL 3.3 core engine: the projection comes from zshift and reaches the vertex
+ * shader through glUniformMatrix4fv. Renders the coplanar-decal scene (scene.h) headless for
+ * several projections and checks the pixels: with zshift's offset no decal pixel is lost; without
+ * one, the decal is lost to the base. Exits nonzero with a message on any failure.
+ *
+ * Every GL function comes from eglGetProcAddress, so this program links EGL and zshift only. */
+#include <GL/glcorearb.h>
+#include <stdio.h>
+
+#include "headless.h"
+#include "scene.h"
+#include "zshift.h"
+
+static PFNGLCREATESHADERPROC glCreateShader;
+static PFNGLSHADERSOURCEPROC glShaderSource;
+static PFNGLCOMPILESHADERPROC glCompileShader;
+static PFNGLGETSHADERIVPROC glGetShaderiv;
+static PFNGLGETSHADERINFOLOGPROC glGetShaderInfoLog;
+static PFNGLCREATEPROGRAMPROC glCreateProgram;
+static PFNGLATTACHSHADERPROC glAttachShader;
+static PFNGLBINDATTRIBLOCATIONPROC glBindAttribLocation;
+static PFNGLLINKPROGRAMPROC glLinkProgram;
+static PFNGLGETPROGRAMIVPROC glGetProgramiv;
+static PFNGLUSEPROGRAMPROC glUseProgram;
+static PFNGLGETUNIFORMLOCATIONPROC glGetUniformLocation;
+static PFNGLUNIFORMMATRIX4FVPROC glUniformMatrix4fv;
+static PFNGLUNIFORM4FPROC glUniform4f;
+static PFNGLGENVERTEXARRAYSPROC glGenVertexArrays;
+static PFNGLBINDVERTEXARRAYPROC glBindVertexArray;
+static PFNGLGENBUFFERSPROC glGenBuffers;
+static PFNGLBINDBUFFERPROC glBindBuffer;
+static PFNGLBUFFERDATAPROC glBufferData;
+static PFNGLVERTEXATTRIBPOINTERPROC glVertexAttribPointer;
+static PFNGLENABLEVERTEXATTRIBARRAYPROC glEnableVertexAttribArray;
+static PFNGLDRAWARRAYSPROC glDrawArrays;
+static PFNGLCLEARCOLORPROC glClearColor;
+static PFNGLCLEARPROC glClear;
+static PFNGLENABLEPROC glEnable;
+static PFNGLDEPTHFUNCPROC glDepthFunc;
+static PFNGLGETERRORPROC glGetError;
+static PFNGLGETINTEGERVPROC glGetIntegerv;
+
+static int load_gl(void) {
+#define PFN_LOAD(type, name) \
+  if ((name = (type)headless_proc(#name)) == NULL) return 1
+  PFN_LOAD(PFNGLCREATESHADERPROC, glCreateShader);
+  PFN_LOAD(PFNGLSHADERSOURCEPROC, glShaderSource);
+  PFN_LOAD(PFNGLCOMPILESHADERPROC, glCompileShader);
+  PFN_LOAD(PFNGLGETSHADERIVPROC, glGetShaderiv);
+  PFN_LOAD(PFNGLGETSHADERINFOLOGPROC, glGetShaderInfoLog);
+  PFN_LOAD(PFNGLCREATEPROGRAMPROC, glCreateProgram);
+  PFN_LOAD(PFNGLATTACHSHADERPROC, glAttachShader);
+  PFN_LOAD(PFNGLBINDATTRIBLOCATIONPROC, glBindAttribLocation);
+  PFN_LOAD(PFNGLLINKPROGRAMPROC, glLinkProgram);
+  PFN_LOAD(PFNGLGETPROGRAMIVPROC, glGetProgramiv);
+  PFN_LOAD(PFNGLUSEPROGRAMPROC, glUseProgram);
+  PFN_LOAD(PFNGLGETUNIFORMLOCATIONPROC, glGetUniformLocation);
+  PFN_LOAD(PFNGLUNIFORMMATRIX4FVPROC, glUniformMatrix4fv);
+  PFN_LOAD(PFNGLUNIFORM4FPROC, glUniform4f);
+  PFN_LOAD(PFNGLGENVERTEXARRAYSPROC, glGenVertexArrays);
+  PFN_LOAD(PFNGLBINDVERTEXARRAYPROC, glBindVertexArray);
+  PFN_LOAD(PFNGLGENBUFFERSPROC, glGenBuffers);
+  PFN_LOAD(PFNGLBINDBUFFERPROC, glBindBuffer);
+  PFN_LOAD(PFNGLBUFFERDATAPROC, glBufferData);
+  PFN_LOAD(PFNGLVERTEXATTRIBPOINTERPROC, glVertexAttribPointer);
+  PFN_LOAD(PFNGLENABLEVERTEXATTRIBARRAYPROC, glEnableVertexAttribArray);
+  PFN_LOAD(PFNGLDRAWARRAYSPROC, glDrawArrays);
+  PFN_LOAD(PFNGLCLEARCOLORPROC, glClearColor);
+  PFN_LOAD(PFNGLCLEARPROC, glClear);
+  PFN_LOAD(PFNGLENABLEPROC, glEnable);
+  PFN_LOAD(PFNGLDEPTHFUNCPROC, glDepthFunc);
+  PFN_LOAD(PFNGLGETERRORPROC, glGetError);
+  PFN_LOAD(PFNGLGETINTEGERVPROC, glGetIntegerv);
+#undef PFN_LOAD
+  return 0;
+}
+
+static const char *vertex_source =
+    "#version 330 core\n"
+    "uniform mat4 u_projection;\n"
+    "in vec3 a_eye_position;\n"
+    "void main() { gl_Position = u_projection * vec4(a_eye_position, 1.0); }\n";
+static const char *fragment_source =
+    "#version 330 core\n"
+    "uniform vec4 u_color;\n"
+    "out vec4 frag_color;\n"
+    "void main() { frag_color = u_color; }\n";
+
+static GLuint compile(GLenum kind, const char *source) {
+  GLuint shader = glCreateShader(kind);
+  GLint ok = 0;
+  glShaderSource(shader, 1, &source, NULL);
+  glCompileShader(shader);
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[1024];
+    glGetShaderInfoLog(shader, sizeof log, NULL, log);
+    fprintf(stderr, "FAIL: shader does not compile: %s\n", log);
+    return 0;
+  }
+  return shader;
+}
+
+static GLuint link_program(void) {
+  GLuint vs = compile(GL_VERTEX_SHADER, vertex_source), fs = compile(GL_FRAGMENT_SHADER, fragment_source);
+  GLuint program;
+  GLint ok = 0;
+  if (vs == 0 || fs == 0) return 0;
+  program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glBindAttribLocation(program, 0, "a_eye_position");
+  glLinkProgram(program);
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    fprintf(stderr, "FAIL: shader program does not link\n");
+    return 0;
+  }
+  return program;
+}
+
+/* [quickstart-c-modern] */
+/* Sets the projection uniform: the glFrustum matrix when delta == 0, else the matrix that moves
+ * geometry at eye-space depth pz (negative) toward the camera by delta eye-space units. */
+static int set_projection(GLint location, double l, double r, double b, double t, double n,
+                          double f, double delta, double pz) {
+  float m[16]; /* column-major: glUniformMatrix4fv with transpose = GL_FALSE */
+  ZshiftStatus s = delta == 0.0 ? zshift_frustum(l, r, b, t, n, f, m)
+                                : zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, m);
+  if (s != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_status_message(s));
+    return 1;
+  }
+  glUniformMatrix4fv(location, 1, GL_FALSE, m);
+  return 0;
+}
+/* [/quickstart-c-modern] */
+
+struct renderer {
+  GLuint program, buffer;
+  GLint projection, color;
+};
+
+static int draw(const struct renderer *gl, float quad[6][3], float red, float blue) {
+  glUniform4f(gl->color, red, 0.0f, blue, 1.0f);
+  glBufferData(GL_ARRAY_BUFFER, 6 * 3 * sizeof(float), quad, GL_STREAM_DRAW);
+  glDrawArrays(GL_TRIANGLES, 0, 6);
+  return glGetError() == GL_NO_ERROR ? 0 : 1;
+}
+
+/* Renders one case with the decal shifted by `delta` (0: no offset) and tallies its pixels. */
+static int render(const struct renderer *gl, const struct scene_case *c, double delta,
+                  struct scene_tally *tally) {
+  static unsigned char pixels[SCENE_SIZE * SCENE_SIZE * 4];
+  double n = c->n, f = c->f, d = scene_distance(c);
+  float base[6][3], decal[6][3];
+  scene_quad(SCENE_BASE_HALF, d, base);
+  scene_quad(SCENE_DECAL_HALF, d, decal);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  if (set_projection(gl->projection, -n, n, -n, n, n, f, 0.0, -d) != 0 || draw(gl, base, 0.0f, 1.0f) != 0 ||
+      set_projection(gl->projection, -n, n, -n, n, n, f, delta, -d) != 0 ||
+      draw(gl, decal, 1.0f, 0.0f) != 0) {
+    fprintf(stderr, "FAIL: drawing raised a GL error\n");
+    return 1;
+  }
+  if (headless_read_rgba(pixels) != 0) return 1;
+  *tally = scene_check(pixels);
+  return 0;
+}
+
+static int setup(struct renderer *gl) {
+  GLuint vertex_array;
+  if (load_gl() != 0 || (gl->program = link_program()) == 0) return 1;
+  glUseProgram(gl->program);
+  gl->projection = glGetUniformLocation(gl->program, "u_projection");
+  gl->color = glGetUniformLocation(gl->program, "u_color");
+  glGenVertexArrays(1, &vertex_array);
+  glBindVertexArray(vertex_array);
+  glGenBuffers(1, &gl->buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, gl->buffer);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, NULL);
+  glEnableVertexAttribArray(0);
+  return glGetError() == GL_NO_ERROR ? 0 : 1;
+}
+
+/* What the rasterizer says about its sub-pixel precision, for zshift_recommend. */
+static int subpixel_bits(void) {
+  GLint bits = 0;
+  glGetIntegerv(GL_SUBPIXEL_BITS, &bits);
+  return bits;
+}
+
+static int run_case(const struct renderer *gl, const struct scene_case *c) {
+  struct scene_tally none, one, chosen;
+  double d = scene_distance(c), step, recommended;
+  ZshiftStatus status = zshift_min_delta_toward(c->n, c->f, (uint32_t)c->depth_bits, -d, &step);
+  if (status != ZSHIFT_OK) {
+    fprintf(stderr, "zshift_min_delta_toward: %s\n", zshift_status_message(status));
+    return 1;
+  }
+  if (scene_recommended_delta(c, subpixel_bits(), &recommended) != 0) return 1;
+  if (render(gl, c, 0.0, &none) != 0 || render(gl, c, step, &one) != 0 ||
+      render(gl, c, recommended, &chosen) != 0)
+    return 1;
+  printf("D%-3d n=%-5g f=%-7g d=%-9g step=%-10.4g lost of %d: none %4d  zshift 1 step %4d  "
+         "zshift recommended (%.3g steps) %4d\n",
+         c->depth_bits, c->n, c->f, d, step, chosen.decal_total, none.decal_lost, one.decal_lost,
+         recommended / step, chosen.decal_lost);
+  if (none.wrong + one.wrong + chosen.wrong != 0) {
+    fprintf(stderr, "FAIL: %d pixels show neither the base, the decal nor the background\n",
+            none.wrong + one.wrong + chosen.wrong);
+    return 1;
+  }
+  if (none.decal_lost == 0) {
+    fprintf(stderr, "FAIL: without an offset no decal pixel was lost: the scene does not z-fight\n");
+    return 1;
+  }
+  if (chosen.decal_lost != 0) {
+    fprintf(stderr, "FAIL: with zshift's offset of %g steps, %d decal pixels were lost\n",
+            recommended / step, chosen.decal_lost);
+    return 1;
+  }
+  return 0;
+}
+
+int main(void) {
+  struct renderer gl;
+  int failures = 0, i, depth_bits = -1;
+  for (i = 0; i < scene_case_count; i++) {
+    if (scene_cases[i].depth_bits != depth_bits) {
+      if (depth_bits != -1) headless_close();
+      depth_bits = scene_cases[i].depth_bits;
+      if (headless_open(HEADLESS_CORE_3_3, SCENE_SIZE, SCENE_SIZE, depth_bits) != 0 || setup(&gl) != 0) {
+        fprintf(stderr, "FAIL: no headless OpenGL 3.3 core context with the scene's shaders\n");
+        return 1;
+      }
+    }
+    failures += run_case(&gl, &scene_cases[i]);
+  }
+  headless_close();
+  if (failures != 0) {
+    fprintf(stderr, "modern_gl: %d of %d cases failed\n", failures, scene_case_count);
+    return 1;
+  }
+  printf("modern_gl: all %d cases passed (zshift %s, ABI %d)\n", scene_case_count, zshift_version(),
+         ZSHIFT_ABI_VERSION);
+  return 0;
+}

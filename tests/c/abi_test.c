@@ -1,0 +1,689 @@
+/* The C ABI contract of include/zshift.h, exercised from C: every function with valid inputs
+ * (against the seed formulas evaluated here in long double, independent of zshift's code), NULL
+ * output pointers, NaN and infinite inputs, domain errors, the output left untouched on every
+ * error, the status messages and the version strings. Prints each failure and exits nonzero if
+ * any check failed. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "zshift.h"
+
+#ifndef EXPECTED_VERSION
+#error "build with -DEXPECTED_VERSION=\"x.y.z\" (the version in Cargo.toml)"
+#endif
+
+static int checks, failures;
+
+#define CHECK(cond, ...)                                   \
+  do {                                                     \
+    checks++;                                              \
+    if (!(cond)) {                                         \
+      failures++;                                          \
+      fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+      fprintf(stderr, __VA_ARGS__);                        \
+      fputc('\n', stderr);                                 \
+    }                                                      \
+  } while (0)
+
+/* A status must be exactly `expected`; names both in words on failure. */
+#define CHECK_STATUS(call, expected)                                                        \
+  do {                                                                                      \
+    ZshiftStatus got_ = (call);                                                             \
+    CHECK(got_ == (expected), "%s returned %d (%s), expected %d (%s)", #call, (int)got_,   \
+          zshift_status_message(got_), (int)(expected), zshift_status_message(expected)); \
+  } while (0)
+
+/* ---- output left untouched on error: fill with a pattern, call, compare ---- */
+
+static const unsigned char PATTERN = 0xA5;
+
+static int untouched(const void *out, size_t size) {
+  const unsigned char *bytes = out;
+  size_t i;
+  for (i = 0; i < size; i++)
+    if (bytes[i] != PATTERN) return 0;
+  return 1;
+}
+
+/* Runs a matrix call on a pattern-filled buffer; it must fail with `expected` and write nothing. */
+#define CHECK_MATRIX_ERROR(expected, fn, ...)                                           \
+  do {                                                                                  \
+    float out_[16];                                                                     \
+    memset(out_, PATTERN, sizeof out_);                                                 \
+    CHECK_STATUS(fn(__VA_ARGS__, out_), expected);                                      \
+    CHECK(untouched(out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+#define CHECK_SCALAR_ERROR(expected, fn, ...)                                           \
+  do {                                                                                  \
+    double out_;                                                                        \
+    memset(&out_, PATTERN, sizeof out_);                                                \
+    CHECK_STATUS(fn(__VA_ARGS__, &out_), expected);                                     \
+    CHECK(untouched(&out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+/* ---- references: the seed formulas in long double ---- */
+
+static long double steps(unsigned bits) { return ldexpl(1.0L, (int)bits) - 1.0L; }
+
+/* glFrustum's matrix (seed 000, eq. 4.1.1), column-major. */
+static void reference_frustum(long double l, long double r, long double b, long double t,
+                              long double n, long double f, long double m[16]) {
+  int i;
+  for (i = 0; i < 16; i++) m[i] = 0.0L;
+  m[0] = 2.0L * n / (r - l);
+  m[5] = 2.0L * n / (t - b);
+  m[8] = (r + l) / (r - l);
+  m[9] = (t + b) / (t - b);
+  m[10] = -(f + n) / (f - n);
+  m[11] = -1.0L;
+  m[14] = -2.0L * f * n / (f - n);
+}
+
+/* Eq. 4.1.7. */
+static long double reference_epsilon(long double n, long double f, long double delta, long double pz) {
+  return -2.0L * f * n / (f + n) * (delta / (pz * (pz + delta)));
+}
+
+/* k of eq. 4.1.11 as corrected by seed 002. */
+static long double reference_k(long double n, long double f, unsigned bits) {
+  return (f - n) / (f * n * steps(bits));
+}
+
+/* Walker's f(d) (seed 001) in its printed form. */
+static long double reference_window_depth(long double n, long double f, long double d) {
+  return (f + n) / (2.0L * (f - n)) - f * n / (d * (f - n)) + 0.5L;
+}
+
+static double relative_error(double got, long double want) {
+  return (double)(fabsl((long double)got - want) / fabsl(want));
+}
+
+/* Whether `got` is one of the two floats around `want` (within 1 ulp of the exact value). */
+static int within_one_float_ulp(float got, long double want) {
+  float nearest = (float)want;
+  return got == nearest || got == nextafterf(nearest, INFINITY) || got == nextafterf(nearest, -INFINITY);
+}
+
+/* ---- the functions ---- */
+
+static void test_frustum(void) {
+  static const double cases[][6] = {
+      {-1, 1, -1, 1, 1, 100}, {-0.1, 0.3, -0.2, 0.1, 0.1, 1e4}, {-2, 2, -1.5, 1.5, 0.01, 1e6}};
+  size_t c;
+  int i;
+  float out[16];
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    const double *p = cases[c];
+    long double want[16];
+    reference_frustum(p[0], p[1], p[2], p[3], p[4], p[5], want);
+    CHECK_STATUS(zshift_frustum(p[0], p[1], p[2], p[3], p[4], p[5], out), ZSHIFT_OK);
+    for (i = 0; i < 16; i++)
+      CHECK(within_one_float_ulp(out[i], want[i]), "frustum case %zu element %d: %.9g vs %.12Lg", c,
+            i, (double)out[i], want[i]);
+  }
+  /* Infinite far plane: element 10 -> -1, element 14 -> -2n (seed 003). */
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 0.5, INFINITY, out), ZSHIFT_OK);
+  CHECK(out[10] == -1.0f && out[14] == -1.0f && out[11] == -1.0f, "infinite far: m10 %g m14 %g",
+        (double)out[10], (double)out[14]);
+
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 1, 100, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, NAN, 1, -1, 1, 1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, 1, NAN);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, INFINITY, INFINITY);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -1, 1, -1, 1, 1, -INFINITY);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_frustum, -INFINITY, 1, -1, 1, 1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, 1, 1, -1, 1, 1, 100);  /* l == r */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, 2, 2, 1, 100);  /* b == t */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 0, 100); /* n == 0 */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, -1, 100);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 5, 5);   /* f == n */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_frustum, -1, 1, -1, 1, 5, 4);   /* f < n */
+  /* 2n/(r - l) = 2e40 does not fit a float. */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_OVERFLOW, zshift_frustum, 0, 1e-40, -1, 1, 1, 100);
+}
+
+static void test_load_offset_matrix(void) {
+  static const double cases[][8] = {/* l r b t n f delta pz */
+                                    {-1, 1, -1, 1, 1, 100, 0.01, -50},
+                                    {-0.1, 0.1, -0.1, 0.1, 0.1, 1e4, 2.0, -5e3},
+                                    {-1, 1, -1, 1, 1, 1e6, -10.0, -1e3}};
+  size_t c;
+  int i;
+  for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    const double *p = cases[c];
+    float plain[16], shifted[16];
+    long double want[16], offset, moved;
+    reference_frustum(p[0], p[1], p[2], p[3], p[4], p[5], want);
+    CHECK_STATUS(zshift_frustum(p[0], p[1], p[2], p[3], p[4], p[5], plain), ZSHIFT_OK);
+    CHECK_STATUS(zshift_load_offset_matrix(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], shifted),
+                 ZSHIFT_OK);
+    for (i = 0; i < 16; i++)
+      if (i != 10)
+        CHECK(shifted[i] == plain[i], "offset case %zu element %d differs from zshift_frustum's", c, i);
+    /* Element 10 scaled by 1 + epsilon (eq. 4.1.3): the offset the GPU sees is at least the exact
+     * one and at most one float ulp more, in the same direction. */
+    offset = want[10] * reference_epsilon(p[4], p[5], p[6], p[7]);
+    moved = (long double)shifted[10] - (long double)plain[10];
+    CHECK(moved * offset > 0.0L, "offset case %zu: element 10 moved %Lg, expected the sign of %Lg", c,
+          moved, offset);
+    CHECK(fabsl(moved) >= fabsl(offset) * (1.0L - 1e-12L) &&
+              fabsl(moved) <= fabsl(offset) + (long double)(nextafterf(fabsf(shifted[10]), INFINITY) -
+                                                            fabsf(shifted[10])),
+          "offset case %zu: element 10 moved %Lg for an exact offset %Lg", c, moved, offset);
+  }
+  CHECK_STATUS(zshift_load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.1, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, NAN, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, NAN);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, INFINITY, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, -0.5);  /* pz > -n */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 0.1, -200);  /* pz < -f */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, -1, 1, -1, 1, 1, 100, 50, -50);    /* pz + delta == 0 */
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_load_offset_matrix, 1, 1, -1, 1, 1, 100, 0.1, -50);
+}
+
+static void test_epsilon(void) {
+  double out;
+  CHECK_STATUS(zshift_epsilon(0.1, 1000, 0.5, -20, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, reference_epsilon(0.1L, 1000, 0.5L, -20)) < 1e-14, "epsilon %.17g", out);
+  CHECK(out < 0, "delta > 0 (toward the camera) must give epsilon < 0, got %g", out);
+  CHECK_STATUS(zshift_epsilon(1, INFINITY, 0.5, -20, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, -2.0L * 0.5L / (-20.0L * -19.5L)) < 1e-14, "epsilon f=inf %.17g", out);
+  CHECK_STATUS(zshift_epsilon(1, 100, 0.5, -20, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, NAN, 100, 0.5, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, 1, 100, NAN, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_epsilon, 1, 100, 0.5, -INFINITY);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 1, 100, 0.5, -0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 1, 100, 30, -20);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_epsilon, 100, 1, 0.5, -20);
+}
+
+static void test_min_epsilon(void) {
+  double out;
+  unsigned bits;
+  for (bits = 1; bits <= 32; bits += 7) {
+    long double want = 2.0L / steps(bits) * (1000.0L - 0.1L) / (1000.0L + 0.1L);
+    CHECK_STATUS(zshift_min_epsilon(0.1, 1000, bits, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, want) < 1e-14, "min_epsilon bits %u: %.17g", bits, out);
+  }
+  CHECK_STATUS(zshift_min_epsilon(0.1, INFINITY, 24, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, 2.0L / steps(24)) < 1e-15, "min_epsilon f=inf %.17g", out);
+  CHECK_STATUS(zshift_min_epsilon(1, 100, 24, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 1, 100, 0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 1, 100, 33);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_epsilon, NAN, 100, 24);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon, 0, 100, 24);
+}
+
+static void test_deltas(void) {
+  double toward, away, resolution;
+  long double k = reference_k(0.1L, 1000, 16), pz = -300;
+  CHECK_STATUS(zshift_min_delta_toward(0.1, 1000, 16, -300, &toward), ZSHIFT_OK);
+  CHECK(relative_error(toward, k * pz * pz / (1 - k * pz)) < 1e-13, "min_delta_toward %.17g", toward);
+  /* Seeds 000 (with 002) and 001 agree: the minimum shift is Walker's depth step at d = -pz. */
+  CHECK_STATUS(zshift_depth_resolution(0.1, 1000, 16, 300, &resolution), ZSHIFT_OK);
+  CHECK(relative_error(toward, resolution) < 1e-13, "min_delta_toward %.17g vs depth_resolution %.17g",
+        toward, resolution);
+  pz = -2;
+  CHECK_STATUS(zshift_max_delta_away(0.1, 1000, 16, -2, &away), ZSHIFT_OK);
+  CHECK(relative_error(away, -k * pz * pz / (1 + k * pz)) < 1e-12 && away < 0, "max_delta_away %.17g", away);
+  /* With 1 bit, k*|pz| >= 1 far from the camera: no shift away can change the stored depth. */
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_UNRESOLVABLE, zshift_max_delta_away, 1, 1e6, 1, -1e5);
+  CHECK_STATUS(zshift_min_delta_toward(1, 100, 24, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_max_delta_away(1, 100, 24, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 24, -101);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 24, 50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_delta_toward, 1, 100, 0, -50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_delta_toward, 1, 100, 24, NAN);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_max_delta_away, 1, 100, 24, -0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_max_delta_away, NAN, 100, 24, -50);
+}
+
+static void test_precision(void) {
+  double depth, step, before;
+  CHECK_STATUS(zshift_window_depth(1, 100, 1, &depth), ZSHIFT_OK);
+  CHECK(depth == 0.0, "window depth at the near plane is %.17g, not 0", depth);
+  CHECK_STATUS(zshift_window_depth(1, 100, 100, &depth), ZSHIFT_OK);
+  CHECK(fabs(depth - 1.0) < 1e-15, "window depth at the far plane is %.17g, not 1", depth);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 37, &depth), ZSHIFT_OK);
+  CHECK(relative_error(depth, reference_window_depth(0.1L, 1000, 37)) < 1e-14, "window depth %.17g", depth);
+  /* One depth step back from d lowers the window depth by exactly one quantum (Walker's eq. 3). */
+  CHECK_STATUS(zshift_depth_resolution(0.1, 1000, 16, 300, &step), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 300, &depth), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth(0.1, 1000, 300 - step, &before), ZSHIFT_OK);
+  CHECK(fabs((depth - before) * (double)steps(16) - 1.0) < 1e-9, "one step moves window depth by %.17g quanta",
+        (depth - before) * (double)steps(16));
+  CHECK_STATUS(zshift_window_depth(1, 100, 50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_depth_resolution(1, 100, 24, 50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth, 1, 100, 0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth, 1, 100, 101);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth, 1, 100, NAN);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_resolution, 1, 100, 33, 50);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_resolution, 1, 100, 24, 0.5);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_resolution, 1, NAN, 24, 50);
+}
+
+/* ---- projections for every clip convention, Kooima's median, bias conversions, planning ---- */
+
+/* Runs a call writing `count` doubles on a pattern-filled buffer; it must fail with `expected`
+ * and write nothing. */
+#define CHECK_ARRAY_ERROR(expected, count, fn, ...)                                           \
+  do {                                                                                        \
+    double out_[count];                                                                       \
+    memset(out_, PATTERN, sizeof out_);                                                       \
+    CHECK_STATUS(fn(__VA_ARGS__, out_), expected);                                            \
+    CHECK(untouched(out_, sizeof out_), "%s(%s) wrote its output on error", #fn, #__VA_ARGS__); \
+  } while (0)
+
+static void check_matrix_within_one_ulp(const float *got, const long double want[16], const char *what) {
+  int i;
+  for (i = 0; i < 16; i++)
+    CHECK(within_one_float_ulp(got[i], want[i]), "%s element %d: %.9g vs %.12Lg", what, i, (double)got[i], want[i]);
+}
+
+static void test_projections(void) {
+  static const int32_t clips[] = {ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_CLIP_ZERO_TO_ONE,
+                                  ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE};
+  const long double n = 0.5L, f = 200.0L;
+  long double want[16];
+  float out[16], plain[16], shifted[16], gl[16];
+  size_t c;
+  int i;
+
+  /* gluPerspective(fovy, aspect, n, f): m0 = cot(fovy/2)/aspect, m5 = cot(fovy/2). */
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, out), ZSHIFT_OK);
+  reference_frustum(-1, 1, -1, 1, n, f, want);
+  want[5] = 1.0L / tanl(30.0L * 3.14159265358979323846264338327950288L / 180.0L);
+  want[0] = want[5] / 1.5L;
+  check_matrix_within_one_ulp(out, want, "zshift_perspective");
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_perspective, NAN, 1.5, 0.5, 200.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_perspective, 180.0, 1.5, 0.5, 200.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_perspective, 60.0, 0.0, 0.5, 200.0);
+
+  /* The depth row of each clip convention, as the header states it. */
+  for (c = 0; c < 3; c++) {
+    reference_frustum(-1, 1, -0.75L, 0.75L, n, f, want);
+    if (clips[c] == ZSHIFT_CLIP_ZERO_TO_ONE) {
+      want[10] = -f / (f - n);
+      want[14] = -f * n / (f - n);
+    } else if (clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE) {
+      want[10] = n / (f - n);
+      want[14] = f * n / (f - n);
+    }
+    CHECK_STATUS(zshift_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, clips[c], out), ZSHIFT_OK);
+    check_matrix_within_one_ulp(out, want, "zshift_projection");
+    /* Offset toward the camera: only element 10 (element 14 when reversed) moves. */
+    CHECK_STATUS(zshift_offset_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, clips[c], 0.5, -50.0, shifted),
+                 ZSHIFT_OK);
+    for (i = 0; i < 16; i++) {
+      int moving = clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE ? 14 : 10;
+      CHECK(i == moving ? shifted[i] != out[i] : shifted[i] == out[i],
+            "zshift_offset_projection clip %d element %d (moving element %d)", (int)clips[c], i, moving);
+    }
+  }
+  /* Under [-1, 1] the offset matrix is Lengyel's: element 10 moves up by at least |m10 * epsilon|. */
+  CHECK_STATUS(zshift_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, plain), ZSHIFT_OK);
+  CHECK_STATUS(zshift_offset_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0,
+                                        shifted),
+               ZSHIFT_OK);
+  CHECK((long double)shifted[10] - plain[10] >=
+            fabsl(-(f + n) / (f - n) * reference_epsilon(n, f, 0.5L, -50.0L)) * (1.0L - 1e-12L),
+        "zshift_offset_projection moved element 10 by %g", (double)(shifted[10] - plain[10]));
+  CHECK_STATUS(zshift_projection(-1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_projection, -1, 1, -1, 1, 1, 100, 3);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_projection, -1, 1, -1, NAN, 1, 100, 0);
+  CHECK_STATUS(zshift_offset_projection(-1, 1, -1, 1, 1, 100, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, NAN, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, 0.5, -0.5);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 7, 0.5, -50);
+
+  /* zshift_offset_perspective is zshift_offset_projection on gluPerspective's frustum. */
+  CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, gl), ZSHIFT_OK);
+  CHECK_STATUS(zshift_offset_perspective(60.0, 1.5, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0, out),
+               ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(out[i] == gl[i], "zshift_offset_perspective element %d differs from zshift_perspective's", i);
+  CHECK(out[10] > gl[10], "zshift_offset_perspective did not move element 10 toward the camera");
+  CHECK_STATUS(zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_perspective, 0.0, 1.5, 0.5, 200.0, 0, 0.5, -50.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_perspective, 60.0, NAN, 0.5, 200.0, 0, 0.5, -50.0);
+
+  /* Tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n. */
+  CHECK_STATUS(zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, ZSHIFT_MIN_INFINITE_TWEAK, plain), ZSHIFT_OK);
+  reference_frustum(-1, 1, -1, 1, n, 1, want);
+  want[10] = (long double)ZSHIFT_MIN_INFINITE_TWEAK - 1.0L;
+  want[14] = ((long double)ZSHIFT_MIN_INFINITE_TWEAK - 2.0L) * n;
+  check_matrix_within_one_ulp(plain, want, "zshift_tweaked_infinite");
+  CHECK(ZSHIFT_MIN_INFINITE_TWEAK == ldexp(1.0, -22), "ZSHIFT_MIN_INFINITE_TWEAK is not 2^-22");
+  CHECK_STATUS(zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, ZSHIFT_MIN_INFINITE_TWEAK, 10.0, -1000.0, shifted),
+               ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(shifted[i] == plain[i], "zshift_offset_tweaked_infinite element %d moved", i);
+  CHECK(shifted[10] != plain[10], "zshift_offset_tweaked_infinite did not move element 10");
+  CHECK_STATUS(zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_tweaked_infinite, -1, 1, -1, 1, 0.5, 1.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_tweaked_infinite, -1, 1, -1, 1, 0.5, NAN);
+  CHECK_STATUS(zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 1, -10, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_tweaked_infinite, -1, 1, -1, 1, 0.5, 0.0, 1.0, -0.25);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_tweaked_infinite, -1, 1, -1, 1, 0.5, 0.0, NAN, -10.0);
+}
+
+static void test_clip_precision(void) {
+  const long double n = 0.5L, f = 200.0L, d = 37.0L;
+  double out, walker, reference;
+  /* Window depth: Walker's under [-1, 1] and [0, 1], n(f - d)/((f - n)d) reversed. */
+  CHECK_STATUS(zshift_window_depth(0.5, 200.0, 37.0, &walker), ZSHIFT_OK);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(out == walker, "window_depth_clip [-1, 1] %.17g vs window_depth %.17g", out, walker);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_ZERO_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(out == walker, "window_depth_clip [0, 1] %.17g vs window_depth %.17g", out, walker);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, 37.0, &out), ZSHIFT_OK);
+  CHECK(relative_error(out, n * (f - d) / ((f - n) * d)) < 1e-15, "reversed window depth %.17g", out);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, 0, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 5, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 0, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth_clip, 0.5, 200.0, 0, NAN);
+
+  /* Depth step: Walker's eq. 3 for UNORM under [-1, 1] (zshift_depth_resolution). */
+  CHECK_STATUS(zshift_depth_resolution(0.5, 200.0, 24, 37.0, &reference), ZSHIFT_OK);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, reference) < 1e-15, "depth_step %.17g vs depth_resolution %.17g", out, reference);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_step, 0.5, 200.0, 0, 9, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, 0, 1, 37.0);
+
+  /* Kooima's median projection (seed 003): window depth d/(d + median). */
+  {
+    const long double median = 10.0L, r = 1.0L / steps(24), dm = d + median;
+    CHECK_STATUS(zshift_median_depth_step(10.0, ZSHIFT_FORMAT_UNORM24, 37.0, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, r * dm * dm / (median + r * dm)) < 1e-14, "median_depth_step %.17g", out);
+    CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, &out), ZSHIFT_OK);
+    CHECK(relative_error(out, -2.0L * median * 0.5L / (dm * (dm - 0.5L))) < 1e-14, "median_ndc_offset %.17g", out);
+  }
+  CHECK_STATUS(zshift_median_depth_step(10.0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_depth_step, 0.0, 1, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_depth_step, 10.0, 1, NAN);
+  CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, -1.0, 0.5, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, 10.0, 0.5, 1.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_ndc_offset, 10.0, NAN, -37.0);
+
+  /* Minimum offsets: seed 002's NDC quantum and eq. 4.1.8 under [-1, 1]. */
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 2.0L / steps(24)) < 1e-15, "min_ndc_offset %.17g", out);
+  CHECK_STATUS(zshift_min_epsilon(0.5, 200.0, 24, &reference), ZSHIFT_OK);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, reference) < 1e-15, "min_epsilon_clip %.17g vs min_epsilon %.17g", out, reference);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 1.0L / steps(24) * (f - n) / f) < 1e-15, "min_epsilon_clip [0, 1] %.17g", out);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_UNRESOLVABLE, zshift_min_epsilon_clip, 0.5, INFINITY,
+                     ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, ZSHIFT_FORMAT_FLOAT32, 37.0);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
+               ZSHIFT_OK);
+  CHECK(relative_error(out, 1.0L / steps(24) * d / (f * n / (f - n))) < 1e-14, "min_relative_epsilon %.17g", out);
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, 0, 1, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon_clip, 0.5, 200.0, 0, 4, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, 0, 1, NAN);
+}
+
+static void test_bias_and_planning(void) {
+  double bias, shift, planes[2], range[3];
+  /* A shift toward the camera is a negative bias under [-1, 1]; the inverse gives it back. */
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL,
+                                    0.25, -37.0, &bias),
+               ZSHIFT_OK);
+  CHECK(bias < 0, "bias_of_shift toward the camera under [-1, 1] is %g, expected negative", bias);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL,
+                                    bias, -37.0, &shift),
+               ZSHIFT_OK);
+  CHECK(fabs(shift - 0.25) < 1e-9, "shift_of_bias(bias_of_shift(0.25)) = %.17g", shift);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, ZSHIFT_FORMAT_FLOAT32,
+                                    ZSHIFT_BIAS_VULKAN, 0.25, -37.0, &bias),
+               ZSHIFT_OK);
+  CHECK(bias > 0, "bias_of_shift reversed is %g, expected positive", bias);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, 0, 1, 0, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, 0, 1, 0, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 3, 0.25, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 0, 0.25, -300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, 0, 1, 0, NAN, -37.0);
+
+  /* Tight planes enclose the scene. */
+  CHECK_STATUS(zshift_tight_planes(2.0, 500.0, planes), ZSHIFT_OK);
+  CHECK(planes[0] > 0 && planes[0] <= 2.0 && planes[1] >= 500.0, "tight planes [%g, %g] for [2, 500]", planes[0],
+        planes[1]);
+  CHECK_STATUS(zshift_tight_planes(2.0, 500.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 2, zshift_tight_planes, 500.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 2, zshift_tight_planes, 0.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 2, zshift_tight_planes, NAN, 2.0);
+
+  /* One offset for a depth range: at least the steps asked for at both ends. */
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC,
+                                   10.0, 100.0, 2.0, range),
+               ZSHIFT_OK);
+  {
+    /* Two window steps 2q at distance d are the eye shift 2q d^2/(b + 2q d), b = fn/(f - n)
+     * (Walker's eq. 3 with the step doubled). */
+    const long double q2 = 2.0L / steps(24), b = 200.0L * 0.5L / (200.0L - 0.5L);
+    const long double at_lo = q2 * 100.0L / (b + q2 * 10.0L), at_hi = q2 * 10000.0L / (b + q2 * 100.0L);
+    /* out[0] is signed: toward the camera is toward NDC -1 under [-1, 1]. */
+    CHECK(range[0] < 0 && range[1] >= at_lo * (1 - 1e-12L) && range[2] >= at_hi * (1 - 1e-12L),
+          "range_offset %g shifts %.17g at 10 and %.17g at 100 (2 steps: %.17Lg, %.17Lg)", range[0], range[1],
+          range[2], at_lo, at_hi);
+  }
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, 0, 1, 0, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 100.0, 10.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, 0.5);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 9, 10.0, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, NAN);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, NAN, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, INFINITY, 2.0);
+}
+
+/* ---- the recommendation (zshift_recommend, zshift_recommend_matrix) ---- */
+
+static ZshiftScene sloped_scene(void) {
+  ZshiftScene s;
+  memset(&s, 0, sizeof s);
+  s.l = -0.1;
+  s.r = 0.1;
+  s.b = -0.075;
+  s.t = 0.075;
+  s.n = 0.1;
+  s.f = 1000;
+  s.viewport_width = 256;
+  s.viewport_height = 192;
+  s.depth_format = 0x81A6; /* GL_DEPTH_COMPONENT24 */
+  s.decal_near = 40;
+  s.decal_far = 60;
+  s.slope = 1.0;
+  s.exact_depth = 0;
+  s.subpixel_bits = 8;
+  return s;
+}
+
+static ZshiftRecommendation recommend_ok(const ZshiftScene *scene, const char *what) {
+  ZshiftRecommendation r;
+  memset(&r, 0, sizeof r);
+  CHECK(zshift_recommend(scene, &r) == ZSHIFT_OK, "zshift_recommend(%s) failed", what);
+  return r;
+}
+
+/* The recommendation's parts must be the sums and conversions its header documents. */
+static void check_recommendation_consistent(const ZshiftScene *s, const ZshiftRecommendation *r,
+                                            const char *what) {
+  long double m10 = (s->f + (long double)s->n) / (s->f - (long double)s->n);
+  double eps_of_delta;
+  long double window = r->quantum + 2.0L * ((long double)r->transform + r->vertex + r->interpolation + r->snap);
+  CHECK(relative_error(r->window_offset, window) < 1e-15, "%s: window_offset %.17g is not q + 2(T+V+I+S)",
+        what, r->window_offset);
+  CHECK(r->ndc_offset == 2.0 * r->window_offset, "%s: ndc_offset is not 2 * window_offset", what);
+  CHECK(r->epsilon < 0 && relative_error(r->epsilon, -(long double)r->ndc_offset / m10) < 1e-14,
+        "%s: epsilon %.17g is not -ndc_offset/|m10|", what, r->epsilon);
+  CHECK(zshift_epsilon(s->n, s->f, r->delta_at_far, -s->decal_far, &eps_of_delta) == ZSHIFT_OK &&
+            relative_error(eps_of_delta, r->epsilon) < 1e-12,
+        "%s: delta_at_far %.17g at pz = -decal_far gives epsilon %.17g, not %.17g", what, r->delta_at_far,
+        eps_of_delta, r->epsilon);
+  CHECK(r->delta_at_far > 0 && r->bleed_gap > 0, "%s: delta_at_far %g, bleed_gap %g", what, r->delta_at_far,
+        r->bleed_gap);
+}
+
+static void test_recommend(void) {
+  ZshiftScene s = sloped_scene(), t;
+  ZshiftRecommendation snapped, unsnapped, flat, exact, d16, steeper;
+  float plain[16], decal[16];
+  long double offset, moved;
+  int i;
+
+  CHECK(ZSHIFT_SUBPIXEL_UNSNAPPED == -1, "ZSHIFT_SUBPIXEL_UNSNAPPED is %d", ZSHIFT_SUBPIXEL_UNSNAPPED);
+  snapped = recommend_ok(&s, "sloped, 8 subpixel bits");
+  check_recommendation_consistent(&s, &snapped, "sloped, 8 subpixel bits");
+  CHECK(relative_error(snapped.quantum, 1.0L / steps(24)) < 1e-15, "D24 quantum %.17g", snapped.quantum);
+  CHECK(snapped.snap > 0 && snapped.polygon_offset_factor == ldexp(1.0, 1 - 8),
+        "snapping with 8 bits: snap %g, glPolygonOffset factor %g (expected 2^-7)", snapped.snap,
+        snapped.polygon_offset_factor);
+
+  t = s;
+  t.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+  unsnapped = recommend_ok(&t, "unsnapped");
+  check_recommendation_consistent(&t, &unsnapped, "unsnapped");
+  CHECK(unsnapped.snap == 0 && unsnapped.polygon_offset_factor == 0 && unsnapped.window_offset < snapped.window_offset,
+        "unsnapped: snap %g factor %g offset %g (snapped %g)", unsnapped.snap, unsnapped.polygon_offset_factor,
+        unsnapped.window_offset, snapped.window_offset);
+
+  t = s;
+  t.slope = 3.0;
+  steeper = recommend_ok(&t, "slope 3");
+  CHECK(steeper.window_offset > snapped.window_offset, "a steeper plane needs a larger offset (%g vs %g)",
+        steeper.window_offset, snapped.window_offset);
+
+  t = s;
+  t.slope = 0.0;
+  flat = recommend_ok(&t, "facing");
+  t.exact_depth = 1;
+  exact = recommend_ok(&t, "facing, exact depth");
+  check_recommendation_consistent(&t, &exact, "facing, exact depth");
+  CHECK(flat.snap == 0 && exact.vertex == 0 && exact.interpolation == 0 && exact.window_offset < flat.window_offset,
+        "facing plane: snap %g; exact depth: vertex %g interpolation %g", flat.snap, exact.vertex,
+        exact.interpolation);
+
+  t = s;
+  t.depth_format = 0x81A5; /* GL_DEPTH_COMPONENT16 */
+  d16 = recommend_ok(&t, "D16");
+  CHECK(relative_error(d16.quantum, 1.0L / steps(16)) < 1e-15 && d16.window_offset > snapped.window_offset,
+        "D16 quantum %.17g", d16.quantum);
+  t.depth_format = 0x8CAC; /* GL_DEPTH_COMPONENT32F */
+  (void)recommend_ok(&t, "D32F");
+  t.f = INFINITY;
+  (void)recommend_ok(&t, "D32F, infinite far plane");
+
+  /* The matrix: zshift_frustum's, with element 10 moved by at least |m10 * epsilon| toward the
+   * camera and by at most one float ulp more. */
+  CHECK_STATUS(zshift_recommend_matrix(&s, decal), ZSHIFT_OK);
+  CHECK_STATUS(zshift_frustum(s.l, s.r, s.b, s.t, s.n, s.f, plain), ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(decal[i] == plain[i], "recommend_matrix element %d differs from zshift_frustum's", i);
+  offset = -(s.f + (long double)s.n) / (s.f - (long double)s.n) * snapped.epsilon;
+  moved = (long double)decal[10] - (long double)plain[10];
+  CHECK(moved > 0 && moved >= offset * (1.0L - 1e-12L) &&
+            moved <= offset + (long double)(nextafterf(fabsf(decal[10]), INFINITY) - fabsf(decal[10])),
+        "recommend_matrix moved element 10 by %Lg for an exact offset %Lg", moved, offset);
+
+  /* Errors: NULL pointers, NaN, domain; the output untouched. */
+  {
+    ZshiftRecommendation out;
+    float m[16];
+    CHECK_STATUS(zshift_recommend(NULL, &out), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend(&s, NULL), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend_matrix(NULL, m), ZSHIFT_ERR_NULL_POINTER);
+    CHECK_STATUS(zshift_recommend_matrix(&s, NULL), ZSHIFT_ERR_NULL_POINTER);
+  }
+#define CHECK_SCENE_ERROR(expected, field, value)                                                \
+  do {                                                                                           \
+    ZshiftRecommendation out_;                                                                   \
+    float m_[16];                                                                                \
+    t = s;                                                                                       \
+    t.field = value;                                                                             \
+    memset(&out_, PATTERN, sizeof out_);                                                         \
+    memset(m_, PATTERN, sizeof m_);                                                              \
+    CHECK_STATUS(zshift_recommend(&t, &out_), expected);                                         \
+    CHECK_STATUS(zshift_recommend_matrix(&t, m_), expected);                                     \
+    CHECK(untouched(&out_, sizeof out_) && untouched(m_, sizeof m_),                             \
+          "zshift_recommend with %s = %s wrote its output on error", #field, #value);            \
+  } while (0)
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, slope, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, decal_far, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_NOT_FINITE, l, NAN);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, slope, -1.0);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, exact_depth, 1);      /* with slope 1 */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, depth_format, 0x1234);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, viewport_width, 0);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_near, 0.05);     /* nearer than n */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_near, 70.0);     /* beyond decal_far */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, decal_far, 2000.0);    /* beyond f */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, subpixel_bits, -2);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, subpixel_bits, 33);
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, r, -0.1);             /* l == r */
+  CHECK_SCENE_ERROR(ZSHIFT_ERR_DOMAIN, n, 0.0);
+#undef CHECK_SCENE_ERROR
+}
+
+static void test_status_messages(void) {
+  static const ZshiftStatus known[] = {ZSHIFT_OK,          ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE,
+                                       ZSHIFT_ERR_DOMAIN,  ZSHIFT_ERR_UNRESOLVABLE, ZSHIFT_ERR_OVERFLOW,
+                                       ZSHIFT_ERR_INTERNAL};
+  static const ZshiftStatus unknown[] = {-1, 7, INT32_MAX, INT32_MIN};
+  const char *unknown_text = "unknown zshift status";
+  size_t i, j;
+  CHECK(ZSHIFT_OK == 0, "ZSHIFT_OK must be 0");
+  for (i = 0; i < sizeof known / sizeof known[0]; i++) {
+    const char *text = zshift_status_message(known[i]);
+    CHECK(text != NULL && text[0] != '\0' && strcmp(text, unknown_text) != 0,
+          "status %d has no message of its own", (int)known[i]);
+    for (j = 0; j < i; j++)
+      CHECK(text != NULL && strcmp(text, zshift_status_message(known[j])) != 0,
+            "statuses %d and %d share a message", (int)known[i], (int)known[j]);
+  }
+  for (i = 0; i < sizeof unknown / sizeof unknown[0]; i++) {
+    const char *text = zshift_status_message(unknown[i]);
+    CHECK(text != NULL && strcmp(text, unknown_text) == 0, "status %d: \"%s\"", (int)unknown[i],
+          text ? text : "(null)");
+  }
+}
+
+static void test_versions(void) {
+  const char *version = zshift_version();
+  CHECK(version != NULL && strcmp(version, EXPECTED_VERSION) == 0, "zshift_version() is \"%s\", Cargo.toml says \"%s\"",
+        version ? version : "(null)", EXPECTED_VERSION);
+  CHECK(ZSHIFT_ABI_VERSION == 1, "ZSHIFT_ABI_VERSION is %d; this test was written for 1", ZSHIFT_ABI_VERSION);
+}
+
+int main(void) {
+  test_frustum();
+  test_load_offset_matrix();
+  test_epsilon();
+  test_min_epsilon();
+  test_deltas();
+  test_precision();
+  test_projections();
+  test_clip_precision();
+  test_bias_and_planning();
+  test_recommend();
+  test_status_messages();
+  test_versions();
+  if (failures != 0) {
+    fprintf(stderr, "abi_test: %d of %d checks failed\n", failures, checks);
+    return 1;
+  }
+  printf("abi_test: all %d checks passed\n", checks);
+  return 0;
+}

@@ -1,0 +1,238 @@
+// The C++ wrapper (bindings/cpp/zshift.hpp): every function returns what the C call writes,
+// failures throw zshift::Error carrying the C status and its message, and the constexpr parts
+// are usable at compile time. Prints each failure and exits nonzero if any check failed.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <type_traits>
+
+#include "zshift.hpp"
+
+// Compile-time checks: these fail the build, not the run.
+static_assert(zshift::index(2, 2) == 10, "element 10 is row 2, column 2");
+static_assert(zshift::index(2, 3) == 14, "element 14 is row 2, column 3");
+static_assert(zshift::to_c(zshift::Status::domain) == ZSHIFT_ERR_DOMAIN, "Status mirrors the header");
+static_assert(zshift::abi_version == ZSHIFT_ABI_VERSION, "ABI version mirrors the header");
+static_assert(std::is_same_v<zshift::Matrix, std::array<float, 16>>, "Matrix is std::array<float, 16>");
+static_assert(std::is_base_of_v<std::runtime_error, zshift::Error>, "Error is a std::runtime_error");
+static_assert(zshift::subpixel_unsnapped == ZSHIFT_SUBPIXEL_UNSNAPPED, "unsnapped mirrors the header");
+
+static int checks, failures;
+
+#define CHECK(cond, ...)                                   \
+  do {                                                     \
+    checks++;                                              \
+    if (!(cond)) {                                         \
+      failures++;                                          \
+      std::fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
+      std::fprintf(stderr, __VA_ARGS__);                   \
+      std::fputc('\n', stderr);                            \
+    }                                                      \
+  } while (0)
+
+// The call must throw zshift::Error with `expected` status and the C library's message for it.
+template <typename Call>
+static void check_throws(const char *what, zshift::Status expected, Call call) {
+  try {
+    call();
+    CHECK(false, "%s did not throw", what);
+  } catch (const zshift::Error &e) {
+    CHECK(e.status() == expected, "%s threw status %d, expected %d", what, static_cast<int>(e.status()),
+          static_cast<int>(expected));
+    CHECK(std::strcmp(e.what(), zshift_status_message(zshift::to_c(expected))) == 0,
+          "%s threw \"%s\", not the status message", what, e.what());
+  }
+}
+
+// [quickstart-cpp]
+// The base surface uses the plain projection, the decal the offset zshift recommends for what
+// the engine knows about it. Both throw zshift::Error (with the status message) on bad input.
+struct Projections {
+  zshift::Matrix base, decal;
+};
+
+Projections decal_projections(const zshift::Scene &s) {
+  return {zshift::frustum(s.l, s.r, s.b, s.t, s.n, s.f), zshift::recommend_matrix(s)};
+}
+
+// A decal 40 to 60 units away on a floor tilted by |dz/dx| + |dz/dy| = 1, 1280x720, 24-bit depth:
+constexpr zshift::Scene floor_decal =
+    zshift::make_scene(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 1280, 720, 0x81A6 /* GL_DEPTH_COMPONENT24 */,
+                       40.0, 60.0, 1.0, false, 8 /* glGetIntegerv(GL_SUBPIXEL_BITS) */);
+// Then: glUniformMatrix4fv(location, 1, GL_FALSE, decal_projections(floor_decal).decal.data());
+// [/quickstart-cpp]
+
+static void test_matrices() {
+  const double inf = std::numeric_limits<double>::infinity();
+  float plain[16], shifted[16];
+  Projections p = decal_projections(floor_decal);
+  double step;
+  zshift_min_delta_toward(0.1, 1000.0, 24, -250.0, &step);
+  CHECK(zshift_frustum(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, plain) == ZSHIFT_OK, "C zshift_frustum failed");
+  CHECK(zshift_recommend_matrix(&floor_decal, shifted) == ZSHIFT_OK, "C zshift_recommend_matrix failed");
+  CHECK(std::memcmp(p.base.data(), plain, sizeof plain) == 0, "frustum() differs from zshift_frustum");
+  CHECK(std::memcmp(p.decal.data(), shifted, sizeof shifted) == 0, "recommend_matrix() differs from the C call");
+  CHECK(zshift_load_offset_matrix(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 4.0 * step, -250.0, shifted) == ZSHIFT_OK,
+        "C zshift_load_offset_matrix failed");
+  CHECK(std::memcmp(zshift::load_offset_matrix(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0, 4.0 * step, -250.0).data(),
+                    shifted, sizeof shifted) == 0,
+        "load_offset_matrix() differs from the C call");
+  // delta > 0 moves toward the camera: element 10 (negative) moves up, nothing else moves.
+  CHECK(p.decal[zshift::index(2, 2)] > p.base[zshift::index(2, 2)], "the offset did not raise element 10");
+  for (std::size_t i = 0; i < 16; i++)
+    if (i != 10) CHECK(p.decal[i] == p.base[i], "element %zu moved", i);
+  zshift::Matrix infinite = zshift::frustum(-1, 1, -1, 1, 0.5, inf);
+  CHECK(infinite[10] == -1.0f && infinite[14] == -1.0f, "infinite far plane: m10 %g m14 %g",
+        static_cast<double>(infinite[10]), static_cast<double>(infinite[14]));
+
+  check_throws("frustum(l == r)", zshift::Status::domain, [] { zshift::frustum(1, 1, -1, 1, 1, 100); });
+  check_throws("frustum(NaN)", zshift::Status::not_finite, [] { zshift::frustum(std::nan(""), 1, -1, 1, 1, 100); });
+  check_throws("frustum(2n/(r-l) > FLT_MAX)", zshift::Status::overflow, [] { zshift::frustum(0, 1e-40, -1, 1, 1, 100); });
+  check_throws("load_offset_matrix(pz > -n)", zshift::Status::domain,
+               [] { zshift::load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.1, -0.5); });
+  check_throws("load_offset_matrix(pz + delta == 0)", zshift::Status::domain,
+               [] { zshift::load_offset_matrix(-1, 1, -1, 1, 1, 100, 50, -50); });
+}
+
+// Each scalar wrapper returns exactly what its C function writes.
+static void test_scalars() {
+  double c;
+  zshift_epsilon(0.1, 1000, 0.5, -20, &c);
+  CHECK(zshift::epsilon(0.1, 1000, 0.5, -20) == c && c < 0, "epsilon");
+  zshift_min_epsilon(0.1, 1000, 16, &c);
+  CHECK(zshift::min_epsilon(0.1, 1000, 16) == c, "min_epsilon");
+  zshift_min_delta_toward(0.1, 1000, 16, -300, &c);
+  CHECK(zshift::min_delta_toward(0.1, 1000, 16, -300) == c && c > 0, "min_delta_toward");
+  zshift_max_delta_away(0.1, 1000, 16, -2, &c);
+  CHECK(zshift::max_delta_away(0.1, 1000, 16, -2) == c && c < 0, "max_delta_away");
+  zshift_window_depth(0.1, 1000, 37, &c);
+  CHECK(zshift::window_depth(0.1, 1000, 37) == c, "window_depth");
+  zshift_depth_resolution(0.1, 1000, 16, 300, &c);
+  CHECK(zshift::depth_resolution(0.1, 1000, 16, 300) == c, "depth_resolution");
+  // Seeds 000 (with 002) and 001 agree: the minimum shift is Walker's depth step at d = -pz.
+  CHECK(std::fabs(zshift::min_delta_toward(1, 1e4, 24, -700) / zshift::depth_resolution(1, 1e4, 24, 700) - 1) < 1e-14,
+        "min_delta_toward != depth_resolution");
+
+  check_throws("epsilon(NaN)", zshift::Status::not_finite, [] { zshift::epsilon(1, 100, std::nan(""), -20); });
+  check_throws("min_epsilon(bits 0)", zshift::Status::domain, [] { zshift::min_epsilon(1, 100, 0); });
+  check_throws("min_delta_toward(pz < -f)", zshift::Status::domain, [] { zshift::min_delta_toward(1, 100, 24, -101); });
+  check_throws("max_delta_away(k|pz| >= 1)", zshift::Status::unresolvable,
+               [] { zshift::max_delta_away(1, 1e6, 1, -1e5); });
+  check_throws("window_depth(d < n)", zshift::Status::domain, [] { zshift::window_depth(1, 100, 0.5); });
+  check_throws("depth_resolution(bits 33)", zshift::Status::domain, [] { zshift::depth_resolution(1, 100, 33, 50); });
+}
+
+static void test_recommend() {
+  static_assert(floor_decal.viewport_width == 1280 && floor_decal.exact_depth == 0u, "make_scene is constexpr");
+  ZshiftRecommendation c{};
+  CHECK(zshift_recommend(&floor_decal, &c) == ZSHIFT_OK, "C zshift_recommend failed");
+  zshift::Recommendation r = zshift::recommend(floor_decal);
+  CHECK(std::memcmp(&r, &c, sizeof c) == 0, "recommend() differs from the C call");
+  CHECK(r.epsilon < 0 && r.delta_at_far > 0 && r.snap > 0, "recommend(): epsilon %g delta %g snap %g", r.epsilon,
+        r.delta_at_far, r.snap);
+  zshift::Scene bad = floor_decal;
+  bad.decal_near = 70.0;  // beyond decal_far
+  check_throws("recommend(decal_near > decal_far)", zshift::Status::domain, [&] { zshift::recommend(bad); });
+  check_throws("recommend_matrix(decal_near > decal_far)", zshift::Status::domain,
+               [&] { zshift::recommend_matrix(bad); });
+  bad = floor_decal;
+  bad.slope = std::nan("");
+  check_throws("recommend(NaN slope)", zshift::Status::not_finite, [&] { zshift::recommend(bad); });
+}
+
+// Each wrapper of the clip-convention, median, bias and planning entry points returns exactly
+// what its C function writes, and throws on the C function's errors.
+static void test_conventions() {
+  using zshift::Clip;
+  using zshift::Format;
+  constexpr auto reversed = static_cast<std::int32_t>(Clip::reversed_zero_to_one);
+  static_assert(reversed == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, "Clip mirrors the header");
+  float c[16];
+  double v;
+  double planes[2], range[3];
+
+  zshift_perspective(60, 1.5, 0.5, 200, c);
+  CHECK(std::memcmp(zshift::perspective(60, 1.5, 0.5, 200).data(), c, sizeof c) == 0, "perspective");
+  zshift_projection(-1, 1, -1, 1, 0.5, 200, reversed, c);
+  CHECK(std::memcmp(zshift::projection(-1, 1, -1, 1, 0.5, 200, Clip::reversed_zero_to_one).data(), c, sizeof c) == 0,
+        "projection");
+  zshift_offset_projection(-1, 1, -1, 1, 0.5, 200, reversed, 0.5, -50, c);
+  CHECK(std::memcmp(zshift::offset_projection(-1, 1, -1, 1, 0.5, 200, Clip::reversed_zero_to_one, 0.5, -50).data(), c,
+                    sizeof c) == 0,
+        "offset_projection");
+  zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, c);
+  CHECK(std::memcmp(zshift::offset_perspective(60, 1.5, 0.5, 200, Clip::neg_one_to_one, 0.5, -50).data(), c,
+                    sizeof c) == 0,
+        "offset_perspective");
+  zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, zshift::min_infinite_tweak, c);
+  CHECK(std::memcmp(zshift::tweaked_infinite(-1, 1, -1, 1, 0.5, zshift::min_infinite_tweak).data(), c, sizeof c) == 0,
+        "tweaked_infinite");
+  zshift_offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10, -1000, c);
+  CHECK(std::memcmp(zshift::offset_tweaked_infinite(-1, 1, -1, 1, 0.5, 0.0, 10, -1000).data(), c, sizeof c) == 0,
+        "offset_tweaked_infinite");
+
+  zshift_median_ndc_offset(10, 0.5, -37, &v);
+  CHECK(zshift::median_ndc_offset(10, 0.5, -37) == v, "median_ndc_offset");
+  zshift_window_depth_clip(0.5, 200, reversed, 37, &v);
+  CHECK(zshift::window_depth_clip(0.5, 200, Clip::reversed_zero_to_one, 37) == v, "window_depth_clip");
+  zshift_depth_step(0.5, 200, 1, 3, 37, &v);
+  CHECK(zshift::depth_step(0.5, 200, Clip::zero_to_one, Format::float32, 37) == v, "depth_step");
+  zshift_median_depth_step(10, 1, 37, &v);
+  CHECK(zshift::median_depth_step(10, Format::unorm24, 37) == v, "median_depth_step");
+  zshift_min_ndc_offset(0.5, 200, 0, 0, 37, &v);
+  CHECK(zshift::min_ndc_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm16, 37) == v, "min_ndc_offset");
+  zshift_min_epsilon_clip(0.5, 200, 1, 1, 37, &v);
+  CHECK(zshift::min_epsilon_clip(0.5, 200, Clip::zero_to_one, Format::unorm24, 37) == v, "min_epsilon_clip");
+  zshift_min_relative_epsilon(0.5, 200, reversed, 3, 37, &v);
+  CHECK(zshift::min_relative_epsilon(0.5, 200, Clip::reversed_zero_to_one, Format::float32, 37) == v,
+        "min_relative_epsilon");
+  zshift_bias_of_shift(0.5, 200, 0, 1, 2, 0.25, -37, &v);
+  CHECK(zshift::bias_of_shift(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::vulkan, 0.25, -37) == v,
+        "bias_of_shift");
+  zshift_shift_of_bias(0.5, 200, 0, 1, 0, -3.0, -37, &v);
+  CHECK(zshift::shift_of_bias(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::opengl, -3.0, -37) == v,
+        "shift_of_bias");
+  zshift_tight_planes(2, 500, planes);
+  std::array<double, 2> tight = zshift::tight_planes(2, 500);
+  CHECK(tight[0] == planes[0] && tight[1] == planes[1], "tight_planes");
+  zshift_range_offset(0.5, 200, 0, 1, 0, 10, 100, 2, range);
+  zshift::RangeOffset ro = zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24,
+                                                zshift::OffsetKind::ndc, 10, 100, 2);
+  CHECK(ro.offset == range[0] && ro.shift_at_lo == range[1] && ro.shift_at_hi == range[2], "range_offset");
+
+  check_throws("projection(unknown clip)", zshift::Status::domain,
+               [] { zshift::projection(-1, 1, -1, 1, 1, 100, static_cast<Clip>(7)); });
+  check_throws("perspective(fovy 180)", zshift::Status::domain, [] { zshift::perspective(180, 1, 1, 100); });
+  check_throws("tweaked_infinite(tweak 1)", zshift::Status::domain, [] { zshift::tweaked_infinite(-1, 1, -1, 1, 1, 1.0); });
+  check_throws("min_epsilon_clip(reversed, f = inf)", zshift::Status::unresolvable, [] {
+    zshift::min_epsilon_clip(0.5, std::numeric_limits<double>::infinity(), Clip::reversed_zero_to_one,
+                             Format::float32, 37);
+  });
+  check_throws("tight_planes(nearest > farthest)", zshift::Status::domain, [] { zshift::tight_planes(500, 2); });
+  check_throws("range_offset(steps < 1)", zshift::Status::domain, [] {
+    zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::OffsetKind::ndc, 10, 100, 0.5);
+  });
+  check_throws("median_ndc_offset(NaN)", zshift::Status::not_finite, [] { zshift::median_ndc_offset(10, std::nan(""), -37); });
+}
+
+static void test_messages() {
+  CHECK(std::string(zshift::message(zshift::Status::ok)) == zshift_status_message(ZSHIFT_OK), "message(ok)");
+  CHECK(zshift::Error(ZSHIFT_ERR_INTERNAL).status() == zshift::Status::internal, "Error keeps its status");
+  CHECK(zshift::version() == zshift_version() && !zshift::version().empty(), "version()");
+}
+
+int main() {
+  test_matrices();
+  test_scalars();
+  test_recommend();
+  test_conventions();
+  test_messages();
+  if (failures != 0) {
+    std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
+    return 1;
+  }
+  std::printf("wrapper_test: all %d checks passed (zshift %s)\n", checks, zshift::version().c_str());
+  return 0;
+}
