@@ -86,3 +86,31 @@ fn every_writing_function_refuses_a_null_output_on_any_thread() {
         h.join().expect("a thread found a difference");
     }
 }
+
+/// The catalogue that every hardening test walks must list every function the header declares,
+/// so a new exported function is hardened as soon as it is declared (or this test says so).
+#[test]
+fn the_catalogue_lists_every_function_in_the_header() {
+    let header = include_str!("../include/zshift.h");
+    let mut declared: Vec<&str> = header
+        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .zip(
+            header
+                .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .skip(1),
+        )
+        .filter(|(name, _)| name.starts_with("zshift_"))
+        .map(|(name, _)| name)
+        .collect();
+    declared.retain(|name| {
+        header.contains(&format!(" {name}(")) || header.contains(&format!("*{name}("))
+    });
+    declared.sort();
+    declared.dedup();
+    let mut listed: Vec<&str> = CATALOGUE.iter().map(|e| e.name).collect();
+    listed.sort();
+    assert_eq!(
+        declared, listed,
+        "add the missing functions to tests/abi/mod.rs"
+    );
+}
