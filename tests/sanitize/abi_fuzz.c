@@ -183,6 +183,21 @@ static void check_text(const struct text *t, const struct inputs *in) {
     if (strlen(p) == 0) fail(t->name, in, "returned an empty string", 0);
 }
 
+/* A NULL scene is refused like a NULL output, and the output is left alone. */
+static void check_null_scene(const struct inputs *in) {
+    ZshiftRecommendation rec;
+    float m[16];
+    memset(&rec, SENTINEL, sizeof rec);
+    memset(m, SENTINEL, sizeof m);
+    unsigned char want[sizeof rec > sizeof m ? sizeof rec : sizeof m];
+    memset(want, SENTINEL, sizeof want);
+    calls += 2;
+    if (zshift_recommend(NULL, &rec) != ZSHIFT_ERR_NULL_POINTER || memcmp(&rec, want, sizeof rec))
+        fail("zshift_recommend", in, "NULL scene not refused cleanly", 0);
+    if (zshift_recommend_matrix(NULL, m) != ZSHIFT_ERR_NULL_POINTER || memcmp(m, want, sizeof m))
+        fail("zshift_recommend_matrix", in, "NULL scene not refused cleanly", 0);
+}
+
 static void check_all(const struct inputs *in) {
     for (size_t i = 0; i < NWRITERS; i++) {
         for (size_t misalign = 0; misalign < 8; misalign++) check_writer(&WRITERS[i], in, misalign);
@@ -263,6 +278,7 @@ int main(int argc, char **argv) {
 
     check_all(&VALID), cases++;
     check_overlap(&VALID);
+    check_null_scene(&VALID);
     for (int k = 0; k < NFIELDS; k++)
         for (size_t e = 0; e < nedges; e++) {
             struct inputs in = VALID;
