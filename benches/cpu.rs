@@ -87,7 +87,7 @@ fn cpu_builders(c: &mut Criterion) {
             let scene = zshift::recommend::Scene {
                 frustum: black_box(frustum),
                 viewport: [1920, 1080],
-                format: zshift::recommend::DepthFormat::Unorm { bits: 24 },
+                format: zshift::recommend::DepthFormat::Unorm24,
                 depth_range: [black_box(-k.pz), -k.pz],
                 slope: black_box(1.0),
                 exact_depth: false,

@@ -103,7 +103,8 @@ fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendation, 
     let model = RecommendScene {
         frustum: Frustum::new(-h, h, -h, h, n, f).map_err(|e| e.to_string())?,
         viewport: [SIZE, SIZE],
-        format: RecommendFormat::Unorm { bits: DEPTH.bits() },
+        format: RecommendFormat::from_gl_internal_format(DEPTH.gl_enum())
+            .map_err(|e| e.to_string())?,
         depth_range: [nearest, farthest],
         slope: scene.slope.abs(),
         exact_depth: false,

@@ -20,17 +20,18 @@
 // GL_ZERO_TO_ONE), glDepthFunc(GL_GREATER), glClearDepth(0); meant for 32-bit float depth.
 #define ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE 2
 
-// `format`: GL_DEPTH_COMPONENT16 (16-bit unsigned normalized).
-#define ZSHIFT_FORMAT_UNORM16 0
+// `format`: GL_DEPTH_COMPONENT16 (16-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+#define ZSHIFT_FORMAT_UNORM16 33189
 
-// `format`: GL_DEPTH_COMPONENT24 (24-bit unsigned normalized).
-#define ZSHIFT_FORMAT_UNORM24 1
+// `format`: GL_DEPTH_COMPONENT24 (24-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+#define ZSHIFT_FORMAT_UNORM24 33190
 
-// `format`: GL_DEPTH_COMPONENT32 (32-bit unsigned normalized).
-#define ZSHIFT_FORMAT_UNORM32 2
+// `format`: GL_DEPTH_COMPONENT32 (32-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+#define ZSHIFT_FORMAT_UNORM32 33191
 
-// `format`: GL_DEPTH_COMPONENT32F (32-bit float; spacing 2^(e-23) at a depth of exponent e).
-#define ZSHIFT_FORMAT_FLOAT32 3
+// `format`: GL_DEPTH_COMPONENT32F (32-bit float; spacing 2^(e-23) at a depth of exponent e); the
+// value is the GL enum.
+#define ZSHIFT_FORMAT_FLOAT32 36012
 
 // `api`: glPolygonOffset units (r = 1/(2^m - 1) for UNORM; implementations may apply more:
 // Mesa's llvmpipe applies 2/(2^m - 1)).

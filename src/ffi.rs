@@ -286,14 +286,15 @@ pub const ZSHIFT_CLIP_ZERO_TO_ONE: i32 = 1;
 /// GL_ZERO_TO_ONE), glDepthFunc(GL_GREATER), glClearDepth(0); meant for 32-bit float depth.
 pub const ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE: i32 = 2;
 
-/// `format`: GL_DEPTH_COMPONENT16 (16-bit unsigned normalized).
-pub const ZSHIFT_FORMAT_UNORM16: i32 = 0;
-/// `format`: GL_DEPTH_COMPONENT24 (24-bit unsigned normalized).
-pub const ZSHIFT_FORMAT_UNORM24: i32 = 1;
-/// `format`: GL_DEPTH_COMPONENT32 (32-bit unsigned normalized).
-pub const ZSHIFT_FORMAT_UNORM32: i32 = 2;
-/// `format`: GL_DEPTH_COMPONENT32F (32-bit float; spacing 2^(e-23) at a depth of exponent e).
-pub const ZSHIFT_FORMAT_FLOAT32: i32 = 3;
+/// `format`: GL_DEPTH_COMPONENT16 (16-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+pub const ZSHIFT_FORMAT_UNORM16: i32 = 0x81A5;
+/// `format`: GL_DEPTH_COMPONENT24 (24-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+pub const ZSHIFT_FORMAT_UNORM24: i32 = 0x81A6;
+/// `format`: GL_DEPTH_COMPONENT32 (32-bit unsigned normalized); the value is the GL enum, so a GL internal format can be passed as is.
+pub const ZSHIFT_FORMAT_UNORM32: i32 = 0x81A7;
+/// `format`: GL_DEPTH_COMPONENT32F (32-bit float; spacing 2^(e-23) at a depth of exponent e); the
+/// value is the GL enum.
+pub const ZSHIFT_FORMAT_FLOAT32: i32 = 0x8CAC;
 
 /// `api`: glPolygonOffset units (r = 1/(2^m - 1) for UNORM; implementations may apply more:
 /// Mesa's llvmpipe applies 2/(2^m - 1)).
@@ -322,13 +323,7 @@ fn clip_of(clip: i32) -> Result<ClipDepth> {
 }
 
 fn format_of(format: i32) -> Result<DepthFormat> {
-    match format {
-        ZSHIFT_FORMAT_UNORM16 => Ok(DepthFormat::Unorm16),
-        ZSHIFT_FORMAT_UNORM24 => Ok(DepthFormat::Unorm24),
-        ZSHIFT_FORMAT_UNORM32 => Ok(DepthFormat::Unorm32),
-        ZSHIFT_FORMAT_FLOAT32 => Ok(DepthFormat::Float32),
-        _ => Err(crate::domain::domain("unknown ZSHIFT_FORMAT_* value")),
-    }
+    DepthFormat::from_gl_internal_format(format as u32)
 }
 
 fn api_of(api: i32) -> Result<BiasApi> {
@@ -812,18 +807,8 @@ fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
 }
 
 fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
-    use crate::recommend::{DepthFormat, Scene, Snapping};
-    let format = match s.depth_format {
-        0x81A5 => DepthFormat::Unorm { bits: 16 },
-        0x81A6 => DepthFormat::Unorm { bits: 24 },
-        0x81A7 => DepthFormat::Unorm { bits: 32 },
-        0x8CAC => DepthFormat::Float32,
-        _ => {
-            return Err(crate::domain::domain(
-                "depth_format must be GL_DEPTH_COMPONENT16, 24, 32 or 32F",
-            ))
-        }
-    };
+    use crate::recommend::{Scene, Snapping};
+    let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
         b if b >= 0 => Snapping::SubpixelBits(b as u32),

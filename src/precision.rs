@@ -142,6 +142,29 @@ impl DepthFormat {
         }
     }
 
+    /// The OpenGL internal format: `GL_DEPTH_COMPONENT16` (0x81A5), `GL_DEPTH_COMPONENT24`
+    /// (0x81A6), `GL_DEPTH_COMPONENT32` (0x81A7) or `GL_DEPTH_COMPONENT32F` (0x8CAC).
+    pub fn gl_internal_format(self) -> u32 {
+        match self {
+            Self::Unorm16 => 0x81A5,
+            Self::Unorm24 => 0x81A6,
+            Self::Unorm32 => 0x81A7,
+            Self::Float32 => 0x8CAC,
+        }
+    }
+
+    /// The format of an OpenGL depth internal format enum (the inverse of
+    /// [`Self::gl_internal_format`]).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Domain`] for any other value.
+    pub fn from_gl_internal_format(internal_format: u32) -> Result<Self> {
+        [Self::Unorm16, Self::Unorm24, Self::Unorm32, Self::Float32]
+            .into_iter()
+            .find(|f| f.gl_internal_format() == internal_format)
+            .ok_or_else(|| domain("the depth format must be GL_DEPTH_COMPONENT16, 24, 32 or 32F"))
+    }
+
     /// Whether the format is unsigned normalized (fixed point).
     pub fn is_unorm(self) -> bool {
         self != Self::Float32

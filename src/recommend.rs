@@ -75,24 +75,15 @@
 //! least `Δw + 2(T + V + I + S) = 2Δw − q` is never overdrawn; [`Recommendation::bleed_gap`] is
 //! that separation as an eye-space distance along the line of sight at `d₂`, where it is largest.
 
-use crate::domain::{depth_steps, domain, finite, representable};
+use crate::domain::{domain, finite, representable};
 use crate::error::Result;
 use crate::projection::Frustum;
 
 /// The unit roundoff of f32: half an ulp of 1.
 const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 
-/// What the depth attachment stores.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DepthFormat {
-    /// An m-bit unsigned normalized buffer (`GL_DEPTH_COMPONENT16`, `24`, `32`).
-    Unorm {
-        /// m, in 1..=32.
-        bits: u32,
-    },
-    /// `GL_DEPTH_COMPONENT32F` under the standard `[−1, 1]` NDC depth mapping.
-    Float32,
-}
+/// What the depth attachment stores: the crate's one depth-format type.
+pub use crate::precision::DepthFormat;
 
 /// Whether the rasterizer snaps vertex positions before setting up the depth plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -265,16 +256,10 @@ fn snap(scene: &Scene) -> Result<f64> {
     }
 }
 
-/// `q` for a format at window depth `w` (the largest the decal reaches).
+/// `q` for a format at window depth `w` (the largest the decal reaches): one step of a UNORM
+/// buffer, or the f32 spacing at `w` for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
-    match format {
-        DepthFormat::Unorm { bits } => Ok(1.0 / depth_steps(bits)?),
-        DepthFormat::Float32 => {
-            // Spacing of f32 at w: 2^(exponent − 23), and no finer than the smallest normal's.
-            let w = w.max(f32::MIN_POSITIVE as f64);
-            Ok(2f64.powi(w.log2().floor() as i32 - 23))
-        }
-    }
+    format.spacing_at(w.clamp(0.0, 1.0))
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
@@ -339,9 +324,6 @@ fn check(scene: &Scene) -> Result<()> {
             "exact_depth needs a plane facing the camera (slope 0)",
         ));
     }
-    if let DepthFormat::Unorm { bits } = scene.format {
-        depth_steps(bits)?;
-    }
     if let Snapping::SubpixelBits(b) = scene.snapping {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
@@ -372,11 +354,7 @@ mod tests {
     /// latter through `offset::epsilon`, an independent implementation).
     #[test]
     fn the_forms_of_the_offset_agree_through_the_seed_equations() {
-        let s = scene(
-            DepthFormat::Unorm { bits: 24 },
-            1.0,
-            Snapping::SubpixelBits(8),
-        );
+        let s = scene(DepthFormat::Unorm24, 1.0, Snapping::SubpixelBits(8));
         let r = recommend(&s).unwrap();
         let m10 = (1e3 + 1.0) / (1e3 - 1.0);
         assert!((-r.epsilon * m10 - r.ndc_offset).abs() <= 1e-15 * r.ndc_offset);
@@ -393,11 +371,7 @@ mod tests {
     /// `precision::window_depth`) is `2Δw − q` at the far end of the decal.
     #[test]
     fn the_bleed_gap_spans_twice_the_offset_less_a_quantum_in_window_depth() {
-        let s = scene(
-            DepthFormat::Unorm { bits: 16 },
-            3.0,
-            Snapping::SubpixelBits(8),
-        );
+        let s = scene(DepthFormat::Unorm16, 3.0, Snapping::SubpixelBits(8));
         let r = recommend(&s).unwrap();
         let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
         let dw = w(120.0) - w(120.0 - r.bleed_gap);
@@ -430,7 +404,7 @@ mod tests {
 
     #[test]
     fn bad_scenes_are_refused_with_their_kind() {
-        let good = scene(DepthFormat::Unorm { bits: 24 }, 1.0, Snapping::Unsnapped);
+        let good = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
         let kind = |s: Scene| recommend(&s).unwrap_err().kind();
         assert_eq!(
             kind(Scene {
@@ -470,13 +444,6 @@ mod tests {
         assert_eq!(
             kind(Scene {
                 viewport: [0, 256],
-                ..good
-            }),
-            ErrorKind::Domain
-        );
-        assert_eq!(
-            kind(Scene {
-                format: DepthFormat::Unorm { bits: 33 },
                 ..good
             }),
             ErrorKind::Domain

@@ -821,7 +821,14 @@ mod c_abi {
             ZSHIFT_ERR_DOMAIN
         );
         assert_eq!(
-            zshift_depth_step(0.1, 100.0, 0, 1, 300.0, &mut x),
+            zshift_depth_step(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                300.0,
+                &mut x
+            ),
             ZSHIFT_ERR_DOMAIN
         );
         assert_eq!(
@@ -864,7 +871,16 @@ mod c_abi {
         );
         let std = DepthMapping::projection(0.1, 100.0, ClipDepth::NegOneToOne).unwrap();
         assert_eq!(
-            zshift_bias_of_shift(0.1, 100.0, 0, 1, ZSHIFT_BIAS_VULKAN, 0.01, -5.0, &mut x),
+            zshift_bias_of_shift(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                ZSHIFT_BIAS_VULKAN,
+                0.01,
+                -5.0,
+                &mut x
+            ),
             ZSHIFT_OK
         );
         assert_eq!(
@@ -873,12 +889,30 @@ mod c_abi {
         );
         let bias = x;
         assert_eq!(
-            zshift_shift_of_bias(0.1, 100.0, 0, 1, ZSHIFT_BIAS_VULKAN, bias, -5.0, &mut x),
+            zshift_shift_of_bias(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                ZSHIFT_BIAS_VULKAN,
+                bias,
+                -5.0,
+                &mut x
+            ),
             ZSHIFT_OK
         );
         assert!((x - 0.01).abs() < 1e-9);
         assert_eq!(
-            zshift_bias_of_shift(0.1, 100.0, 0, 1, 7, 0.01, -5.0, &mut x),
+            zshift_bias_of_shift(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                7,
+                0.01,
+                -5.0,
+                &mut x
+            ),
             ZSHIFT_ERR_DOMAIN
         );
 
@@ -895,7 +929,7 @@ mod c_abi {
             0.1,
             100.0,
             0,
-            1,
+            zshift::ffi::ZSHIFT_FORMAT_UNORM24,
             ZSHIFT_OFFSET_NDC,
             1.0,
             50.0,
@@ -906,11 +940,31 @@ mod c_abi {
         let o = range_offset(&std, DepthFormat::Unorm24, OffsetKind::Ndc, 1.0, 50.0, 2.0).unwrap();
         assert_eq!(three, [o.offset, o.shift_near, o.shift_far]);
         assert_eq!(
-            zshift_range_offset(0.1, 100.0, 0, 1, 5, 1.0, 50.0, 2.0, three.as_mut_ptr()),
+            zshift_range_offset(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                5,
+                1.0,
+                50.0,
+                2.0,
+                three.as_mut_ptr()
+            ),
             ZSHIFT_ERR_DOMAIN
         );
         assert_eq!(
-            zshift_range_offset(0.1, 100.0, 0, 1, 0, 1.0, 50.0, 2.0, std::ptr::null_mut()),
+            zshift_range_offset(
+                0.1,
+                100.0,
+                0,
+                zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+                0,
+                1.0,
+                50.0,
+                2.0,
+                std::ptr::null_mut()
+            ),
             ZSHIFT_ERR_NULL_POINTER
         );
     }
@@ -945,12 +999,26 @@ fn min_epsilon_per_convention_has_its_own_quantum() {
     assert_eq!(err.kind(), ErrorKind::Unresolvable);
     let mut x = 5.0;
     assert_eq!(
-        zshift::ffi::zshift_min_epsilon_clip(0.1, f64::INFINITY, 2, 3, 3.0, &mut x),
+        zshift::ffi::zshift_min_epsilon_clip(
+            0.1,
+            f64::INFINITY,
+            2,
+            zshift::ffi::ZSHIFT_FORMAT_FLOAT32,
+            3.0,
+            &mut x
+        ),
         zshift::ffi::ZSHIFT_ERR_UNRESOLVABLE
     );
     assert_eq!(x, 5.0);
     assert_eq!(
-        zshift::ffi::zshift_min_epsilon_clip(0.1, 100.0, 1, 1, 3.0, &mut x),
+        zshift::ffi::zshift_min_epsilon_clip(
+            0.1,
+            100.0,
+            1,
+            zshift::ffi::ZSHIFT_FORMAT_UNORM24,
+            3.0,
+            &mut x
+        ),
         zshift::ffi::ZSHIFT_OK
     );
     assert_eq!(

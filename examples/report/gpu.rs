@@ -399,10 +399,8 @@ fn recommendation(
     let distances = quad.corners.map(|c| -(c[2] as f64));
     let d1 = distances.iter().copied().fold(f64::MAX, f64::min);
     let d2 = distances.iter().copied().fold(0.0, f64::max);
-    let format = match scene.format {
-        DepthFormat::D32F => RecFormat::Float32,
-        other => RecFormat::Unorm { bits: other.bits() },
-    };
+    let format =
+        RecFormat::from_gl_internal_format(scene.format.gl_enum()).expect("a GL depth format");
     recommend(&RecScene {
         frustum: *frustum,
         viewport: [SIZE, SIZE],

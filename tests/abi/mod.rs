@@ -86,7 +86,7 @@ impl Inputs {
         bits: 24,
         status: 0,
         clip: 0,
-        format: 1,
+        format: 0x81A6, // ZSHIFT_FORMAT_UNORM24 = GL_DEPTH_COMPONENT24
         api: 0,
         kind: 0,
         scene: VALID_SCENE,
@@ -592,7 +592,7 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         bits: 1 + src.below(32) as u32,
         status: src.below(9) as i32 - 1,
         clip: src.below(3) as i32,
-        format: src.below(4) as i32,
+        format: [0x81A5, 0x81A6, 0x81A7, 0x8CAC][src.below(4) as usize],
         api: src.below(3) as i32,
         kind: src.below(2) as i32,
         scene: VALID_SCENE,

@@ -392,9 +392,9 @@ static void test_clip_precision(void) {
   CHECK_STATUS(zshift_depth_step(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
                ZSHIFT_OK);
   CHECK(relative_error(out, reference) < 1e-15, "depth_step %.17g vs depth_resolution %.17g", out, reference);
-  CHECK_STATUS(zshift_depth_step(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_step, 0.5, 200.0, 0, 9, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, 0, 1, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0);
 
   /* Kooima's median projection (seed 003): window depth d/(d + median). */
   {
@@ -404,9 +404,9 @@ static void test_clip_precision(void) {
     CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, &out), ZSHIFT_OK);
     CHECK(relative_error(out, -2.0L * median * 0.5L / (dm * (dm - 0.5L))) < 1e-14, "median_ndc_offset %.17g", out);
   }
-  CHECK_STATUS(zshift_median_depth_step(10.0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_depth_step, 0.0, 1, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_depth_step, 10.0, 1, NAN);
+  CHECK_STATUS(zshift_median_depth_step(10.0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_depth_step, 0.0, ZSHIFT_FORMAT_UNORM24, 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_median_depth_step, 10.0, ZSHIFT_FORMAT_UNORM24, NAN);
   CHECK_STATUS(zshift_median_ndc_offset(10.0, 0.5, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, -1.0, 0.5, -37.0);
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_median_ndc_offset, 10.0, 0.5, 1.0);
@@ -428,12 +428,12 @@ static void test_clip_precision(void) {
   CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
                ZSHIFT_OK);
   CHECK(relative_error(out, 1.0L / steps(24) * d / (f * n / (f - n))) < 1e-14, "min_relative_epsilon %.17g", out);
-  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, 0, 1, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, 0, 1, 300.0);
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 300.0);
   CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon_clip, 0.5, 200.0, 0, 4, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, 0, 1, NAN);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, NAN);
 }
 
 static void test_bias_and_planning(void) {
@@ -451,11 +451,11 @@ static void test_bias_and_planning(void) {
                                     ZSHIFT_BIAS_VULKAN, 0.25, -37.0, &bias),
                ZSHIFT_OK);
   CHECK(bias > 0, "bias_of_shift reversed is %g, expected positive", bias);
-  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, 0, 1, 0, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, 0, 1, 0, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 3, 0.25, -37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, 1, 0, 0.25, -300.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, 0, 1, 0, NAN, -37.0);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 3, 0.25, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 0.25, -300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, NAN, -37.0);
 
   /* Tight planes enclose the scene. */
   CHECK_STATUS(zshift_tight_planes(2.0, 500.0, planes), ZSHIFT_OK);
@@ -480,13 +480,13 @@ static void test_bias_and_planning(void) {
           "range_offset %g shifts %.17g at 10 and %.17g at 100 (2 steps: %.17Lg, %.17Lg)", range[0], range[1],
           range[2], at_lo, at_hi);
   }
-  CHECK_STATUS(zshift_range_offset(0.5, 200.0, 0, 1, 0, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 100.0, 10.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, 0.5);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 9, 10.0, 100.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, 100.0, NAN);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, NAN, 100.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, 1, 0, 10.0, INFINITY, 2.0);
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 100.0, 10.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, 0.5);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 9, 10.0, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, NAN);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, NAN, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, INFINITY, 2.0);
 }
 
 /* ---- the recommendation (zshift_recommend, zshift_recommend_matrix) ---- */

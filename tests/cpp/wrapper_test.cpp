@@ -177,27 +177,27 @@ static void test_conventions() {
   CHECK(zshift::median_ndc_offset(10, 0.5, -37) == v, "median_ndc_offset");
   zshift_window_depth_clip(0.5, 200, reversed, 37, &v);
   CHECK(zshift::window_depth_clip(0.5, 200, Clip::reversed_zero_to_one, 37) == v, "window_depth_clip");
-  zshift_depth_step(0.5, 200, 1, 3, 37, &v);
+  zshift_depth_step(0.5, 200, 1, ZSHIFT_FORMAT_FLOAT32, 37, &v);
   CHECK(zshift::depth_step(0.5, 200, Clip::zero_to_one, Format::float32, 37) == v, "depth_step");
-  zshift_median_depth_step(10, 1, 37, &v);
+  zshift_median_depth_step(10, ZSHIFT_FORMAT_UNORM24, 37, &v);
   CHECK(zshift::median_depth_step(10, Format::unorm24, 37) == v, "median_depth_step");
-  zshift_min_ndc_offset(0.5, 200, 0, 0, 37, &v);
+  zshift_min_ndc_offset(0.5, 200, 0, ZSHIFT_FORMAT_UNORM16, 37, &v);
   CHECK(zshift::min_ndc_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm16, 37) == v, "min_ndc_offset");
-  zshift_min_epsilon_clip(0.5, 200, 1, 1, 37, &v);
+  zshift_min_epsilon_clip(0.5, 200, 1, ZSHIFT_FORMAT_UNORM24, 37, &v);
   CHECK(zshift::min_epsilon_clip(0.5, 200, Clip::zero_to_one, Format::unorm24, 37) == v, "min_epsilon_clip");
-  zshift_min_relative_epsilon(0.5, 200, reversed, 3, 37, &v);
+  zshift_min_relative_epsilon(0.5, 200, reversed, ZSHIFT_FORMAT_FLOAT32, 37, &v);
   CHECK(zshift::min_relative_epsilon(0.5, 200, Clip::reversed_zero_to_one, Format::float32, 37) == v,
         "min_relative_epsilon");
-  zshift_bias_of_shift(0.5, 200, 0, 1, 2, 0.25, -37, &v);
+  zshift_bias_of_shift(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 2, 0.25, -37, &v);
   CHECK(zshift::bias_of_shift(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::vulkan, 0.25, -37) == v,
         "bias_of_shift");
-  zshift_shift_of_bias(0.5, 200, 0, 1, 0, -3.0, -37, &v);
+  zshift_shift_of_bias(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 0, -3.0, -37, &v);
   CHECK(zshift::shift_of_bias(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::opengl, -3.0, -37) == v,
         "shift_of_bias");
   zshift_tight_planes(2, 500, planes);
   std::array<double, 2> tight = zshift::tight_planes(2, 500);
   CHECK(tight[0] == planes[0] && tight[1] == planes[1], "tight_planes");
-  zshift_range_offset(0.5, 200, 0, 1, 0, 10, 100, 2, range);
+  zshift_range_offset(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 0, 10, 100, 2, range);
   zshift::RangeOffset ro = zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24,
                                                 zshift::OffsetKind::ndc, 10, 100, 2);
   CHECK(ro.offset == range[0] && ro.shift_at_lo == range[1] && ro.shift_at_hi == range[2], "range_offset");

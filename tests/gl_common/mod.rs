@@ -18,11 +18,7 @@ pub fn frustum_of(s: &Setup) -> Frustum {
 
 /// zshift's depth format for a GL attachment.
 pub fn format_of(f: DepthFormat) -> Format {
-    match f {
-        DepthFormat::D16 => Format::Unorm { bits: 16 },
-        DepthFormat::D24 => Format::Unorm { bits: 24 },
-        DepthFormat::D32F => Format::Float32,
-    }
+    Format::from_gl_internal_format(f.gl_enum()).expect("a GL depth format")
 }
 
 /// How this rasterizer positions vertices for depth: llvmpipe sets its depth plane up from the

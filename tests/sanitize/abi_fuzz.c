@@ -210,7 +210,7 @@ static const struct inputs VALID = {
     .l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0, .delta = 0.01,
     .pz = -50.0, .d = 50.0, .fovy = 60.0, .aspect = 4.0 / 3.0, .tweak = 1e-6, .median = 10.0,
     .bias = -2.0, .nearest = 0.5, .farthest = 800.0, .lo = 10.0, .hi = 100.0, .steps = 1.0,
-    .bits = 24, .status = 0, .clip = 0, .format = 1, .api = 0, .kind = 0,
+    .bits = 24, .status = 0, .clip = 0, .format = ZSHIFT_FORMAT_UNORM24, .api = 0, .kind = 0,
     .scene = {.l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0,
               .viewport_width = 1920, .viewport_height = 1080, .depth_format = 0x81A6,
               .decal_near = 49.0, .decal_far = 51.0, .slope = 0.5, .exact_depth = 0,
@@ -311,9 +311,9 @@ int main(int argc, char **argv) {
         in.steps = 1 + (double)(next_u64() % 8);
         in.bits = 1 + (uint32_t)(next_u64() % 32);
         in.status = (int32_t)(next_u64() % 9) - 1;
-        in.clip = (int32_t)(next_u64() % 3), in.format = (int32_t)(next_u64() % 4);
-        in.api = (int32_t)(next_u64() % 3), in.kind = (int32_t)(next_u64() % 2);
         const uint32_t formats[] = {0x81A5, 0x81A6, 0x81A7, 0x8CAC};
+        in.clip = (int32_t)(next_u64() % 3), in.format = (int32_t)formats[next_u64() % 4];
+        in.api = (int32_t)(next_u64() % 3), in.kind = (int32_t)(next_u64() % 2);
         in.scene = (ZshiftScene){.l = in.l, .r = in.r, .b = in.b, .t = in.t, .n = in.n, .f = in.f,
                                  .viewport_width = 1 + (uint32_t)(next_u64() % 4096),
                                  .viewport_height = 1 + (uint32_t)(next_u64() % 4096),

@@ -271,10 +271,10 @@ class Clip(enum.IntEnum):
 class Format(enum.IntEnum):
     """Depth attachment format (``ZSHIFT_FORMAT_*``)."""
 
-    UNORM16 = 0
-    UNORM24 = 1
-    UNORM32 = 2
-    FLOAT32 = 3
+    UNORM16 = 0x81A5  # the GL enums: GL_DEPTH_COMPONENT16, 24, 32, 32F
+    UNORM24 = 0x81A6
+    UNORM32 = 0x81A7
+    FLOAT32 = 0x8CAC
 
 
 class BiasApi(enum.IntEnum):
