@@ -328,7 +328,8 @@ impl DepthMapping {
                     ClipDepth::ReversedZeroToOne => {
                         (n / d) * ((planes.far() - d) / (planes.far() - n))
                     }
-                    _ => planes.far_over_span() * ((d - n) / d),
+                    // NDC [−1, 1] and [0, 1] store the same window depth: Walker's f(d).
+                    _ => window_depth(n, planes.far(), d)?,
                 }
             }
             Shape::Tweaked { near, tweak } => (1.0 - 0.5 * tweak) * ((d - near) / d),
@@ -353,6 +354,17 @@ impl DepthMapping {
     pub fn depth_step(&self, d: f64, format: DepthFormat) -> Result<f64> {
         let w = self.window_depth(d)?;
         let r = format.spacing_at(w)?;
+        if let Shape::Projection(planes, _) = self.shape {
+            // Every glFrustum-family mapping has b = n·f/(f − n) and s = 0: Walker's step, in
+            // the correctly rounded form the standard convention uses. 1/r is exact (2^m − 1,
+            // or a power of two for float depth).
+            let steps = if format.is_unorm() {
+                depth_steps(format.bits())?
+            } else {
+                1.0 / r
+            };
+            return StepTerms::new(&planes, steps, d).step(true);
+        }
         let (b, s) = self.scale_and_shift();
         let ds = d + s;
         let u = (ds / b) * r;

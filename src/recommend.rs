@@ -211,7 +211,7 @@ pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
     let planes = scene.frustum.planes();
     let (n, big_f) = (planes.near(), planes.far_over_span());
     let [d1, d2] = scene.depth_range;
-    let (w1, w2) = (window(scene, d1), window(scene, d2));
+    let (w1, w2) = (window(scene, d1)?, window(scene, d2)?);
     let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
     let transform = u * (planes.sum_over_span() / 2.0 + 1.5 * ndc_max + w2);
     let (vertex, interpolation) = if scene.exact_depth {
@@ -270,10 +270,10 @@ fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     Ok(ex.max(ey))
 }
 
-/// Walker's window depth `F·(d − n)/d` (seed 001) with `F = f/(f − n)`.
-fn window(scene: &Scene, d: f64) -> f64 {
+/// Walker's window depth (seed 001) at a distance `check` has put inside `[n, f]`.
+fn window(scene: &Scene, d: f64) -> Result<f64> {
     let planes = scene.frustum.planes();
-    (planes.far_over_span() * ((d - planes.near()) / d)).clamp(0.0, 1.0)
+    crate::precision::window_depth(planes.near(), planes.far(), d)
 }
 
 /// δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
