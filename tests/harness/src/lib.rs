@@ -397,6 +397,26 @@ impl Gl {
         height: u32,
         format: DepthFormat,
     ) -> Result<(), String> {
+        self.make_target(
+            width,
+            height,
+            format,
+            format.gl_enum(),
+            glow::DEPTH_ATTACHMENT,
+        )?;
+        self.check("set_target")
+    }
+
+    /// The FBO behind [`Gl::set_target`] and [`Gl::set_target_with_stencil`]: RGBA8 colour and
+    /// a depth (or depth-stencil) renderbuffer of `internal` format at `attachment`.
+    fn make_target(
+        &mut self,
+        width: u32,
+        height: u32,
+        format: DepthFormat,
+        internal: u32,
+        attachment: u32,
+    ) -> Result<(), String> {
         if width == 0 || height == 0 {
             return Err("the render target needs a nonzero width and height".into());
         }
@@ -417,10 +437,10 @@ impl Gl {
             );
             let depth = gl.create_renderbuffer()?;
             gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
-            gl.renderbuffer_storage(glow::RENDERBUFFER, format.gl_enum(), w, h);
+            gl.renderbuffer_storage(glow::RENDERBUFFER, internal, w, h);
             gl.framebuffer_renderbuffer(
                 glow::FRAMEBUFFER,
-                glow::DEPTH_ATTACHMENT,
+                attachment,
                 glow::RENDERBUFFER,
                 Some(depth),
             );
@@ -435,13 +455,13 @@ impl Gl {
             let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
             if status != glow::FRAMEBUFFER_COMPLETE {
                 return Err(format!(
-                    "framebuffer with {format:?} incomplete: status 0x{status:04X}"
+                    "framebuffer with {format:?} (internal format 0x{internal:04X}) incomplete: status 0x{status:04X}"
                 ));
             }
             gl.viewport(0, 0, w, h);
             gl.enable(glow::DEPTH_TEST);
         }
-        self.check("set_target")
+        Ok(())
     }
 
     /// The depth bits GL reports for the target's depth attachment (16, 24 or 32).
@@ -868,50 +888,13 @@ impl Gl {
             DepthFormat::D32F => glow::DEPTH32F_STENCIL8,
             DepthFormat::D16 => return Err("no packed depth-stencil format with D16".into()),
         };
-        if width == 0 || height == 0 {
-            return Err("the render target needs a nonzero width and height".into());
-        }
-        self.drop_target();
-        let (w, h) = (width as i32, height as i32);
-        let gl = &self.gl;
-        unsafe {
-            let fbo = gl.create_framebuffer()?;
-            gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            let color = gl.create_renderbuffer()?;
-            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(color));
-            gl.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, w, h);
-            gl.framebuffer_renderbuffer(
-                glow::FRAMEBUFFER,
-                glow::COLOR_ATTACHMENT0,
-                glow::RENDERBUFFER,
-                Some(color),
-            );
-            let depth = gl.create_renderbuffer()?;
-            gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
-            gl.renderbuffer_storage(glow::RENDERBUFFER, internal, w, h);
-            gl.framebuffer_renderbuffer(
-                glow::FRAMEBUFFER,
-                glow::DEPTH_STENCIL_ATTACHMENT,
-                glow::RENDERBUFFER,
-                Some(depth),
-            );
-            self.target = Some(Target {
-                fbo,
-                color,
-                depth,
-                width: w,
-                height: h,
-                format,
-            });
-            let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
-            if status != glow::FRAMEBUFFER_COMPLETE {
-                return Err(format!(
-                    "framebuffer with {format:?} + stencil incomplete: status 0x{status:04X}"
-                ));
-            }
-            gl.viewport(0, 0, w, h);
-            gl.enable(glow::DEPTH_TEST);
-        }
+        self.make_target(
+            width,
+            height,
+            format,
+            internal,
+            glow::DEPTH_STENCIL_ATTACHMENT,
+        )?;
         self.check("set_target_with_stencil")
     }
 
