@@ -138,21 +138,8 @@ static int run_case(const struct scene_case *c) {
          "zshift 1 step %4d  zshift recommended (%.3g steps) %4d\n",
          c->depth_bits, c->n, c->f, d, step, chosen.decal_total, none.decal_lost, seed.decal_lost,
          one.decal_lost, recommended / step, chosen.decal_lost);
-  if (none.wrong + seed.wrong + one.wrong + chosen.wrong != 0) {
-    fprintf(stderr, "FAIL: %d pixels show neither the base, the decal nor the background\n",
-            none.wrong + seed.wrong + one.wrong + chosen.wrong);
-    return 1;
-  }
-  if (none.decal_lost == 0) {
-    fprintf(stderr, "FAIL: without an offset no decal pixel was lost: the scene does not z-fight\n");
-    return 1;
-  }
-  if (chosen.decal_lost != 0) {
-    fprintf(stderr, "FAIL: with zshift's offset of %g steps, %d decal pixels were lost\n",
-            recommended / step, chosen.decal_lost);
-    return 1;
-  }
-  return 0;
+  return scene_verdict(none.wrong + seed.wrong + one.wrong + chosen.wrong, &none, &chosen,
+                       recommended / step);
 }
 
 int main(void) {

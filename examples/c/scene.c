@@ -88,3 +88,21 @@ struct scene_tally scene_check(const unsigned char *rgba) {
   }
   return tally;
 }
+
+int scene_verdict(int wrong, const struct scene_tally *none, const struct scene_tally *chosen,
+                  double steps) {
+  if (wrong != 0) {
+    fprintf(stderr, "FAIL: %d pixels show neither the base, the decal nor the background\n", wrong);
+    return 1;
+  }
+  if (none->decal_lost == 0) {
+    fprintf(stderr, "FAIL: without an offset no decal pixel was lost: the scene does not z-fight\n");
+    return 1;
+  }
+  if (chosen->decal_lost != 0) {
+    fprintf(stderr, "FAIL: with zshift's offset of %g steps, %d decal pixels were lost\n", steps,
+            chosen->decal_lost);
+    return 1;
+  }
+  return 0;
+}

@@ -42,6 +42,12 @@ struct scene_tally {
  * glGetIntegerv(GL_SUBPIXEL_BITS) reports. Returns 0, or prints the status and returns 1. */
 int scene_recommended_delta(const struct scene_case *c, int subpixel_bits, double *delta);
 
+/* The verdict on one case: 0 when the picture is sound (`wrong` pixels: none), the scene z-fights
+ * without an offset, and zshift's offset of `steps` depth steps keeps every decal pixel; otherwise
+ * prints why and returns 1. */
+int scene_verdict(int wrong, const struct scene_tally *none, const struct scene_tally *chosen,
+                  double steps);
+
 /* Classifies a SCENE_SIZE x SCENE_SIZE RGBA readback (black clear, blue base, red decal). */
 struct scene_tally scene_check(const unsigned char *rgba);
 
