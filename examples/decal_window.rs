@@ -1,5 +1,5 @@
-//! The decal demonstration in a window (glutin + winit, X11 through GLX or EGL), for people with
-//! a display: the scene of `examples/decal.rs`, rendered by the window's own OpenGL context with
+//! The decal demonstration in a window (glutin + winit, X11 — or XWayland — through GLX or EGL),
+//! for people with a display: the scene of `examples/decal.rs`, rendered by the window's own OpenGL context with
 //! no offset, the seed's `LoadOffsetMatrix` and zshift's recommended offset, side by side.
 //!
 //! ```sh
@@ -14,7 +14,8 @@
 //! Options: `--frames N` draws N frames and exits (for scripted runs, e.g. under Xvfb);
 //! `--screenshot PATH` reads the window's back buffer with `glReadPixels` at the last frame
 //! (the first one without `--frames`) and writes it as PNG, after checking that each panel
-//! shown 1:1 equals, pixel for pixel, the render whose lost pixels were counted.
+//! shown 1:1 equals, pixel for pixel, the render whose lost pixels were counted; `--egl` asks
+//! for EGL first (the default is GLX, with EGL as the fallback).
 //!
 //! Each method is drawn into a `SIZE × SIZE` FBO with a 24-bit depth renderbuffer, exactly as the
 //! headless demonstration draws (the shared `decal_scene` module holds the scene, the three
@@ -36,7 +37,7 @@ use glutin::context::{
 };
 use glutin::display::{Display, GetGlDisplay, GlDisplay};
 use glutin::surface::{GlSurface, Surface, SwapInterval, WindowSurface};
-use glutin_winit::{DisplayBuilder, GlWindow};
+use glutin_winit::{ApiPreference, DisplayBuilder, GlWindow};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, KeyEvent, WindowEvent};
@@ -341,10 +342,11 @@ fn check_panels(
     }
 }
 
-/// The command line: `--frames N`, `--screenshot PATH`.
+/// The command line: `--frames N`, `--screenshot PATH`, `--egl`.
 struct Options {
     frames: Option<u64>,
     screenshot: Option<PathBuf>,
+    egl: bool,
 }
 
 impl Options {
@@ -352,6 +354,7 @@ impl Options {
         let mut options = Options {
             frames: None,
             screenshot: None,
+            egl: false,
         };
         let mut args = std::env::args().skip(1);
         while let Some(arg) = args.next() {
@@ -366,9 +369,10 @@ impl Options {
                     }
                 }
                 "--screenshot" => options.screenshot = Some(PathBuf::from(value()?)),
+                "--egl" => options.egl = true,
                 _ => {
                     return Err(format!(
-                        "unknown argument {arg:?} (usage: decal_window [--frames N] [--screenshot PATH])"
+                        "unknown argument {arg:?} (usage: decal_window [--frames N] [--screenshot PATH] [--egl])"
                     ))
                 }
             }
@@ -411,7 +415,12 @@ impl App {
             .with_title("zshift: decal")
             .with_inner_size(PhysicalSize::new(w, h));
         // The fewest samples: glBlitFramebuffer into a multisampled window is an error.
+        let preference = match self.options.egl {
+            true => ApiPreference::PreferEgl,
+            false => ApiPreference::FallbackEgl,
+        };
         let (window, config) = DisplayBuilder::new()
+            .with_preference(preference)
             .with_window_attributes(Some(attributes))
             .build(event_loop, ConfigTemplateBuilder::new(), |configs| {
                 configs
@@ -447,8 +456,9 @@ impl App {
         let gl =
             unsafe { glow::Context::from_loader_function_cstr(|s| display.get_proc_address(s)) };
         let mut canvas = WindowCanvas::new(gl, Fixed::load(&display)?)?;
+        let api = display.version_string();
         println!(
-            "{} on {}",
+            "{} on {} through {api}",
             unsafe { canvas.gl.get_parameter_string(glow::VERSION) },
             canvas.renderer()
         );

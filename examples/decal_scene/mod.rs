@@ -19,7 +19,9 @@ use zshift_harness::{rgba8, DepthFormat, DrawState, Gl, Image, Quad};
 
 /// Framebuffer size: large enough to see the pattern, small enough for a software rasterizer.
 pub const SIZE: u32 = 256;
+/// The depth buffer the scene is drawn and the recommendation computed for.
 pub const DEPTH: DepthFormat = DepthFormat::D24;
+/// Background (black), floor (blue) and decal (red) colours.
 pub const CLEAR: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 pub const FLOOR: [f32; 4] = [0.2, 0.35, 0.9, 1.0];
 pub const DECAL: [f32; 4] = [0.95, 0.15, 0.1, 1.0];
@@ -92,7 +94,8 @@ impl Canvas for Gl {
 
 /// The camera and the plane: a symmetric frustum and the eye-space plane `z = z0 + slope·y`.
 pub struct Scene {
-    /// `glFrustum(-half, half, -half, half, n, f)`.
+    /// `glFrustum(-half, half, -half, half, n, f)`: the half-width of the near window, and the
+    /// near and far distances.
     pub half: f64,
     pub n: f64,
     pub f: f64,
@@ -103,6 +106,7 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// Eye-space z of the plane at eye-space height `y`.
     pub fn plane_z(&self, y: f64) -> f64 {
         self.z0 + self.slope * y
     }
