@@ -33,7 +33,7 @@ use crate::projection::{projection_f64, to_f32, tweaked_infinite_f64, ClipDepth,
 /// `c > 0` under reversed Z.
 ///
 /// # Errors
-/// [`ErrorKind::NotFinite`] if `c` is NaN or infinite; [`ErrorKind::Overflow`] if an element
+/// [`ErrorKind::NotFinite`](crate::ErrorKind::NotFinite) if `c` is NaN or infinite; [`ErrorKind::Overflow`](crate::ErrorKind::Overflow) if an element
 /// leaves f32.
 pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
     finite(c, "the NDC depth offset c is NaN or infinite")?;
@@ -49,8 +49,8 @@ pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
 /// `≤` for `ε < 0`), within one f32 ulp.
 ///
 /// # Errors
-/// [`ErrorKind::NotFinite`] if `ε` is NaN or infinite; [`ErrorKind::Domain`] unless `ε > −1`;
-/// [`ErrorKind::Overflow`] if an element leaves f32.
+/// [`ErrorKind::NotFinite`](crate::ErrorKind::NotFinite) if `ε` is NaN or infinite; [`ErrorKind::Domain`](crate::ErrorKind::Domain) unless `ε > −1`;
+/// [`ErrorKind::Overflow`](crate::ErrorKind::Overflow) if an element leaves f32.
 pub fn relative_offset_matrix(m: &[f64; 16], epsilon: f64) -> Result<[f32; 16]> {
     finite(epsilon, "the relative offset epsilon is NaN or infinite")?;
     if epsilon <= -1.0 {
@@ -69,7 +69,7 @@ pub fn relative_offset_matrix(m: &[f64; 16], epsilon: f64) -> Result<[f32; 16]> 
 /// point moves by the same fraction `δ/d` of its distance.
 ///
 /// # Errors
-/// [`ErrorKind::NotFinite`] for NaN or ±∞; [`ErrorKind::Domain`] unless `Pz < 0` and
+/// [`ErrorKind::NotFinite`](crate::ErrorKind::NotFinite) for NaN or ±∞; [`ErrorKind::Domain`](crate::ErrorKind::Domain) unless `Pz < 0` and
 /// `Pz + δ < 0`.
 pub fn relative_epsilon(delta: f64, pz: f64) -> Result<f64> {
     finite(delta, "the eye-space shift delta is NaN or infinite")?;

@@ -25,6 +25,8 @@
 //! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
+#![warn(missing_docs)]
+
 pub mod clip_offset;
 pub mod domain;
 mod double_double;
