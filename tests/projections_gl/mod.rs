@@ -28,39 +28,10 @@ impl MdpProgram {
              uniform float median;\nuniform float ndc_offset;\n{FTRANSFORM_MDP_GLSL}\n\
              void main() {{ gl_Position = zshift_ftransform_mdp(proj, vec4(eye, 1.0), median, ndc_offset); }}\n"
         );
-        let fs = "#version 330 core\nuniform vec4 color;\nout vec4 frag;\nvoid main() { frag = color; }\n";
-        let g = gl.glow();
-        unsafe {
-            let program = g.create_program()?;
-            for (kind, src) in [
-                (glow::VERTEX_SHADER, vs.as_str()),
-                (glow::FRAGMENT_SHADER, fs),
-            ] {
-                let s = g.create_shader(kind)?;
-                g.shader_source(s, src);
-                g.compile_shader(s);
-                if !g.get_shader_compile_status(s) {
-                    return Err(format!(
-                        "ftransform_mdp.glsl does not compile: {}",
-                        g.get_shader_info_log(s)
-                    ));
-                }
-                g.attach_shader(program, s);
-                g.delete_shader(s);
-            }
-            g.link_program(program);
-            if !g.get_program_link_status(program) {
-                return Err(format!("link failed: {}", g.get_program_info_log(program)));
-            }
-            let vao = g.create_vertex_array()?;
-            let vbo = g.create_buffer()?;
-            g.bind_vertex_array(Some(vao));
-            g.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
-            g.enable_vertex_attrib_array(0);
-            g.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
-            g.bind_vertex_array(None);
-            Ok(Self { program, vao, vbo })
-        }
+        // SAFETY: `gl` is current on this thread (the harness makes it so and never releases it).
+        let (program, vao, vbo) = unsafe { zshift_harness::flat_colour_pipeline(gl.glow(), &vs) }
+            .map_err(|e| format!("ftransform_mdp.glsl: {e}"))?;
+        Ok(Self { program, vao, vbo })
     }
 
     /// Draws `quad` through `zshift_ftransform_mdp`, with depth test `depth_func` and writes on.

@@ -832,9 +832,26 @@ void main() { frag = color; }
 unsafe fn quad_pipeline(
     gl: &glow::Context,
 ) -> Result<(glow::Program, glow::VertexArray, glow::Buffer), String> {
+    flat_colour_pipeline(gl, VERTEX_SHADER)
+}
+
+/// Links `vertex_shader` (GLSL 3.30 core, eye-space position at attribute location 0) with the
+/// harness's flat-colour fragment shader (`uniform vec4 color`) and makes the VAO/VBO (3 floats
+/// per vertex at location 0). For tests that bring their own vertex transform, such as the
+/// shipped `ftransform_mdp.glsl`.
+///
+/// # Safety
+/// `gl` must be current on this thread.
+///
+/// # Errors
+/// A compile or link failure, with the driver's log.
+pub unsafe fn flat_colour_pipeline(
+    gl: &glow::Context,
+    vertex_shader: &str,
+) -> Result<(glow::Program, glow::VertexArray, glow::Buffer), String> {
     let program = gl.create_program()?;
     for (kind, source) in [
-        (glow::VERTEX_SHADER, VERTEX_SHADER),
+        (glow::VERTEX_SHADER, vertex_shader),
         (glow::FRAGMENT_SHADER, FRAGMENT_SHADER),
     ] {
         let shader = gl.create_shader(kind)?;
