@@ -116,18 +116,7 @@ impl WindowCanvas {
 
     /// Fails with every pending GL error, named by `what`.
     fn check(&self, what: &str) -> Result<(), String> {
-        let mut codes = Vec::new();
-        loop {
-            let e = unsafe { self.gl.get_error() };
-            if e == glow::NO_ERROR || codes.len() > 8 {
-                break;
-            }
-            codes.push(format!("0x{e:04X}"));
-        }
-        match codes.is_empty() {
-            true => Ok(()),
-            false => Err(format!("{what}: GL error {}", codes.join(", "))),
-        }
+        zshift_harness::check_gl_errors(&self.gl, what)
     }
 
     fn bind(&self) {

@@ -720,19 +720,7 @@ impl Gl {
     /// # Errors
     /// `"<what>: GL error 0x...."` when `glGetError` reports any.
     pub fn check(&self, what: &str) -> Result<(), String> {
-        let mut codes = Vec::new();
-        loop {
-            let e = unsafe { self.gl.get_error() };
-            if e == glow::NO_ERROR || codes.len() > 8 {
-                break;
-            }
-            codes.push(format!("0x{e:04X}"));
-        }
-        if codes.is_empty() {
-            Ok(())
-        } else {
-            Err(format!("{what}: GL error {}", codes.join(", ")))
-        }
+        check_gl_errors(&self.gl, what)
     }
 
     unsafe fn apply(&self, s: &DrawState) {
@@ -827,6 +815,28 @@ uniform vec4 color;
 out vec4 frag;
 void main() { frag = color; }
 ";
+
+/// Drains `glGetError` (up to 9 codes) for any current context, the harness's or a window's.
+///
+/// # Errors
+/// `"<what>: GL error 0x...."` when `glGetError` reports any.
+pub fn check_gl_errors(gl: &glow::Context, what: &str) -> Result<(), String> {
+    let mut codes = Vec::new();
+    loop {
+        // SAFETY: glGetError has no preconditions beyond a current context, which every caller
+        // of this crate holds.
+        let e = unsafe { gl.get_error() };
+        if e == glow::NO_ERROR || codes.len() > 8 {
+            break;
+        }
+        codes.push(format!("0x{e:04X}"));
+    }
+    if codes.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("{what}: GL error {}", codes.join(", ")))
+    }
+}
 
 /// Compiles the quad shader and makes the VAO/VBO (3 floats per vertex at location 0).
 unsafe fn quad_pipeline(
