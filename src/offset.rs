@@ -142,7 +142,8 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
     let planes = frustum.planes();
     shifted_depth(&planes, delta, pz)?;
     let mut m = frustum.to_cols_array()?;
-    m[10] = rounded_outward(m[10], ndc_offset_of_shift(&planes, delta, pz))?;
+    let (estimate, exact) = ndc_offset_of_shift(&planes, delta, pz);
+    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
     Ok(m)
 }
 
@@ -156,7 +157,8 @@ pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
     finite(epsilon, "epsilon is NaN or infinite")?;
     let planes = frustum.planes();
     let mut m = frustum.to_cols_array()?;
-    m[10] = rounded_outward(m[10], ndc_offset_of_epsilon(&planes, epsilon))?;
+    let (estimate, exact) = ndc_offset_of_epsilon(&planes, epsilon);
+    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
     Ok(m)
 }
 
@@ -173,31 +175,78 @@ fn shifted_depth(planes: &Planes, delta: f64, pz: f64) -> Result<f64> {
     Ok(shifted)
 }
 
-/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))` in double-double. `f + n` cancels, and the formula is
-/// homogeneous of degree 0, so the inputs are first scaled by a power of two that keeps every
-/// product in range.
-fn ndc_offset_of_shift(planes: &Planes, delta: f64, pz: f64) -> DoubleDouble {
+/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))`: an f64 estimate (seven roundings) and, on demand, its
+/// double-double value. `f + n` cancels, and the formula is homogeneous of degree 0, so the
+/// inputs are first scaled by a power of two that keeps every product in range.
+fn ndc_offset_of_shift(
+    planes: &Planes,
+    delta: f64,
+    pz: f64,
+) -> (f64, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
-    let two_n_delta = DoubleDouble::product(2.0 * n, delta);
-    let depth_product = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
-    if planes.is_infinite() {
-        return two_n_delta.div(depth_product);
-    }
-    let f = planes.far() * s;
-    let numerator = two_n_delta.mul(DoubleDouble::from_f64(f));
-    numerator.div(depth_product.mul(DoubleDouble::sum(f, -n)))
+    let far = (!planes.is_infinite()).then(|| planes.far() * s);
+    let estimate = match far {
+        None => 2.0 * n * delta / (pz * (pz + delta)),
+        Some(f) => 2.0 * n * delta * f / (pz * (pz + delta) * (f - n)),
+    };
+    let exact = move || {
+        let two_n_delta = DoubleDouble::product(2.0 * n, delta);
+        let depth_product = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
+        match far {
+            None => two_n_delta.div(depth_product),
+            Some(f) => two_n_delta
+                .mul_f64(f)
+                .div(depth_product.mul(DoubleDouble::sum(f, -n))),
+        }
+    };
+    (estimate, exact)
 }
 
-/// `o = m10·ε = −ε·(f+n)/(f−n)` in double-double; `−ε` when `f = +∞`.
-fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> DoubleDouble {
-    if planes.is_infinite() {
-        return DoubleDouble::from_f64(-epsilon);
-    }
+/// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate (three roundings) and, on
+/// demand, its double-double value.
+fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(planes.far());
-    let (f, n) = (planes.far() * s, planes.near() * s);
-    let numerator = DoubleDouble::sum(f, n).mul(DoubleDouble::from_f64(-epsilon));
-    numerator.div(DoubleDouble::sum(f, -n))
+    let far = (!planes.is_infinite()).then(|| (planes.far() * s, planes.near() * s));
+    let estimate = match far {
+        None => -epsilon,
+        Some((f, n)) => -epsilon * (f + n) / (f - n),
+    };
+    let exact = move || match far {
+        None => DoubleDouble::from_f64(-epsilon),
+        Some((f, n)) => DoubleDouble::sum(f, n)
+            .mul_f64(-epsilon)
+            .div(DoubleDouble::sum(f, -n)),
+    };
+    (estimate, exact)
+}
+
+/// [`rounded_outward`] for an offset known as an f64 `estimate` within eight roundings
+/// (relative error below 8·2⁻⁵³): when no f32 lies within the estimate's error of
+/// `plain + estimate`, every value in that interval rounds outward to the same f32, so the
+/// double-double `exact` value is computed only in the rare remaining cases (an f32 within
+/// about 1e-15 relative, which includes offsets that land exactly on one).
+fn rounded_outward_estimated(
+    plain: f32,
+    estimate: f64,
+    exact: impl FnOnce() -> DoubleDouble,
+) -> Result<f32> {
+    let target = f64::from(plain) + estimate;
+    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = 8.0 * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
+    let nearest = target as f32;
+    let gap = f64::from(nearest) - target;
+    if target.is_finite() && nearest.is_finite() && estimate != 0.0 && gap.abs() > error {
+        let outward = match (estimate > 0.0, gap > 0.0) {
+            (true, false) => nearest.next_up(),
+            (false, true) => nearest.next_down(),
+            _ => nearest,
+        };
+        if outward.is_finite() {
+            return Ok(outward);
+        }
+    }
+    rounded_outward(plain, exact())
 }
 
 /// Rounds `plain + offset` to f32 away from `plain`, so the offset the GPU sees is never
@@ -222,4 +271,60 @@ pub(crate) fn rounded_outward(plain: f32, offset: DoubleDouble) -> Result<f32> {
         ));
     }
     Ok(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The f64 shortcut must pick exactly the f32 that the double-double path picks.
+    #[test]
+    fn the_estimated_rounding_agrees_with_the_exact_one() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut shortcuts = 0;
+        for _ in 0..20_000 {
+            let n = 10f64.powf(-6.0 + 8.0 * next());
+            let f = n * 10f64.powf(0.01 + 9.0 * next());
+            let planes = Planes::new(n, f).unwrap();
+            let d = n * (f / n).powf(next());
+            let delta = d * (2.0 * next() - 1.0) * 10f64.powf(-9.0 * next());
+            let plain = -(planes.sum_over_span() as f32);
+            let (estimate, exact) = ndc_offset_of_shift(&planes, delta, -d);
+            let want = rounded_outward(plain, exact()).unwrap();
+            let (_, exact) = ndc_offset_of_shift(&planes, delta, -d);
+            assert_eq!(
+                rounded_outward_estimated(plain, estimate, exact).unwrap(),
+                want
+            );
+            let target = f64::from(plain) + estimate;
+            shortcuts += usize::from(f64::from(target as f32) != target);
+        }
+        assert!(
+            shortcuts > 19_000,
+            "the shortcut should decide almost every case"
+        );
+    }
+
+    /// Offsets that land exactly on an f32 (or are zero) take the exact path and stay exact.
+    #[test]
+    fn offsets_landing_on_an_f32_are_kept_exactly() {
+        let one_ulp = f64::from(f32::EPSILON);
+        for (plain, offset, want) in [
+            (-1.5f32, one_ulp, -1.5f32 + f32::EPSILON),
+            (-1.5, -one_ulp, -1.5 - f32::EPSILON),
+            (-1.5, 0.0, -1.5),
+        ] {
+            let exact = || DoubleDouble::from_f64(offset);
+            assert_eq!(
+                rounded_outward_estimated(plain, offset, exact).unwrap(),
+                want
+            );
+        }
+    }
 }
