@@ -1,4 +1,4 @@
-//! Prints the precision table of issue 4: for each projection convention and depth format, the
+//! Prints the precision table: for each projection convention and depth format, the
 //! depth step (the smallest eye-space shift toward the camera that changes the stored depth)
 //! that zshift predicts, beside the step measured on a real rasterizer (headless EGL, Mesa
 //! llvmpipe through `zshift-harness`), at several distances.

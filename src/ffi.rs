@@ -271,7 +271,7 @@ pub extern "C" fn zshift_version() -> *const c_char {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Issue 4: every projection an engine uses, precision per convention and format, polygon-offset
+// Every projection an engine uses, precision per convention and format, polygon-offset
 // equivalence and scene planning. Enumerations cross the ABI as int32_t constants; an unknown
 // value is ZSHIFT_ERR_DOMAIN.
 // ---------------------------------------------------------------------------------------------

@@ -1,5 +1,5 @@
-//! The projection builders, depth mappings, offsets, polygon-offset conversions and plans of
-//! issue 4 against exact rational arithmetic. References are the defining formulas evaluated in
+//! The projection builders, depth mappings, offsets, polygon-offset conversions and plans
+//! against exact rational arithmetic. References are the defining formulas evaluated in
 //! `BigRational` (every finite f64 and f32 is a rational), or IEEE facts checked independently
 //! (`f32::next_up`), never numbers taken from the code under test.
 

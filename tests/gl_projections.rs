@@ -1,4 +1,4 @@
-//! Issue 4 on a real rasterizer (headless EGL, Mesa llvmpipe via `zshift-harness`): reversed Z
+//! The projections on a real rasterizer (headless EGL, Mesa llvmpipe via `zshift-harness`): reversed Z
 //! with `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`, `GL_GREATER` and D32F; `[0, 1]` depth;
 //! the tweaked infinite projection; Kooima's median projection through the shipped GLSL; the
 //! polygon-offset conversion; and the measured depth step beside the predicted one.
