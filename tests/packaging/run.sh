@@ -11,7 +11,7 @@ mkdir -p "$work"
 prefix=$work/prefix
 
 for tool in pkg-config cmake cc c++; do
-  command -v "$tool" >/dev/null || { echo "FAIL: $tool is not installed (.ci/run installs it)" >&2; exit 1; }
+  command -v "$tool" >/dev/null || { echo "FAIL: $tool is not installed (scripts/setup installs it)" >&2; exit 1; }
 done
 
 scripts/install "$prefix"

@@ -108,7 +108,7 @@ class TupleMatrices(unittest.TestCase):
             self.assertLessEqual(abs(moved), abs(exact_offset) + ulp)
 
 
-@unittest.skipIf(zshift._numpy is None, "numpy is not installed (.ci/run installs it)")
+@unittest.skipIf(zshift._numpy is None, "numpy is not installed (scripts/setup installs it)")
 class NumpyMatrices(unittest.TestCase):
     """Matrices with numpy: float32 arrays of shape (16,), the same values as the tuples."""
 
