@@ -83,24 +83,30 @@ fn checked<T, P>(
     }
 }
 
+/// [`checked`] for an output of `N` plain values (`float[16]`, `double[N]`): written with one
+/// byte copy from a local, which needs no alignment and cannot overlap, and only on success.
+fn checked_array<T: Copy, const N: usize>(
+    out: *mut T,
+    compute: impl FnOnce() -> Result<[T; N]> + UnwindSafe,
+) -> ZshiftStatus {
+    checked(out, compute, |out, values| {
+        // SAFETY: `checked` has refused NULL; the caller promises N writable values.
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                values.as_ptr().cast::<u8>(),
+                out.cast::<u8>(),
+                std::mem::size_of::<[T; N]>(),
+            )
+        }
+    })
+}
+
+/// [`checked_array`] for a single double.
 fn checked_scalar(
     out: *mut f64,
     compute: impl FnOnce() -> Result<f64> + UnwindSafe,
 ) -> ZshiftStatus {
-    // SAFETY: `checked` has refused NULL; the caller promises `out` points to a writable
-    // double, and write_unaligned needs no alignment.
-    checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
-}
-
-fn checked_matrix(
-    out: *mut f32,
-    compute: impl FnOnce() -> Result<[f32; 16]> + UnwindSafe,
-) -> ZshiftStatus {
-    checked(out, compute, |out, m| {
-        // SAFETY: `checked` has refused NULL; the caller promises 16 writable floats. A byte
-        // copy needs no alignment, and `m` is a local, so the regions cannot overlap.
-        unsafe { std::ptr::copy_nonoverlapping(m.as_ptr().cast::<u8>(), out.cast::<u8>(), 64) }
-    })
+    checked_array(out, || compute().map(|value| [value]))
 }
 
 /// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
@@ -122,7 +128,7 @@ pub extern "C" fn zshift_frustum(
     f: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || Frustum::new(l, r, b, t, n, f)?.to_cols_array())
+    checked_array(out, || Frustum::new(l, r, b, t, n, f)?.to_cols_array())
 }
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -149,7 +155,7 @@ pub extern "C" fn zshift_load_offset_matrix(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         crate::offset::offset_matrix(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
     })
 }
@@ -347,17 +353,6 @@ fn kind_of(kind: i32) -> Result<OffsetKind> {
     }
 }
 
-fn checked_doubles<const N: usize>(
-    out: *mut f64,
-    compute: impl FnOnce() -> Result<[f64; N]> + UnwindSafe,
-) -> ZshiftStatus {
-    checked(out, compute, |out, v| {
-        // SAFETY: `checked` has refused NULL; the caller promises N writable doubles. A byte
-        // copy needs no alignment, and `v` is a local, so the regions cannot overlap.
-        unsafe { std::ptr::copy_nonoverlapping(v.as_ptr().cast::<u8>(), out.cast::<u8>(), N * 8) }
-    })
-}
-
 /// Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
 ///
 /// Convention: right-handed, NDC depth [-1, 1]; fovy in degrees; `f` may be +INFINITY. The
@@ -373,7 +368,7 @@ pub extern "C" fn zshift_perspective(
     f: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         crate::projection::perspective_frustum(fovy, aspect, n, f)?.to_cols_array()
     })
 }
@@ -394,7 +389,7 @@ pub extern "C" fn zshift_projection(
     clip: i32,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         crate::projection::projection(&Frustum::new(l, r, b, t, n, f)?, clip_of(clip)?)
     })
 }
@@ -421,7 +416,7 @@ pub extern "C" fn zshift_offset_projection(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         let frustum = Frustum::new(l, r, b, t, n, f)?;
         crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
     })
@@ -441,7 +436,7 @@ pub extern "C" fn zshift_offset_perspective(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         let frustum = crate::projection::perspective_frustum(fovy, aspect, n, f)?;
         crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
     })
@@ -465,7 +460,7 @@ pub extern "C" fn zshift_tweaked_infinite(
     tweak: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         crate::projection::tweaked_infinite(&Frustum::new(l, r, b, t, n, f64::INFINITY)?, tweak)
     })
 }
@@ -487,7 +482,7 @@ pub extern "C" fn zshift_offset_tweaked_infinite(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_matrix(out, || {
+    checked_array(out, || {
         let frustum = Frustum::new(l, r, b, t, n, f64::INFINITY)?;
         crate::clip_offset::offset_tweaked_infinite(&frustum, tweak, delta, pz)
     })
@@ -679,7 +674,7 @@ pub extern "C" fn zshift_shift_of_bias(
 /// 0 < nearest <= farthest. `out[0..2]` untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_tight_planes(nearest: f64, farthest: f64, out: *mut f64) -> ZshiftStatus {
-    checked_doubles(out, || {
+    checked_array(out, || {
         let planes = crate::plan::tight_planes(nearest, farthest)?;
         Ok([planes.near(), planes.far()])
     })
@@ -706,7 +701,7 @@ pub extern "C" fn zshift_range_offset(
     steps: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
-    checked_doubles(out, || {
+    checked_array(out, || {
         let mapping = DepthMapping::projection(n, f, clip_of(clip)?)?;
         let o =
             crate::plan::range_offset(&mapping, format_of(format)?, kind_of(kind)?, lo, hi, steps)?;
@@ -893,7 +888,7 @@ pub extern "C" fn zshift_recommend_matrix(
     let Some(s) = scene_from_c(scene) else {
         return ZSHIFT_ERR_NULL_POINTER;
     };
-    checked_matrix(out, move || {
+    checked_array(out, move || {
         let model = to_model(&s)?;
         let r = crate::recommend::recommend(&model)?;
         crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
