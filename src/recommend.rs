@@ -332,6 +332,199 @@ fn check(scene: &Scene) -> Result<()> {
     Ok(())
 }
 
+// ---------------------------------------------------------------------------------------------
+// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// ---------------------------------------------------------------------------------------------
+
+use crate::precision::DepthMapping;
+use crate::projection::ClipDepth;
+
+/// The recommended offset for a [`Scene`] drawn under a clip-depth convention, in the form that
+/// convention needs, with the decal's matrix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClipRecommendation {
+    /// The convention the offset is for.
+    pub clip: ClipDepth,
+    /// The constant NDC depth offset `c` for [`crate::clip_offset::ndc_offset_matrix`] (element
+    /// 10 becomes `m10 − c`; negative: toward the camera) under `NegOneToOne` and `ZeroToOne`;
+    /// 0 under `ReversedZeroToOne`.
+    pub ndc_offset: f64,
+    /// The relative offset `ε` for [`crate::clip_offset::relative_offset_matrix`] (element 14
+    /// scaled by `1 + ε`, every point moved from `d` to `d/(1 + ε)`) under
+    /// `ReversedZeroToOne`; 0 otherwise.
+    pub relative_epsilon: f64,
+    /// The smallest window-depth offset over the decal (at `d₂`; constant under `NegOneToOne`
+    /// and `ZeroToOne`, `ε·b/d₂` under reversed Z).
+    pub window_offset: f64,
+    /// The eye-space shift toward the camera at `d₂` that the offset amounts to there.
+    pub delta_at_far: f64,
+    /// Occluders nearer than the base by at least this eye-space distance along the line of
+    /// sight are never overdrawn by the decal.
+    pub bleed_gap: f64,
+    /// The decal's projection matrix (f32, column-major), offset rounded outward; draw the base
+    /// with [`crate::projection::projection`] of the same frustum and convention.
+    pub matrix: [f32; 16],
+    /// The terms the offset was built from (window-depth units; `quantum` at the decal's
+    /// farthest point).
+    pub terms: ErrorTerms,
+}
+
+/// The smallest offset that model (R1) guarantees ends z-fighting for `scene` drawn under
+/// `clip` (see "Other clip conventions" in the module docs), with its matrix and bleed gap.
+///
+/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS`
+/// and gives exactly [`recommend`]'s offset; `ZeroToOne` is
+/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` (Direct3D/Vulkan clip space),
+/// offset through element 10; `ReversedZeroToOne` adds `glDepthFunc(GL_GREATER)` and
+/// `glClearDepth(0)`, offset through element 14 (relative, works where `m10 = 0`). `f` may be
+/// `+∞` in every convention.
+///
+/// # Errors
+/// As [`recommend`]; [`crate::ErrorKind::Overflow`] if an element of the matrix leaves f32.
+pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
+    check(scene)?;
+    let frustum = &scene.frustum;
+    let m = crate::projection::projection_f64(frustum, clip)?;
+    if clip == ClipDepth::NegOneToOne {
+        let r = recommend(scene)?;
+        return Ok(ClipRecommendation {
+            clip,
+            ndc_offset: -r.ndc_offset,
+            relative_epsilon: 0.0,
+            window_offset: r.window_offset,
+            delta_at_far: r.delta_at_far,
+            bleed_gap: r.bleed_gap,
+            matrix: crate::offset::epsilon_matrix(frustum, r.epsilon)?,
+            terms: r.terms,
+        });
+    }
+    let mapping = mapping_of(scene, clip)?;
+    let terms = clip_error_terms(scene, clip)?;
+    let budget = 2.0 * (terms.transform + terms.vertex + terms.interpolation + terms.snap);
+    let [d1, d2] = scene.depth_range;
+    let fits = |x: f64| representable(x, "a recommended value overflows f64");
+    let (ndc_offset, relative_epsilon, window_offset, matrix) = if clip == ClipDepth::ZeroToOne {
+        // Window depth = NDC depth: the constant offset is (R1) itself.
+        let dw = fits(terms.window_offset())?;
+        let c = -dw / mapping.window_per_ndc();
+        (c, 0.0, dw, crate::clip_offset::ndc_offset_matrix(&m, c)?)
+    } else {
+        let eps = reversed_epsilon(scene, &mapping, budget)?;
+        let b = scale(scene);
+        let matrix = crate::clip_offset::relative_offset_matrix(&m, eps)?;
+        (0.0, eps, fits(eps * (b / d2))?, matrix)
+    };
+    // The window offset at d: constant, or ε·b/d under reversed Z.
+    let offset_at = |d: f64| {
+        if relative_epsilon > 0.0 {
+            relative_epsilon * (scale(scene) / d)
+        } else {
+            window_offset
+        }
+    };
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
+    let mut bleed_gap = 0.0f64;
+    for d in [d1, d2] {
+        let g = match mapping.shift_of_window_change(toward(offset_at(d) + budget), d) {
+            Ok(g) => g.min(d),
+            // Past the eye: no occluder in front of the base is safe from the decal.
+            Err(_) => d,
+        };
+        bleed_gap = bleed_gap.max(g);
+    }
+    Ok(ClipRecommendation {
+        clip,
+        ndc_offset: fits(ndc_offset)?,
+        relative_epsilon,
+        window_offset,
+        delta_at_far: fits(delta_at_far)?,
+        bleed_gap: fits(bleed_gap)?,
+        matrix,
+        terms,
+    })
+}
+
+/// The model's terms for `scene` under `clip` (see "Other clip conventions" in the module
+/// docs); `NegOneToOne` gives exactly [`error_terms`].
+///
+/// # Errors
+/// As [`recommend`].
+pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
+    if clip == ClipDepth::NegOneToOne {
+        return error_terms(scene);
+    }
+    check(scene)?;
+    let u = F32_UNIT_ROUNDOFF;
+    let mapping = mapping_of(scene, clip)?;
+    let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
+    let [d1, d2] = scene.depth_range;
+    let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
+    let w_max = w1.max(w2);
+    // NDC = window depth here: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
+    // the division by w = d; the sum, reciprocal and product round relative to |ndc| ≤ w_max;
+    // the viewport map z·1 + 0 is exact but counted (one rounding relative to w_max).
+    let transform = u * (m10.abs() + 4.0 * w_max);
+    let (vertex, interpolation) = if scene.exact_depth {
+        (0.0, 0.0)
+    } else {
+        let e = half_extent_tangent(&scene.frustum)?;
+        let nearest = d1.min(d2);
+        let vertex = u * (scale(scene) / nearest) * (1.0 + scene.slope * e);
+        (vertex, u * (3.0 * w_max + 3.0 * (w1 - w2).abs()))
+    };
+    // The spacing at the decal's smallest window depth: its farthest point under either
+    // convention (reversed Z stores n/d-like values that shrink with distance).
+    let w_min = w1.min(w2);
+    Ok(ErrorTerms {
+        quantum: quantum(scene.format, w_min)?,
+        transform,
+        vertex,
+        interpolation,
+        snap: snap(scene)?,
+    })
+}
+
+/// `b = f·n/(f − n)` (`n` for `f = ∞`): every `glFrustum`-family mapping stores
+/// `w(d) = α ± b/d`, so `|dw/dd| = b/d²` and the window gradients match the standard ones.
+fn scale(scene: &Scene) -> f64 {
+    let planes = scene.frustum.planes();
+    planes.near() * planes.far_over_span()
+}
+
+fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
+    let planes = scene.frustum.planes();
+    DepthMapping::projection(planes.near(), planes.far(), clip)
+}
+
+/// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
+/// reach `q(w(d)) + budget` at every `d` of the decal. The budget part is largest at `d₂`; the
+/// quantum part `q(w)·d/b` peaks, within each binade of float depth, where `w` is smallest, so
+/// at `d₂` or where `w(d)` is a power of two. Element 14 rounded to f32 (`p ≥ b·(1 − u)`)
+/// carries `ε·p`, hence the final `1/(1 − u)`.
+fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Result<f64> {
+    let b = scale(scene);
+    let [d1, d2] = scene.depth_range;
+    let need = |d: f64| -> Result<f64> {
+        let q = quantum(scene.format, mapping.window_depth(d)?)?;
+        Ok((q + budget) * (d / b))
+    };
+    let mut eps = need(d1)?.max(need(d2)?);
+    let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
+    if !scene.format.is_unorm() && w_lo > 0.0 {
+        let mut p = 2f64.powi(w_lo.log2().floor() as i32 + 1);
+        while p <= w_hi {
+            let d = mapping.distance_at_window(p)?;
+            eps = eps.max((p * 2f64.powi(-23) + budget) * (d / b));
+            p *= 2.0;
+        }
+    }
+    representable(
+        eps / (1.0 - F32_UNIT_ROUNDOFF),
+        "the relative epsilon overflows f64",
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
