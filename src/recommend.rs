@@ -54,10 +54,42 @@
 //! element 10) on sloped D16 planes and 3.5–15× on sloped D24/D32F planes, where the f32 terms
 //! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
 //!
-//! The model covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`, `glDepthRange(0, 1)`),
-//! the one the rasterizer tests measure; the other conventions of
-//! [`crate::precision::DepthMapping`] (`[0, 1]`, reversed Z) change `T` and `q` and are not
-//! covered yet.
+//! [`recommend`] covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`,
+//! `glDepthRange(0, 1)`); [`recommend_clip`] applies the same model to the other conventions.
+//!
+//! # Other clip conventions
+//! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
+//! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
+//! gradients of a sloped plane are the same in every convention: `V`, `I` and `S` keep their
+//! form (`V = u·(b/d₁)·(1 + s·e)`, the standard `F·n` being `b`). What changes:
+//!
+//! | term | `[−1, 1]` (`GL_LESS`) | `[0, 1]` (`GL_LESS`) | reversed `[0, 1]` (`GL_GREATER`, clear 0) |
+//! |---|---|---|---|
+//! | window depth | `½·ndc + ½` | `ndc` | `ndc`, `n(f − d)/((f − n)d)` |
+//! | `q` | at `w(d₂)` | at `w(d₂)` | at `w(d₂)`: relative for D32F, `2^(e−23)` at `w ≈ n/d` |
+//! | `T` | `u·(│m10│/2 + 1.5·│ndc│ + w)` | `u·(│m10│ + 4·w_max)` | `u·(│m10│ + 4·w_max)`, `m10 = n/(f−n)` (0 at `f = ∞`) |
+//! | offset | `ε` on element 10 | constant `c = −Δw` on element 10 | relative `ε` on element 14 |
+//! | `Δw` at `d` | `Δw` | `Δw` | `ε·b/d` |
+//!
+//! Under `[0, 1]` the NDC depth is the window depth (`glDepthRange(0, 1)` maps it as `z·1 + 0`),
+//! so the transform's roundings are no longer halved, and `T`'s relative part is bounded by the
+//! largest window depth of the decal. The offset stays a constant through element 10
+//! ([`crate::clip_offset::ndc_offset_matrix`]): `Δw = q + 2(T + V + I + S)`, (R1) unchanged.
+//!
+//! Under reversed Z the offset is relative ([`crate::clip_offset::relative_offset_matrix`]:
+//! element 14 scaled by `1 + ε` moves every point from `d` to `d/(1 + ε)`), which gives the
+//! window offset `ε·b/d` at `d`: it shrinks with distance as D32F's spacing does, and exists
+//! where `m10 = 0`. (R1) must hold at every `d` of the decal, so
+//! `ε = max_d (q(w(d)) + 2(T + V + I + S))·d/b`: the budget part peaks at `d₂`, the quantum part
+//! at `d₂` or where `w(d)` crosses a power of two (within a binade the spacing is constant and
+//! `d/b` grows as `w` falls); both are evaluated, and `ε` is divided by `1 − u` for element 14's
+//! own f32 rounding. The bleed gap is the eye-space shift whose window change is
+//! `Δw(d) + 2(T + V + I + S)`, the larger of its values at `d₁` and `d₂`.
+//!
+//! Measured on llvmpipe (`tests/gl_recommend_clip.rs`, 96², f/n 10, 1e6 and ∞, slopes 0 and 3):
+//! no lost pixel at the recommendation, 2–18× the smallest working offset in f32 steps of the
+//! offset element, no bleed-through at the gap. D32F under `[0, 1]` behaves as D24 wherever
+//! `w ≥ ½` (float spacing 2⁻²⁴ there), which is most of any range with f ≥ 3n.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
@@ -593,6 +625,99 @@ mod tests {
         let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
         assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
         assert!(s3.vertex > s1.vertex);
+    }
+
+    fn f32_spacing(w: f64) -> f64 {
+        // The gap to the next f32 above w as f32 (w a normal number, not a power of two's edge
+        // case: the spacing above and below agree inside a binade).
+        let x = w as f32;
+        f64::from(f32::from_bits(x.to_bits() + 1)) - f64::from(x)
+    }
+
+    /// `NegOneToOne` through `recommend_clip` is `recommend`'s offset and matrix.
+    #[test]
+    fn the_standard_convention_is_unchanged() {
+        let s = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
+        let r = recommend(&s).unwrap();
+        let c = recommend_clip(&s, ClipDepth::NegOneToOne).unwrap();
+        assert_eq!(c.ndc_offset, -r.ndc_offset);
+        assert_eq!(c.bleed_gap, r.bleed_gap);
+        assert_eq!(
+            c.matrix,
+            crate::offset::epsilon_matrix(&s.frustum, r.epsilon).unwrap()
+        );
+    }
+
+    /// Under `[0, 1]` the f32 matrix lowers NDC (= window) depth by at least the window offset
+    /// and by at most one f32 step of element 10 more; the plain projection is untouched
+    /// elsewhere. Differences of nearby f32 values are exact in f64.
+    #[test]
+    fn zero_to_one_carries_the_window_offset_in_element_10() {
+        let s = scene(DepthFormat::Unorm24, 3.0, Snapping::SubpixelBits(8));
+        let c = recommend_clip(&s, ClipDepth::ZeroToOne).unwrap();
+        let plain = crate::projection::projection(&s.frustum, ClipDepth::ZeroToOne).unwrap();
+        let lowered = f64::from(c.matrix[10]) - f64::from(plain[10]);
+        let ulp = f64::from(plain[10].abs()) * 2f64.powi(-23);
+        assert!(lowered >= c.window_offset && lowered <= c.window_offset + ulp);
+        assert_eq!(c.ndc_offset, -c.window_offset);
+        assert_eq!(
+            (c.relative_epsilon, c.terms.quantum),
+            (0.0, 1.0 / 16_777_215.0)
+        );
+        for i in (0..16).filter(|&i| i != 10) {
+            assert_eq!(c.matrix[i], plain[i]);
+        }
+    }
+
+    /// Reversed Z, infinite far, D32F: element 10 is 0 and stays 0; element 14 is scaled by at
+    /// least 1 + ε; and at both ends of the decal (and where `w = n/d` crosses ⅛, a binade
+    /// edge inside it) the window offset `ε·n/d` beats the f32 spacing there plus the error
+    /// budget, the spacing taken from the bits of the stored value.
+    #[test]
+    fn reversed_infinite_float_beats_the_spacing_everywhere_on_the_decal() {
+        let e = 0.5;
+        let s = Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
+            depth_range: [6.0, 10.0],
+            ..scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped)
+        };
+        let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
+        let plain =
+            crate::projection::projection(&s.frustum, ClipDepth::ReversedZeroToOne).unwrap();
+        assert_eq!((plain[10], c.matrix[10]), (0.0, 0.0));
+        assert!(f64::from(c.matrix[14]) / f64::from(plain[14]) - 1.0 >= c.relative_epsilon);
+        let t = c.terms;
+        let budget = 2.0 * (t.transform + t.vertex + t.interpolation + t.snap);
+        for d in [6.0, 8.0, 10.0] {
+            let w = 1.0 / d;
+            let need = if d == 8.0 {
+                2f64.powi(-26)
+            } else {
+                f32_spacing(w)
+            } + budget;
+            assert!(c.relative_epsilon * w >= need, "d = {d}");
+        }
+        // The binade edge decides: without it the far end alone would ask less.
+        let far_only = (f32_spacing(0.1) + budget) * 10.0;
+        assert!(c.relative_epsilon > far_only);
+    }
+
+    /// The bleed gap under reversed Z moves the base's window depth (n/d, infinite far) by the
+    /// offset plus the budget at the decal's far end: `n/(d − G) − n/d`.
+    #[test]
+    fn reversed_bleed_gap_spans_the_offset_and_the_budget() {
+        let e = 0.5;
+        let s = Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
+            depth_range: [50.0, 60.0],
+            ..scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped)
+        };
+        let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
+        let t = c.terms;
+        let budget = 2.0 * (t.transform + t.vertex + t.interpolation + t.snap);
+        let dw = 1.0 / (60.0 - c.bleed_gap) - 1.0 / 60.0;
+        let want = c.relative_epsilon / 60.0 + budget;
+        assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
     }
 
     #[test]
