@@ -385,6 +385,14 @@ pub struct ClipRecommendation {
     /// scaled by `1 + ε`, every point moved from `d` to `d/(1 + ε)`) under
     /// `ReversedZeroToOne`; 0 otherwise.
     pub relative_epsilon: f64,
+    /// The convention's ε in one number: Lengyel's element-10 ε (`m10·(1 + ε)` is `m10 − c`,
+    /// so `ε = −c/m10`, negative) under `NegOneToOne` and `ZeroToOne`; [`Self::relative_epsilon`]
+    /// (positive) under `ReversedZeroToOne`.
+    pub epsilon: f64,
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum, as
+    /// [`Recommendation::polygon_offset`], under `NegOneToOne` and `ZeroToOne`; `[0, 0]` under
+    /// reversed Z, where the offset is relative and no constant `units` matches it.
+    pub polygon_offset: [f64; 2],
     /// The smallest window-depth offset over the decal (at `d₂`; constant under `NegOneToOne`
     /// and `ZeroToOne`, `ε·b/d₂` under reversed Z).
     pub window_offset: f64,
@@ -421,6 +429,8 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         let r = recommend(scene)?;
         return Ok(ClipRecommendation {
             clip,
+            epsilon: r.epsilon,
+            polygon_offset: r.polygon_offset,
             ndc_offset: -r.ndc_offset,
             relative_epsilon: 0.0,
             window_offset: r.window_offset,
@@ -465,8 +475,20 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         };
         bleed_gap = bleed_gap.max(g);
     }
+    let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
+        (relative_epsilon, [0.0, 0.0])
+    } else {
+        let factor = match scene.snapping {
+            Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+            Snapping::Unsnapped => 0.0,
+        };
+        let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+        (-ndc_offset / m[10], [factor, fits(units)?])
+    };
     Ok(ClipRecommendation {
         clip,
+        epsilon: fits(epsilon)?,
+        polygon_offset,
         ndc_offset: fits(ndc_offset)?,
         relative_epsilon,
         window_offset,
