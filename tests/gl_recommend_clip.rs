@@ -46,7 +46,7 @@ impl Case {
             format!("{:<5.0e}", self.far / self.setup.n)
         };
         format!(
-            "{clip} {:<4} f/n={far} d0={:>5.0} slope={}",
+            "{clip} {:<4} f/n={far} d0={:>8.1} slope={}",
             self.setup.format.name(),
             self.setup.axis_depth(),
             self.setup.slope
@@ -80,7 +80,8 @@ impl Case {
 
 /// The grid: `[0, 1]` with D24 and D32F, reversed Z with D32F; f/n = 10 and 1e6 and an
 /// infinite far plane (geometry laid out for f/n = 1e4); the plane at 20 % and 90 % of the
-/// range; facing and slope 3.
+/// range; facing and slope 3; and `[0, 1]` at f/n = 10 with the plane at 3 % (window depth
+/// below ½).
 fn grid() -> Vec<Case> {
     let mut v = Vec::new();
     let kinds = [
@@ -97,6 +98,17 @@ fn grid() -> Vec<Case> {
                     v.push(Case { setup, far, clip });
                 }
             }
+        }
+    }
+    // Near the near plane (w < ½), where [0, 1] float depth is finer than 24-bit fixed point.
+    for format in [DepthFormat::D24, DepthFormat::D32F] {
+        for slope in [0.0, 3.0] {
+            let setup = gl_common::setup(format, 10.0, 0.03, slope, SIZE);
+            v.push(Case {
+                setup,
+                far: 10.0,
+                clip: ClipDepth::ZeroToOne,
+            });
         }
     }
     v
@@ -290,7 +302,7 @@ fn measure(gl: &mut Gl, case: Case) -> Row {
     }
 }
 
-const HEADER: &str = "convention fmt  far        d0     slope | lost: none    rec | offset (f32 steps) rec   min  rec/min | offset            | gap/d2  | bleed: G/10   G";
+const HEADER: &str = "conv   fmt  far         d0         slope | lost: none    rec | offset (f32 steps) rec   min  rec/min | offset            | gap/d2  | bleed: G/10   G";
 
 fn format_row(r: &Row) -> String {
     let pct = |c: &Count| {
