@@ -5,7 +5,9 @@
 //! and sloped planes. References are GL readbacks, never zshift's own numbers. Fails (never
 //! skips) without GL.
 //!
-//! The table: `cargo test --release --test gl_recommend_clip -- --nocapture`.
+//! The table: `cargo test --release --test gl_recommend_clip -- --nocapture`; the wider sweep
+//! (256², f/n ∈ {10, 1e3, 1e6, ∞}, planes at 20/50/90 %, slopes 0, 0.3, 1, 3; 184 rows, a few
+//! seconds): the same with `ZSHIFT_CLIP_SWEEP=1`.
 
 mod gl_common;
 
@@ -15,14 +17,23 @@ use zshift::Frustum;
 use zshift_harness::coplanar::{Count, Setup, BASE, CLEAR, DECAL, OCCLUDER};
 use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
-/// Viewport size (small: llvmpipe on two shared cores).
+/// Viewport size of the CI grid (small: llvmpipe on two shared cores); the sweep uses 256².
 const SIZE: u32 = 96;
+const SWEEP_SIZE: u32 = 256;
 
 /// The stated factor: the recommended offset is at most this many times the smallest offset
 /// that works (bisection over f32 steps of the element the convention offsets). Measured at
 /// most 18 on this grid (`[0, 1]`, infinite far, slope 3, where one step already works and the
 /// f32 terms of the model dominate); the standard convention's sloped bound is the same 20×.
 const FACTOR: f64 = 20.0;
+/// The factor stated for the wider sweep: measured at most 30 (reversed Z, f/n = 10, slope 3,
+/// 256², where one f32 step of element 14 already works: the budget `2(T + V + I + S)` is taken
+/// at the decal's largest window depth, but the relative offset is smallest at its far end).
+const FACTOR_SWEEP: f64 = 32.0;
+
+fn sweep() -> bool {
+    std::env::var_os("ZSHIFT_CLIP_SWEEP").is_some_and(|v| v != "0")
+}
 
 /// One configuration: the coplanar setup (its geometry uses `setup.f`), the far plane of the
 /// projection (`setup.f` or `+∞`) and the convention.
@@ -84,16 +95,37 @@ impl Case {
 /// below ½).
 fn grid() -> Vec<Case> {
     let mut v = Vec::new();
+    let (size, ratios, fractions, slopes): (u32, &[(f64, bool)], &[f64], &[f64]) = if sweep() {
+        (
+            SWEEP_SIZE,
+            &[
+                (10.0, false),
+                (1e3, false),
+                (1e6, false),
+                (1e4, true),
+                (10.0, true),
+            ],
+            &[0.2, 0.5, 0.9],
+            &[0.0, 0.3, 1.0, 3.0],
+        )
+    } else {
+        (
+            SIZE,
+            &[(10.0, false), (1e6, false), (1e4, true)],
+            &[0.2, 0.9],
+            &[0.0, 3.0],
+        )
+    };
     let kinds = [
         (ClipDepth::ZeroToOne, DepthFormat::D24),
         (ClipDepth::ZeroToOne, DepthFormat::D32F),
         (ClipDepth::ReversedZeroToOne, DepthFormat::D32F),
     ];
     for (clip, format) in kinds {
-        for (ratio, infinite) in [(10.0, false), (1e6, false), (1e4, true)] {
-            for p in [0.2, 0.9] {
-                for slope in [0.0, 3.0] {
-                    let setup = gl_common::setup(format, ratio, p, slope, SIZE);
+        for &(ratio, infinite) in ratios {
+            for &p in fractions {
+                for &slope in slopes {
+                    let setup = gl_common::setup(format, ratio, p, slope, size);
                     let far = if infinite { f64::INFINITY } else { ratio };
                     v.push(Case { setup, far, clip });
                 }
@@ -103,7 +135,7 @@ fn grid() -> Vec<Case> {
     // Near the near plane (w < ½), where [0, 1] float depth is finer than 24-bit fixed point.
     for format in [DepthFormat::D24, DepthFormat::D32F] {
         for slope in [0.0, 3.0] {
-            let setup = gl_common::setup(format, 10.0, 0.03, slope, SIZE);
+            let setup = gl_common::setup(format, 10.0, 0.03, slope, size);
             v.push(Case {
                 setup,
                 far: 10.0,
@@ -359,9 +391,10 @@ fn clip_conventions_lose_no_pixel_at_the_recommendation() {
             );
         }
         sensitive += usize::from(r.none.hit > 0);
+        let factor = if sweep() { FACTOR_SWEEP } else { FACTOR };
         assert!(
-            r.k_rec as f64 <= FACTOR * r.k_min as f64,
-            "{label}: recommended {} steps > {FACTOR} x the smallest working {}",
+            r.k_rec as f64 <= factor * r.k_min as f64,
+            "{label}: recommended {} steps > {factor} x the smallest working {}",
             r.k_rec,
             r.k_min
         );
