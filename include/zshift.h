@@ -493,6 +493,42 @@ ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *ou
 // untouched on error.
 ZshiftStatus zshift_recommend_matrix(const ZshiftScene *scene, float *out);
 
+// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+// base when both are drawn under clip convention `clip` (a ZSHIFT_CLIP_*): the model of
+// `zshift_recommend` with each term taken through that convention's depth mapping (README,
+// "Verified on a rasterizer"). Verified on Mesa llvmpipe (tests/gl_recommend_clip.rs).
+//
+// - ZSHIFT_CLIP_NEG_ONE_TO_ONE: exactly `zshift_recommend`.
+// - ZSHIFT_CLIP_ZERO_TO_ONE (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_LESS): a
+//   constant NDC offset through element 10; `epsilon` is Lengyel's element-10 epsilon
+//   (m10 * (1 + epsilon), negative), `ndc_offset` = `window_offset` its magnitude.
+// - ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (same glClipControl, GL_GREATER, glClearDepth(0)): a
+//   relative offset through element 14 (m14 * (1 + epsilon), every point moved from d to
+//   d / (1 + epsilon); it works where m10 = 0, f = +INFINITY); `epsilon` is that relative
+//   epsilon (positive); `ndc_offset` and `window_offset` are the offset at decal_far, the
+//   smallest over the decal; `polygon_offset_factor` and `polygon_offset_units` are 0 (no
+//   constant glPolygonOffset matches a relative offset).
+//
+// In every case `delta_at_far` is the eye-space shift toward the camera the offset amounts to
+// at decal_far, `bleed_gap` the documented bleed-through gap, and `quantum` the format's
+// spacing at the decal's farthest point. `zshift_recommend_clip_matrix` gives the matrix.
+//
+// Errors: as `zshift_recommend`; ZSHIFT_ERR_DOMAIN for an unknown `clip`; ZSHIFT_ERR_OVERFLOW
+// if a result or matrix element overflows. `*out` is untouched on error.
+ZshiftStatus zshift_recommend_clip(const ZshiftScene *scene,
+                                   int32_t clip,
+                                   ZshiftRecommendation *out);
+
+// Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
+// ZSHIFT_CLIP_*): `zshift_projection`'s matrix of the scene's frustum with element 10 lowered
+// by the NDC offset (NEG_ONE_TO_ONE, ZERO_TO_ONE) or element 14 scaled by 1 + epsilon
+// (REVERSED_ZERO_TO_ONE), rounded away from the plain element so the offset is never lost to
+// float rounding. Column-major, 16 floats; draw the base with the plain matrix of the same
+// convention.
+//
+// Errors: as `zshift_recommend_clip`. `out` is untouched on error.
+ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, int32_t clip, float *out);
+
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus

@@ -894,3 +894,88 @@ pub extern "C" fn zshift_recommend_matrix(
         crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
     })
 }
+
+// ---- The recommended offset under every clip convention (recommend::recommend_clip) ----
+
+/// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+/// base when both are drawn under clip convention `clip` (a ZSHIFT_CLIP_*): the model of
+/// `zshift_recommend` with each term taken through that convention's depth mapping (README,
+/// "Verified on a rasterizer"). Verified on Mesa llvmpipe (tests/gl_recommend_clip.rs).
+///
+/// - ZSHIFT_CLIP_NEG_ONE_TO_ONE: exactly `zshift_recommend`.
+/// - ZSHIFT_CLIP_ZERO_TO_ONE (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_LESS): a
+///   constant NDC offset through element 10; `epsilon` is Lengyel's element-10 epsilon
+///   (m10 * (1 + epsilon), negative), `ndc_offset` = `window_offset` its magnitude.
+/// - ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (same glClipControl, GL_GREATER, glClearDepth(0)): a
+///   relative offset through element 14 (m14 * (1 + epsilon), every point moved from d to
+///   d / (1 + epsilon); it works where m10 = 0, f = +INFINITY); `epsilon` is that relative
+///   epsilon (positive); `ndc_offset` and `window_offset` are the offset at decal_far, the
+///   smallest over the decal; `polygon_offset_factor` and `polygon_offset_units` are 0 (no
+///   constant glPolygonOffset matches a relative offset).
+///
+/// In every case `delta_at_far` is the eye-space shift toward the camera the offset amounts to
+/// at decal_far, `bleed_gap` the documented bleed-through gap, and `quantum` the format's
+/// spacing at the decal's farthest point. `zshift_recommend_clip_matrix` gives the matrix.
+///
+/// Errors: as `zshift_recommend`; ZSHIFT_ERR_DOMAIN for an unknown `clip`; ZSHIFT_ERR_OVERFLOW
+/// if a result or matrix element overflows. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_clip(
+    scene: *const ZshiftScene,
+    clip: i32,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked(
+        out,
+        move || {
+            let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
+            let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
+                0.5
+            } else {
+                1.0
+            };
+            Ok(ZshiftRecommendation {
+                epsilon: r.epsilon,
+                ndc_offset: r.window_offset / per_ndc,
+                window_offset: r.window_offset,
+                delta_at_far: r.delta_at_far,
+                bleed_gap: r.bleed_gap,
+                polygon_offset_factor: r.polygon_offset[0],
+                polygon_offset_units: r.polygon_offset[1],
+                quantum: r.terms.quantum,
+                transform: r.terms.transform,
+                vertex: r.terms.vertex,
+                interpolation: r.terms.interpolation,
+                snap: r.terms.snap,
+            })
+        },
+        // SAFETY: `checked` has refused NULL; the caller promises a writable
+        // ZshiftRecommendation; write_unaligned needs no alignment.
+        |out, v| unsafe { out.write_unaligned(v) },
+    )
+}
+
+/// Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
+/// ZSHIFT_CLIP_*): `zshift_projection`'s matrix of the scene's frustum with element 10 lowered
+/// by the NDC offset (NEG_ONE_TO_ONE, ZERO_TO_ONE) or element 14 scaled by 1 + epsilon
+/// (REVERSED_ZERO_TO_ONE), rounded away from the plain element so the offset is never lost to
+/// float rounding. Column-major, 16 floats; draw the base with the plain matrix of the same
+/// convention.
+///
+/// Errors: as `zshift_recommend_clip`. `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_clip_matrix(
+    scene: *const ZshiftScene,
+    clip: i32,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_matrix(out, move || {
+        Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
+    })
+}

@@ -54,10 +54,44 @@
 //! element 10) on sloped D16 planes and 3.5–15× on sloped D24/D32F planes, where the f32 terms
 //! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
 //!
-//! The model covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`, `glDepthRange(0, 1)`),
-//! the one the rasterizer tests measure; the other conventions of
-//! [`crate::precision::DepthMapping`] (`[0, 1]`, reversed Z) change `T` and `q` and are not
-//! covered yet.
+//! [`recommend`] covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`,
+//! `glDepthRange(0, 1)`); [`recommend_clip`] applies the same model to the other conventions.
+//!
+//! # Other clip conventions
+//! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
+//! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
+//! gradients of a sloped plane are the same in every convention: `V`, `I` and `S` keep their
+//! form (`V = u·(b/d₁)·(1 + s·e)`, the standard `F·n` being `b`). What changes:
+//!
+//! | term | `[−1, 1]` (`GL_LESS`) | `[0, 1]` (`GL_LESS`) | reversed `[0, 1]` (`GL_GREATER`, clear 0) |
+//! |---|---|---|---|
+//! | window depth | `½·ndc + ½` | `ndc` | `ndc`, `n(f − d)/((f − n)d)` |
+//! | `q` | at `w(d₂)` | at `w(d₂)` | at `w(d₂)`: relative for D32F, `2^(e−23)` at `w ≈ n/d` |
+//! | `T` | `u·(│m10│/2 + 1.5·│ndc│ + w)` | `u·(│m10│ + 4·w_max)` | `u·(│m10│ + 4·w_max)`, `m10 = n/(f−n)` (0 at `f = ∞`) |
+//! | offset | `ε` on element 10 | constant `c = −Δw` on element 10 | relative `ε` on element 14 |
+//! | `Δw` at `d` | `Δw` | `Δw` | `ε·b/d` |
+//!
+//! Under `[0, 1]` the NDC depth is the window depth (`glDepthRange(0, 1)` maps it as `z·1 + 0`),
+//! so the transform's roundings are no longer halved, and `T`'s relative part is bounded by the
+//! largest window depth of the decal. The offset stays a constant through element 10
+//! ([`crate::clip_offset::ndc_offset_matrix`]): `Δw = q + 2(T + V + I + S)`, (R1) unchanged.
+//!
+//! Under reversed Z the offset is relative ([`crate::clip_offset::relative_offset_matrix`]:
+//! element 14 scaled by `1 + ε` moves every point from `d` to `d/(1 + ε)`), which gives the
+//! window offset `ε·b/d` at `d`: it shrinks with distance as D32F's spacing does, and exists
+//! where `m10 = 0`. (R1) must hold at every `d` of the decal, so
+//! `ε = max_d (q(w(d)) + 2(T + V + I + S))·d/b`: the budget part peaks at `d₂`, the quantum part
+//! at `d₂` or where `w(d)` crosses a power of two (within a binade the spacing is constant and
+//! `d/b` grows as `w` falls); both are evaluated, and `ε` is divided by `1 − u` for element 14's
+//! own f32 rounding. The bleed gap is the eye-space shift whose window change is
+//! `Δw(d) + 2(T + V + I + S)`, the larger of its values at `d₁` and `d₂`.
+//!
+//! Measured on llvmpipe (`tests/gl_recommend_clip.rs`: 40 configurations at 96² in CI, 184 at
+//! 256² with `ZSHIFT_CLIP_SWEEP=1`; f/n 10 to 1e6 and ∞, slopes up to 3): no lost pixel at the
+//! recommendation, no bleed-through at the gap, 2–18× the smallest working offset in f32 steps
+//! of the offset element (up to 30× for reversed Z on slope-3 planes, where the budget taken at
+//! the decal's largest window depth meets the offset's smallest value at its far end). D32F under `[0, 1]` behaves as D24 wherever
+//! `w ≥ ½` (float spacing 2⁻²⁴ there), which is most of any range with f ≥ 3n.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
@@ -332,6 +366,221 @@ fn check(scene: &Scene) -> Result<()> {
     Ok(())
 }
 
+// ---------------------------------------------------------------------------------------------
+// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// ---------------------------------------------------------------------------------------------
+
+use crate::precision::DepthMapping;
+use crate::projection::ClipDepth;
+
+/// The recommended offset for a [`Scene`] drawn under a clip-depth convention, in the form that
+/// convention needs, with the decal's matrix.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClipRecommendation {
+    /// The convention the offset is for.
+    pub clip: ClipDepth,
+    /// The constant NDC depth offset `c` for [`crate::clip_offset::ndc_offset_matrix`] (element
+    /// 10 becomes `m10 − c`; negative: toward the camera) under `NegOneToOne` and `ZeroToOne`;
+    /// 0 under `ReversedZeroToOne`.
+    pub ndc_offset: f64,
+    /// The relative offset `ε` for [`crate::clip_offset::relative_offset_matrix`] (element 14
+    /// scaled by `1 + ε`, every point moved from `d` to `d/(1 + ε)`) under
+    /// `ReversedZeroToOne`; 0 otherwise.
+    pub relative_epsilon: f64,
+    /// The convention's ε in one number: Lengyel's element-10 ε (`m10·(1 + ε)` is `m10 − c`,
+    /// so `ε = −c/m10`, negative) under `NegOneToOne` and `ZeroToOne`; [`Self::relative_epsilon`]
+    /// (positive) under `ReversedZeroToOne`.
+    pub epsilon: f64,
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum, as
+    /// [`Recommendation::polygon_offset`], under `NegOneToOne` and `ZeroToOne`; `[0, 0]` under
+    /// reversed Z, where the offset is relative and no constant `units` matches it.
+    pub polygon_offset: [f64; 2],
+    /// The smallest window-depth offset over the decal (at `d₂`; constant under `NegOneToOne`
+    /// and `ZeroToOne`, `ε·b/d₂` under reversed Z).
+    pub window_offset: f64,
+    /// The eye-space shift toward the camera at `d₂` that the offset amounts to there.
+    pub delta_at_far: f64,
+    /// Occluders nearer than the base by at least this eye-space distance along the line of
+    /// sight are never overdrawn by the decal.
+    pub bleed_gap: f64,
+    /// The decal's projection matrix (f32, column-major), offset rounded outward; draw the base
+    /// with [`crate::projection::projection`] of the same frustum and convention.
+    pub matrix: [f32; 16],
+    /// The terms the offset was built from (window-depth units; `quantum` at the decal's
+    /// farthest point).
+    pub terms: ErrorTerms,
+}
+
+/// The smallest offset that model (R1) guarantees ends z-fighting for `scene` drawn under
+/// `clip` (see "Other clip conventions" in the module docs), with its matrix and bleed gap.
+///
+/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS`
+/// and gives exactly [`recommend`]'s offset; `ZeroToOne` is
+/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` (Direct3D/Vulkan clip space),
+/// offset through element 10; `ReversedZeroToOne` adds `glDepthFunc(GL_GREATER)` and
+/// `glClearDepth(0)`, offset through element 14 (relative, works where `m10 = 0`). `f` may be
+/// `+∞` in every convention.
+///
+/// # Errors
+/// As [`recommend`]; [`crate::ErrorKind::Overflow`] if an element of the matrix leaves f32.
+pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
+    check(scene)?;
+    let frustum = &scene.frustum;
+    let m = crate::projection::projection_f64(frustum, clip)?;
+    if clip == ClipDepth::NegOneToOne {
+        let r = recommend(scene)?;
+        return Ok(ClipRecommendation {
+            clip,
+            epsilon: r.epsilon,
+            polygon_offset: r.polygon_offset,
+            ndc_offset: -r.ndc_offset,
+            relative_epsilon: 0.0,
+            window_offset: r.window_offset,
+            delta_at_far: r.delta_at_far,
+            bleed_gap: r.bleed_gap,
+            matrix: crate::offset::epsilon_matrix(frustum, r.epsilon)?,
+            terms: r.terms,
+        });
+    }
+    let mapping = mapping_of(scene, clip)?;
+    let terms = clip_error_terms(scene, clip)?;
+    let budget = 2.0 * (terms.transform + terms.vertex + terms.interpolation + terms.snap);
+    let [d1, d2] = scene.depth_range;
+    let fits = |x: f64| representable(x, "a recommended value overflows f64");
+    let (ndc_offset, relative_epsilon, window_offset, matrix) = if clip == ClipDepth::ZeroToOne {
+        // Window depth = NDC depth: the constant offset is (R1) itself.
+        let dw = fits(terms.window_offset())?;
+        let c = -dw / mapping.window_per_ndc();
+        (c, 0.0, dw, crate::clip_offset::ndc_offset_matrix(&m, c)?)
+    } else {
+        let eps = reversed_epsilon(scene, &mapping, budget)?;
+        let b = scale(scene);
+        let matrix = crate::clip_offset::relative_offset_matrix(&m, eps)?;
+        (0.0, eps, fits(eps * (b / d2))?, matrix)
+    };
+    // The window offset at d: constant, or ε·b/d under reversed Z.
+    let offset_at = |d: f64| {
+        if relative_epsilon > 0.0 {
+            relative_epsilon * (scale(scene) / d)
+        } else {
+            window_offset
+        }
+    };
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
+    let mut bleed_gap = 0.0f64;
+    for d in [d1, d2] {
+        let g = match mapping.shift_of_window_change(toward(offset_at(d) + budget), d) {
+            Ok(g) => g.min(d),
+            // Past the eye: no occluder in front of the base is safe from the decal.
+            Err(_) => d,
+        };
+        bleed_gap = bleed_gap.max(g);
+    }
+    let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
+        (relative_epsilon, [0.0, 0.0])
+    } else {
+        let factor = match scene.snapping {
+            Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+            Snapping::Unsnapped => 0.0,
+        };
+        let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+        (-ndc_offset / m[10], [factor, fits(units)?])
+    };
+    Ok(ClipRecommendation {
+        clip,
+        epsilon: fits(epsilon)?,
+        polygon_offset,
+        ndc_offset: fits(ndc_offset)?,
+        relative_epsilon,
+        window_offset,
+        delta_at_far: fits(delta_at_far)?,
+        bleed_gap: fits(bleed_gap)?,
+        matrix,
+        terms,
+    })
+}
+
+/// The model's terms for `scene` under `clip` (see "Other clip conventions" in the module
+/// docs); `NegOneToOne` gives exactly [`error_terms`].
+///
+/// # Errors
+/// As [`recommend`].
+pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
+    if clip == ClipDepth::NegOneToOne {
+        return error_terms(scene);
+    }
+    check(scene)?;
+    let u = F32_UNIT_ROUNDOFF;
+    let mapping = mapping_of(scene, clip)?;
+    let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
+    let [d1, d2] = scene.depth_range;
+    let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
+    let w_max = w1.max(w2);
+    // NDC = window depth here: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
+    // the division by w = d; the sum, reciprocal and product round relative to |ndc| ≤ w_max;
+    // the viewport map z·1 + 0 is exact but counted (one rounding relative to w_max).
+    let transform = u * (m10.abs() + 4.0 * w_max);
+    let (vertex, interpolation) = if scene.exact_depth {
+        (0.0, 0.0)
+    } else {
+        let e = half_extent_tangent(&scene.frustum)?;
+        let nearest = d1.min(d2);
+        let vertex = u * (scale(scene) / nearest) * (1.0 + scene.slope * e);
+        (vertex, u * (3.0 * w_max + 3.0 * (w1 - w2).abs()))
+    };
+    // The spacing at the decal's smallest window depth: its farthest point under either
+    // convention (reversed Z stores n/d-like values that shrink with distance).
+    let w_min = w1.min(w2);
+    Ok(ErrorTerms {
+        quantum: quantum(scene.format, w_min)?,
+        transform,
+        vertex,
+        interpolation,
+        snap: snap(scene)?,
+    })
+}
+
+/// `b = f·n/(f − n)` (`n` for `f = ∞`): every `glFrustum`-family mapping stores
+/// `w(d) = α ± b/d`, so `|dw/dd| = b/d²` and the window gradients match the standard ones.
+fn scale(scene: &Scene) -> f64 {
+    let planes = scene.frustum.planes();
+    planes.near() * planes.far_over_span()
+}
+
+fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
+    let planes = scene.frustum.planes();
+    DepthMapping::projection(planes.near(), planes.far(), clip)
+}
+
+/// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
+/// reach `q(w(d)) + budget` at every `d` of the decal. The budget part is largest at `d₂`; the
+/// quantum part `q(w)·d/b` peaks, within each binade of float depth, where `w` is smallest, so
+/// at `d₂` or where `w(d)` is a power of two. Element 14 rounded to f32 (`p ≥ b·(1 − u)`)
+/// carries `ε·p`, hence the final `1/(1 − u)`.
+fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Result<f64> {
+    let b = scale(scene);
+    let [d1, d2] = scene.depth_range;
+    let need = |d: f64| -> Result<f64> {
+        let q = quantum(scene.format, mapping.window_depth(d)?)?;
+        Ok((q + budget) * (d / b))
+    };
+    let mut eps = need(d1)?.max(need(d2)?);
+    let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
+    if !scene.format.is_unorm() && w_lo > 0.0 {
+        let mut p = 2f64.powi(w_lo.log2().floor() as i32 + 1);
+        while p <= w_hi {
+            let d = mapping.distance_at_window(p)?;
+            eps = eps.max((p * 2f64.powi(-23) + budget) * (d / b));
+            p *= 2.0;
+        }
+    }
+    representable(
+        eps / (1.0 - F32_UNIT_ROUNDOFF),
+        "the relative epsilon overflows f64",
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -400,6 +649,99 @@ mod tests {
         let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
         assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
         assert!(s3.vertex > s1.vertex);
+    }
+
+    fn f32_spacing(w: f64) -> f64 {
+        // The gap to the next f32 above w as f32 (w a normal number, not a power of two's edge
+        // case: the spacing above and below agree inside a binade).
+        let x = w as f32;
+        f64::from(f32::from_bits(x.to_bits() + 1)) - f64::from(x)
+    }
+
+    /// `NegOneToOne` through `recommend_clip` is `recommend`'s offset and matrix.
+    #[test]
+    fn the_standard_convention_is_unchanged() {
+        let s = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
+        let r = recommend(&s).unwrap();
+        let c = recommend_clip(&s, ClipDepth::NegOneToOne).unwrap();
+        assert_eq!(c.ndc_offset, -r.ndc_offset);
+        assert_eq!(c.bleed_gap, r.bleed_gap);
+        assert_eq!(
+            c.matrix,
+            crate::offset::epsilon_matrix(&s.frustum, r.epsilon).unwrap()
+        );
+    }
+
+    /// Under `[0, 1]` the f32 matrix lowers NDC (= window) depth by at least the window offset
+    /// and by at most one f32 step of element 10 more; the plain projection is untouched
+    /// elsewhere. Differences of nearby f32 values are exact in f64.
+    #[test]
+    fn zero_to_one_carries_the_window_offset_in_element_10() {
+        let s = scene(DepthFormat::Unorm24, 3.0, Snapping::SubpixelBits(8));
+        let c = recommend_clip(&s, ClipDepth::ZeroToOne).unwrap();
+        let plain = crate::projection::projection(&s.frustum, ClipDepth::ZeroToOne).unwrap();
+        let lowered = f64::from(c.matrix[10]) - f64::from(plain[10]);
+        let ulp = f64::from(plain[10].abs()) * 2f64.powi(-23);
+        assert!(lowered >= c.window_offset && lowered <= c.window_offset + ulp);
+        assert_eq!(c.ndc_offset, -c.window_offset);
+        assert_eq!(
+            (c.relative_epsilon, c.terms.quantum),
+            (0.0, 1.0 / 16_777_215.0)
+        );
+        for i in (0..16).filter(|&i| i != 10) {
+            assert_eq!(c.matrix[i], plain[i]);
+        }
+    }
+
+    /// Reversed Z, infinite far, D32F: element 10 is 0 and stays 0; element 14 is scaled by at
+    /// least 1 + ε; and at both ends of the decal (and where `w = n/d` crosses ⅛, a binade
+    /// edge inside it) the window offset `ε·n/d` beats the f32 spacing there plus the error
+    /// budget, the spacing taken from the bits of the stored value.
+    #[test]
+    fn reversed_infinite_float_beats_the_spacing_everywhere_on_the_decal() {
+        let e = 0.5;
+        let s = Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
+            depth_range: [6.0, 10.0],
+            ..scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped)
+        };
+        let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
+        let plain =
+            crate::projection::projection(&s.frustum, ClipDepth::ReversedZeroToOne).unwrap();
+        assert_eq!((plain[10], c.matrix[10]), (0.0, 0.0));
+        assert!(f64::from(c.matrix[14]) / f64::from(plain[14]) - 1.0 >= c.relative_epsilon);
+        let t = c.terms;
+        let budget = 2.0 * (t.transform + t.vertex + t.interpolation + t.snap);
+        for d in [6.0, 8.0, 10.0] {
+            let w = 1.0 / d;
+            let need = if d == 8.0 {
+                2f64.powi(-26)
+            } else {
+                f32_spacing(w)
+            } + budget;
+            assert!(c.relative_epsilon * w >= need, "d = {d}");
+        }
+        // The binade edge decides: without it the far end alone would ask less.
+        let far_only = (f32_spacing(0.1) + budget) * 10.0;
+        assert!(c.relative_epsilon > far_only);
+    }
+
+    /// The bleed gap under reversed Z moves the base's window depth (n/d, infinite far) by the
+    /// offset plus the budget at the decal's far end: `n/(d − G) − n/d`.
+    #[test]
+    fn reversed_bleed_gap_spans_the_offset_and_the_budget() {
+        let e = 0.5;
+        let s = Scene {
+            frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
+            depth_range: [50.0, 60.0],
+            ..scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped)
+        };
+        let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
+        let t = c.terms;
+        let budget = 2.0 * (t.transform + t.vertex + t.interpolation + t.snap);
+        let dw = 1.0 / (60.0 - c.bleed_gap) - 1.0 / 60.0;
+        let want = c.relative_epsilon / 60.0 + budget;
+        assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
     }
 
     #[test]

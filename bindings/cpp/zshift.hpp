@@ -367,6 +367,26 @@ inline RangeOffset range_offset(double n, double f, Clip clip, Format format, Of
   return {out[0], out[1], out[2]};
 }
 
+/// recommend() for a scene drawn under `clip` (zshift_recommend_clip): Clip::neg_one_to_one is
+/// recommend(); Clip::zero_to_one (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC offset
+/// through element 10 (`epsilon` < 0, Lengyel's element-10 form); Clip::reversed_zero_to_one
+/// (GL_GREATER, clear depth 0) a relative `epsilon` > 0 for element 14, `window_offset` its value
+/// at decal_far, no glPolygonOffset equivalent (0, 0). Throws Error: as recommend();
+/// Status::domain for an unknown clip.
+inline Recommendation recommend_clip(const Scene &scene, Clip clip) {
+  Recommendation out{};
+  detail::check(zshift_recommend_clip(&scene, static_cast<std::int32_t>(clip), &out));
+  return out;
+}
+
+/// The decal's projection for recommend_clip()'s offset: projection() under `clip` with element
+/// 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by 1 + epsilon (reversed), rounded outward.
+/// Throws Error: as recommend_clip().
+inline Matrix recommend_clip_matrix(const Scene &scene, Clip clip) {
+  return detail::matrix(
+      [&](float *out) { return zshift_recommend_clip_matrix(&scene, static_cast<std::int32_t>(clip), out); });
+}
+
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }
 

@@ -281,6 +281,8 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_range_offset(n, f, clip, format, kind, lo, hi, steps) -> [F64; 3]),
     writes!(zshift_recommend(scene) -> [F64; RECOMMENDATION]),
     writes!(zshift_recommend_matrix(scene) -> [F32; 16]),
+    writes!(zshift_recommend_clip(scene, clip) -> [F64; RECOMMENDATION]),
+    writes!(zshift_recommend_clip_matrix(scene, clip) -> [F32; 16]),
 ];
 
 /// The entry named `name`.

@@ -637,6 +637,69 @@ static void test_recommend(void) {
 #undef CHECK_SCENE_ERROR
 }
 
+/* ---- the recommendation per clip convention (zshift_recommend_clip, _matrix) ---- */
+
+static void test_recommend_clip(void) {
+  ZshiftScene s = sloped_scene(), rev;
+  ZshiftRecommendation std_, c, z, r, out;
+  float a[16], b[16], plain[16];
+  long double moved, ratio;
+  int i;
+
+  /* NEG_ONE_TO_ONE is zshift_recommend, matrix included. */
+  std_ = recommend_ok(&s, "clip reference");
+  CHECK_STATUS(zshift_recommend_clip(&s, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &c), ZSHIFT_OK);
+  CHECK(memcmp(&c, &std_, sizeof c) == 0, "recommend_clip(NEG_ONE_TO_ONE) differs from recommend");
+  CHECK_STATUS(zshift_recommend_matrix(&s, a), ZSHIFT_OK);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, ZSHIFT_CLIP_NEG_ONE_TO_ONE, b), ZSHIFT_OK);
+  CHECK(memcmp(a, b, sizeof a) == 0, "recommend_clip_matrix(NEG_ONE_TO_ONE) differs from recommend_matrix");
+
+  /* ZERO_TO_ONE: (R1) in window depth = NDC depth, carried by element 10 of zshift_projection's
+   * [0,1] matrix, lowered by at least the offset and at most one float ulp more. */
+  CHECK_STATUS(zshift_recommend_clip(&s, ZSHIFT_CLIP_ZERO_TO_ONE, &z), ZSHIFT_OK);
+  CHECK(relative_error(z.window_offset, z.quantum + 2.0L * ((long double)z.transform + z.vertex +
+                                                            z.interpolation + z.snap)) < 1e-15 &&
+            z.ndc_offset == z.window_offset && z.epsilon < 0,
+        "[0,1]: window_offset %.17g ndc_offset %.17g epsilon %g", z.window_offset, z.ndc_offset, z.epsilon);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, ZSHIFT_CLIP_ZERO_TO_ONE, a), ZSHIFT_OK);
+  CHECK_STATUS(zshift_projection(s.l, s.r, s.b, s.t, s.n, s.f, ZSHIFT_CLIP_ZERO_TO_ONE, plain), ZSHIFT_OK);
+  for (i = 0; i < 16; i++)
+    if (i != 10) CHECK(a[i] == plain[i], "[0,1] recommend_clip_matrix element %d differs", i);
+  moved = (long double)a[10] - (long double)plain[10];
+  CHECK(moved >= z.ndc_offset && moved <= z.ndc_offset + (nextafterf(fabsf(plain[10]), INFINITY) - fabsf(plain[10])),
+        "[0,1]: element 10 moved by %Lg for an offset %g", moved, z.ndc_offset);
+
+  /* REVERSED, D32F, infinite far: element 10 is 0, element 14 scaled by at least 1 + epsilon. */
+  rev = s;
+  rev.depth_format = 0x8CAC;
+  rev.f = INFINITY;
+  CHECK_STATUS(zshift_recommend_clip(&rev, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, &r), ZSHIFT_OK);
+  CHECK(r.epsilon > 0 && r.polygon_offset_factor == 0 && r.polygon_offset_units == 0 && r.bleed_gap > 0,
+        "reversed: epsilon %g, polygon offset %g %g, gap %g", r.epsilon, r.polygon_offset_factor,
+        r.polygon_offset_units, r.bleed_gap);
+  /* At decal_far the window offset is epsilon * n / decal_far (window depth n/d). */
+  CHECK(relative_error(r.window_offset, (long double)r.epsilon * rev.n / rev.decal_far) < 1e-14,
+        "reversed: window_offset %.17g is not epsilon * n / decal_far", r.window_offset);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&rev, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, a), ZSHIFT_OK);
+  CHECK_STATUS(zshift_projection(rev.l, rev.r, rev.b, rev.t, rev.n, rev.f, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, plain),
+               ZSHIFT_OK);
+  ratio = (long double)a[14] / (long double)plain[14] - 1.0L;
+  CHECK(a[10] == 0.0f && plain[10] == 0.0f && ratio >= r.epsilon && ratio <= r.epsilon + 2.4e-7L,
+        "reversed: element 10 %g, element 14 scaled by 1 + %Lg for epsilon %g", a[10], ratio, r.epsilon);
+
+  /* Errors: NULL, an unknown convention; outputs untouched. */
+  CHECK_STATUS(zshift_recommend_clip(NULL, 0, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_recommend_clip(&s, 0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, 0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  memset(&out, PATTERN, sizeof out);
+  memset(b, PATTERN, sizeof b);
+  CHECK_STATUS(zshift_recommend_clip(&s, 3, &out), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, -1, b), ZSHIFT_ERR_DOMAIN);
+  rev.slope = NAN;
+  CHECK_STATUS(zshift_recommend_clip(&rev, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, &out), ZSHIFT_ERR_NOT_FINITE);
+  CHECK(untouched(&out, sizeof out) && untouched(b, sizeof b), "recommend_clip wrote its output on error");
+}
+
 static void test_status_messages(void) {
   static const ZshiftStatus known[] = {ZSHIFT_OK,          ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE,
                                        ZSHIFT_ERR_DOMAIN,  ZSHIFT_ERR_UNRESOLVABLE, ZSHIFT_ERR_OVERFLOW,
@@ -678,6 +741,7 @@ int main(void) {
   test_clip_precision();
   test_bias_and_planning();
   test_recommend();
+  test_recommend_clip();
   test_status_messages();
   test_versions();
   if (failures != 0) {

@@ -223,11 +223,35 @@ static void test_messages() {
   CHECK(zshift::version() == zshift_version() && !zshift::version().empty(), "version()");
 }
 
+// recommend_clip() and recommend_clip_matrix() return exactly what the C calls write; reversed
+// Z with an infinite far plane keeps element 10 at 0 and offsets element 14.
+static void test_recommend_clip() {
+  using zshift::Clip;
+  constexpr auto reversed = static_cast<std::int32_t>(Clip::reversed_zero_to_one);
+  zshift::Scene s = floor_decal;
+  s.f = std::numeric_limits<double>::infinity();
+  s.depth_format = 0x8CAC;  // GL_DEPTH_COMPONENT32F
+  ZshiftRecommendation c{};
+  float m[16];
+  CHECK(zshift_recommend_clip(&s, reversed, &c) == ZSHIFT_OK, "C zshift_recommend_clip failed");
+  zshift::Recommendation r = zshift::recommend_clip(s, Clip::reversed_zero_to_one);
+  CHECK(std::memcmp(&r, &c, sizeof c) == 0 && r.epsilon > 0, "recommend_clip() differs from the C call");
+  CHECK(zshift_recommend_clip_matrix(&s, reversed, m) == ZSHIFT_OK, "C zshift_recommend_clip_matrix failed");
+  zshift::Matrix decal = zshift::recommend_clip_matrix(s, Clip::reversed_zero_to_one);
+  CHECK(std::memcmp(decal.data(), m, sizeof m) == 0, "recommend_clip_matrix() differs from the C call");
+  zshift::Matrix plain = zshift::projection(s.l, s.r, s.b, s.t, s.n, s.f, Clip::reversed_zero_to_one);
+  CHECK(decal[10] == 0.0f && decal[14] > plain[14], "reversed Z: m10 %g, m14 %g vs %g",
+        static_cast<double>(decal[10]), static_cast<double>(decal[14]), static_cast<double>(plain[14]));
+  check_throws("recommend_clip(unknown clip)", zshift::Status::domain,
+               [&] { zshift::recommend_clip(s, static_cast<Clip>(9)); });
+}
+
 int main() {
   test_matrices();
   test_scalars();
   test_recommend();
   test_conventions();
+  test_recommend_clip();
   test_messages();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);

@@ -261,6 +261,32 @@ class Recommend(unittest.TestCase):
                     fn(self.FRUSTUM, **dict(self.ARGS, **changes))
                 self.assertEqual(caught.exception.status, status, str(changes))
 
+    def test_clip_conventions(self):
+        """[0,1]: element 10 of projection(ZERO_TO_ONE) lowered by the window offset (exact
+        rationals); reversed Z, infinite far, D32F: element 10 stays 0 and element 14 grows by at
+        least 1 + epsilon; an unknown clip is refused."""
+        clip = zshift.Clip
+        self.assertEqual(zshift.recommend_clip(self.FRUSTUM, clip=clip.NEG_ONE_TO_ONE, **self.ARGS),
+                         zshift.recommend(self.FRUSTUM, **self.ARGS))
+        with mock.patch.object(zshift, "_numpy", None):
+            z = zshift.recommend_clip(self.FRUSTUM, clip=clip.ZERO_TO_ONE, **self.ARGS)
+            plain = zshift.projection(*self.FRUSTUM, clip.ZERO_TO_ONE)
+            decal = zshift.recommend_clip_matrix(self.FRUSTUM, clip=clip.ZERO_TO_ONE, **self.ARGS)
+            terms = Q(z.quantum) + 2 * (Q(z.transform) + Q(z.vertex) + Q(z.interpolation) + Q(z.snap))
+            self.assertAlmostEqual(float((Q(z.window_offset) - terms) / terms), 0.0, delta=1e-15)
+            self.assertGreaterEqual(Q(decal[10]) - Q(plain[10]), Q(z.window_offset))
+            infinite = self.FRUSTUM[:5] + (math.inf,)
+            args = dict(self.ARGS, depth_format=zshift.GL_DEPTH_COMPONENT32F)
+            r = zshift.recommend_clip(infinite, clip=clip.REVERSED_ZERO_TO_ONE, **args)
+            plain = zshift.projection(*infinite, clip.REVERSED_ZERO_TO_ONE)
+            decal = zshift.recommend_clip_matrix(infinite, clip=clip.REVERSED_ZERO_TO_ONE, **args)
+        self.assertEqual((plain[10], decal[10]), (0.0, 0.0))
+        self.assertGreater(r.epsilon, 0)
+        self.assertGreaterEqual(Q(decal[14]) / Q(plain[14]) - 1, Q(r.epsilon))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.recommend_clip(self.FRUSTUM, clip=7, **self.ARGS)
+        self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
+
     def test_structures_match_the_header(self):
         header = (ROOT / "include" / "zshift.h").read_text()
         for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),

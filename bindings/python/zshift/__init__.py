@@ -36,7 +36,7 @@ __all__ = [
     "offset_projection", "offset_perspective", "tweaked_infinite", "offset_tweaked_infinite",
     "median_ndc_offset", "window_depth_clip", "depth_step", "median_depth_step", "min_ndc_offset",
     "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
-    "range_offset",
+    "range_offset", "recommend_clip", "recommend_clip_matrix",
     "status_message", "version", "library_path",
 ]
 
@@ -424,3 +424,33 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
     out = (ctypes.c_double * 3)()
     _check(_lib().zshift_range_offset(n, f, _enum(clip), _enum(format), _enum(kind), lo, hi, steps, out))
     return RangeOffset(*out)
+
+
+# ---- The recommendation per clip convention ----
+
+
+def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
+                   subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
+    :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
+    :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
+    offset through element 10 (``epsilon`` < 0 is Lengyel's element-10 form); reversed Z
+    (GL_GREATER, clear depth 0) a relative ``epsilon`` > 0 for element 14, ``window_offset`` its
+    value at the farthest decal depth, no glPolygonOffset equivalent (0, 0). Use
+    :func:`recommend_clip_matrix` for the decal's matrix.
+
+    Raises :class:`ZshiftError`: as :func:`recommend`; ``DOMAIN`` for an unknown clip.
+    """
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    out = _library.ZshiftRecommendation()
+    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip), ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
+                          subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
+    ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
+    (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip), out))

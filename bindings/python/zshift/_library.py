@@ -132,6 +132,10 @@ def _declare(lib):
     lib.zshift_recommend.restype = status
     lib.zshift_recommend_matrix.argtypes = [scene, float_out]
     lib.zshift_recommend_matrix.restype = status
+    lib.zshift_recommend_clip.argtypes = [scene, ctypes.c_int32, ctypes.POINTER(ZshiftRecommendation)]
+    lib.zshift_recommend_clip.restype = status
+    lib.zshift_recommend_clip_matrix.argtypes = [scene, ctypes.c_int32, float_out]
+    lib.zshift_recommend_clip_matrix.restype = status
     lib.zshift_status_message.argtypes = [status]
     lib.zshift_status_message.restype = ctypes.c_char_p
     lib.zshift_version.argtypes = []
