@@ -975,7 +975,7 @@ pub extern "C" fn zshift_recommend_clip_matrix(
     let Some(s) = scene_from_c(scene) else {
         return ZSHIFT_ERR_NULL_POINTER;
     };
-    checked_matrix(out, move || {
+    checked_array(out, move || {
         Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
     })
 }

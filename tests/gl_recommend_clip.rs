@@ -89,13 +89,16 @@ impl Case {
     }
 }
 
+/// Viewport size, (f/n, infinite far) pairs, plane positions in [n, f], slopes.
+type Grid = (u32, &'static [(f64, bool)], &'static [f64], &'static [f64]);
+
 /// The grid: `[0, 1]` with D24 and D32F, reversed Z with D32F; f/n = 10 and 1e6 and an
 /// infinite far plane (geometry laid out for f/n = 1e4); the plane at 20 % and 90 % of the
 /// range; facing and slope 3; and `[0, 1]` at f/n = 10 with the plane at 3 % (window depth
 /// below ½).
 fn grid() -> Vec<Case> {
     let mut v = Vec::new();
-    let (size, ratios, fractions, slopes): (u32, &[(f64, bool)], &[f64], &[f64]) = if sweep() {
+    let (size, ratios, fractions, slopes): Grid = if sweep() {
         (
             SWEEP_SIZE,
             &[

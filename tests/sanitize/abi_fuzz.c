@@ -69,7 +69,9 @@ struct inputs {
     X(zshift_range_offset, double, 3, -1, in->n, in->f, in->clip, in->format, in->kind,        \
       in->lo, in->hi, in->steps)                                                               \
     X(zshift_recommend, double, REC_DOUBLES, -1, &in->scene)                                   \
-    X(zshift_recommend_matrix, float, 16, -1, &in->scene)
+    X(zshift_recommend_matrix, float, 16, -1, &in->scene)                                   \
+    X(zshift_recommend_clip, double, REC_DOUBLES, -1, &in->scene, in->clip)                    \
+    X(zshift_recommend_clip_matrix, float, 16, -1, &in->scene, in->clip)
 
 /* X(name, arguments) for functions that return a static C string */
 #define ZSHIFT_TEXTS(X)                                                                        \
