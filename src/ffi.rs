@@ -794,6 +794,34 @@ pub struct ZshiftRecommendation {
     pub snap: f64,
 }
 
+impl ZshiftRecommendation {
+    /// The C record of a recommendation: its offsets, then the error terms it was built from.
+    fn new(
+        epsilon: f64,
+        ndc_offset: f64,
+        window_offset: f64,
+        delta_at_far: f64,
+        bleed_gap: f64,
+        polygon_offset: [f64; 2],
+        terms: &crate::recommend::ErrorTerms,
+    ) -> Self {
+        Self {
+            epsilon,
+            ndc_offset,
+            window_offset,
+            delta_at_far,
+            bleed_gap,
+            polygon_offset_factor: polygon_offset[0],
+            polygon_offset_units: polygon_offset[1],
+            quantum: terms.quantum,
+            transform: terms.transform,
+            vertex: terms.vertex,
+            interpolation: terms.interpolation,
+            snap: terms.snap,
+        }
+    }
+}
+
 /// Reads a scene the caller passed by pointer (NULL refused, no alignment needed) and converts
 /// it to the Rust model's input.
 fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
@@ -852,20 +880,15 @@ pub extern "C" fn zshift_recommend(
         out,
         move || {
             let r = crate::recommend::recommend(&to_model(&s)?)?;
-            Ok(ZshiftRecommendation {
-                epsilon: r.epsilon,
-                ndc_offset: r.ndc_offset,
-                window_offset: r.window_offset,
-                delta_at_far: r.delta_at_far,
-                bleed_gap: r.bleed_gap,
-                polygon_offset_factor: r.polygon_offset[0],
-                polygon_offset_units: r.polygon_offset[1],
-                quantum: r.terms.quantum,
-                transform: r.terms.transform,
-                vertex: r.terms.vertex,
-                interpolation: r.terms.interpolation,
-                snap: r.terms.snap,
-            })
+            Ok(ZshiftRecommendation::new(
+                r.epsilon,
+                r.ndc_offset,
+                r.window_offset,
+                r.delta_at_far,
+                r.bleed_gap,
+                r.polygon_offset,
+                &r.terms,
+            ))
         },
         // SAFETY: `checked` has refused NULL; the caller promises a writable
         // ZshiftRecommendation; write_unaligned needs no alignment.
@@ -937,20 +960,15 @@ pub extern "C" fn zshift_recommend_clip(
             } else {
                 1.0
             };
-            Ok(ZshiftRecommendation {
-                epsilon: r.epsilon,
-                ndc_offset: r.window_offset / per_ndc,
-                window_offset: r.window_offset,
-                delta_at_far: r.delta_at_far,
-                bleed_gap: r.bleed_gap,
-                polygon_offset_factor: r.polygon_offset[0],
-                polygon_offset_units: r.polygon_offset[1],
-                quantum: r.terms.quantum,
-                transform: r.terms.transform,
-                vertex: r.terms.vertex,
-                interpolation: r.terms.interpolation,
-                snap: r.terms.snap,
-            })
+            Ok(ZshiftRecommendation::new(
+                r.epsilon,
+                r.window_offset / per_ndc,
+                r.window_offset,
+                r.delta_at_far,
+                r.bleed_gap,
+                r.polygon_offset,
+                &r.terms,
+            ))
         },
         // SAFETY: `checked` has refused NULL; the caller promises a writable
         // ZshiftRecommendation; write_unaligned needs no alignment.
