@@ -833,6 +833,16 @@ fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
     Some(unsafe { scene.read_unaligned() })
 }
 
+/// [`checked`] for a `ZshiftRecommendation` output, written with `write_unaligned`.
+fn checked_record(
+    out: *mut ZshiftRecommendation,
+    compute: impl FnOnce() -> Result<ZshiftRecommendation> + UnwindSafe,
+) -> ZshiftStatus {
+    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
+    // write_unaligned needs no alignment.
+    checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
+}
+
 fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
     use crate::recommend::{Scene, Snapping};
     let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
@@ -876,24 +886,18 @@ pub extern "C" fn zshift_recommend(
     let Some(s) = scene_from_c(scene) else {
         return ZSHIFT_ERR_NULL_POINTER;
     };
-    checked(
-        out,
-        move || {
-            let r = crate::recommend::recommend(&to_model(&s)?)?;
-            Ok(ZshiftRecommendation::new(
-                r.epsilon,
-                r.ndc_offset,
-                r.window_offset,
-                r.delta_at_far,
-                r.bleed_gap,
-                r.polygon_offset,
-                &r.terms,
-            ))
-        },
-        // SAFETY: `checked` has refused NULL; the caller promises a writable
-        // ZshiftRecommendation; write_unaligned needs no alignment.
-        |out, v| unsafe { out.write_unaligned(v) },
-    )
+    checked_record(out, move || {
+        let r = crate::recommend::recommend(&to_model(&s)?)?;
+        Ok(ZshiftRecommendation::new(
+            r.epsilon,
+            r.ndc_offset,
+            r.window_offset,
+            r.delta_at_far,
+            r.bleed_gap,
+            r.polygon_offset,
+            &r.terms,
+        ))
+    })
 }
 
 /// Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
@@ -951,29 +955,23 @@ pub extern "C" fn zshift_recommend_clip(
     let Some(s) = scene_from_c(scene) else {
         return ZSHIFT_ERR_NULL_POINTER;
     };
-    checked(
-        out,
-        move || {
-            let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
-            let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
-                0.5
-            } else {
-                1.0
-            };
-            Ok(ZshiftRecommendation::new(
-                r.epsilon,
-                r.window_offset / per_ndc,
-                r.window_offset,
-                r.delta_at_far,
-                r.bleed_gap,
-                r.polygon_offset,
-                &r.terms,
-            ))
-        },
-        // SAFETY: `checked` has refused NULL; the caller promises a writable
-        // ZshiftRecommendation; write_unaligned needs no alignment.
-        |out, v| unsafe { out.write_unaligned(v) },
-    )
+    checked_record(out, move || {
+        let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
+        let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
+            0.5
+        } else {
+            1.0
+        };
+        Ok(ZshiftRecommendation::new(
+            r.epsilon,
+            r.window_offset / per_ndc,
+            r.window_offset,
+            r.delta_at_far,
+            r.bleed_gap,
+            r.polygon_offset,
+            &r.terms,
+        ))
+    })
 }
 
 /// Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
