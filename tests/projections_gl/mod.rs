@@ -47,17 +47,8 @@ impl MdpProgram {
         depth_func: u32,
     ) -> Result<(), String> {
         let g = gl.glow();
-        let bytes: Vec<u8> = quad
-            .corners
-            .iter()
-            .flatten()
-            .flat_map(|v| v.to_ne_bytes())
-            .collect();
         unsafe {
-            g.use_program(Some(self.program));
-            g.bind_vertex_array(Some(self.vao));
-            g.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo));
-            g.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
+            zshift_harness::use_quad_pipeline(g, (self.program, self.vao, self.vbo), quad);
             let loc = |name| g.get_uniform_location(self.program, name);
             g.uniform_matrix_4_f32_slice(loc("proj").as_ref(), false, proj);
             g.uniform_1_f32(loc("median").as_ref(), median);

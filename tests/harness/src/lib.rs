@@ -538,17 +538,8 @@ impl Gl {
     ) -> Result<(), String> {
         self.require_target()?;
         let gl = &self.gl;
-        let bytes: Vec<u8> = quad
-            .corners
-            .iter()
-            .flatten()
-            .flat_map(|v| v.to_ne_bytes())
-            .collect();
         unsafe {
-            gl.use_program(Some(self.program));
-            gl.bind_vertex_array(Some(self.vao));
-            gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo));
-            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
+            use_quad_pipeline(gl, (self.program, self.vao, self.vbo), quad);
             let p = gl.get_uniform_location(self.program, "proj");
             gl.uniform_matrix_4_f32_slice(p.as_ref(), false, proj);
             let c = gl.get_uniform_location(self.program, "color");
@@ -843,6 +834,28 @@ unsafe fn quad_pipeline(
     gl: &glow::Context,
 ) -> Result<(glow::Program, glow::VertexArray, glow::Buffer), String> {
     flat_colour_pipeline(gl, VERTEX_SHADER)
+}
+
+/// Binds a pipeline made by [`flat_colour_pipeline`] and uploads `quad`'s four eye-space corners
+/// to its vertex buffer, ready for `glDrawArrays(GL_TRIANGLE_FAN, 0, 4)`.
+///
+/// # Safety
+/// `gl` must be current on this thread and own the pipeline's objects.
+pub unsafe fn use_quad_pipeline(
+    gl: &glow::Context,
+    (program, vao, vbo): (glow::Program, glow::VertexArray, glow::Buffer),
+    quad: &Quad,
+) {
+    let bytes: Vec<u8> = quad
+        .corners
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_ne_bytes())
+        .collect();
+    gl.use_program(Some(program));
+    gl.bind_vertex_array(Some(vao));
+    gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+    gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
 }
 
 /// Links `vertex_shader` (GLSL 3.30 core, eye-space position at attribute location 0) with the
