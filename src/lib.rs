@@ -39,6 +39,7 @@ pub mod polygon_offset;
 pub mod precision;
 pub mod projection;
 pub mod recommend;
+pub mod rounding;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};

@@ -11,7 +11,8 @@ use crate::domain::{depth_steps, finite, representable, Planes};
 use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::{Error, ErrorKind, Result};
 use crate::precision::{depth_step_toward, StepTerms};
-use crate::projection::Frustum;
+use crate::projection::{ClipDepth, DepthRow, Frustum};
+use crate::rounding::outward_settled;
 
 /// ε for an eye-space shift `δ` of a point at eye-space depth `Pz` (eq. 4.1.7):
 ///
@@ -130,8 +131,75 @@ pub fn load_offset_matrix(
     delta: f64,
     pz: f64,
 ) -> Result<Mat4> {
-    let frustum = Frustum::new(l, r, b, t, n, f)?;
-    Ok(Mat4::from_cols_array(&offset_matrix(&frustum, delta, pz)?))
+    Ok(Mat4::from_cols_array(&load_offset_array(
+        l, r, b, t, n, f, delta, pz,
+    )?))
+}
+
+/// [`load_offset_matrix`] as a column-major array: the fast path (f64 estimates checked
+/// against their error bound, [`crate::rounding`]), falling back to the exact path when an
+/// element is too close to call or an input is invalid.
+///
+/// # Errors
+/// As [`load_offset_matrix`].
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn load_offset_array(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    match offset_fast(l, r, b, t, n, f, delta, pz) {
+        Some(m) => Ok(m),
+        None => offset_slow(l, r, b, t, n, f, delta, pz),
+    }
+}
+
+/// The fast path of [`load_offset_array`]: `None` when an input is invalid or a rounding is
+/// too close to call from the f64 estimates.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn offset_fast(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Option<[f32; 16]> {
+    let mut m = crate::projection::fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))?;
+    let shifted = pz + delta;
+    let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
+    if !(good & (shifted < 0.0) & (delta.abs() < f64::INFINITY)) {
+        return None;
+    }
+    let planes = Planes::from_checked(n, f);
+    let (estimate, _) = ndc_offset_of_shift(&planes, delta, pz);
+    m[10] = outward_fast(m[10], estimate, 8.0)?;
+    Some(m)
+}
+
+#[allow(clippy::too_many_arguments)]
+#[cold]
+#[inline(never)]
+fn offset_slow(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    offset_matrix_exact(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
 }
 
 /// [`load_offset_matrix`] for an already validated [`Frustum`], as a column-major array.
@@ -139,11 +207,22 @@ pub fn load_offset_matrix(
 /// # Errors
 /// As [`load_offset_matrix`].
 pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    load_offset_array(l, r, b, t, n, f, delta, pz)
+}
+
+/// [`offset_matrix`] decided by the exact path alone: the plain elements by
+/// [`crate::projection::projection_exact`], element 10 by double-double arithmetic. The same
+/// matrix, slower; tests compare the fast path with it.
+///
+/// # Errors
+/// As [`offset_matrix`].
+pub fn offset_matrix_exact(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
     let planes = frustum.planes();
     shifted_depth(&planes, delta, pz)?;
-    let mut m = frustum.to_cols_array()?;
-    let (estimate, exact) = ndc_offset_of_shift(&planes, delta, pz);
-    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
+    let mut m = crate::projection::projection_exact(frustum, ClipDepth::NegOneToOne)?;
+    let (_, exact) = ndc_offset_of_shift(&planes, delta, pz);
+    m[10] = rounded_outward(m[10], exact())?;
     Ok(m)
 }
 
@@ -154,11 +233,27 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
 /// As [`Frustum::to_cols_array`]; [`ErrorKind::NotFinite`] if ε is NaN or infinite;
 /// [`ErrorKind::Overflow`] if element 10 leaves f32.
 pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
-    finite(epsilon, "epsilon is NaN or infinite")?;
-    let planes = frustum.planes();
     let mut m = frustum.to_cols_array()?;
-    let (estimate, exact) = ndc_offset_of_epsilon(&planes, epsilon);
-    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
+    let (estimate, exact) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
+    match outward_fast(m[10], estimate, 4.0) {
+        Some(x) => m[10] = x,
+        None => {
+            finite(epsilon, "epsilon is NaN or infinite")?;
+            m[10] = rounded_outward(m[10], exact())?;
+        }
+    }
+    Ok(m)
+}
+
+/// [`epsilon_matrix`] decided by the exact path alone, as [`offset_matrix_exact`].
+///
+/// # Errors
+/// As [`epsilon_matrix`].
+pub fn epsilon_matrix_exact(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
+    finite(epsilon, "epsilon is NaN or infinite")?;
+    let mut m = crate::projection::projection_exact(frustum, ClipDepth::NegOneToOne)?;
+    let (_, exact) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
+    m[10] = rounded_outward(m[10], exact())?;
     Ok(m)
 }
 
@@ -185,7 +280,7 @@ fn ndc_offset_of_shift(
 ) -> (f64, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
-    let far = (!planes.is_infinite()).then(|| planes.far() * s);
+    let far = (!planes.is_infinite()).then_some(planes.far() * s);
     let estimate = match far {
         None => 2.0 * n * delta / (pz * (pz + delta)),
         Some(f) => 2.0 * n * delta * f / (pz * (pz + delta) * (f - n)),
@@ -221,32 +316,35 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -
     (estimate, exact)
 }
 
-/// [`rounded_outward`] for an offset known as an f64 `estimate` within eight roundings
-/// (relative error below 8·2⁻⁵³): when no f32 lies within the estimate's error of
-/// `plain + estimate`, every value in that interval rounds outward to the same f32, so the
-/// double-double `exact` value is computed only in the rare remaining cases (an f32 within
-/// about 1e-15 relative, which includes offsets that land exactly on one).
+/// The outward rounding of `plain + o` (see [`rounded_outward`]) from an f64 estimate of `o`
+/// within `rounds` roundings (relative error below `rounds·2⁻⁵³`, the f64 operations that
+/// computed it on inputs scaled into the normal range): when no f32 lies within the estimate's
+/// error of `plain + estimate`, every value in that interval rounds outward to the same f32,
+/// so the double-double value is needed only in the rare remaining cases (an f32 within about
+/// `1e-15` relative, which includes offsets that land exactly on one). `None` then, and for a
+/// zero or non-finite estimate.
+#[inline(always)]
+pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32> {
+    let target = f64::from(plain) + estimate;
+    // The estimate's own error (doubled), and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = rounds * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
+    if estimate == 0.0 {
+        return None;
+    }
+    outward_settled(target, error, estimate > 0.0)
+}
+
+/// [`outward_fast`], falling back to the double-double `exact` offset.
+#[cfg(test)]
 fn rounded_outward_estimated(
     plain: f32,
     estimate: f64,
     exact: impl FnOnce() -> DoubleDouble,
 ) -> Result<f32> {
-    let target = f64::from(plain) + estimate;
-    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = 8.0 * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
-    let nearest = target as f32;
-    let gap = f64::from(nearest) - target;
-    if target.is_finite() && nearest.is_finite() && estimate != 0.0 && gap.abs() > error {
-        let outward = match (estimate > 0.0, gap > 0.0) {
-            (true, false) => nearest.next_up(),
-            (false, true) => nearest.next_down(),
-            _ => nearest,
-        };
-        if outward.is_finite() {
-            return Ok(outward);
-        }
+    match outward_fast(plain, estimate, 8.0) {
+        Some(x) => Ok(x),
+        None => rounded_outward(plain, exact()),
     }
-    rounded_outward(plain, exact())
 }
 
 /// Rounds `plain + offset` to f32 away from `plain`, so the offset the GPU sees is never
