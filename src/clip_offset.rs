@@ -144,6 +144,29 @@ pub fn offset_projection(
     with_ndc_offset(plain, ndc_offset_of_shift(&mapping, delta, pz)?)
 }
 
+/// The fast path of [`offset_projection`] alone: `None` where it defers to the exact path
+/// (checks, details and every rounding too close to call). When it returns a matrix, that
+/// matrix is [`offset_projection`]'s (and [`offset_projection_exact`]'s).
+pub fn offset_projection_fast(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    delta: f64,
+    pz: f64,
+) -> Option<[f32; 16]> {
+    let mut m = crate::projection::projection_fast(frustum, clip)?;
+    if clip == ClipDepth::ReversedZeroToOne {
+        frustum.planes().check_eye_z(pz).ok()?;
+        let epsilon = relative_epsilon(delta, pz).ok()?;
+        m[14] = outward_fast(m[14], f64::from(m[14]) * epsilon, 1.0)?;
+        return Some(m);
+    }
+    let planes = frustum.planes();
+    let mapping = DepthMapping::projection(planes.near(), planes.far(), clip).ok()?;
+    let c = ndc_offset_of_shift(&mapping, delta, pz).ok()?;
+    m[10] = outward_fast(m[10], -c, 0.0)?;
+    Some(m)
+}
+
 /// [`offset_projection`] decided by the exact path alone (the plain elements by
 /// [`crate::projection::projection_exact`], the offset element by double-double): the same
 /// matrix, slower; tests compare the fast path with it.

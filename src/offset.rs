@@ -211,6 +211,14 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
     load_offset_array(l, r, b, t, n, f, delta, pz)
 }
 
+/// The fast path of [`offset_matrix`] alone: `None` where it defers to the exact path. When it
+/// returns a matrix, that matrix is [`offset_matrix`]'s (and [`offset_matrix_exact`]'s).
+#[inline(always)]
+pub fn offset_matrix_fast(frustum: &Frustum, delta: f64, pz: f64) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    offset_fast(l, r, b, t, n, f, delta, pz)
+}
+
 /// [`offset_matrix`] decided by the exact path alone: the plain elements by
 /// [`crate::projection::projection_exact`], element 10 by double-double arithmetic. The same
 /// matrix, slower; tests compare the fast path with it.
@@ -233,16 +241,19 @@ pub fn offset_matrix_exact(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f3
 /// As [`Frustum::to_cols_array`]; [`ErrorKind::NotFinite`] if ε is NaN or infinite;
 /// [`ErrorKind::Overflow`] if element 10 leaves f32.
 pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
-    let mut m = frustum.to_cols_array()?;
-    let (estimate, exact) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
-    match outward_fast(m[10], estimate, 4.0) {
-        Some(x) => m[10] = x,
-        None => {
-            finite(epsilon, "epsilon is NaN or infinite")?;
-            m[10] = rounded_outward(m[10], exact())?;
-        }
+    match epsilon_matrix_fast(frustum, epsilon) {
+        Some(m) => Ok(m),
+        None => epsilon_matrix_exact(frustum, epsilon),
     }
-    Ok(m)
+}
+
+/// The fast path of [`epsilon_matrix`] alone, as [`offset_matrix_fast`].
+#[inline(always)]
+pub fn epsilon_matrix_fast(frustum: &Frustum, epsilon: f64) -> Option<[f32; 16]> {
+    let mut m = crate::projection::projection_fast(frustum, ClipDepth::NegOneToOne)?;
+    let (estimate, _) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
+    m[10] = outward_fast(m[10], estimate, 4.0)?;
+    Some(m)
 }
 
 /// [`epsilon_matrix`] decided by the exact path alone, as [`offset_matrix_exact`].
@@ -317,17 +328,32 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -
 }
 
 /// The outward rounding of `plain + o` (see [`rounded_outward`]) from an f64 estimate of `o`
-/// within `rounds` roundings (relative error below `rounds·2⁻⁵³`, the f64 operations that
-/// computed it on inputs scaled into the normal range): when no f32 lies within the estimate's
-/// error of `plain + estimate`, every value in that interval rounds outward to the same f32,
-/// so the double-double value is needed only in the rare remaining cases (an f32 within about
-/// `1e-15` relative, which includes offsets that land exactly on one). `None` then, and for a
-/// zero or non-finite estimate.
+/// within `rounds` roundings (relative error below `rounds·2⁻⁵³`: the f64 operations that
+/// computed it, on inputs scaled into the normal range). `None` (use the double-double value)
+/// when that cannot decide it, and for a zero or non-finite estimate.
+///
+/// Two cases decide it. An offset smaller than the step to the next f32 beyond `plain` (the
+/// usual one: a few depth steps) rounds outward to that next f32, whatever its exact value.
+/// Otherwise, when no f32 lies within the estimate's error of `plain + estimate`, every value
+/// in that interval rounds outward to the same f32; that fails only for an f32 within about
+/// `1e-15` relative, which includes offsets that land exactly on one.
 #[inline(always)]
 pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32> {
+    let magnitude = estimate.abs();
+    let next = if estimate > 0.0 {
+        plain.next_up()
+    } else {
+        plain.next_down()
+    };
+    let step = (f64::from(next) - f64::from(plain)).abs();
+    // Doubled: the proven bound is (rounds/2)·f64::EPSILON.
+    let bound = rounds * f64::EPSILON;
+    if magnitude * (1.0 + bound) < step && magnitude > 0.0 && next.is_finite() {
+        return Some(next);
+    }
     let target = f64::from(plain) + estimate;
-    // The estimate's own error (doubled), and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = rounds * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
+    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = bound * magnitude + f64::EPSILON * target.abs();
     if estimate == 0.0 {
         return None;
     }

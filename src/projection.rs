@@ -278,17 +278,39 @@ pub fn perspective(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Mat
 /// As [`perspective`].
 #[inline]
 pub fn perspective_array(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<[f32; 16]> {
-    let good = (fovy_degrees > 0.0) & (fovy_degrees < 180.0) & (aspect > 0.0);
-    let good = good & (aspect < f64::INFINITY) & (n > 0.0) & (n < f64::INFINITY);
-    if good {
-        let top = n * (fovy_degrees.to_radians() * 0.5).tan();
-        let right = top * aspect;
-        let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
-        if let Some(m) = fast(-right, right, -top, top, n, f, depth) {
-            return Ok(m);
-        }
+    match perspective_fast(fovy_degrees, aspect, n, f) {
+        Some(m) => Ok(m),
+        None => perspective_frustum(fovy_degrees, aspect, n, f)?.to_cols_array(),
     }
-    perspective_frustum(fovy_degrees, aspect, n, f)?.to_cols_array()
+}
+
+/// The fast path of [`perspective_array`] alone: `None` where it defers to the exact path (an
+/// invalid input, or an element within [`crate::rounding`]'s slack of an f32 rounding
+/// boundary). When it returns a matrix, that matrix is [`perspective_array`]'s.
+#[inline(always)]
+pub fn perspective_fast(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Option<[f32; 16]> {
+    let good = (fovy_degrees > 0.0) & (fovy_degrees < 180.0) & (aspect > 0.0);
+    if !(good & (aspect < f64::INFINITY) & (n > 0.0) & (n < f64::INFINITY)) {
+        return None;
+    }
+    let top = n * (fovy_degrees.to_radians() * 0.5).tan();
+    let right = top * aspect;
+    fast(-right, right, -top, top, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))
+}
+
+/// The fast path of [`projection`] alone: `None` where it defers to the exact path. When it
+/// returns a matrix, that matrix is [`projection`]'s (and [`projection_exact`]'s).
+#[inline(always)]
+pub fn projection_fast(frustum: &Frustum, clip: ClipDepth) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    fast(l, r, b, t, n, f, DepthRow::Clip(clip))
+}
+
+/// The fast path of [`tweaked_infinite`] alone, as [`projection_fast`].
+#[inline(always)]
+pub fn tweaked_infinite_fast(frustum: &Frustum, tweak: f64) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, _) = frustum.parameters();
+    fast(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))
 }
 
 /// The smallest tweak that keeps geometry at any distance inside the clip volume of the
