@@ -131,9 +131,12 @@ pub fn load_offset_matrix(
     delta: f64,
     pz: f64,
 ) -> Result<Mat4> {
-    Ok(Mat4::from_cols_array(&load_offset_array(
-        l, r, b, t, n, f, delta, pz,
-    )?))
+    match offset_fast(l, r, b, t, n, f, delta, pz) {
+        Some(m) => Ok(m),
+        None => Ok(Mat4::from_cols_array(&offset_slow(
+            l, r, b, t, n, f, delta, pz,
+        )?)),
+    }
 }
 
 /// [`load_offset_matrix`] as a column-major array: the fast path (f64 estimates checked
@@ -155,7 +158,7 @@ pub fn load_offset_array(
     pz: f64,
 ) -> Result<[f32; 16]> {
     match offset_fast(l, r, b, t, n, f, delta, pz) {
-        Some(m) => Ok(m),
+        Some(m) => Ok(m.to_cols_array()),
         None => offset_slow(l, r, b, t, n, f, delta, pz),
     }
 }
@@ -173,7 +176,7 @@ pub(crate) fn offset_fast(
     f: f64,
     delta: f64,
     pz: f64,
-) -> Option<[f32; 16]> {
+) -> Option<Mat4> {
     let mut m = crate::projection::fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))?;
     let shifted = pz + delta;
     let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
@@ -182,7 +185,7 @@ pub(crate) fn offset_fast(
     }
     let planes = Planes::from_checked(n, f);
     let (estimate, _) = ndc_offset_of_shift(&planes, delta, pz);
-    m[10] = outward_fast(m[10], estimate, 8.0)?;
+    m.z_axis.z = outward_fast(m.z_axis.z, estimate, 8.0)?;
     Some(m)
 }
 
@@ -216,7 +219,7 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
 #[inline(always)]
 pub fn offset_matrix_fast(frustum: &Frustum, delta: f64, pz: f64) -> Option<[f32; 16]> {
     let (l, r, b, t, n, f) = frustum.parameters();
-    offset_fast(l, r, b, t, n, f, delta, pz)
+    Some(offset_fast(l, r, b, t, n, f, delta, pz)?.to_cols_array())
 }
 
 /// [`offset_matrix`] decided by the exact path alone: the plain elements by

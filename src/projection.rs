@@ -5,12 +5,12 @@
 //! the 16-float array is column `i / 4`, row `i % 4`, exactly what `glLoadMatrixf` and
 //! `glUniformMatrix4fv(.., GL_FALSE, ..)` take).
 
-use glam::{DMat4, Mat4};
+use glam::{DMat4, Mat4, Vec4};
 
 use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::double_double::unit_scale;
 use crate::error::{Error, ErrorKind, Result};
-use crate::rounding::{nearest_of_ratio, settled, two_product, two_sum, Ratio};
+use crate::rounding::{enclosed8, nearest_of_ratio, two_product, two_sum, Ratio};
 
 /// The six parameters of `glFrustum`, validated.
 ///
@@ -129,8 +129,18 @@ impl Frustum {
 /// # Errors
 /// As [`Frustum::new`] and [`Frustum::to_cols_array`].
 pub fn frustum(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Mat4> {
-    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
-    Ok(Mat4::from_cols_array(&build(l, r, b, t, n, f, depth)?))
+    match fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne)) {
+        Some(m) => Ok(m),
+        None => Ok(Mat4::from_cols_array(&exact(
+            l,
+            r,
+            b,
+            t,
+            n,
+            f,
+            DepthRow::Clip(ClipDepth::NegOneToOne),
+        )?)),
+    }
 }
 
 /// Rounds each element to the nearest f32, refusing elements that overflow f32.
@@ -295,7 +305,8 @@ pub fn perspective_fast(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Optio
     }
     let top = n * (fovy_degrees.to_radians() * 0.5).tan();
     let right = top * aspect;
-    fast(-right, right, -top, top, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))
+    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
+    Some(fast(-right, right, -top, top, n, f, depth)?.to_cols_array())
 }
 
 /// The fast path of [`projection`] alone: `None` where it defers to the exact path. When it
@@ -303,14 +314,14 @@ pub fn perspective_fast(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Optio
 #[inline(always)]
 pub fn projection_fast(frustum: &Frustum, clip: ClipDepth) -> Option<[f32; 16]> {
     let (l, r, b, t, n, f) = frustum.parameters();
-    fast(l, r, b, t, n, f, DepthRow::Clip(clip))
+    Some(fast(l, r, b, t, n, f, DepthRow::Clip(clip))?.to_cols_array())
 }
 
 /// The fast path of [`tweaked_infinite`] alone, as [`projection_fast`].
 #[inline(always)]
 pub fn tweaked_infinite_fast(frustum: &Frustum, tweak: f64) -> Option<[f32; 16]> {
     let (l, r, b, t, n, _) = frustum.parameters();
-    fast(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))
+    Some(fast(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))?.to_cols_array())
 }
 
 /// The smallest tweak that keeps geometry at any distance inside the clip volume of the
@@ -398,7 +409,7 @@ pub(crate) fn build(
     depth: DepthRow,
 ) -> Result<[f32; 16]> {
     match fast(l, r, b, t, n, f, depth) {
-        Some(m) => Ok(m),
+        Some(m) => Ok(m.to_cols_array()),
         None => exact(l, r, b, t, n, f, depth),
     }
 }
@@ -416,7 +427,7 @@ fn finite_nonzero(x: f64) -> bool {
 /// Validation, equivalent to [`Frustum::new`]'s: `r − l` and `t − b` finite and nonzero (so
 /// `l`, `r`, `b`, `t` are finite and `l ≠ r`, `b ≠ t`), `0 < n < ∞`, `f > n` (NaN fails every
 /// comparison). Every estimate is at most three roundings (module docs of
-/// [`crate::rounding`]).
+/// [`crate::rounding`]); the six are computed, enclosed and converted two at a time.
 #[inline(always)]
 pub(crate) fn fast(
     l: f64,
@@ -426,16 +437,12 @@ pub(crate) fn fast(
     n: f64,
     f: f64,
     depth: DepthRow,
-) -> Option<[f32; 16]> {
+) -> Option<Mat4> {
     let width = r - l;
     let height = t - b;
     let mut good = finite_nonzero(width) & finite_nonzero(height);
     good &= (n > 0.0) & (n < f64::INFINITY) & (f > n);
     let two_n = 2.0 * n;
-    let m0 = two_n / width;
-    let m5 = two_n / height;
-    let m8 = (r + l) / width;
-    let m9 = (t + b) / height;
     let (m10, m14) = match depth {
         DepthRow::Tweaked(tweak) => {
             good &= (tweak >= 0.0) & (tweak < 1.0);
@@ -448,23 +455,30 @@ pub(crate) fn fast(
         },
         DepthRow::Clip(clip) => {
             let span = f - n;
-            match clip {
-                ClipDepth::NegOneToOne => (-(f + n) / span, -(two_n * f) / span),
-                ClipDepth::ZeroToOne => (-f / span, -(n * f) / span),
-                ClipDepth::ReversedZeroToOne => (n / span, (n * f) / span),
-            }
+            let (a, b) = match clip {
+                ClipDepth::NegOneToOne => (-(f + n), -(two_n * f)),
+                ClipDepth::ZeroToOne => (-f, -(n * f)),
+                ClipDepth::ReversedZeroToOne => (n, n * f),
+            };
+            (a / span, b / span)
         }
     };
-    good &= settled(m0) & settled(m5) & settled(m8) & settled(m9);
-    good &= settled(m10) & settled(m14);
-    if !good {
+    let numerators = [two_n, two_n, r + l, t + b];
+    let denominators = [width, height, width, height];
+    let mut y = [m10, m14, m10, m14, m10, m14, m10, m14];
+    for i in 0..4 {
+        y[i] = numerators[i] / denominators[i];
+    }
+    let (e, decided) = enclosed8(y);
+    if !(good & decided) {
         return None;
     }
-    let (m0, m5, m8, m9) = (m0 as f32, m5 as f32, m8 as f32, m9 as f32);
-    let (m10, m14) = (m10 as f32, m14 as f32);
-    Some([
-        m0, 0.0, 0.0, 0.0, 0.0, m5, 0.0, 0.0, m8, m9, m10, -1.0, 0.0, 0.0, m14, 0.0,
-    ])
+    Some(Mat4::from_cols(
+        Vec4::new(e[0], 0.0, 0.0, 0.0),
+        Vec4::new(0.0, e[1], 0.0, 0.0),
+        Vec4::new(e[2], e[3], e[4], -1.0),
+        Vec4::new(0.0, 0.0, e[5], 0.0),
+    ))
 }
 
 /// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],

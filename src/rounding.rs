@@ -15,28 +15,30 @@
 //! y = x · Π(1 + θᵢ)^(±1)   and   |x − y| = |y| · |1 − x/y| ≤ |y| · γₖ,   γₖ = k·u/(1 − k·u).
 //! ```
 //!
-//! Since `ulp(y) > |y|·u` for a normal `y`, `|x − y| < k/(1 − k·u) · ulp(y) < 8.000001 ulp(y)`.
-//! [`SLACK`] = 16 f64 ulps doubles that.
+//! With `ρ = 16u = 2⁻⁴⁹` (twice the largest `γₖ`, `γ₈ < 8.0000001·u`), `x` lies in
+//! `[y(1 − ρ/2), y(1 + ρ/2)]` (swapped for negative `y`).
 //!
-//! ## The test (an integer test on the low bits)
-//! For `2⁻¹²⁶ ≤ |y| < 2¹²⁷`, the f32 grid in `y`'s binade is the f64 grid with the 29 low
-//! significand bits dropped: the f32 values are the f64 values whose low 29 bits are 0, and
-//! the midpoints are those whose low 29 bits are exactly `2²⁸`. Let `L` be `y`'s low 29 bits,
-//! read as an integer count of `ulp(y)`. If `|L − 2²⁸| > SLACK`, no midpoint of `y`'s binade
-//! lies within `SLACK·ulp(y)` of `y`; the nearest midpoints of the neighbouring binades are at
-//! least `2²⁷·ulp(y)` away (a binade edge is an f32, and the next midpoint beyond it is half an
-//! f32 spacing from it). So `x` and `y` lie strictly between the same two midpoints, and
-//! `y as f32` (one correct rounding of `y`) is the nearest f32 of `x`: [`settled`].
+//! ## The test (an enclosure, rounded twice)
+//! Let `lo = fl(y·(1 − ρ))` and `hi = fl(y·(1 + ρ))` (`1 ± 2⁻⁴⁹` are exact f64). Each product
+//! is rounded by at most a factor `1 ± u`, and `ρ − u − ρu ≥ ρ/2`, so `lo ≤ x ≤ hi` (for
+//! `y > 0`; mirrored for `y < 0`). Rounding to the nearest f32 is monotone, so when
+//! `lo as f32 == hi as f32` every value between them, `x` included, has that nearest f32:
+//! [`enclosed`]. This holds across binades, among f32 subnormals and at zero alike; only an
+//! enclosure containing an f32 rounding boundary (a midpoint between adjacent f32) fails it,
+//! which happens when `y` is within about 16 f64 ulps of a boundary: about one element in 16
+//! million (`2·16/2²⁹`) of evenly spread inputs. Two multiplications, two conversions and a
+//! comparison, done two or four elements at a time (SSE2), so the whole test costs less than
+//! one division.
 //!
-//! `y = ±0` is accepted too: with every denominator checked nonzero and finite and every
-//! numerator finite (the builders check both), a zero estimate is either an exact zero (`a + b`
-//! rounds to 0 only when `a = −b`) or a quotient that underflowed below `2⁻¹⁰⁷⁴`, and then
-//! `|x| < 2⁻¹⁵⁰` rounds to a zero of the same sign. Everything else (f32 subnormals, values
-//! at or beyond `2¹²⁷`, NaN, infinities, an intermediate that left the normal f64 range, or
-//! `L` within `SLACK` of `2²⁸`) goes to the exact decision. The first four cannot be decided by
-//! the low-bit test; the last happens for about one element in 16 million (`2·16/2²⁹`) of
-//! evenly spread inputs.
-//!
+//! A zero or f64-subnormal estimate passes too, and is right: with every denominator checked
+//! nonzero and finite and every numerator finite (the builders check both), `y = ±0` is either
+//! an exact zero (`a + b` rounds to 0 only when `a = −b`) or a quotient that underflowed below
+//! `2⁻¹⁰⁷⁴`, and an f64-subnormal `y` comes from a last operation whose exact result is below
+//! `2⁻¹⁰²²`; in both cases `|x| < 2⁻¹⁵⁰` (the earlier operations are normal, so their
+//! relative bound holds) and `x` rounds to a zero of `y`'s sign, as `lo` and `hi` do. An
+//! intermediate that overflows gives `±∞` or NaN, which fail the test (NaN ≠ NaN) or the
+//! builders' finiteness check, and go to the exact decision, which also explains overflow.
+
 //! ## The exact decision
 //! [`nearest_of_ratio`] takes `x` as a ratio `N/D` whose numerator and denominator are
 //! each an exact sum of a few f64 (TwoSum and TwoProd give those without error). A midpoint
@@ -58,30 +60,35 @@
 
 use std::cmp::Ordering;
 
-/// The number of f64 ulps within which an estimate is sent to the exact decision: twice the
-/// proven bound of eight.
-pub(crate) const SLACK: u64 = 16;
+/// The half-width `ρ = 2⁻⁴⁹` of the relative enclosure: twice the proven bound `γ₈` of the
+/// estimates, plus the rounding of the enclosure's own products.
+pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
 
-/// The significand bits an f64 has beyond an f32's.
-const EXTRA_BITS: u32 = 52 - 23;
-const EXTRA_MASK: u64 = (1 << EXTRA_BITS) - 1;
-/// The low bits of a midpoint between adjacent f32.
-const MIDPOINT: u64 = 1 << (EXTRA_BITS - 1);
-/// The biased f64 exponent of `2⁻¹²⁶`, the smallest normal f32.
-const MIN_EXPONENT: u64 = 1023 - 126;
-/// The number of binades `[2⁻¹²⁶, 2¹²⁷)` in which the low-bit test applies.
-const BINADES: u64 = 126 + 127;
-
-/// Whether `y as f32` is the nearest f32 of every `x` within [`SLACK`] f64 ulps of `y` (or,
-/// for `y = ±0`, of every `x` the module docs admit). Branch-free, so a builder can combine
-/// the verdicts of all its elements with `&` and branch once.
+#[cfg(test)]
+/// The nearest f32 of every value within a relative [`ENCLOSURE`]`/2` of `y`, if it is one f32
+/// (else `None`): the enclosure test of the module docs, for one estimate.
 #[inline(always)]
-pub(crate) fn settled(y: f64) -> bool {
-    let bits = y.to_bits();
-    let exponent = (bits >> 52) & 0x7ff;
-    let in_range = exponent.wrapping_sub(MIN_EXPONENT) < BINADES;
-    let far = (bits & EXTRA_MASK).wrapping_sub(MIDPOINT - SLACK) > 2 * SLACK;
-    (in_range & far) | (bits << 1 == 0)
+pub(crate) fn enclosed(y: f64) -> Option<f32> {
+    let lo = (y * (1.0 - ENCLOSURE)) as f32;
+    let hi = (y * (1.0 + ENCLOSURE)) as f32;
+    (lo == hi && lo.abs() < f32::INFINITY).then_some(lo)
+}
+
+/// [`enclosed`] for eight estimates at once (written lane by lane so that the compiler can use
+/// SIMD): the nearest f32 of each, and whether every one of them is decided and finite.
+#[inline(always)]
+pub(crate) fn enclosed8(y: [f64; 8]) -> ([f32; 8], bool) {
+    let mut lo = [0.0f32; 8];
+    let mut hi = [0.0f32; 8];
+    for i in 0..8 {
+        lo[i] = (y[i] * (1.0 - ENCLOSURE)) as f32;
+        hi[i] = (y[i] * (1.0 + ENCLOSURE)) as f32;
+    }
+    let mut good = true;
+    for i in 0..8 {
+        good &= (lo[i] == hi[i]) & (lo[i].abs() < f32::INFINITY);
+    }
+    (lo, good)
 }
 
 /// The error-free sum: `a + b = s + e` exactly (Knuth's TwoSum, any order of magnitudes).
@@ -242,16 +249,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_low_bit_test_refuses_midpoints_and_accepts_f32_values() {
+    fn the_enclosure_refuses_midpoints_and_accepts_f32_values() {
         let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
-        assert!(!settled(mid));
-        assert!(!settled(f64::from_bits(mid.to_bits() + SLACK)));
-        assert!(settled(f64::from_bits(mid.to_bits() + SLACK + 1)));
-        assert!(settled(f64::from_bits(mid.to_bits() - SLACK - 1)));
-        assert!(settled(1.0) && settled(-3.5) && settled(0.0) && settled(-0.0));
-        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(127), 1e-39, f64::MIN_POSITIVE] {
-            assert!(!settled(bad), "{bad}");
+        let ulps = |k: i64| f64::from_bits((mid.to_bits() as i64 + k) as u64);
+        assert_eq!(enclosed(mid), None);
+        assert_eq!(enclosed(ulps(7)), None);
+        assert_eq!(enclosed(ulps(-7)), None);
+        assert_eq!(enclosed(ulps(40)), Some(1.0 + f32::EPSILON));
+        assert_eq!(enclosed(ulps(-40)), Some(1.0));
+        for (y, want) in [(1.0, 1.0f32), (-3.5, -3.5), (0.0, 0.0), (1e-300, 0.0), (1e-39, 1e-39)] {
+            assert_eq!(enclosed(y), Some(want), "{y}");
         }
+        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)] {
+            assert_eq!(enclosed(bad), None, "{bad}");
+        }
+        let (values, good) = enclosed8([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
+        assert!(good && values[7] == 8.0);
+        assert!(!enclosed8([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, mid]).1);
     }
 
     #[test]
