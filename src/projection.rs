@@ -5,12 +5,12 @@
 //! the 16-float array is column `i / 4`, row `i % 4`, exactly what `glLoadMatrixf` and
 //! `glUniformMatrix4fv(.., GL_FALSE, ..)` take).
 
-use glam::{DMat4, Mat4, Vec4};
+use glam::{DMat4, Mat4};
 
 use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::double_double::unit_scale;
 use crate::error::{Error, ErrorKind, Result};
-use crate::rounding::{enclosed8, nearest_of_ratio, two_product, two_sum, Ratio};
+use crate::rounding::{nearest_columns, nearest_of_ratio, two_product, two_sum, Estimates, Ratio};
 
 /// The six parameters of `glFrustum`, validated.
 ///
@@ -299,14 +299,24 @@ pub fn perspective_array(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Resu
 /// boundary). When it returns a matrix, that matrix is [`perspective_array`]'s.
 #[inline(always)]
 pub fn perspective_fast(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Option<[f32; 16]> {
+    Some(perspective_fast_columns(fovy_degrees, aspect, n, f)?.to_cols_array())
+}
+
+/// [`perspective_fast`] as glam columns (kept in registers by the C ABI's one store).
+#[inline(always)]
+pub(crate) fn perspective_fast_columns(
+    fovy_degrees: f64,
+    aspect: f64,
+    n: f64,
+    f: f64,
+) -> Option<Mat4> {
     let good = (fovy_degrees > 0.0) & (fovy_degrees < 180.0) & (aspect > 0.0);
     if !(good & (aspect < f64::INFINITY) & (n > 0.0) & (n < f64::INFINITY)) {
         return None;
     }
     let top = n * (fovy_degrees.to_radians() * 0.5).tan();
     let right = top * aspect;
-    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
-    Some(fast(-right, right, -top, top, n, f, depth)?.to_cols_array())
+    fast(-right, right, -top, top, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))
 }
 
 /// The fast path of [`projection`] alone: `None` where it defers to the exact path. When it
@@ -414,20 +424,16 @@ pub(crate) fn build(
     }
 }
 
-/// Whether `x` is finite and nonzero, in one integer comparison.
-#[inline(always)]
-fn finite_nonzero(x: f64) -> bool {
-    (x.to_bits() << 1).wrapping_sub(1) < (f64::INFINITY.to_bits() << 1) - 1
-}
-
 /// The fast path: `None` if an input is invalid or an element is too close to an f32 rounding
 /// boundary to decide from its f64 estimate (then [`exact`] decides). Branch-free but for the
 /// one test at the end (and `f = +∞`), so a caller can write its output once.
 ///
-/// Validation, equivalent to [`Frustum::new`]'s: `r − l` and `t − b` finite and nonzero (so
-/// `l`, `r`, `b`, `t` are finite and `l ≠ r`, `b ≠ t`), `0 < n < ∞`, `f > n` (NaN fails every
-/// comparison). Every estimate is at most three roundings (module docs of
-/// [`crate::rounding`]); the six are computed, enclosed and converted two at a time.
+/// Validation, equivalent to [`Frustum::new`]'s, is done with the rounding decision in
+/// [`nearest_columns`]: `0 < n < ∞`, `f − n > 0` (so `f > n`; NaN fails every comparison),
+/// and `r − l`, `t − b` finite and nonzero (so `l`, `r`, `b`, `t` are finite and `l ≠ r`,
+/// `b ≠ t`). Every estimate is at most four roundings
+/// (module docs of [`crate::rounding`]): a sum or product, a difference, its reciprocal and the
+/// product with it.
 #[inline(always)]
 pub(crate) fn fast(
     l: f64,
@@ -438,47 +444,39 @@ pub(crate) fn fast(
     f: f64,
     depth: DepthRow,
 ) -> Option<Mat4> {
-    let width = r - l;
-    let height = t - b;
-    let mut good = finite_nonzero(width) & finite_nonzero(height);
-    good &= (n > 0.0) & (n < f64::INFINITY) & (f > n);
+    let mut good = true;
     let two_n = 2.0 * n;
-    let (m10, m14) = match depth {
+    let span = f - n;
+    let depth = match depth {
         DepthRow::Tweaked(tweak) => {
-            good &= (tweak >= 0.0) & (tweak < 1.0);
-            (tweak - 1.0, (tweak - 2.0) * n)
+            good = (tweak >= 0.0) & (tweak < 1.0);
+            [tweak - 1.0, (tweak - 2.0) * n]
         }
         DepthRow::Clip(clip) if f == f64::INFINITY => match clip {
-            ClipDepth::NegOneToOne => (-1.0, -two_n),
-            ClipDepth::ZeroToOne => (-1.0, -n),
-            ClipDepth::ReversedZeroToOne => (0.0, n),
+            ClipDepth::NegOneToOne => [-1.0, -two_n],
+            ClipDepth::ZeroToOne => [-1.0, -n],
+            ClipDepth::ReversedZeroToOne => [0.0, n],
         },
         DepthRow::Clip(clip) => {
-            let span = f - n;
+            let inv_span = 1.0 / span;
             let (a, b) = match clip {
                 ClipDepth::NegOneToOne => (-(f + n), -(two_n * f)),
                 ClipDepth::ZeroToOne => (-f, -(n * f)),
                 ClipDepth::ReversedZeroToOne => (n, n * f),
             };
-            (a / span, b / span)
+            [a * inv_span, b * inv_span]
         }
     };
-    let numerators = [two_n, two_n, r + l, t + b];
-    let denominators = [width, height, width, height];
-    let mut y = [m10, m14, m10, m14, m10, m14, m10, m14];
-    for i in 0..4 {
-        y[i] = numerators[i] / denominators[i];
-    }
-    let (e, decided) = enclosed8(y);
-    if !(good & decided) {
+    if !good {
         return None;
     }
-    Some(Mat4::from_cols(
-        Vec4::new(e[0], 0.0, 0.0, 0.0),
-        Vec4::new(0.0, e[1], 0.0, 0.0),
-        Vec4::new(e[2], e[3], e[4], -1.0),
-        Vec4::new(0.0, 0.0, e[5], 0.0),
-    ))
+    nearest_columns(Estimates {
+        scale: two_n,
+        centre: [r + l, t + b],
+        den: [r - l, t - b],
+        depth,
+        planes: [n, span],
+    })
 }
 
 /// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],

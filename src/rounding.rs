@@ -60,6 +60,8 @@
 
 use std::cmp::Ordering;
 
+use glam::{Mat4, Vec4};
+
 /// The half-width `ρ = 2⁻⁴⁹` of the relative enclosure: twice the proven bound `γ₈` of the
 /// estimates, plus the rounding of the enclosure's own products.
 pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
@@ -74,21 +76,137 @@ pub(crate) fn enclosed(y: f64) -> Option<f32> {
     (lo == hi && lo.abs() < f32::INFINITY).then_some(lo)
 }
 
-/// [`enclosed`] for eight estimates at once (written lane by lane so that the compiler can use
-/// SIMD): the nearest f32 of each, and whether every one of them is decided and finite.
+/// The f64 estimates of a projection's six varying elements, as the builders compute them:
+/// `m0, m5 = scale/den`, `m8, m9 = centre/den` (through the reciprocals of `den`), and the depth
+/// row `m10, m14`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Estimates {
+    /// `2n` (the numerator of elements 0 and 5).
+    pub scale: f64,
+    /// `r + l`, `t + b` (the numerators of elements 8 and 9).
+    pub centre: [f64; 2],
+    /// `r − l`, `t − b`.
+    pub den: [f64; 2],
+    /// Elements 10 and 14.
+    pub depth: [f64; 2],
+    /// `n` and `f − n`, checked here too: `0 < n < ∞`, `f − n > 0` (NaN fails).
+    pub planes: [f64; 2],
+}
+
+/// The projection's columns, each element the nearest f32 of its exact value, when the
+/// enclosure test decides all six and every element is finite, and both denominators are finite
+/// and nonzero (the zero estimates' proof needs that); `None` otherwise.
+///
+/// Estimates `m0 = scale·(1/den₀)` and `m8 = centre₀·(1/den₀)` take two roundings beyond their
+/// inputs. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
+/// no detection); elsewhere the same arithmetic lane by lane.
 #[inline(always)]
-pub(crate) fn enclosed8(y: [f64; 8]) -> ([f32; 8], bool) {
-    let mut lo = [0.0f32; 8];
-    let mut hi = [0.0f32; 8];
-    for i in 0..8 {
-        lo[i] = (y[i] * (1.0 - ENCLOSURE)) as f32;
-        hi[i] = (y[i] * (1.0 + ENCLOSURE)) as f32;
+pub(crate) fn nearest_columns(e: Estimates) -> Option<Mat4> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        nearest_columns_sse2(e)
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        nearest_columns_portable(e)
+    }
+}
+
+/// [`nearest_columns`] lane by lane.
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))] // x86_64 uses it in tests only
+#[inline(always)]
+pub(crate) fn nearest_columns_portable(e: Estimates) -> Option<Mat4> {
+    let inv = [1.0 / e.den[0], 1.0 / e.den[1]];
+    let y = [
+        e.scale * inv[0],
+        e.scale * inv[1],
+        e.centre[0] * inv[0],
+        e.centre[1] * inv[1],
+        e.depth[0],
+        e.depth[1],
+    ];
+    let mut m = [0.0f32; 6];
     let mut good = true;
-    for i in 0..8 {
-        good &= (lo[i] == hi[i]) & (lo[i].abs() < f32::INFINITY);
+    for (x, &y) in m.iter_mut().zip(&y) {
+        let lo = (y * (1.0 - ENCLOSURE)) as f32;
+        let hi = (y * (1.0 + ENCLOSURE)) as f32;
+        good &= (lo == hi) & (lo.abs() < f32::INFINITY);
+        *x = lo;
     }
-    (lo, good)
+    for d in e.den {
+        good &= (d.abs() < f64::INFINITY) & (d != 0.0);
+    }
+    good &= (e.planes[0] > 0.0) & (e.planes[0] < f64::INFINITY) & (e.planes[1] > 0.0);
+    good.then(|| {
+        Mat4::from_cols(
+            Vec4::new(m[0], 0.0, 0.0, 0.0),
+            Vec4::new(0.0, m[1], 0.0, 0.0),
+            Vec4::new(m[2], m[3], m[4], -1.0),
+            Vec4::new(0.0, 0.0, m[5], 0.0),
+        )
+    })
+}
+
+/// [`nearest_columns`] with SSE2: two elements per f64 operation, four per f32 comparison, and
+/// the columns assembled by shuffles in registers (stored once by the caller).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+#[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
+fn nearest_columns_sse2(e: Estimates) -> Option<Mat4> {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
+    unsafe {
+        let den = _mm_set_pd(e.den[1], e.den[0]);
+        let inv = _mm_div_pd(_mm_set1_pd(1.0), den);
+        let scale = _mm_mul_pd(_mm_set1_pd(e.scale), inv); // [m0, m5]
+        let centre = _mm_mul_pd(_mm_set_pd(e.centre[1], e.centre[0]), inv); // [m8, m9]
+        let depth = _mm_set_pd(e.depth[1], e.depth[0]); // [m10, m14]
+        let down = _mm_set1_pd(1.0 - ENCLOSURE);
+        let up = _mm_set1_pd(1.0 + ENCLOSURE);
+        let narrow = |x: __m128d, y: __m128d| _mm_movelh_ps(_mm_cvtpd_ps(x), _mm_cvtpd_ps(y));
+        let lo_xy = narrow(_mm_mul_pd(scale, down), _mm_mul_pd(centre, down)); // [m0 m5 m8 m9]
+        let hi_xy = narrow(_mm_mul_pd(scale, up), _mm_mul_pd(centre, up));
+        let lo_z = _mm_cvtpd_ps(_mm_mul_pd(depth, down)); // [m10 m14 0 0]
+        let hi_z = _mm_cvtpd_ps(_mm_mul_pd(depth, up));
+        let magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
+        let infinity = _mm_set1_ps(f32::INFINITY);
+        let decided = |lo: __m128, hi: __m128| {
+            let finite = _mm_cmplt_ps(_mm_and_ps(lo, magnitude), infinity);
+            _mm_and_ps(_mm_cmpeq_ps(lo, hi), finite)
+        };
+        let all = _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z));
+        // |r − l|, |t − b| in (0, ∞); n in (0, ∞); f − n > 0.
+        let den_magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), den);
+        let planes = _mm_set_pd(e.planes[1], e.planes[0]);
+        let zero = _mm_setzero_pd();
+        let finite = _mm_cmplt_pd(
+            _mm_move_sd(den_magnitude, planes),
+            _mm_set1_pd(f64::INFINITY),
+        ); // [n, |t − b|]
+        let positive = _mm_and_pd(
+            _mm_cmpgt_pd(den_magnitude, zero),
+            _mm_cmpgt_pd(planes, zero),
+        );
+        let finite = _mm_and_pd(
+            finite,
+            _mm_cmplt_pd(den_magnitude, _mm_set1_pd(f64::INFINITY)),
+        );
+        let den_ok = _mm_and_pd(finite, positive);
+        if (_mm_movemask_ps(all) != 0xf) | (_mm_movemask_pd(den_ok) != 0x3) {
+            return None;
+        }
+        let col0 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, 0, -1)));
+        let col1 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, -1, 0)));
+        let z_and_w = _mm_unpacklo_ps(lo_z, _mm_set1_ps(-1.0)); // [m10 −1 m14 −1]
+        let col2 = _mm_shuffle_ps::<0b01_00_11_10>(lo_xy, z_and_w); // [m8 m9 m10 −1]
+        let col3 = _mm_shuffle_ps::<0b11_01_00_00>(_mm_setzero_ps(), lo_z); // [0 0 m14 0]
+        Some(Mat4::from_cols(
+            Vec4::from(col0),
+            Vec4::from(col1),
+            Vec4::from(col2),
+            Vec4::from(col3),
+        ))
+    }
 }
 
 /// The error-free sum: `a + b = s + e` exactly (Knuth's TwoSum, any order of magnitudes).
@@ -263,9 +381,36 @@ mod tests {
         for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)] {
             assert_eq!(enclosed(bad), None, "{bad}");
         }
-        let (values, good) = enclosed8([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]);
-        assert!(good && values[7] == 8.0);
-        assert!(!enclosed8([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, mid]).1);
+    }
+
+    /// The SSE2 and portable column builders agree, element for element and on refusals.
+    #[test]
+    fn the_column_builders_agree() {
+        let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let x = f64::from_bits((state >> 12) | 0x3ff0_0000_0000_0000) - 1.5;
+            x * 10f64.powi((state % 9) as i32 - 4)
+        };
+        let specials = [0.0, -0.0, f64::INFINITY, f64::NAN, mid, 1e-40, 1e39];
+        for i in 0..20_000 {
+            let mut v = [next(), next(), next(), next(), next(), next(), next()];
+            if i % 7 == 0 {
+                v[i % 7 + (i / 7) % 6] = specials[(i / 42) % specials.len()];
+            }
+            let e = Estimates {
+                scale: v[0],
+                centre: [v[1], v[2]],
+                den: [v[3], v[4]],
+                depth: [v[5], v[6]],
+                planes: [v[0].abs(), v[5] - v[6]],
+            };
+            let portable = nearest_columns_portable(e).map(|m| m.to_cols_array());
+            assert_eq!(nearest_columns(e).map(|m| m.to_cols_array()), portable, "{e:?}");
+        }
     }
 
     #[test]
