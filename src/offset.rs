@@ -12,7 +12,6 @@ use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::{Error, ErrorKind, Result};
 use crate::precision::{depth_step_toward, StepTerms};
 use crate::projection::{ClipDepth, DepthRow, Frustum};
-use crate::rounding::outward_settled;
 
 /// ε for an eye-space shift `δ` of a point at eye-space depth `Pz` (eq. 4.1.7):
 ///
@@ -177,7 +176,6 @@ pub(crate) fn offset_fast(
     delta: f64,
     pz: f64,
 ) -> Option<Mat4> {
-    let mut m = crate::projection::fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))?;
     let shifted = pz + delta;
     let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
     if !(good & (shifted < 0.0) & (delta.abs() < f64::INFINITY)) {
@@ -185,8 +183,10 @@ pub(crate) fn offset_fast(
     }
     let planes = Planes::from_checked(n, f);
     let (estimate, _) = ndc_offset_of_shift(&planes, delta, pz);
-    m.z_axis.z = outward_fast(m.z_axis.z, estimate, 8.0)?;
-    Some(m)
+    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
+    crate::projection::fast_then(l, r, b, t, n, f, depth, |m10| {
+        outward_of_ratio(m10, estimate, 8.0)
+    })
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -255,7 +255,7 @@ pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
 pub fn epsilon_matrix_fast(frustum: &Frustum, epsilon: f64) -> Option<[f32; 16]> {
     let mut m = crate::projection::projection_fast(frustum, ClipDepth::NegOneToOne)?;
     let (estimate, _) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
-    m[10] = outward_fast(m[10], estimate, 4.0)?;
+    m[10] = outward_of_ratio(m[10], estimate, 4.0)?;
     Some(m)
 }
 
@@ -284,20 +284,20 @@ fn shifted_depth(planes: &Planes, delta: f64, pz: f64) -> Result<f64> {
     Ok(shifted)
 }
 
-/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))`: an f64 estimate (seven roundings) and, on demand, its
-/// double-double value. `f + n` cancels, and the formula is homogeneous of degree 0, so the
+/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))`: an f64 estimate of its numerator (two roundings)
+/// and denominator (four) and, on demand, its double-double value. `f + n` cancels, and the formula is homogeneous of degree 0, so the
 /// inputs are first scaled by a power of two that keeps every product in range.
 fn ndc_offset_of_shift(
     planes: &Planes,
     delta: f64,
     pz: f64,
-) -> (f64, impl FnOnce() -> DoubleDouble) {
+) -> (Ratio, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
     let far = (!planes.is_infinite()).then_some(planes.far() * s);
     let estimate = match far {
-        None => 2.0 * n * delta / (pz * (pz + delta)),
-        Some(f) => 2.0 * n * delta * f / (pz * (pz + delta) * (f - n)),
+        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
+        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
     };
     let exact = move || {
         let two_n_delta = DoubleDouble::product(2.0 * n, delta);
@@ -312,14 +312,17 @@ fn ndc_offset_of_shift(
     (estimate, exact)
 }
 
-/// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate (three roundings) and, on
-/// demand, its double-double value.
-fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -> DoubleDouble) {
+/// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate of its numerator (two
+/// roundings) and denominator (one) and, on demand, its double-double value.
+fn ndc_offset_of_epsilon(
+    planes: &Planes,
+    epsilon: f64,
+) -> (Ratio, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(planes.far());
     let far = (!planes.is_infinite()).then(|| (planes.far() * s, planes.near() * s));
     let estimate = match far {
-        None => -epsilon,
-        Some((f, n)) => -epsilon * (f + n) / (f - n),
+        None => Ratio(-epsilon, 1.0),
+        Some((f, n)) => Ratio(-epsilon * (f + n), f - n),
     };
     let exact = move || match far {
         None => DoubleDouble::from_f64(-epsilon),
@@ -328,6 +331,43 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -
             .div(DoubleDouble::sum(f, -n)),
     };
     (estimate, exact)
+}
+
+/// An offset as f64 estimates of its numerator and denominator.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ratio(pub f64, pub f64);
+
+impl Ratio {
+    /// The quotient (one more rounding).
+    pub(crate) fn value(self) -> f64 {
+        self.0 / self.1
+    }
+}
+
+/// [`outward_fast`] for an offset `o = num/den` known as a [`Ratio`] whose estimate takes at
+/// most `rounds` roundings, quotient included. The usual case (an offset of a few depth steps,
+/// smaller than the step from `plain` to the next f32 outward) is decided without the division:
+/// `|num|·(1 + rounds·2⁻⁵²) < step·|den|` (its own product rounded once more, inside the
+/// doubled margin) proves `|o| < step`, so the least f32 at or beyond `plain + o` is that next
+/// f32.
+#[inline(always)]
+pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
+    let Ratio(num, den) = o;
+    let up = (num > 0.0) == (den > 0.0);
+    // One f32 outward: one unit in the last place away from zero when `up` agrees with the sign.
+    let bits = plain.to_bits();
+    let next = f32::from_bits(if up == (plain > 0.0) {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    });
+    let step = (f64::from(next) - f64::from(plain)).abs();
+    let usual = (plain != 0.0) & (plain.abs() < f32::INFINITY) & (next.abs() < f32::INFINITY);
+    let bound = rounds * f64::EPSILON;
+    if usual & (num != 0.0) & (num.abs() * (1.0 + bound) < step * den.abs()) {
+        return Some(next);
+    }
+    outward_fast(plain, o.value(), rounds)
 }
 
 /// The outward rounding of `plain + o` (see [`rounded_outward`]) from an f64 estimate of `o`
@@ -342,35 +382,34 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -
 /// `1e-15` relative, which includes offsets that land exactly on one.
 #[inline(always)]
 pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32> {
-    let magnitude = estimate.abs();
-    let next = if estimate > 0.0 {
-        plain.next_up()
-    } else {
-        plain.next_down()
-    };
-    let step = (f64::from(next) - f64::from(plain)).abs();
-    // Doubled: the proven bound is (rounds/2)·f64::EPSILON.
-    let bound = rounds * f64::EPSILON;
-    if magnitude * (1.0 + bound) < step && magnitude > 0.0 && next.is_finite() {
-        return Some(next);
-    }
     let target = f64::from(plain) + estimate;
-    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = bound * magnitude + f64::EPSILON * target.abs();
-    if estimate == 0.0 {
-        return None;
-    }
-    outward_settled(target, error, estimate > 0.0)
+    // The estimate's own error (doubled), and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = rounds * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
+    let up = estimate > 0.0;
+    let nearest = target as f32;
+    let gap = f64::from(nearest) - target; // exact
+    // The f32 one step beyond `nearest` in the offset's direction (for a nonzero finite f32,
+    // one unit of its bit pattern, away from zero when the direction agrees with its sign).
+    let bits = nearest.to_bits();
+    let stepped = f32::from_bits(if up == (nearest > 0.0) {
+        bits.wrapping_add(1)
+    } else {
+        bits.wrapping_sub(1)
+    });
+    let beyond = if up { gap < 0.0 } else { gap > 0.0 };
+    let x = if beyond { stepped } else { nearest };
+    let usable = (nearest != 0.0) & (nearest.abs() < f32::INFINITY) & (x.abs() < f32::INFINITY);
+    (usable & (estimate != 0.0) & (gap.abs() > error)).then_some(x)
 }
 
-/// [`outward_fast`], falling back to the double-double `exact` offset.
+/// [`outward_of_ratio`], falling back to the double-double `exact` offset.
 #[cfg(test)]
 fn rounded_outward_estimated(
     plain: f32,
-    estimate: f64,
+    estimate: Ratio,
     exact: impl FnOnce() -> DoubleDouble,
 ) -> Result<f32> {
-    match outward_fast(plain, estimate, 8.0) {
+    match outward_of_ratio(plain, estimate, 8.0) {
         Some(x) => Ok(x),
         None => rounded_outward(plain, exact()),
     }
@@ -429,8 +468,7 @@ mod tests {
                 rounded_outward_estimated(plain, estimate, exact).unwrap(),
                 want
             );
-            let target = f64::from(plain) + estimate;
-            shortcuts += usize::from(f64::from(target as f32) != target);
+            shortcuts += usize::from(outward_of_ratio(plain, estimate, 8.0).is_some());
         }
         assert!(
             shortcuts > 19_000,
@@ -449,7 +487,7 @@ mod tests {
         ] {
             let exact = || DoubleDouble::from_f64(offset);
             assert_eq!(
-                rounded_outward_estimated(plain, offset, exact).unwrap(),
+                rounded_outward_estimated(plain, Ratio(offset, 1.0), exact).unwrap(),
                 want
             );
         }

@@ -10,7 +10,7 @@ use glam::{DMat4, Mat4};
 use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::double_double::unit_scale;
 use crate::error::{Error, ErrorKind, Result};
-use crate::rounding::{nearest_columns, nearest_of_ratio, two_product, two_sum, Estimates, Ratio};
+use crate::rounding::{nearest_columns_then, nearest_of_ratio, two_product, two_sum, Estimates, Ratio};
 
 /// The six parameters of `glFrustum`, validated.
 ///
@@ -429,7 +429,7 @@ pub(crate) fn build(
 /// one test at the end (and `f = +∞`), so a caller can write its output once.
 ///
 /// Validation, equivalent to [`Frustum::new`]'s, is done with the rounding decision in
-/// [`nearest_columns`]: `0 < n < ∞`, `f − n > 0` (so `f > n`; NaN fails every comparison),
+/// [`nearest_columns_then`]: `0 < n < ∞`, `f − n > 0` (so `f > n`; NaN fails every comparison),
 /// and `r − l`, `t − b` finite and nonzero (so `l`, `r`, `b`, `t` are finite and `l ≠ r`,
 /// `b ≠ t`). Every estimate is at most four roundings
 /// (module docs of [`crate::rounding`]): a sum or product, a difference, its reciprocal and the
@@ -444,39 +444,56 @@ pub(crate) fn fast(
     f: f64,
     depth: DepthRow,
 ) -> Option<Mat4> {
+    fast_then(l, r, b, t, n, f, depth, Some)
+}
+
+/// [`fast`] with element 10 replaced by `element_10(m10)` before the columns are assembled
+/// (the offset builders round their offset element outward there).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn fast_then(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    depth: DepthRow,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
     let mut good = true;
     let two_n = 2.0 * n;
     let span = f - n;
-    let depth = match depth {
+    let (depth, depth_den) = match depth {
         DepthRow::Tweaked(tweak) => {
             good = (tweak >= 0.0) & (tweak < 1.0);
-            [tweak - 1.0, (tweak - 2.0) * n]
+            ([tweak - 1.0, (tweak - 2.0) * n], 1.0)
         }
         DepthRow::Clip(clip) if f == f64::INFINITY => match clip {
-            ClipDepth::NegOneToOne => [-1.0, -two_n],
-            ClipDepth::ZeroToOne => [-1.0, -n],
-            ClipDepth::ReversedZeroToOne => [0.0, n],
+            ClipDepth::NegOneToOne => ([-1.0, -two_n], 1.0),
+            ClipDepth::ZeroToOne => ([-1.0, -n], 1.0),
+            ClipDepth::ReversedZeroToOne => ([0.0, n], 1.0),
         },
-        DepthRow::Clip(clip) => {
-            let inv_span = 1.0 / span;
-            let (a, b) = match clip {
-                ClipDepth::NegOneToOne => (-(f + n), -(two_n * f)),
-                ClipDepth::ZeroToOne => (-f, -(n * f)),
-                ClipDepth::ReversedZeroToOne => (n, n * f),
-            };
-            [a * inv_span, b * inv_span]
-        }
+        DepthRow::Clip(clip) => match clip {
+            ClipDepth::NegOneToOne => ([-(f + n), -(two_n * f)], span),
+            ClipDepth::ZeroToOne => ([-f, -(n * f)], span),
+            ClipDepth::ReversedZeroToOne => ([n, n * f], span),
+        },
     };
     if !good {
         return None;
     }
-    nearest_columns(Estimates {
-        scale: two_n,
-        centre: [r + l, t + b],
-        den: [r - l, t - b],
-        depth,
-        planes: [n, span],
-    })
+    nearest_columns_then(
+        Estimates {
+            scale: two_n,
+            centre: [r + l, t + b],
+            den: [r - l, t - b],
+            depth,
+            depth_den,
+            planes: [n, span],
+        },
+        element_10,
+    )
 }
 
 /// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],

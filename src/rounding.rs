@@ -76,9 +76,9 @@ pub(crate) fn enclosed(y: f64) -> Option<f32> {
     (lo == hi && lo.abs() < f32::INFINITY).then_some(lo)
 }
 
-/// The f64 estimates of a projection's six varying elements, as the builders compute them:
-/// `m0, m5 = scale/den`, `m8, m9 = centre/den` (through the reciprocals of `den`), and the depth
-/// row `m10, m14`.
+/// A projection's six varying elements as ratios of f64 values the builders compute:
+/// `m0, m5 = scale/den`, `m8, m9 = centre/den` and `m10, m14 = depth/depth_den`, each through
+/// the reciprocal of its denominator.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Estimates {
     /// `2n` (the numerator of elements 0 and 5).
@@ -87,8 +87,10 @@ pub(crate) struct Estimates {
     pub centre: [f64; 2],
     /// `r − l`, `t − b`.
     pub den: [f64; 2],
-    /// Elements 10 and 14.
+    /// The numerators of elements 10 and 14.
     pub depth: [f64; 2],
+    /// Their denominator: `f − n`, or 1 where the row is a product (infinite, tweaked).
+    pub depth_den: f64,
     /// `n` and `f − n`, checked here too: `0 < n < ∞`, `f − n > 0` (NaN fails).
     pub planes: [f64; 2],
 }
@@ -97,77 +99,90 @@ pub(crate) struct Estimates {
 /// enclosure test decides all six and every element is finite, and both denominators are finite
 /// and nonzero (the zero estimates' proof needs that); `None` otherwise.
 ///
-/// Estimates `m0 = scale·(1/den₀)` and `m8 = centre₀·(1/den₀)` take two roundings beyond their
-/// inputs. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
+/// The enclosure's ends are computed directly as `(numerator·(1 ∓ ρ))·(1/denominator)`, so the
+/// factor `1 ∓ ρ` is applied while the division runs. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
 /// no detection); elsewhere the same arithmetic lane by lane.
+/// The projection's columns, as [`nearest_columns_portable`] describes, with element 10 replaced by `element_10(m10)` (an offset rounded
+/// outward) before the columns are assembled, so the matrix still leaves in four registers.
 #[inline(always)]
-pub(crate) fn nearest_columns(e: Estimates) -> Option<Mat4> {
+pub(crate) fn nearest_columns_then(
+    e: Estimates,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
     #[cfg(target_arch = "x86_64")]
     {
-        nearest_columns_sse2(e)
+        nearest_columns_sse2(e, element_10)
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
-        nearest_columns_portable(e)
+        nearest_columns_portable(e, element_10)
     }
 }
 
-/// [`nearest_columns`] lane by lane.
+/// [`nearest_columns_then`] lane by lane.
 #[cfg_attr(target_arch = "x86_64", allow(dead_code))] // x86_64 uses it in tests only
 #[inline(always)]
-pub(crate) fn nearest_columns_portable(e: Estimates) -> Option<Mat4> {
-    let inv = [1.0 / e.den[0], 1.0 / e.den[1]];
-    let y = [
-        e.scale * inv[0],
-        e.scale * inv[1],
-        e.centre[0] * inv[0],
-        e.centre[1] * inv[1],
-        e.depth[0],
-        e.depth[1],
-    ];
+pub(crate) fn nearest_columns_portable(
+    e: Estimates,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
+    let inv_z = 1.0 / e.depth_den;
+    let inv = [1.0 / e.den[0], 1.0 / e.den[1], 1.0 / e.den[0], 1.0 / e.den[1], inv_z, inv_z];
+    let num = [e.scale, e.scale, e.centre[0], e.centre[1], e.depth[0], e.depth[1]];
     let mut m = [0.0f32; 6];
     let mut good = true;
-    for (x, &y) in m.iter_mut().zip(&y) {
-        let lo = (y * (1.0 - ENCLOSURE)) as f32;
-        let hi = (y * (1.0 + ENCLOSURE)) as f32;
+    for i in 0..6 {
+        let lo = (num[i] * (1.0 - ENCLOSURE) * inv[i]) as f32;
+        let hi = (num[i] * (1.0 + ENCLOSURE) * inv[i]) as f32;
         good &= (lo == hi) & (lo.abs() < f32::INFINITY);
-        *x = lo;
+        m[i] = lo;
     }
     for d in e.den {
         good &= (d.abs() < f64::INFINITY) & (d != 0.0);
     }
     good &= (e.planes[0] > 0.0) & (e.planes[0] < f64::INFINITY) & (e.planes[1] > 0.0);
-    good.then(|| {
-        Mat4::from_cols(
+    if !good {
+        return None;
+    }
+    m[4] = element_10(m[4])?;
+    Some(Mat4::from_cols(
             Vec4::new(m[0], 0.0, 0.0, 0.0),
             Vec4::new(0.0, m[1], 0.0, 0.0),
             Vec4::new(m[2], m[3], m[4], -1.0),
-            Vec4::new(0.0, 0.0, m[5], 0.0),
-        )
-    })
+        Vec4::new(0.0, 0.0, m[5], 0.0),
+    ))
 }
 
-/// [`nearest_columns`] with SSE2: two elements per f64 operation, four per f32 comparison, and
+/// [`nearest_columns_then`] with SSE2: two elements per f64 operation, four per f32 comparison, and
 /// the columns assembled by shuffles in registers (stored once by the caller).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
-fn nearest_columns_sse2(e: Estimates) -> Option<Mat4> {
+fn nearest_columns_sse2(
+    e: Estimates,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
     use std::arch::x86_64::*;
     // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
     unsafe {
         let den = _mm_set_pd(e.den[1], e.den[0]);
-        let inv = _mm_div_pd(_mm_set1_pd(1.0), den);
-        let scale = _mm_mul_pd(_mm_set1_pd(e.scale), inv); // [m0, m5]
-        let centre = _mm_mul_pd(_mm_set_pd(e.centre[1], e.centre[0]), inv); // [m8, m9]
-        let depth = _mm_set_pd(e.depth[1], e.depth[0]); // [m10, m14]
+        let inv = _mm_div_pd(_mm_set1_pd(1.0), den); // [1/(r − l), 1/(t − b)]
+        let inv_z = _mm_set1_pd(1.0 / e.depth_den);
         let down = _mm_set1_pd(1.0 - ENCLOSURE);
         let up = _mm_set1_pd(1.0 + ENCLOSURE);
-        let narrow = |x: __m128d, y: __m128d| _mm_movelh_ps(_mm_cvtpd_ps(x), _mm_cvtpd_ps(y));
-        let lo_xy = narrow(_mm_mul_pd(scale, down), _mm_mul_pd(centre, down)); // [m0 m5 m8 m9]
-        let hi_xy = narrow(_mm_mul_pd(scale, up), _mm_mul_pd(centre, up));
-        let lo_z = _mm_cvtpd_ps(_mm_mul_pd(depth, down)); // [m10 m14 0 0]
-        let hi_z = _mm_cvtpd_ps(_mm_mul_pd(depth, up));
+        let scale = _mm_set1_pd(e.scale);
+        let centre = _mm_set_pd(e.centre[1], e.centre[0]);
+        let depth = _mm_set_pd(e.depth[1], e.depth[0]);
+        // (numerator·(1 ∓ ρ))·reciprocal, narrowed to f32: [m0 m5 m8 m9] and [m10 m14 0 0].
+        let end = |factor: __m128d| {
+            let xy = _mm_movelh_ps(
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(scale, factor), inv)),
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(centre, factor), inv)),
+            );
+            (xy, _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(depth, factor), inv_z)))
+        };
+        let (lo_xy, lo_z) = end(down);
+        let (hi_xy, hi_z) = end(up);
         let magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
         let infinity = _mm_set1_ps(f32::INFINITY);
         let decided = |lo: __m128, hi: __m128| {
@@ -195,6 +210,7 @@ fn nearest_columns_sse2(e: Estimates) -> Option<Mat4> {
         if (_mm_movemask_ps(all) != 0xf) | (_mm_movemask_pd(den_ok) != 0x3) {
             return None;
         }
+        let lo_z = _mm_move_ss(lo_z, _mm_set_ss(element_10(_mm_cvtss_f32(lo_z))?));
         let col0 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, 0, -1)));
         let col1 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, -1, 0)));
         let z_and_w = _mm_unpacklo_ps(lo_z, _mm_set1_ps(-1.0)); // [m10 −1 m14 −1]
@@ -343,25 +359,6 @@ pub(crate) fn nearest_of_ratio(x: Ratio<'_>) -> f32 {
     }
 }
 
-/// Whether outward (directed) rounding of a target known as `target ± error` is decided by
-/// the f64 value alone: the nearest f32 lies farther than `error` from it (then so does every
-/// other f32, since `|gap| ≤` half an f32 spacing). Returns the f32 just beyond the target in
-/// the direction `up`, or `None` when undecided or not finite.
-#[inline(always)]
-pub(crate) fn outward_settled(target: f64, error: f64, up: bool) -> Option<f32> {
-    let nearest = target as f32;
-    let gap = f64::from(nearest) - target;
-    if !(gap.abs() > error) || !nearest.is_finite() {
-        return None;
-    }
-    let x = match (up, gap > 0.0) {
-        (true, false) => nearest.next_up(),
-        (false, true) => nearest.next_down(),
-        _ => nearest,
-    };
-    x.is_finite().then_some(x)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -406,10 +403,11 @@ mod tests {
                 centre: [v[1], v[2]],
                 den: [v[3], v[4]],
                 depth: [v[5], v[6]],
+                depth_den: if i % 3 == 0 { 1.0 } else { v[2] - v[1] },
                 planes: [v[0].abs(), v[5] - v[6]],
             };
-            let portable = nearest_columns_portable(e).map(|m| m.to_cols_array());
-            assert_eq!(nearest_columns(e).map(|m| m.to_cols_array()), portable, "{e:?}");
+            let portable = nearest_columns_portable(e, Some).map(|m| m.to_cols_array());
+            assert_eq!(nearest_columns_then(e, Some).map(|m| m.to_cols_array()), portable, "{e:?}");
         }
     }
 
