@@ -8,8 +8,8 @@
 //! in `[−w, w]`, NDC depth in `[−1, 1]`, window depth in `[0, 1]`; column-major matrices, as
 //! `glLoadMatrixf` takes them. Distances `n`, `f`, `d` are positive; `Pz` is an eye-space z
 //! (negative in front of the camera). `δ > 0` moves geometry toward the camera. All arithmetic
-//! is f64; matrices are rounded to f32 at the end, and where the rounding direction matters
-//! (the offset element) it is chosen so the offset is never lost.
+//! is f64; each matrix element is the f32 nearest its exact value ([`rounding`]), and where the
+//! rounding direction matters (the offset element) it is chosen so the offset is never lost.
 //!
 //! ## Map of the modules
 //! | module | computes | seeds |
@@ -24,6 +24,7 @@
 //! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |
 //! | [`polygon_offset`] | eye-space δ ↔ `glPolygonOffset` units, D3D `DepthBias`, Vulkan `depthBiasConstantFactor` | 004 |
 //! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
+//! | [`rounding`] | how matrices reach f32: the nearest f32 of the exact element (proven fast test, exact fallback), offsets outward | |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
 #![warn(missing_docs)]

@@ -120,6 +120,7 @@ pub fn max_delta_away(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
 /// # Errors
 /// As [`Frustum::new`] and [`epsilon`]; [`ErrorKind::Overflow`] if element 10 leaves f32.
 #[allow(clippy::too_many_arguments)] // the seed's LoadOffsetMatrix takes these eight
+#[inline]
 pub fn load_offset_matrix(
     l: f64,
     r: f64,
@@ -209,6 +210,7 @@ fn offset_slow(
 ///
 /// # Errors
 /// As [`load_offset_matrix`].
+#[inline]
 pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
     let (l, r, b, t, n, f) = frustum.parameters();
     load_offset_array(l, r, b, t, n, f, delta, pz)
@@ -243,6 +245,7 @@ pub fn offset_matrix_exact(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f3
 /// # Errors
 /// As [`Frustum::to_cols_array`]; [`ErrorKind::NotFinite`] if ε is NaN or infinite;
 /// [`ErrorKind::Overflow`] if element 10 leaves f32.
+#[inline]
 pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
     match epsilon_matrix_fast(frustum, epsilon) {
         Some(m) => Ok(m),

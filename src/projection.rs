@@ -108,6 +108,7 @@ impl Frustum {
     ///
     /// # Errors
     /// [`ErrorKind::Overflow`] if an element does not fit in f32.
+    #[inline]
     pub fn to_cols_array(&self) -> Result<[f32; 16]> {
         projection(self, ClipDepth::NegOneToOne)
     }
@@ -128,6 +129,7 @@ impl Frustum {
 ///
 /// # Errors
 /// As [`Frustum::new`] and [`Frustum::to_cols_array`].
+#[inline]
 pub fn frustum(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Mat4> {
     match fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne)) {
         Some(m) => Ok(m),
@@ -225,6 +227,7 @@ pub fn projection_f64(frustum: &Frustum, clip: ClipDepth) -> Result<[f64; 16]> {
 ///
 /// # Errors
 /// As [`projection_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+#[inline]
 pub fn projection(frustum: &Frustum, clip: ClipDepth) -> Result<[f32; 16]> {
     let (l, r, b, t, n, f) = frustum.parameters();
     build(l, r, b, t, n, f, DepthRow::Clip(clip))
@@ -271,6 +274,7 @@ pub fn perspective_frustum(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Re
 ///
 /// # Errors
 /// As [`perspective_frustum`] and [`Frustum::to_cols_array`].
+#[inline]
 pub fn perspective(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Mat4> {
     Ok(Mat4::from_cols_array(&perspective_array(
         fovy_degrees,
@@ -373,6 +377,7 @@ pub fn tweaked_infinite_f64(frustum: &Frustum, tweak: f64) -> Result<[f64; 16]> 
 ///
 /// # Errors
 /// As [`tweaked_infinite_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+#[inline]
 pub fn tweaked_infinite(frustum: &Frustum, tweak: f64) -> Result<[f32; 16]> {
     let (l, r, b, t, n, _) = frustum.parameters();
     build(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))

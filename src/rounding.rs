@@ -7,40 +7,48 @@
 //! an f32 rounding boundary (a midpoint between two adjacent f32) lies between `x` and `y`.
 //!
 //! ## The bound
-//! Every estimate here is a chain of at most `k ≤ 8` correctly rounded f64 operations
-//! (`+ − × ÷`) on the inputs, exact multiplications by 2 not counted. With `u = 2⁻⁵³`, each
-//! operation returns `(a ∘ b)(1 + θ)`, `|θ| ≤ u`, as long as its result is a normal f64, so
+//! The builders compute each element as `x = N/D` in f64: the numerator `N` and denominator `D`
+//! from the inputs (`r + l`, `2n·f`, `f − n`, …), the reciprocal `1/D`, and the product. With
+//! `u = 2⁻⁵³`, each correctly rounded operation returns `(a ∘ b)(1 + θ)`, `|θ| ≤ u`, as long as
+//! its result is a normal f64, and exact operations (×2, `1/1`, negation) count for nothing.
+//! Counting every rounding, no element takes more than `k = 5`:
 //!
-//! ```text
-//! y = x · Π(1 + θᵢ)^(±1)   and   |x − y| = |y| · |1 − x/y| ≤ |y| · γₖ,   γₖ = k·u/(1 − k·u).
-//! ```
+//! | elements | roundings |
+//! |---|---|
+//! | 0, 5: `2n·(1/(r − l))` | `r − l`, `1/·`, product, and the `(1 ∓ ρ)` below: 4 |
+//! | 8, 9: `(r + l)·(1/(r − l))` | 5 |
+//! | 10, 14, finite `f`: `−(f + n)`, `−2n·f`, `−f`, `−n·f`, `n`, `n·f` times `1/(f − n)` | at most 5 |
+//! | 10, 14, `f = ∞`: `−1`, `−2n`, `−n`, `0`, `n` (exact) | 1 |
+//! | 10, 14, tweaked: `ε − 1`, `(ε − 2)·n` | at most 3 |
 //!
-//! With `ρ = 16u = 2⁻⁴⁹` (twice the largest `γₖ`, `γ₈ < 8.0000001·u`), `x` lies in
-//! `[y(1 − ρ/2), y(1 + ρ/2)]` (swapped for negative `y`).
+//! (`gluPerspective`'s elements are those of the f64 frustum `t = n·tan(fovy/2)`,
+//! `r = t·aspect` it describes, so they count as `glFrustum`'s.) Each rounding multiplies the
+//! result by a factor in `[1/(1 + u), 1/(1 − u)] ⊂ [1 − u, 1 + u + 2u²]`, wherever it sits in the
+//! chain.
 //!
 //! ## The test (an enclosure, rounded twice)
-//! Let `lo = fl(y·(1 − ρ))` and `hi = fl(y·(1 + ρ))` (`1 ± 2⁻⁴⁹` are exact f64). Each product
-//! is rounded by at most a factor `1 ± u`, and `ρ − u − ρu ≥ ρ/2`, so `lo ≤ x ≤ hi` (for
-//! `y > 0`; mirrored for `y < 0`). Rounding to the nearest f32 is monotone, so when
-//! `lo as f32 == hi as f32` every value between them, `x` included, has that nearest f32:
-//! [`enclosed`]. This holds across binades, among f32 subnormals and at zero alike; only an
-//! enclosure containing an f32 rounding boundary (a midpoint between adjacent f32) fails it,
-//! which happens when `y` is within about 16 f64 ulps of a boundary: about one element in 16
-//! million (`2·16/2²⁹`) of evenly spread inputs. Two multiplications, two conversions and a
-//! comparison, done two or four elements at a time (SSE2), so the whole test costs less than
-//! one division.
+//! With `ρ = 16u = 2⁻⁴⁹` the builders compute `lo = fl(fl(N·(1 − ρ))·fl(1/D))` and `hi` with
+//! `1 + ρ` (both factors are exact f64). By the bound, `lo ≤ x·(1 − ρ)(1 − u)⁻⁵ < x` and
+//! `hi ≥ x·(1 + ρ)(1 − u)⁵ > x` for `x > 0` (mirrored for `x < 0`), so `x` lies between them.
+//! Rounding to the nearest f32 is monotone, so when `lo as f32 == hi as f32` every value
+//! between them, `x` included, has that nearest f32. This holds across binades, among f32
+//! subnormals and at zero alike; only an enclosure containing an f32 rounding boundary fails
+//! it, which happens when the element is within about 16 f64 ulps of a boundary: about one
+//! element in 16 million (`2·16/2²⁹`) of evenly spread inputs. Two multiplications, two
+//! conversions and a comparison per element, done two (f64) or four (f32) at a time with SSE2
+//! (`nearest_columns_then`), so the whole test costs less than one division.
 //!
-//! A zero or f64-subnormal estimate passes too, and is right: with every denominator checked
-//! nonzero and finite and every numerator finite (the builders check both), `y = ±0` is either
-//! an exact zero (`a + b` rounds to 0 only when `a = −b`) or a quotient that underflowed below
-//! `2⁻¹⁰⁷⁴`, and an f64-subnormal `y` comes from a last operation whose exact result is below
-//! `2⁻¹⁰²²`; in both cases `|x| < 2⁻¹⁵⁰` (the earlier operations are normal, so their
-//! relative bound holds) and `x` rounds to a zero of `y`'s sign, as `lo` and `hi` do. An
-//! intermediate that overflows gives `±∞` or NaN, which fail the test (NaN ≠ NaN) or the
-//! builders' finiteness check, and go to the exact decision, which also explains overflow.
-
+//! A zero or f64-subnormal result passes too, and is right: with both denominators checked
+//! nonzero and finite and the numerators finite, `lo = hi = ±0` is either an exact zero (`a + b`
+//! rounds to 0 only when `a = −b`) or a product that underflowed below `2⁻¹⁰⁷⁴`, and an
+//! f64-subnormal `lo` comes from a last operation whose exact result is below `2⁻¹⁰²²`; in
+//! both cases `|x| < 2⁻¹⁵⁰` (the earlier operations are normal, so their relative bound holds)
+//! and `x` rounds to a zero of the same sign. An intermediate that overflows gives `±∞` or NaN,
+//! which fail the test (NaN ≠ NaN) or its finiteness check and go to the exact decision, which
+//! also explains the overflow.
+//!
 //! ## The exact decision
-//! [`nearest_of_ratio`] takes `x` as a ratio `N/D` whose numerator and denominator are
+//! `nearest_of_ratio` takes `x` as a ratio `N/D` whose numerator and denominator are
 //! each an exact sum of a few f64 (TwoSum and TwoProd give those without error). A midpoint
 //! `m` between adjacent f32 has at most 25 significant bits, so each `m·Dᵢ` is exact as a
 //! TwoProd pair, and the sign of `N − m·D` is the sign of an exact sum of at most 8 f64: a
@@ -53,17 +61,18 @@
 //! element, where the element is within `2⁻⁹⁰⁰` (relative) of its limit.
 //!
 //! ## Outward rounding
-//! Offset elements are rounded away from the plain element instead ([`outward_settled`]):
-//! there the boundaries are the f32 values themselves (low 29 bits 0), and the estimate's
-//! error is checked in f64 against its distance to the nearest f32, falling back to
-//! double-double ([`crate::offset`]).
+//! Offset elements are rounded away from the plain element instead (`crate::offset`): the
+//! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves; an
+//! offset below one f32 step is decided by comparing `|num|` with `step·|den|` (no division),
+//! and a larger one when the f64 target lies farther from every f32 than its error bound, as
+//! the enclosure does; otherwise double-double decides.
 
 use std::cmp::Ordering;
 
 use glam::{Mat4, Vec4};
 
-/// The half-width `ρ = 2⁻⁴⁹` of the relative enclosure: twice the proven bound `γ₈` of the
-/// estimates, plus the rounding of the enclosure's own products.
+/// The relative half-width `ρ = 2⁻⁴⁹ = 16u` of the enclosure (module docs: it exceeds the
+/// five roundings of any estimate with room to spare).
 pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
 
 #[cfg(test)]

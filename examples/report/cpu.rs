@@ -12,7 +12,7 @@ pub struct Timing {
 }
 
 /// The criterion benches of benches/cpu.rs, with the label the report gives each.
-const CRITERION: [(&str, &str, &str); 8] = [
+const CRITERION: [(&str, &str, &str); 9] = [
     (
         "offset_matrix",
         "zshift_recommend_epsilon_matrix",
@@ -32,6 +32,11 @@ const CRITERION: [(&str, &str, &str); 8] = [
         "offset_matrix",
         "zshift_frustum_plain",
         "zshift::frustum, no offset (Rust API)",
+    ),
+    (
+        "offset_matrix",
+        "zshift_frustum_c_abi",
+        "zshift_frustum, no offset (C ABI, called from Rust)",
     ),
     (
         "offset_matrix",
@@ -99,6 +104,14 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
         (
             "zshift_frustum_c_abi",
             "zshift_frustum (C ABI, called from C++), no offset".to_string(),
+        ),
+        (
+            "glm_perspective_float",
+            format!("GLM {version} glm::perspective<float>, no offset"),
+        ),
+        (
+            "zshift_perspective_c_abi",
+            "zshift_perspective (C ABI, called from C++), no offset".to_string(),
         ),
     ]
     .into_iter()

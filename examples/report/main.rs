@@ -292,19 +292,29 @@ fn markdown(r: &Report) -> String {
 fn headline(w: &mut String, r: &Report) {
     let t = r.timings;
     let _ = writeln!(w, "## Headline\n");
+    let ns = |name: &str| find(t, name).map_or("n/a".into(), |x| format!("{:.0} ns", x.ns));
     let _ = writeln!(
         w,
-        "- CPU, one offset matrix: zshift (Rust API) costs {} of glam's plain f32 frustum and {} \
-         of glam + the seed's f32 tweak; through the C ABI from C++ it costs {} of GLM's \
-         `glm::frustum<float>`. On Mesa, zshift + `glLoadMatrixf` costs {} of the seed's \
-         `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
-        ratio(t, "zshift::load_offset_matrix", "glam 0.34"),
-        ratio(t, "zshift::load_offset_matrix", "glam frustum + the seed"),
+        "- CPU, through the C ABI from C++ (the same run, interleaved with GLM): \
+         `zshift_frustum` costs {} of GLM's `glm::frustum<float>` and \
+         `zshift_load_offset_matrix` {} of `glm::frustum<float>` + the seed's f32 tweak, every \
+         element correctly rounded (the offset element outward). Rust API (criterion): \
+         `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of glam + \
+         the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
+         the seed's `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
+        ratio(
+            t,
+            "zshift_frustum (C ABI, called from C++)",
+            "GLM 0.9.9.8 glm::frustum<float>, no"
+        ),
         ratio(
             t,
             "zshift_load_offset_matrix (C ABI, called from C++)",
-            "GLM 0.9.9.8 glm::frustum<float>, no"
+            "GLM 0.9.9.8 glm::frustum<float> + the seed"
         ),
+        ratio(t, "zshift::frustum", "glam 0.34"),
+        ratio(t, "zshift::load_offset_matrix", "glam frustum + the seed"),
+        ns("zshift recommend + epsilon_matrix"),
         ratio(
             t,
             "zshift_load_offset_matrix + glLoadMatrixf",
@@ -367,10 +377,12 @@ fn cpu_table(w: &mut String, r: &Report) {
     let _ = writeln!(
         w,
         "Case: a 60°×45° `glFrustum`, n = 0.1, f = 1000, decal at Pz = −50, δ = 4 × the \
-         minimum δ of a 24-bit buffer. Medians; the ratio is to zshift's Rust API \
-         (criterion) or to zshift's C ABI called from C++ (C++ harness), each within its own \
-         harness. `cargo bench --bench cpu` reproduces the criterion rows; \
-         `target/bench-cpp/glm_bench time` the C++ rows.\n"
+         minimum δ of a 24-bit buffer (perspective rows: 45°, aspect 1.3937). Medians; the ratio \
+         is to zshift's Rust API (criterion) or to zshift's C ABI called from C++ (C++ harness), \
+         each within its own harness. The C++ harness (g++ -O2) leaves every matrix whole in \
+         memory (GLM's in its own `glm::mat4`, zshift's in the buffer it writes) and interleaves \
+         its variants' batches, so a shared machine loads them alike. `cargo bench --bench cpu` \
+         reproduces the criterion rows; `target/bench-cpp/glm_bench time` the C++ rows.\n"
     );
     if !r.cpp_ran {
         let _ = writeln!(w, "(The C++ harness was not built: no GLM rows.)\n");
