@@ -19,7 +19,10 @@ for tool in pkg-config cmake cc c++ readelf; do
 done
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
-scripts/install "$prefix"
+P=$prefix
+# [quickstart-install]
+scripts/install $P  # P: any prefix (~/.local, /opt/zshift, /usr/local); lib, include, lib/pkgconfig, lib/cmake
+# [/quickstart-install]
 version=$(sed -n 's/^version *= *"\(.*\)"/\1/p' Cargo.toml | head -n 1)
 soname=libzshift.so.${version%%.*}
 want="zshift $version, C ABI"
@@ -43,7 +46,12 @@ linkage() {
   if [ -z "$(readelf -d "$1" | grep -F '(NEEDED)' || true)" ]; then
     echo "fully static"
   elif echo "$needed" | grep -qx "$soname"; then
-    ldd "$1" | grep -qF "$soname => $prefix/lib/$soname" || fail "$1 loads $(ldd "$1" | grep libzshift), not $prefix/lib/$soname"
+    local loads
+    loads=$(ldd "$1" | grep libzshift)
+    case "$loads" in
+      *"$soname => $prefix/lib/$soname "*) ;;
+      *) fail "$1 loads $loads, not $prefix/lib/$soname" ;;
+    esac
     echo "dynamic"
   elif echo "$needed" | grep -q libzshift; then
     fail "$1 records $(echo "$needed" | grep libzshift), not the SONAME $soname"
@@ -71,7 +79,6 @@ target_link_libraries(app PRIVATE zshift::zshift)
 CMAKE
 (
   cd "$work/quick"
-  P=$prefix
   set -x
   # [quickstart-use-c]
   cc main.c -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_c                     # C
