@@ -24,7 +24,7 @@ git ls-files -z --cached --others --exclude-standard | xargs -0 -I{} sh -c '[ -f
   cd "$work/src"
   export PATH="$work/venv/bin:$PATH"
   # [quickstart-use-python]
-  pip install . && python -c "import zshift; print(zshift.version(), zshift.library_path())"  # Python
+  pip install . && python -c "import zshift; print(zshift.version(), zshift.library_path())"  # Python (in a venv; run in this repository)
   # [/quickstart-use-python]
 ) 2>&1 | tee "$work/install.log" | tail -n 3
 [ "${PIPESTATUS[0]}" -eq 0 ] || fail "pip install . failed (log: $work/install.log)"

@@ -21,7 +21,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 P=$prefix
 # [quickstart-install]
-scripts/install $P  # P: any prefix (~/.local, /opt/zshift, /usr/local); lib, include, lib/pkgconfig, lib/cmake
+scripts/install $P                                                                          # P: any prefix, e.g. ~/.local (run in this repository)
 # [/quickstart-install]
 version=$(sed -n 's/^version *= *"\(.*\)"/\1/p' Cargo.toml | head -n 1)
 soname=libzshift.so.${version%%.*}
@@ -81,10 +81,10 @@ CMAKE
   cd "$work/quick"
   set -x
   # [quickstart-use-c]
-  cc main.c -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_c                     # C
-  c++ -std=c++17 main.cpp -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_cpp     # C++ (zshift.hpp)
-  cc main.c $(PKG_CONFIG_PATH=$P/lib/pkgconfig pkg-config --cflags --libs zshift) -o app_pc  # pkg-config
-  cmake -S . -B build -DCMAKE_PREFIX_PATH=$P && cmake --build build  # CMake: see "Packaging"
+  cc main.c -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_c                         # C
+  c++ -std=c++17 main.cpp -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_cpp         # C++ (zshift.hpp)
+  cc main.c $(PKG_CONFIG_PATH=$P/lib/pkgconfig pkg-config --cflags --libs zshift) -o app_pc   # pkg-config
+  cmake -S . -B build -DCMAKE_PREFIX_PATH=$P && cmake --build build                           # CMake (CMakeLists.txt: see Packaging)
   # [/quickstart-use-c]
 ) >"$work/quick.log" 2>&1 || { cat "$work/quick.log" >&2; fail "a README line did not build"; }
 expect "$work/quick/app_c" dynamic "$want"
