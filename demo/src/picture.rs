@@ -216,3 +216,32 @@ fn glyph(c: char) -> [u8; 7] {
         _ => [0x00, 0x1F, 0x11, 0x11, 0x11, 0x1F, 0x00],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Two frames with text and flat colours come back from the GIF pixel for pixel.
+    #[test]
+    fn gif_round_trip() {
+        let mut frames = Vec::new();
+        for (k, colour) in [[242, 38, 26], [51, 89, 230]].into_iter().enumerate() {
+            let mut p = Picture::new(40, 20);
+            p.text(1, 1, &format!("LOST {k}"), colour);
+            frames.push(p);
+        }
+        assert_ne!(frames[0].pixels, frames[1].pixels);
+        let path = std::env::temp_dir().join(format!("zshift-demo-{}.gif", std::process::id()));
+        write_gif(&path, &frames, 10).unwrap();
+        let mut options = gif::DecodeOptions::new();
+        options.set_color_output(gif::ColorOutput::RGBA);
+        let mut decoder = options.read_info(std::fs::File::open(&path).unwrap()).unwrap();
+        for picture in &frames {
+            let frame = decoder.read_next_frame().unwrap().expect("a frame");
+            let rgb: Vec<[u8; 3]> = frame.buffer.chunks_exact(4).map(|c| [c[0], c[1], c[2]]).collect();
+            assert_eq!(rgb, picture.pixels);
+        }
+        assert!(decoder.read_next_frame().unwrap().is_none());
+        std::fs::remove_file(path).unwrap();
+    }
+}
