@@ -15,7 +15,14 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     let os = std::env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
     let major = std::env::var("CARGO_PKG_VERSION_MAJOR").unwrap_or_else(|_| "0".into());
-    let elf = ["linux", "android", "freebsd", "netbsd", "openbsd", "dragonfly"];
+    let elf = [
+        "linux",
+        "android",
+        "freebsd",
+        "netbsd",
+        "openbsd",
+        "dragonfly",
+    ];
     if !elf.contains(&os.as_str()) {
         return;
     }
@@ -40,7 +47,10 @@ fn link_soname(dir: &Path, soname: &str) {
     let link = dir.join(soname);
     if link.symlink_metadata().is_err() {
         if let Err(e) = std::os::unix::fs::symlink("libzshift.so", &link) {
-            println!("cargo:warning=cannot link {} -> libzshift.so: {e}", link.display());
+            println!(
+                "cargo:warning=cannot link {} -> libzshift.so: {e}",
+                link.display()
+            );
         }
     }
 }

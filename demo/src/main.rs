@@ -44,7 +44,11 @@ fn title(c: &Comparison, frame: Option<usize>) -> Vec<String> {
     let s = &c.scene;
     let gap = s.occluder_gap.unwrap_or(0.0);
     let camera = match frame {
-        Some(k) => format!("  FRAME {:>2}/{FRAMES}: DECAL {:.0} UNITS AWAY", k + 1, -s.plane_z(0.0)),
+        Some(k) => format!(
+            "  FRAME {:>2}/{FRAMES}: DECAL {:.0} UNITS AWAY",
+            k + 1,
+            -s.plane_z(0.0)
+        ),
         None => String::new(),
     };
     vec![
@@ -69,7 +73,10 @@ fn footer(gl: &impl Canvas, c: &Comparison) -> Vec<String> {
         format!(
             "ZSHIFT: DELTA {:.3} AT PZ = {:.0} (WINDOW OFFSET {:.2E}); BLEED GAP {:.2} < PLANK {}",
             rec.delta_at_far,
-            c.rows.iter().find(|r| r.method.name == "zshift").map_or(f64::NAN, |r| r.at),
+            c.rows
+                .iter()
+                .find(|r| r.method.name == "zshift")
+                .map_or(f64::NAN, |r| r.at),
             rec.window_offset,
             rec.bleed_gap,
             c.scene.occluder_gap.unwrap_or(0.0)
@@ -116,25 +123,48 @@ fn demonstrate(gl: &mut Gl, out_dir: &Path) -> Result<(), String> {
     );
     match failures.first() {
         None => Ok(()),
-        Some(first) => Err(format!("{} of {} renders failed; first: {first}", failures.len(), FRAMES + 1)),
+        Some(first) => Err(format!(
+            "{} of {} renders failed; first: {first}",
+            failures.len(),
+            FRAMES + 1
+        )),
     }
 }
 
 /// `--sweep`: the lost-pixel percentages over slopes, far planes and depths (no plank, no
 /// pictures).
 fn sweep(gl: &mut Gl) -> Result<(), String> {
-    let names: Vec<String> = zshift_demo::scene::METHODS.iter().map(|m| format!("{:>9}", m.name)).collect();
+    let names: Vec<String> = zshift_demo::scene::METHODS
+        .iter()
+        .map(|m| format!("{:>9}", m.name))
+        .collect();
     println!("lost decal pixels, % ({SIZE}x{SIZE}, {})", DEPTH.name());
-    println!("{:>6} {:>8} {:>7} {}", "dz/dy", "f/n", "Pz", names.join(" "));
+    println!(
+        "{:>6} {:>8} {:>7} {}",
+        "dz/dy",
+        "f/n",
+        "Pz",
+        names.join(" ")
+    );
     let mut failures = 0;
     for slope in [0.0, -0.3, -1.0, -3.0] {
         for f in [1e4, 1e5, 1e7] {
             for z0 in [-50.0, -500.0] {
-                let scene = Scene { half: 0.05, n: 0.1, f: f * 0.1, z0, slope, occluder_gap: None };
+                let scene = Scene {
+                    half: 0.05,
+                    n: 0.1,
+                    f: f * 0.1,
+                    z0,
+                    slope,
+                    occluder_gap: None,
+                };
                 let c = compare(gl, &scene)?;
                 failures += usize::from(verdict(&c).is_err());
-                let pct: Vec<String> =
-                    c.rows.iter().map(|r| format!("{:>9.1}", percent(r.lost, c.visible))).collect();
+                let pct: Vec<String> = c
+                    .rows
+                    .iter()
+                    .map(|r| format!("{:>9.1}", percent(r.lost, c.visible)))
+                    .collect();
                 println!("{slope:>6} {f:>8.0e} {z0:>7} {}", pct.join(" "));
             }
         }
@@ -159,7 +189,9 @@ fn main() {
     let result = if arg.as_deref() == Some(std::ffi::OsStr::new("--sweep")) {
         sweep(&mut gl)
     } else {
-        let out_dir = arg.map(PathBuf::from).unwrap_or_else(|| PathBuf::from("target/decal"));
+        let out_dir = arg
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from("target/decal"));
         demonstrate(&mut gl, &out_dir)
     };
     if let Err(e) = result {

@@ -26,7 +26,11 @@ const LINE: usize = 9 * SCALE;
 
 impl Picture {
     pub fn new(width: usize, height: usize) -> Picture {
-        Picture { width, height, pixels: vec![BACKGROUND; width * height] }
+        Picture {
+            width,
+            height,
+            pixels: vec![BACKGROUND; width * height],
+        }
     }
 
     /// A render (rows bottom-up, as `glReadPixels` gives them) as a picture of its own size.
@@ -71,8 +75,11 @@ impl Picture {
     /// Writes the picture as an RGB PNG.
     pub fn write_png(&self, path: &Path) -> Result<(), String> {
         let file = std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let mut encoder =
-            png::Encoder::new(std::io::BufWriter::new(file), self.width as u32, self.height as u32);
+        let mut encoder = png::Encoder::new(
+            std::io::BufWriter::new(file),
+            self.width as u32,
+            self.height as u32,
+        );
         encoder.set_color(png::ColorType::Rgb);
         encoder.set_depth(png::BitDepth::Eight);
         let data: Vec<u8> = self.pixels.iter().flatten().copied().collect();
@@ -110,12 +117,17 @@ pub fn compose(c: &Comparison, title: &[String], footer: &[String]) -> Picture {
         p.text(centre(sub), top + LINE, sub, DIM);
         p.blit(&row.image, x, panel_top);
         let count = |what: &str, n: usize, of: usize| {
-            (format!("{what} {n} ({:.0}%)", percent(n, of)), if n == 0 { GOOD } else { BAD })
+            (
+                format!("{what} {n} ({:.0}%)", percent(n, of)),
+                if n == 0 { GOOD } else { BAD },
+            )
         };
-        for (j, (text, color)) in
-            [count("LOST", row.lost, c.visible), count("BLED", row.bled, c.covered)]
-                .into_iter()
-                .enumerate()
+        for (j, (text, color)) in [
+            count("LOST", row.lost, c.visible),
+            count("BLED", row.bled, c.covered),
+        ]
+        .into_iter()
+        .enumerate()
         {
             p.text(centre(&text), counts_top + j * LINE, &text, color);
         }
@@ -133,8 +145,11 @@ pub fn write_gif(path: &Path, frames: &[Picture], delay: u16) -> Result<(), Stri
     let first = frames.first().ok_or("no frames")?;
     let file = std::fs::File::create(path).map_err(|e| err(&e))?;
     let (w, h) = (first.width as u16, first.height as u16);
-    let mut encoder = gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[]).map_err(|e| err(&e))?;
-    encoder.set_repeat(gif::Repeat::Infinite).map_err(|e| err(&e))?;
+    let mut encoder =
+        gif::Encoder::new(std::io::BufWriter::new(file), w, h, &[]).map_err(|e| err(&e))?;
+    encoder
+        .set_repeat(gif::Repeat::Infinite)
+        .map_err(|e| err(&e))?;
     for picture in frames {
         let mut palette: Vec<[u8; 3]> = Vec::new();
         let mut indices = Vec::with_capacity(picture.pixels.len());
@@ -235,10 +250,16 @@ mod tests {
         write_gif(&path, &frames, 10).unwrap();
         let mut options = gif::DecodeOptions::new();
         options.set_color_output(gif::ColorOutput::RGBA);
-        let mut decoder = options.read_info(std::fs::File::open(&path).unwrap()).unwrap();
+        let mut decoder = options
+            .read_info(std::fs::File::open(&path).unwrap())
+            .unwrap();
         for picture in &frames {
             let frame = decoder.read_next_frame().unwrap().expect("a frame");
-            let rgb: Vec<[u8; 3]> = frame.buffer.chunks_exact(4).map(|c| [c[0], c[1], c[2]]).collect();
+            let rgb: Vec<[u8; 3]> = frame
+                .buffer
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2]])
+                .collect();
             assert_eq!(rgb, picture.pixels);
         }
         assert!(decoder.read_next_frame().unwrap().is_none());

@@ -396,12 +396,26 @@ pub fn compare(gl: &mut impl Canvas, scene: &Scene) -> Result<Comparison, String
         };
         let (lost, bled) = (count(false, false), count(true, true));
         let m10 = projection[10];
-        rows.push(Row { method, delta, at, m10, image, lost, bled });
+        rows.push(Row {
+            method,
+            delta,
+            at,
+            m10,
+            image,
+            lost,
+            bled,
+        });
     }
     let visible = (0..decal.len()).filter(|&i| decal[i] && !plank[i]).count();
     let covered = (0..decal.len()).filter(|&i| decal[i] && plank[i]).count();
     let recommendation = rec;
-    Ok(Comparison { scene: *scene, rows, visible, covered, recommendation })
+    Ok(Comparison {
+        scene: *scene,
+        rows,
+        visible,
+        covered,
+        recommendation,
+    })
 }
 
 /// Prints the comparison: the scene, one line per method (δ, element 10, lost and bled decal
@@ -410,7 +424,10 @@ pub fn report(gl: &impl Canvas, c: &Comparison) {
     let s = &c.scene;
     let rec = &c.recommendation;
     let plank = match s.occluder_gap {
-        Some(gap) => format!(", a plank {gap} units above the floor over {} more", c.covered),
+        Some(gap) => format!(
+            ", a plank {gap} units above the floor over {} more",
+            c.covered
+        ),
         None => String::new(),
     };
     println!(
