@@ -44,11 +44,7 @@ fn title(c: &Comparison, frame: Option<usize>) -> Vec<String> {
     let s = &c.scene;
     let gap = s.occluder_gap.unwrap_or(0.0);
     let camera = match frame {
-        Some(k) => format!(
-            "  FRAME {:>2}/{FRAMES}: DECAL {:.0} UNITS AWAY",
-            k + 1,
-            -s.plane_z(0.0)
-        ),
+        Some(k) => format!("   FRAME {:>2}/{FRAMES}", k + 1),
         None => String::new(),
     };
     vec![
@@ -156,6 +152,7 @@ fn sweep(gl: &mut Gl) -> Result<(), String> {
                     f: f * 0.1,
                     z0,
                     slope,
+                    size: -z0,
                     occluder_gap: None,
                 };
                 let c = compare(gl, &scene)?;

@@ -127,6 +127,10 @@ pub struct Scene {
     pub z0: f64,
     /// Eye-space `dz/dy`, negative: the plane recedes as it rises on screen, like a floor.
     pub slope: f64,
+    /// The size of the floor, decal and plank: the floor spans `0.9·size` across, the decal
+    /// `0.4·size` (eye units). The scenes are laid out with `size = −z0`, so they fill the
+    /// same part of the view at any distance; moving the camera keeps `size`.
+    pub size: f64,
     /// A grey plank parallel to the floor, this many eye-space units nearer the camera (along
     /// z), lying across the decal's right side: a decal offset by more than this shows through
     /// it (bleeds). `None`: no plank.
@@ -145,19 +149,19 @@ impl Scene {
     }
 
     fn floor(&self) -> Quad {
-        let d = -self.z0;
+        let d = self.size;
         self.quad(0.45 * d, -0.3 * d, 0.35 * d)
     }
 
     /// Different vertices from the floor's, the same plane: a coplanar decal.
     fn decal(&self) -> Quad {
-        let d = -self.z0;
+        let d = self.size;
         self.quad(0.2 * d, -0.15 * d, 0.15 * d)
     }
 
     /// The plank: over the decal's right side, reaching past its top and bottom edges.
     fn occluder(&self) -> Option<Quad> {
-        let d = -self.z0;
+        let d = self.size;
         self.occluder_gap.map(|gap| {
             Quad::on_plane(0.06 * d, 0.14 * d, -0.25 * d, 0.25 * d, |_, y| {
                 self.plane_z(y) + gap
@@ -172,8 +176,8 @@ impl Scene {
             .to_cols_array()
     }
 
-    /// The same scene with the camera moved `dz` eye units back along its axis (the plane
-    /// recedes, the plank stays `occluder_gap` above it): the animation's frames.
+    /// The same floor, decal and plank with the camera moved `dz` eye units back along its
+    /// axis: the animation's frames.
     pub fn moved(&self, dz: f64) -> Scene {
         Scene {
             z0: self.z0 - dz,
@@ -190,6 +194,7 @@ pub const MAIN: Scene = Scene {
     f: 1e6,
     z0: -500.0,
     slope: -1.0,
+    size: 500.0,
     occluder_gap: Some(8.0),
 };
 
