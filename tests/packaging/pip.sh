@@ -13,6 +13,7 @@ rm -rf "$work"
 mkdir -p "$work/src"
 unset ZSHIFT_LIBRARY PYTHONPATH CARGO_TARGET_DIR
 fail() { echo "FAIL: $*" >&2; exit 1; }
+[ -x "$python" ] || fail "$python is missing: run scripts/setup (it makes the project venv), or set PYTHON"
 
 # The files a clone has (tracked, plus new files git does not ignore): no target/, no .venv.
 git ls-files -z --cached --others --exclude-standard | xargs -0 -I{} sh -c '[ -f "{}" ] && echo "{}"' \
