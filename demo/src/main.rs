@@ -49,10 +49,10 @@ fn title(c: &Comparison, frame: Option<usize>) -> Vec<String> {
     };
     vec![
         format!(
-            "RED DECAL ON A BLUE FLOOR AT 45 DEG, {:.0} UNITS AWAY, F/N = 1E7, 24-BIT DEPTH, GREY PLANK {gap} UNITS ABOVE",
+            "RED DECAL (YELLOW OUTLINE: WHERE IT BELONGS) ON A BLUE FLOOR AT 45 DEG, {:.0} UNITS AWAY, F/N = 1E7, D24",
             -s.plane_z(0.0)
         ),
-        format!("LOST: DECAL PIXELS THE FLOOR HIDES (Z-FIGHTING)  BLED: DECAL DRAWN OVER THE PLANK{camera}"),
+        format!("GREY PLANK {gap} UNITS ABOVE THE FLOOR. LOST: DECAL HIDDEN BY THE FLOOR (Z-FIGHTING). BLED: DECAL OVER THE PLANK{camera}"),
     ]
 }
 

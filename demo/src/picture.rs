@@ -19,6 +19,8 @@ const TEXT: [u8; 3] = [235, 235, 235];
 const DIM: [u8; 3] = [160, 160, 165];
 const GOOD: [u8; 3] = [90, 220, 110];
 const BAD: [u8; 3] = [255, 110, 90];
+/// The outline drawn around where the decal belongs.
+pub const OUTLINE: [u8; 3] = [255, 225, 0];
 /// Gap between panels and around them, and the text scale (each font pixel is SCALE² pixels).
 const GAP: usize = 16;
 const SCALE: usize = 2;
@@ -52,6 +54,27 @@ impl Picture {
             for col in 0..image.width {
                 let [r, g, b, _] = image.at(col, image.height - 1 - row);
                 self.set(x + col, y + row, [r, g, b]);
+            }
+        }
+    }
+
+    /// Marks the pixels just outside `mask` (a `side × side` mask, rows bottom-up like a render
+    /// placed at `(x, y)`) in [`OUTLINE`]: where the decal belongs, without covering any of its
+    /// pixels.
+    pub fn outline(&mut self, mask: &[bool], side: usize, x: usize, y: usize) {
+        let inside = |c: isize, r: isize| {
+            (0..side as isize).contains(&c)
+                && (0..side as isize).contains(&r)
+                && mask[r as usize * side + c as usize]
+        };
+        for r in 0..side as isize {
+            for c in 0..side as isize {
+                let near = [(-1, 0), (1, 0), (0, -1), (0, 1)]
+                    .iter()
+                    .any(|&(dc, dr)| inside(c + dc, r + dr));
+                if !inside(c, r) && near {
+                    self.set(x + c as usize, y + side - 1 - r as usize, OUTLINE);
+                }
             }
         }
     }
@@ -116,6 +139,7 @@ pub fn compose(c: &Comparison, title: &[String], footer: &[String]) -> Picture {
         p.text(centre(head), top, head, TEXT);
         p.text(centre(sub), top + LINE, sub, DIM);
         p.blit(&row.image, x, panel_top);
+        p.outline(&c.decal, side, x, panel_top);
         let count = |what: &str, n: usize, of: usize| {
             (
                 format!("{what} {n} ({:.0}%)", percent(n, of)),

@@ -362,6 +362,8 @@ pub struct Comparison {
     /// The decal's pixels that should show (outside the plank), and those the plank should hide.
     pub visible: usize,
     pub covered: usize,
+    /// The decal's own pixels (drawn alone), indexed like [`Image::pixels`] (rows bottom-up).
+    pub decal: Vec<bool>,
     pub recommendation: Recommendation,
 }
 
@@ -419,6 +421,7 @@ pub fn compare(gl: &mut impl Canvas, scene: &Scene) -> Result<Comparison, String
         rows,
         visible,
         covered,
+        decal,
         recommendation,
     })
 }
