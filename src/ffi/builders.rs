@@ -1,6 +1,6 @@
 //! Projection builders: glFrustum, gluPerspective, every clip convention, tweaked infinite.
 
-use super::{checked_array, clip_of, ZshiftStatus};
+use super::{checked_array, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
@@ -58,7 +58,7 @@ pub extern "C" fn zshift_projection(
     t: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
     checked_array(out, || {

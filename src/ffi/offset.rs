@@ -1,7 +1,7 @@
 //! Offset matrices: the seed-compatible LoadOffsetMatrix, epsilon, and the offset projection of
 //! every convention; Kooima's median offset.
 
-use super::{checked_array, checked_scalar, clip_of, ZshiftStatus};
+use super::{checked_array, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -68,7 +68,7 @@ pub extern "C" fn zshift_offset_projection(
     t: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     delta: f64,
     pz: f64,
     out: *mut f32,
@@ -88,7 +88,7 @@ pub extern "C" fn zshift_offset_perspective(
     aspect: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     delta: f64,
     pz: f64,
     out: *mut f32,

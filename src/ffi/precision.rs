@@ -1,6 +1,6 @@
 //! Depth precision: window depth, the depth step, the minimum offsets (Walker, Lengyel).
 
-use super::{checked_scalar, clip_of, format_of, ZshiftStatus};
+use super::{checked_scalar, clip_of, format_of, ZshiftClip, ZshiftFormat, ZshiftStatus};
 use crate::precision::DepthMapping;
 
 /// Writes the smallest |epsilon| that moves depth by one step of a `bits`-bit depth buffer:
@@ -86,7 +86,7 @@ pub extern "C" fn zshift_depth_resolution(
 pub extern "C" fn zshift_window_depth_clip(
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -106,8 +106,8 @@ pub extern "C" fn zshift_window_depth_clip(
 pub extern "C" fn zshift_depth_step(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -124,7 +124,7 @@ pub extern "C" fn zshift_depth_step(
 #[no_mangle]
 pub extern "C" fn zshift_median_depth_step(
     median: f64,
-    format: i32,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -141,8 +141,8 @@ pub extern "C" fn zshift_median_depth_step(
 pub extern "C" fn zshift_min_ndc_offset(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -163,8 +163,8 @@ pub extern "C" fn zshift_min_ndc_offset(
 pub extern "C" fn zshift_min_epsilon_clip(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -181,8 +181,8 @@ pub extern "C" fn zshift_min_epsilon_clip(
 pub extern "C" fn zshift_min_relative_epsilon(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {

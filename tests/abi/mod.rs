@@ -10,7 +10,10 @@
 
 use std::ffi::{c_char, CStr};
 
-use zshift::ffi::{self, ZshiftRecommendation, ZshiftScene};
+use zshift::ffi::{
+    self, ZshiftBiasApi, ZshiftClip, ZshiftFormat, ZshiftOffsetKind, ZshiftRecommendation,
+    ZshiftScene,
+};
 
 /// The named inputs the exported functions take. Each function reads the fields it needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,10 +39,10 @@ pub struct Inputs {
     pub steps: f64,
     pub bits: u32,
     pub status: i32,
-    pub clip: i32,
-    pub format: i32,
-    pub api: i32,
-    pub kind: i32,
+    pub clip: ZshiftClip,
+    pub format: ZshiftFormat,
+    pub api: ZshiftBiasApi,
+    pub kind: ZshiftOffsetKind,
     pub scene: ZshiftScene,
 }
 
@@ -85,10 +88,10 @@ impl Inputs {
         steps: 1.0,
         bits: 24,
         status: 0,
-        clip: 0,
-        format: 0x81A6, // ZSHIFT_FORMAT_UNORM24 = GL_DEPTH_COMPONENT24
-        api: 0,
-        kind: 0,
+        clip: ZshiftClip { value: 0 },
+        format: ZshiftFormat { value: 0x81A6 }, // ZSHIFT_FORMAT_UNORM24 = GL_DEPTH_COMPONENT24
+        api: ZshiftBiasApi { value: 0 },
+        kind: ZshiftOffsetKind { value: 0 },
         scene: VALID_SCENE,
     };
 
@@ -133,10 +136,10 @@ impl Inputs {
         vec![
             IntField::U(&mut self.bits),
             IntField::I(&mut self.status),
-            IntField::I(&mut self.clip),
-            IntField::I(&mut self.format),
-            IntField::I(&mut self.api),
-            IntField::I(&mut self.kind),
+            IntField::I(&mut self.clip.value),
+            IntField::U(&mut self.format.value),
+            IntField::I(&mut self.api.value),
+            IntField::I(&mut self.kind.value),
             IntField::U(&mut s.viewport_width),
             IntField::U(&mut s.viewport_height),
             IntField::U(&mut s.depth_format),
@@ -170,7 +173,15 @@ pub trait Arg {
 macro_rules! by_value {
     ($($t:ty),*) => { $(impl Arg for $t { type C = $t; fn arg(&self) -> $t { *self } })* };
 }
-by_value!(f64, u32, i32);
+by_value!(
+    f64,
+    u32,
+    i32,
+    ZshiftClip,
+    ZshiftFormat,
+    ZshiftBiasApi,
+    ZshiftOffsetKind
+);
 
 impl Arg for ZshiftScene {
     type C = *const ZshiftScene;
@@ -262,6 +273,7 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_depth_resolution(n, f, bits, d) -> [F64; 1]),
     text!(zshift_status_message(status)),
     text!(zshift_version()),
+    text!(zshift_last_error()),
     writes!(zshift_perspective(fovy, aspect, n, f) -> [F32; 16]),
     writes!(zshift_projection(l, r, b, t, n, f, clip) -> [F32; 16]),
     writes!(zshift_offset_projection(l, r, b, t, n, f, clip, delta, pz) -> [F32; 16]),
@@ -422,8 +434,9 @@ fn check_text(name: &str, p: *const c_char) -> Vec<u8> {
         text.to_str().is_ok(),
         "{name} returned text that is not UTF-8"
     );
+    // zshift_last_error is "" after a successful call; every other text is a fixed sentence.
     assert!(
-        !text.to_bytes().is_empty(),
+        !text.to_bytes().is_empty() || name == "zshift_last_error",
         "{name} returned an empty string"
     );
     text.to_bytes().to_vec()
@@ -593,10 +606,18 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         },
         bits: 1 + src.below(32) as u32,
         status: src.below(9) as i32 - 1,
-        clip: src.below(3) as i32,
-        format: [0x81A5, 0x81A6, 0x81A7, 0x8CAC][src.below(4) as usize],
-        api: src.below(3) as i32,
-        kind: src.below(2) as i32,
+        clip: ZshiftClip {
+            value: src.below(3) as i32,
+        },
+        format: ZshiftFormat {
+            value: [0x81A5, 0x81A6, 0x81A7, 0x8CAC][src.below(4) as usize],
+        },
+        api: ZshiftBiasApi {
+            value: src.below(3) as i32,
+        },
+        kind: ZshiftOffsetKind {
+            value: src.below(2) as i32,
+        },
         scene: VALID_SCENE,
     };
     i.scene = ZshiftScene {

@@ -164,9 +164,29 @@ class Errors(unittest.TestCase):
         with self.assertRaises(zshift.ZshiftError) as caught:
             fn(*args)
         self.assertEqual(caught.exception.status, status)
-        self.assertEqual(str(caught.exception), zshift.status_message(status))
-        self.assertEqual(caught.exception.message, zshift.status_message(status))
+        # The message is the library's detail (which input, its value, why), not the status's
+        # sentence, and it is what zshift.last_error() says.
+        self.assertNotEqual(str(caught.exception), zshift.status_message(status))
+        self.assertGreater(len(caught.exception.message), 10)
         self.assertIsInstance(caught.exception, ValueError)
+
+    def test_detail_names_the_input_and_its_value(self):
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.frustum(-1, 1, -1, 1, -1, 100)
+        self.assertEqual(str(caught.exception), "the near plane distance n must be greater than 0 (n = -1)")
+        self.assertEqual(zshift.last_error(), str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.depth_step(1, 100, zshift.Clip.ZERO_TO_ONE, 0x1902, 50)
+        self.assertIn("(format = 0x1902)", str(caught.exception))
+        zshift.frustum(-1, 1, -1, 1, 1, 100)
+        self.assertEqual(zshift.last_error(), "")
+
+    def test_arguments_of_another_kind_are_refused(self):
+        # A Format where a Clip goes (the C header makes this a compile error).
+        with self.assertRaises(TypeError):
+            zshift.depth_step(1, 100, zshift.Format.UNORM24, zshift.Clip.ZERO_TO_ONE, 50)
+        with self.assertRaises(TypeError):
+            zshift.projection(-1, 1, -1, 1, 1, 100, zshift.Format.FLOAT32)
 
     def test_domain(self):
         self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, 1, 1, -1, 1, 1, 100)
@@ -311,9 +331,10 @@ class Conventions(unittest.TestCase):
     def test_enums_match_the_header(self):
         header = (ROOT / "include" / "zshift.h").read_text()
         for prefix, enum_cls in (("CLIP", zshift.Clip), ("FORMAT", zshift.Format), ("BIAS", zshift.BiasApi),
-                                 ("OFFSET", zshift.OffsetKind)):
-            defined = dict(re.findall(r"#define ZSHIFT_" + prefix + r"_(\w+) (\d+)", header))
-            self.assertEqual({k: int(v) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
+                                 ("OFFSET", zshift.OffsetKind), ("DEPTH_TEST", zshift.DepthTest)):
+            defined = dict(re.findall(r"static const Zshift\w+ ZSHIFT_" + prefix + r"_(\w+) = \{ (0x[0-9A-F]+|\d+) \};",
+                                      header))
+            self.assertEqual({k: int(v, 0) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
         tweak = re.search(r"#define ZSHIFT_MIN_INFINITE_TWEAK (\S+)", header).group(1)
         self.assertEqual(zshift.MIN_INFINITE_TWEAK, float(tweak))
 

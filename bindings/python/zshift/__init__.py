@@ -32,7 +32,7 @@ __all__ = [
     "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
     "depth_resolution", "recommend", "recommend_matrix", "Recommendation", "SUBPIXEL_UNSNAPPED",
     "GL_DEPTH_COMPONENT16", "GL_DEPTH_COMPONENT24", "GL_DEPTH_COMPONENT32", "GL_DEPTH_COMPONENT32F",
-    "Clip", "Format", "BiasApi", "OffsetKind", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
+    "Clip", "Format", "DepthTest", "BiasApi", "OffsetKind", "last_error", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
     "offset_projection", "offset_perspective", "tweaked_infinite", "offset_tweaked_infinite",
     "median_ndc_offset", "window_depth_clip", "depth_step", "median_depth_step", "min_ndc_offset",
     "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
@@ -68,15 +68,17 @@ class Status(enum.IntEnum):
 
 class ZshiftError(ValueError):
     """A zshift call failed. ``status`` says how (a :class:`Status`, or the raw code if unknown);
-    ``message`` (also ``str(error)``) is the library's sentence for it."""
+    ``message`` (also ``str(error)``) says which input, its value and why: the library's
+    ``zshift_last_error()`` detail, such as ``"the near plane distance n must be greater than 0
+    (n = -1)"``, or the status's sentence where there is none."""
 
-    def __init__(self, status):
+    def __init__(self, status, detail=""):
         try:
             status = Status(status)
         except ValueError:
             pass
         self.status = status
-        self.message = status_message(status)
+        self.message = detail or status_message(status)
         super().__init__(self.message)
 
 
@@ -100,20 +102,33 @@ def status_message(status):
     return _lib().zshift_status_message(int(status)).decode("utf-8")
 
 
+def last_error():
+    """The detail of the last failed zshift call on this thread (``""`` after a success); the
+    same text a :class:`ZshiftError` carries."""
+    return _last_error()
+
+
 def version():
     """The library's version string, such as ``"0.1.0"``."""
     return _lib().zshift_version().decode("utf-8")
 
 
+def _last_error():
+    lib = _lib()
+    fn = lib.zshift_last_error
+    fn.argtypes, fn.restype = [], ctypes.c_char_p
+    return fn().decode("utf-8", "replace")
+
+
 def _check(status):
     if status != Status.OK:
-        raise ZshiftError(status)
+        raise ZshiftError(status, _last_error())
 
 
 def _bits(bits):
     # ctypes would wrap an out-of-range int into uint32 silently (2**32 + 24 -> 24).
     if not isinstance(bits, int) or not 0 <= bits < 2**32:
-        raise ZshiftError(Status.DOMAIN)
+        raise ZshiftError(Status.DOMAIN, f"the depth buffer bits must be an integer in 1..=32 (bits = {bits!r})")
     return bits
 
 
@@ -219,7 +234,7 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
     ):
         # ctypes would wrap out-of-range integers silently.
         if not isinstance(value, int) or not low <= value < high:
-            raise ZshiftError(Status.DOMAIN)
+            raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
     return _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
                                 1 if exact_depth else 0, subpixel_bits)
 
@@ -302,11 +317,25 @@ MIN_INFINITE_TWEAK = 2.0**-22
 RangeOffset = collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
 
 
-def _enum(value):
+class DepthTest(enum.IntEnum):
+    """The depth test of a pass (``ZSHIFT_DEPTH_TEST_*``), by its GL enum."""
+
+    LESS = 0x0201
+    LEQUAL = 0x0203
+    GREATER = 0x0204
+    GEQUAL = 0x0206
+
+
+def _enum(value, kind):
+    # One enum per kind of argument, as the C header has one type per kind: a member of another
+    # enum (a Format passed as a Clip) is a TypeError, never a silently different call. A plain
+    # int is passed as is (the library refuses an unknown value).
+    if isinstance(value, enum.Enum) and not isinstance(value, kind):
+        raise TypeError(f"expected a zshift.{kind.__name__}, got {value!r}")
     # An int32 for the C call; ctypes would wrap a larger int silently.
-    if not isinstance(value, int) or not -(2**31) <= value < 2**31:
-        raise ZshiftError(Status.DOMAIN)
-    return int(value)
+    if not isinstance(value, int) or not -(2**31) <= value < 2**32:
+        raise ZshiftError(Status.DOMAIN, f"{kind.__name__} value {value!r} is not a 32-bit integer")
+    return int(value) if value < 2**31 else int(value) - 2**32
 
 
 def perspective(fovy, aspect, n, f):
@@ -319,7 +348,7 @@ def perspective(fovy, aspect, n, f):
 def projection(l, r, b, t, n, f, clip):
     """glFrustum's x/y rows with the depth row of ``clip`` (a :class:`Clip`).
     Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` for an unknown clip."""
-    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip), out))
+    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip, Clip), out))
 
 
 def offset_projection(l, r, b, t, n, f, clip, delta, pz):
@@ -327,12 +356,12 @@ def offset_projection(l, r, b, t, n, f, clip, delta, pz):
     NDC offset through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or
     element 14 scaled (reversed), rounded outward. Raises :class:`ZshiftError`: as
     :func:`projection`; ``DOMAIN`` if pz is outside [-f, -n] or the shifted point leaves [n, f]."""
-    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip), delta, pz, out))
+    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip, Clip), delta, pz, out))
 
 
 def offset_perspective(fovy, aspect, n, f, clip, delta, pz):
     """:func:`offset_projection` for gluPerspective parameters. Errors as both."""
-    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip), delta, pz, out))
+    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip, Clip), delta, pz, out))
 
 
 def tweaked_infinite(l, r, b, t, n, tweak):
@@ -359,53 +388,53 @@ def median_ndc_offset(median, delta, pz):
 def window_depth_clip(n, f, clip, d):
     """The window depth at eye distance ``d`` under ``clip`` (Walker's f(d), seed 001; reversed
     n(f - d)/((f - n)d)). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip), d, out))
+    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip, Clip), d, out))
 
 
 def depth_step(n, f, clip, format, d):
     """The exact depth step at eye distance ``d`` under ``clip`` and ``format`` (a :class:`Format`;
     Walker's eq. 3 for every convention). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def median_depth_step(median, format, d):
     """The depth step at eye distance ``d`` (>= 0) under Kooima's median projection (seed 003).
     Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format, Format), d, out))
 
 
 def min_ndc_offset(n, f, clip, format, d):
     """The smallest constant NDC offset (a magnitude) that changes the stored depth at ``d``
     (seed 002's 2/(2^m - 1) for UNORM under [-1, 1]). Raises :class:`ZshiftError`: as
     :func:`depth_step`."""
-    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def min_epsilon_clip(n, f, clip, format, d):
     """The smallest |epsilon| for element 10's scaling that changes the stored depth at ``d``
     (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Raises :class:`ZshiftError`: as
     :func:`depth_step`; ``UNRESOLVABLE`` for reversed Z with ``f = math.inf``."""
-    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def min_relative_epsilon(n, f, clip, format, d):
     """The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored
     depth at ``d``. Raises :class:`ZshiftError`: as :func:`depth_step`."""
-    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def bias_of_shift(n, f, clip, format, api, delta, pz):
     """The constant depth bias of ``api`` (a :class:`BiasApi`) equivalent to moving geometry at
     ``pz`` toward the camera by ``delta`` (negative under [-1, 1] and [0, 1]).
     Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip), _enum(format), _enum(api), delta, pz, out))
+    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip, Clip), _enum(format, Format), _enum(api, BiasApi), delta, pz, out))
 
 
 def shift_of_bias(n, f, clip, format, api, bias, pz):
     """The eye-space shift toward the camera that a constant ``bias`` of ``api`` makes at ``pz``
     (the inverse of :func:`bias_of_shift`). Raises :class:`ZshiftError`: as
     :func:`bias_of_shift`; ``UNRESOLVABLE``."""
-    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip), _enum(format), _enum(api), bias, pz, out))
+    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip, Clip), _enum(format, Format), _enum(api, BiasApi), bias, pz, out))
 
 
 def tight_planes(nearest, farthest):
@@ -422,7 +451,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
     distance in [lo, hi], as a :data:`RangeOffset`; multiply ``offset`` by k for the k-th stacked
     decal layer. Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``, ``UNRESOLVABLE``."""
     out = (ctypes.c_double * 3)()
-    _check(_lib().zshift_range_offset(n, f, _enum(clip), _enum(format), _enum(kind), lo, hi, steps, out))
+    _check(_lib().zshift_range_offset(n, f, _enum(clip, Clip), _enum(format, Format), _enum(kind, OffsetKind), lo, hi, steps, out))
     return RangeOffset(*out)
 
 
@@ -443,7 +472,7 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
     out = _library.ZshiftRecommendation()
-    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip), ctypes.byref(out)))
+    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip, Clip), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
@@ -453,4 +482,4 @@ def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, s
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
-    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip), out))
+    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
