@@ -62,16 +62,16 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 #define ZSHIFT_ABI_VERSION 1
 
 /*
- The smallest tweak epsilon for `zshift_tweaked_infinite` that keeps far geometry inside the
- clip volume in float arithmetic: 2^-22 (Lengyel, GDC 2007).
- */
-#define ZSHIFT_MIN_INFINITE_TWEAK 2.384185791015625e-7
-
-/*
  `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
  vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
  */
 #define ZSHIFT_SUBPIXEL_UNSNAPPED -1
+
+/*
+ The smallest tweak epsilon for `zshift_tweaked_infinite` that keeps far geometry inside the
+ clip volume in float arithmetic: 2^-22 (Lengyel, GDC 2007).
+ */
+#define ZSHIFT_MIN_INFINITE_TWEAK 2.384185791015625e-7
 
 /*
  The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
@@ -79,6 +79,109 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
  A plain 32-bit integer, so any value a caller passes to `zshift_status_message` is valid.
  */
 typedef int32_t ZshiftStatus;
+
+/*
+ What an engine knows about a decal besides its projection matrix, for
+ `zshift_recommend_for_matrix`. Fill every field: an all-zero ZshiftDecal is refused
+ (viewport 0), and subpixel_bits = 0 is the most conservative value, not a default.
+ */
+typedef struct {
+  /*
+   `glViewport` width in pixels (nonzero).
+   */
+  uint32_t viewport_width;
+  /*
+   `glViewport` height in pixels (nonzero).
+   */
+  uint32_t viewport_height;
+  /*
+   The depth attachment's format (ZSHIFT_FORMAT_*).
+   */
+  ZshiftFormat format;
+  /*
+   GL_SUBPIXEL_BITS of the rasterizer (0..=32; 0 means positions snapped to whole pixels,
+   the most conservative), or ZSHIFT_SUBPIXEL_UNSNAPPED (-1) for a rasterizer that sets
+   depth up from unsnapped positions (Mesa llvmpipe).
+   */
+  int32_t subpixel_bits;
+  /*
+   The decal's nearest eye distance (positive, within the matrix's [n, f]).
+   */
+  double decal_near;
+  /*
+   The decal's farthest eye distance (decal_far >= decal_near).
+   */
+  double decal_far;
+  /*
+   Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
+   */
+  double slope;
+  /*
+   Nonzero when every corner of base and decal has the same float eye-space z (requires
+   slope == 0).
+   */
+  uint32_t exact_depth;
+} ZshiftDecal;
+
+/*
+ The offset `zshift_recommend` computes, in every form an engine may apply it, with the
+ error terms it was built from (window-depth units; see the README, "Verified on a
+ rasterizer").
+ */
+typedef struct {
+  /*
+   epsilon for element 10 (negative: toward the camera); use with the matrix from
+   `zshift_recommend_matrix`.
+   */
+  double epsilon;
+  /*
+   The NDC depth offset -epsilon * m10 (= 2 * window_offset).
+   */
+  double ndc_offset;
+  /*
+   The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+   */
+  double window_offset;
+  /*
+   The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
+   (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
+   */
+  double delta_at_far;
+  /*
+   Occluders nearer than the base by at least this eye-space distance (along the line of
+   sight) are never overdrawn by the decal.
+   */
+  double bleed_gap;
+  /*
+   The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
+   0 when unsnapped.
+   */
+  double polygon_offset_factor;
+  /*
+   The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+   */
+  double polygon_offset_units;
+  /*
+   Term q: the smallest difference the stored format keeps (window depth).
+   */
+  double quantum;
+  /*
+   Term T: f32 rounding of the vertex transform and viewport mapping, per vertex.
+   */
+  double transform;
+  /*
+   Term V: f32 rounding of the decal's eye-space coordinates.
+   */
+  double vertex;
+  /*
+   Term I: f32 rounding of the rasterizer's depth-plane evaluation.
+   */
+  double interpolation;
+  /*
+   Term S: sub-pixel snapping of a sloped plane before depth setup.
+   */
+  double snap;
+} ZshiftRecommendation;
 
 /*
  What a scene knows about one decal and the surface under it, for `zshift_recommend`.
@@ -152,66 +255,6 @@ typedef struct {
 } ZshiftScene;
 
 /*
- The offset `zshift_recommend` computes, in every form an engine may apply it, with the
- error terms it was built from (window-depth units; see the README, "Verified on a
- rasterizer").
- */
-typedef struct {
-  /*
-   epsilon for element 10 (negative: toward the camera); use with the matrix from
-   `zshift_recommend_matrix`.
-   */
-  double epsilon;
-  /*
-   The NDC depth offset -epsilon * m10 (= 2 * window_offset).
-   */
-  double ndc_offset;
-  /*
-   The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
-   */
-  double window_offset;
-  /*
-   The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
-   (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
-   */
-  double delta_at_far;
-  /*
-   Occluders nearer than the base by at least this eye-space distance (along the line of
-   sight) are never overdrawn by the decal.
-   */
-  double bleed_gap;
-  /*
-   The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
-   0 when unsnapped.
-   */
-  double polygon_offset_factor;
-  /*
-   The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
-   */
-  double polygon_offset_units;
-  /*
-   Term q: the smallest difference the stored format keeps (window depth).
-   */
-  double quantum;
-  /*
-   Term T: f32 rounding of the vertex transform and viewport mapping, per vertex.
-   */
-  double transform;
-  /*
-   Term V: f32 rounding of the decal's eye-space coordinates.
-   */
-  double vertex;
-  /*
-   Term I: f32 rounding of the rasterizer's depth-plane evaluation.
-   */
-  double interpolation;
-  /*
-   Term S: sub-pixel snapping of a sloped plane before depth setup.
-   */
-  double snap;
-} ZshiftRecommendation;
-
-/*
  Success: the output was written.
  */
 #define ZSHIFT_OK 0
@@ -259,64 +302,6 @@ const char *zshift_status_message(ZshiftStatus status);
 const char *zshift_version(void);
 
 /*
- Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
-
- Convention: right-handed eye space, NDC depth [-1, 1], the matrix `glFrustum(l, r, b, t, n, f)`
- builds. Each element is the f32 nearest the exact value (within 1 ulp). `f` may be
- `+INFINITY`: then element 10 is -1 and element 14 is -2n. Seed 000, eq. 4.1.1.
-
- Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN or an
- infinity other than f = +INFINITY; ZSHIFT_ERR_DOMAIN if l == r, b == t, n <= 0 or f <= n;
- ZSHIFT_ERR_OVERFLOW if an element does not fit in a float. `out` is untouched on error.
- */
-ZshiftStatus zshift_frustum(double l, double r, double b, double t, double n, double f, float *out);
-
-/*
- Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
-
- Convention: right-handed, NDC depth [-1, 1]; fovy in degrees; `f` may be +INFINITY. The
- frustum is t = n tan(fovy/2), r = t aspect, centred; each element the nearest float.
-
- Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE (NaN or infinity other than f);
- ZSHIFT_ERR_DOMAIN unless 0 < fovy < 180, aspect > 0, 0 < n < f. `out` untouched on error.
- */
-ZshiftStatus zshift_perspective(double fovy, double aspect, double n, double f, float *out);
-
-/*
- Writes the glFrustum(l, r, b, t, n, f) matrix with the depth row of `clip` (a ZSHIFT_CLIP_*):
- m10, m14 = -(f+n)/(f-n), -2fn/(f-n) for [-1, 1]; -f/(f-n), -fn/(f-n) for [0, 1];
- n/(f-n), fn/(f-n) reversed; with f = +INFINITY: -1, -2n; -1, -n; 0, n.
-
- Errors: as `zshift_frustum`; ZSHIFT_ERR_DOMAIN for an unknown `clip`. `out` untouched on error.
- */
-ZshiftStatus zshift_projection(double l,
-                               double r,
-                               double b,
-                               double t,
-                               double n,
-                               double f,
-                               ZshiftClip clip,
-                               float *out);
-
-/*
- Writes the tweaked infinite projection (Lengyel, GDC 2007; GLM tweakedInfinitePerspective):
- the glFrustum(l, r, b, t, n, -) x/y rows, m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
- With tweak >= ZSHIFT_MIN_INFINITE_TWEAK geometry at any distance stays inside the clip volume
- in float arithmetic (the plain infinite projection puts it on the far plane, where GL_LESS
- against a cleared 1.0 rejects it).
-
- Errors: as `zshift_frustum` (with f = +INFINITY); ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
- unless 0 <= tweak < 1. `out` untouched on error.
- */
-ZshiftStatus zshift_tweaked_infinite(double l,
-                                     double r,
-                                     double b,
-                                     double t,
-                                     double n,
-                                     double tweak,
-                                     float *out);
-
-/*
  What went wrong in the last zshift call made on this thread that returned a status: a
  NUL-terminated English sentence naming the input at fault, its value and the rule it broke,
  such as "the near plane distance n must be greater than 0 (n = -1)". The empty string ""
@@ -327,6 +312,153 @@ ZshiftStatus zshift_tweaked_infinite(double l,
  this function leave it unchanged.
  */
 const char *zshift_last_error(void);
+
+/*
+ Writes the engine's projection `m` (16 floats, column-major, as glUniformMatrix4fv(..,
+ GL_FALSE, ..) takes it) with geometry at eye distance `d` moved toward the camera by `delta`
+ (eye units; negative: away), changing only the element that carries the offset. The call
+ most engines need: pass the matrix the base is drawn with, draw the decal with `out`.
+
+ `m` may come from GLM, glam, glFrustum, gluPerspective, glOrtho or the engine's own code:
+ perspective (finite, infinite, tweaked infinite, reversed; right-handed w = -z or
+ left-handed w = +z) or orthographic. `clip` says which depth convention it was built for;
+ a matrix whose depth runs the other way (a reversed-Z matrix passed with
+ ZSHIFT_CLIP_NEG_ONE_TO_ONE) is an error. Perspective under [-1, 1] and [0, 1]: element 10
+ moves by the constant NDC offset m14*delta/(d*(d - delta)) (seed 000, eq. 4.1.3-4.1.7 on the
+ engine's own elements). Perspective reversed: element 14 is scaled by 1 + delta/(d - delta)
+ (every point moved by the same fraction of its distance; works where m10 = 0). Orthographic:
+ element 14 moves by m10*delta, the same eye shift at every distance. The element is rounded
+ away from its value, so the offset the GPU sees is never less than asked and at most one
+ float ulp of the element more; the other 15 elements are bit-identical to `m`. `out` may be
+ `m` itself.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `m` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for a NaN or
+ infinite element, `delta` or `d`; ZSHIFT_ERR_DOMAIN for a matrix that is neither (an oblique
+ near plane, m[2] or m[6] != 0; a transposed matrix; m[11] not +-1), a convention mismatch, an
+ unknown `clip`, or (perspective) d <= 0 or d - delta <= 0; ZSHIFT_ERR_OVERFLOW if the element
+ leaves float. zshift_last_error() names the element or input. `out` is untouched on error.
+ */
+ZshiftStatus zshift_offset_matrix(const float *m,
+                                  ZshiftClip clip,
+                                  double delta,
+                                  double d,
+                                  float *out);
+
+/*
+ Writes the engine's projection `m` with the NDC depth of every point moved toward the camera
+ by `ndc` (negative: away): element 10 of a perspective matrix (m10 + s*c, s = m[11], c the
+ signed change), element 14 of an orthographic one, rounded outward; the other elements
+ bit-identical. Under ZSHIFT_CLIP_NEG_ONE_TO_ONE an NDC offset is twice the window-depth
+ offset; under [0, 1] and reversed they are equal. For a UNORM buffer of m bits the smallest
+ offset that changes the stored depth is 2/(2^m - 1) NDC under [-1, 1] (seed 002).
+
+ Errors: as `zshift_offset_matrix` (NaN or infinite `ndc` is ZSHIFT_ERR_NOT_FINITE). `out` is
+ untouched on error.
+ */
+ZshiftStatus zshift_offset_matrix_ndc(const float *m, ZshiftClip clip, double ndc, float *out);
+
+/*
+ Writes the decal's projection matrix: the engine's own perspective projection `m` (the one
+ its base is drawn with) with the smallest offset that ends z-fighting for `decal` on a real
+ rasterizer (`zshift_recommend_clip`'s model: depth quantum, f32 rounding of transform,
+ vertices and interpolation, sub-pixel snapping of sloped planes). The front door: one call,
+ and the engine never restates its frustum, which is read from `m` (any perspective matrix
+ `zshift_offset_matrix` accepts; a tweaked infinite one with a tweak up to 2^-10 is treated
+ as infinite). The offset is applied to `m`'s own element (10, a constant NDC offset, under
+ [-1, 1] and [0, 1]; 14, relative, under reversed Z), rounded outward; the other 15 elements
+ are bit-identical to `m`. `zshift_recommend_for_matrix` gives the numbers behind it.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decal` or `out` is NULL; as `zshift_offset_matrix`
+ for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for an orthographic
+ matrix, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
+ -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
+ exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+ zshift_last_error() names the field. `out` is untouched on error.
+ */
+ZshiftStatus zshift_decal_matrix(const float *m,
+                                 ZshiftClip clip,
+                                 const ZshiftDecal *decal,
+                                 float *out);
+
+/*
+ Writes the recommendation behind `zshift_decal_matrix`: the offset in every form (epsilon,
+ NDC and window offsets, the eye shift at decal_far, the bleed-through gap, the
+ glPolygonOffset equivalent) and the error terms it was built from, as `zshift_recommend_clip`
+ writes them for the frustum read from `m`.
+
+ Errors: as `zshift_decal_matrix`. `*out` is untouched on error.
+ */
+ZshiftStatus zshift_recommend_for_matrix(const float *m,
+                                         ZshiftClip clip,
+                                         const ZshiftDecal *decal,
+                                         ZshiftRecommendation *out);
+
+/*
+ Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+ base on a real rasterizer, by an error model whose every term is a worst-case bound: the
+ depth quantum, f32 rounding of the vertex transform, of the vertex coordinates and of the
+ depth interpolation, and sub-pixel snapping of sloped planes (seed 004); seed 000's eq.
+ 4.1.3/4.1.7 with seed 002's quantum. Also the bleed-through gap and the glPolygonOffset
+ equivalent. Verified on Mesa llvmpipe with D16, D24 and D32F (tests/gl_recommend.rs).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
+ or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
+ viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
+ negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
+ ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+ */
+ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
+
+/*
+ Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
+ `scene` with element 10 scaled by 1 + epsilon of `zshift_recommend`, rounded away from the
+ plain element (the offset is never lost to float rounding). Column-major, 16 floats, for
+ glLoadMatrixf or glUniformMatrix4fv(.., GL_FALSE, ..).
+
+ Errors: as `zshift_recommend`; ZSHIFT_ERR_OVERFLOW if element 10 leaves float. `out` is
+ untouched on error.
+ */
+ZshiftStatus zshift_recommend_matrix(const ZshiftScene *scene, float *out);
+
+/*
+ Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+ base when both are drawn under clip convention `clip` (a ZSHIFT_CLIP_*): the model of
+ `zshift_recommend` with each term taken through that convention's depth mapping (README,
+ "Verified on a rasterizer"). Verified on Mesa llvmpipe (tests/gl_recommend_clip.rs).
+
+ - ZSHIFT_CLIP_NEG_ONE_TO_ONE: exactly `zshift_recommend`.
+ - ZSHIFT_CLIP_ZERO_TO_ONE (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_LESS): a
+   constant NDC offset through element 10; `epsilon` is Lengyel's element-10 epsilon
+   (m10 * (1 + epsilon), negative), `ndc_offset` = `window_offset` its magnitude.
+ - ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (same glClipControl, GL_GREATER, glClearDepth(0)): a
+   relative offset through element 14 (m14 * (1 + epsilon), every point moved from d to
+   d / (1 + epsilon); it works where m10 = 0, f = +INFINITY); `epsilon` is that relative
+   epsilon (positive); `ndc_offset` and `window_offset` are the offset at decal_far, the
+   smallest over the decal; `polygon_offset_factor` and `polygon_offset_units` are 0 (no
+   constant glPolygonOffset matches a relative offset).
+
+ In every case `delta_at_far` is the eye-space shift toward the camera the offset amounts to
+ at decal_far, `bleed_gap` the documented bleed-through gap, and `quantum` the format's
+ spacing at the decal's farthest point. `zshift_recommend_clip_matrix` gives the matrix.
+
+ Errors: as `zshift_recommend`; ZSHIFT_ERR_DOMAIN for an unknown `clip`; ZSHIFT_ERR_OVERFLOW
+ if a result or matrix element overflows. `*out` is untouched on error.
+ */
+ZshiftStatus zshift_recommend_clip(const ZshiftScene *scene,
+                                   ZshiftClip clip,
+                                   ZshiftRecommendation *out);
+
+/*
+ Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
+ ZSHIFT_CLIP_*): `zshift_projection`'s matrix of the scene's frustum with element 10 lowered
+ by the NDC offset (NEG_ONE_TO_ONE, ZERO_TO_ONE) or element 14 scaled by 1 + epsilon
+ (REVERSED_ZERO_TO_ONE), rounded away from the plain element so the offset is never lost to
+ float rounding. Column-major, 16 floats; draw the base with the plain matrix of the same
+ convention.
+
+ Errors: as `zshift_recommend_clip`. `out` is untouched on error.
+ */
+ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip clip, float *out);
 
 /*
  Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -427,70 +559,99 @@ ZshiftStatus zshift_offset_tweaked_infinite(double l,
 ZshiftStatus zshift_median_ndc_offset(double median, double delta, double pz, double *out);
 
 /*
- Writes the tightest planes for a scene between eye distances `nearest` and `farthest`:
- `out[0]` = n, `out[1]` = f (possibly +INFINITY: then use the tweaked infinite projection or
- reversed Z), keeping a window-depth margin of 2^-22 inside each plane so f32 rounding clips
- no vertex.
+ Writes `zshift_ortho`'s matrix with every point moved toward the camera by `delta` eye units
+ (negative: away): element 14 moved by m10*delta (the same shift at every distance), rounded
+ outward; the other elements bit-identical to `zshift_ortho`'s.
 
- Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN unless
- 0 < nearest <= farthest. `out[0..2]` untouched on error.
+ Errors: as `zshift_ortho`; ZSHIFT_ERR_NOT_FINITE if `delta` is NaN or infinite. `out`
+ untouched on error.
  */
-ZshiftStatus zshift_tight_planes(double nearest, double farthest, double *out);
-
-/*
- Writes the smallest single offset that moves stored depth by at least `steps` steps at every
- distance in `[lo, hi]`: `out[0]` = the offset (`kind` ZSHIFT_OFFSET_NDC: a signed NDC offset
- toward the camera for element 10; ZSHIFT_OFFSET_RELATIVE: epsilon for element 14),
- `out[1]`, `out[2]` = the eye-space shifts it makes at lo and at hi. Multiply `out[0]` by k for
- the k-th stacked decal layer; keep k * `out[2]` below the gap where decals bleed through.
-
- Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, range
- outside `[n, f]` or lo > hi, steps < 1, unknown enum), ZSHIFT_ERR_UNRESOLVABLE.
- `out[0..3]` untouched on error.
- */
-ZshiftStatus zshift_range_offset(double n,
+ZshiftStatus zshift_offset_ortho(double l,
+                                 double r,
+                                 double b,
+                                 double t,
+                                 double n,
                                  double f,
                                  ZshiftClip clip,
-                                 ZshiftFormat format,
-                                 ZshiftOffsetKind kind,
-                                 double lo,
-                                 double hi,
-                                 double steps,
-                                 double *out);
+                                 double delta,
+                                 float *out);
 
 /*
- Writes the constant depth bias of `api` (a ZSHIFT_BIAS_*: glPolygonOffset units, Direct3D
- DepthBias before rounding, Vulkan depthBiasConstantFactor) equivalent to moving geometry at
- `pz` toward the camera by `delta`: (w(d - delta) - w(d)) / r, d = -pz. Negative under
- [-1, 1] and [0, 1], positive reversed. For Direct3D round away from zero.
+ Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
 
- Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz or
- pz + delta outside [-f, -n], unknown enum). `*out` untouched on error.
+ Convention: right-handed eye space, NDC depth [-1, 1], the matrix `glFrustum(l, r, b, t, n, f)`
+ builds. Each element is the f32 nearest the exact value (within 1 ulp). `f` may be
+ `+INFINITY`: then element 10 is -1 and element 14 is -2n. Seed 000, eq. 4.1.1.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN or an
+ infinity other than f = +INFINITY; ZSHIFT_ERR_DOMAIN if l == r, b == t, n <= 0 or f <= n;
+ ZSHIFT_ERR_OVERFLOW if an element does not fit in a float. `out` is untouched on error.
  */
-ZshiftStatus zshift_bias_of_shift(double n,
-                                  double f,
-                                  ZshiftClip clip,
-                                  ZshiftFormat format,
-                                  ZshiftBiasApi api,
-                                  double delta,
-                                  double pz,
-                                  double *out);
+ZshiftStatus zshift_frustum(double l, double r, double b, double t, double n, double f, float *out);
 
 /*
- Writes the eye-space shift toward the camera that a constant `bias` of `api` makes at `pz`:
- the inverse of `zshift_bias_of_shift`.
+ Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
 
- Errors: as `zshift_bias_of_shift`; ZSHIFT_ERR_UNRESOLVABLE if the biased depth is stored at
- no distance. `*out` untouched on error.
+ Convention: right-handed, NDC depth [-1, 1]; fovy in degrees; `f` may be +INFINITY. The
+ frustum is t = n tan(fovy/2), r = t aspect, centred; each element the nearest float.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE (NaN or infinity other than f);
+ ZSHIFT_ERR_DOMAIN unless 0 < fovy < 180, aspect > 0, 0 < n < f. `out` untouched on error.
  */
-ZshiftStatus zshift_shift_of_bias(double n,
-                                  double f,
-                                  ZshiftClip clip,
-                                  ZshiftFormat format,
-                                  ZshiftBiasApi api,
-                                  double bias,
-                                  double pz,
-                                  double *out);
+ZshiftStatus zshift_perspective(double fovy, double aspect, double n, double f, float *out);
+
+/*
+ Writes the glFrustum(l, r, b, t, n, f) matrix with the depth row of `clip` (a ZSHIFT_CLIP_*):
+ m10, m14 = -(f+n)/(f-n), -2fn/(f-n) for [-1, 1]; -f/(f-n), -fn/(f-n) for [0, 1];
+ n/(f-n), fn/(f-n) reversed; with f = +INFINITY: -1, -2n; -1, -n; 0, n.
+
+ Errors: as `zshift_frustum`; ZSHIFT_ERR_DOMAIN for an unknown `clip`. `out` untouched on error.
+ */
+ZshiftStatus zshift_projection(double l,
+                               double r,
+                               double b,
+                               double t,
+                               double n,
+                               double f,
+                               ZshiftClip clip,
+                               float *out);
+
+/*
+ Writes the tweaked infinite projection (Lengyel, GDC 2007; GLM tweakedInfinitePerspective):
+ the glFrustum(l, r, b, t, n, -) x/y rows, m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+ With tweak >= ZSHIFT_MIN_INFINITE_TWEAK geometry at any distance stays inside the clip volume
+ in float arithmetic (the plain infinite projection puts it on the far plane, where GL_LESS
+ against a cleared 1.0 rejects it).
+
+ Errors: as `zshift_frustum` (with f = +INFINITY); ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
+ unless 0 <= tweak < 1. `out` untouched on error.
+ */
+ZshiftStatus zshift_tweaked_infinite(double l,
+                                     double r,
+                                     double b,
+                                     double t,
+                                     double n,
+                                     double tweak,
+                                     float *out);
+
+/*
+ Writes the glOrtho(l, r, b, t, n, f) matrix with the depth row of `clip` (column-major, 16
+ floats): m0 = 2/(r-l), m5 = 2/(t-b), m12 = -(r+l)/(r-l), m13 = -(t+b)/(t-b), m15 = 1, and
+ m10, m14 = -2/(f-n), -(f+n)/(f-n) for [-1, 1] (glOrtho's own); -1/(f-n), -n/(f-n) for [0, 1];
+ 1/(f-n), f/(f-n) reversed. Depth is linear in eye distance; n may be 0 or negative.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE for NaN or an infinity;
+ ZSHIFT_ERR_DOMAIN if l == r, b == t, f <= n, or `clip` is unknown; ZSHIFT_ERR_OVERFLOW.
+ `out` untouched on error.
+ */
+ZshiftStatus zshift_ortho(double l,
+                          double r,
+                          double b,
+                          double t,
+                          double n,
+                          double f,
+                          ZshiftClip clip,
+                          float *out);
 
 /*
  Writes the smallest |epsilon| that moves depth by one step of a `bits`-bit depth buffer:
@@ -621,71 +782,86 @@ ZshiftStatus zshift_min_relative_epsilon(double n,
                                          double *out);
 
 /*
- Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
- base on a real rasterizer, by an error model whose every term is a worst-case bound: the
- depth quantum, f32 rounding of the vertex transform, of the vertex coordinates and of the
- depth interpolation, and sub-pixel snapping of sloped planes (seed 004); seed 000's eq.
- 4.1.3/4.1.7 with seed 002's quantum. Also the bleed-through gap and the glPolygonOffset
- equivalent. Verified on Mesa llvmpipe with D16, D24 and D32F (tests/gl_recommend.rs).
+ Writes the exact depth step of an orthographic projection (`zshift_ortho`) at eye distance
+ `d`: the shift that moves the stored window depth by the format's spacing r at w(d), which
+ is r*(f - n) (window depth is linear in d: (d - n)/(f - n), reversed (f - d)/(f - n)). For
+ UNORM formats the same at every distance; for FLOAT32, r = 2^(e-23) at the stored depth.
 
- Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
- or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
- viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
- negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
- ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+ Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (f <= n, d outside
+ [n, f], unknown clip or format). `*out` untouched on error.
  */
-ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
+ZshiftStatus zshift_ortho_depth_step(double n,
+                                     double f,
+                                     ZshiftClip clip,
+                                     ZshiftFormat format,
+                                     double d,
+                                     double *out);
 
 /*
- Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
- `scene` with element 10 scaled by 1 + epsilon of `zshift_recommend`, rounded away from the
- plain element (the offset is never lost to float rounding). Column-major, 16 floats, for
- glLoadMatrixf or glUniformMatrix4fv(.., GL_FALSE, ..).
+ Writes the constant depth bias of `api` (a ZSHIFT_BIAS_*: glPolygonOffset units, Direct3D
+ DepthBias before rounding, Vulkan depthBiasConstantFactor) equivalent to moving geometry at
+ `pz` toward the camera by `delta`: (w(d - delta) - w(d)) / r, d = -pz. Negative under
+ [-1, 1] and [0, 1], positive reversed. For Direct3D round away from zero.
 
- Errors: as `zshift_recommend`; ZSHIFT_ERR_OVERFLOW if element 10 leaves float. `out` is
- untouched on error.
+ Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz or
+ pz + delta outside [-f, -n], unknown enum). `*out` untouched on error.
  */
-ZshiftStatus zshift_recommend_matrix(const ZshiftScene *scene, float *out);
+ZshiftStatus zshift_bias_of_shift(double n,
+                                  double f,
+                                  ZshiftClip clip,
+                                  ZshiftFormat format,
+                                  ZshiftBiasApi api,
+                                  double delta,
+                                  double pz,
+                                  double *out);
 
 /*
- Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
- base when both are drawn under clip convention `clip` (a ZSHIFT_CLIP_*): the model of
- `zshift_recommend` with each term taken through that convention's depth mapping (README,
- "Verified on a rasterizer"). Verified on Mesa llvmpipe (tests/gl_recommend_clip.rs).
+ Writes the eye-space shift toward the camera that a constant `bias` of `api` makes at `pz`:
+ the inverse of `zshift_bias_of_shift`.
 
- - ZSHIFT_CLIP_NEG_ONE_TO_ONE: exactly `zshift_recommend`.
- - ZSHIFT_CLIP_ZERO_TO_ONE (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_LESS): a
-   constant NDC offset through element 10; `epsilon` is Lengyel's element-10 epsilon
-   (m10 * (1 + epsilon), negative), `ndc_offset` = `window_offset` its magnitude.
- - ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (same glClipControl, GL_GREATER, glClearDepth(0)): a
-   relative offset through element 14 (m14 * (1 + epsilon), every point moved from d to
-   d / (1 + epsilon); it works where m10 = 0, f = +INFINITY); `epsilon` is that relative
-   epsilon (positive); `ndc_offset` and `window_offset` are the offset at decal_far, the
-   smallest over the decal; `polygon_offset_factor` and `polygon_offset_units` are 0 (no
-   constant glPolygonOffset matches a relative offset).
-
- In every case `delta_at_far` is the eye-space shift toward the camera the offset amounts to
- at decal_far, `bleed_gap` the documented bleed-through gap, and `quantum` the format's
- spacing at the decal's farthest point. `zshift_recommend_clip_matrix` gives the matrix.
-
- Errors: as `zshift_recommend`; ZSHIFT_ERR_DOMAIN for an unknown `clip`; ZSHIFT_ERR_OVERFLOW
- if a result or matrix element overflows. `*out` is untouched on error.
+ Errors: as `zshift_bias_of_shift`; ZSHIFT_ERR_UNRESOLVABLE if the biased depth is stored at
+ no distance. `*out` untouched on error.
  */
-ZshiftStatus zshift_recommend_clip(const ZshiftScene *scene,
-                                   ZshiftClip clip,
-                                   ZshiftRecommendation *out);
+ZshiftStatus zshift_shift_of_bias(double n,
+                                  double f,
+                                  ZshiftClip clip,
+                                  ZshiftFormat format,
+                                  ZshiftBiasApi api,
+                                  double bias,
+                                  double pz,
+                                  double *out);
 
 /*
- Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
- ZSHIFT_CLIP_*): `zshift_projection`'s matrix of the scene's frustum with element 10 lowered
- by the NDC offset (NEG_ONE_TO_ONE, ZERO_TO_ONE) or element 14 scaled by 1 + epsilon
- (REVERSED_ZERO_TO_ONE), rounded away from the plain element so the offset is never lost to
- float rounding. Column-major, 16 floats; draw the base with the plain matrix of the same
- convention.
+ Writes the tightest planes for a scene between eye distances `nearest` and `farthest`:
+ `out[0]` = n, `out[1]` = f (possibly +INFINITY: then use the tweaked infinite projection or
+ reversed Z), keeping a window-depth margin of 2^-22 inside each plane so f32 rounding clips
+ no vertex.
 
- Errors: as `zshift_recommend_clip`. `out` is untouched on error.
+ Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN unless
+ 0 < nearest <= farthest. `out[0..2]` untouched on error.
  */
-ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip clip, float *out);
+ZshiftStatus zshift_tight_planes(double nearest, double farthest, double *out);
+
+/*
+ Writes the smallest single offset that moves stored depth by at least `steps` steps at every
+ distance in `[lo, hi]`: `out[0]` = the offset (`kind` ZSHIFT_OFFSET_NDC: a signed NDC offset
+ toward the camera for element 10; ZSHIFT_OFFSET_RELATIVE: epsilon for element 14),
+ `out[1]`, `out[2]` = the eye-space shifts it makes at lo and at hi. Multiply `out[0]` by k for
+ the k-th stacked decal layer; keep k * `out[2]` below the gap where decals bleed through.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, range
+ outside `[n, f]` or lo > hi, steps < 1, unknown enum), ZSHIFT_ERR_UNRESOLVABLE.
+ `out[0..3]` untouched on error.
+ */
+ZshiftStatus zshift_range_offset(double n,
+                                 double f,
+                                 ZshiftClip clip,
+                                 ZshiftFormat format,
+                                 ZshiftOffsetKind kind,
+                                 double lo,
+                                 double hi,
+                                 double steps,
+                                 double *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -25,18 +25,30 @@ use std::panic::{catch_unwind, UnwindSafe};
 
 use crate::error::{ErrorKind, Result};
 
-mod builders;
+// The header follows this order (cbindgen reads the modules as declared): the front door, the
+// recommendation, the seed-compatible LoadOffsetMatrix family and the offset projections, the
+// builders, precision, polygon offset, planning. Blank lines keep rustfmt from sorting them.
 mod kinds;
 mod last_error;
-mod offset;
-mod plan;
-mod polygon_offset;
-mod precision;
+
+mod matrix_in;
+
 mod recommend;
+
+mod offset;
+
+mod builders;
+
+mod precision;
+
+mod polygon_offset;
+
+mod plan;
 
 pub use builders::*;
 pub use kinds::*;
 pub use last_error::zshift_last_error;
+pub use matrix_in::*;
 pub use offset::*;
 pub use plan::*;
 pub use polygon_offset::*;

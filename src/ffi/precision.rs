@@ -190,3 +190,25 @@ pub extern "C" fn zshift_min_relative_epsilon(
         DepthMapping::projection(n, f, clip_of(clip)?)?.min_relative_epsilon(d, format_of(format)?)
     })
 }
+
+/// Writes the exact depth step of an orthographic projection (`zshift_ortho`) at eye distance
+/// `d`: the shift that moves the stored window depth by the format's spacing r at w(d), which
+/// is r*(f - n) (window depth is linear in d: (d - n)/(f - n), reversed (f - d)/(f - n)). For
+/// UNORM formats the same at every distance; for FLOAT32, r = 2^(e-23) at the stored depth.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (f <= n, d outside
+/// [n, f], unknown clip or format). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_ortho_depth_step(
+    n: f64,
+    f: f64,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        let o = crate::orthographic::Ortho::new(-1.0, 1.0, -1.0, 1.0, n, f)?;
+        o.depth_step(clip_of(clip)?, format_of(format)?, d)
+    })
+}

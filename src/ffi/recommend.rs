@@ -95,7 +95,7 @@ pub struct ZshiftRecommendation {
 
 impl ZshiftRecommendation {
     /// The C record of a recommendation: its offsets, then the error terms it was built from.
-    fn new(
+    pub(super) fn new(
         epsilon: f64,
         ndc_offset: f64,
         window_offset: f64,

@@ -11,8 +11,8 @@
 use std::ffi::{c_char, CStr};
 
 use zshift::ffi::{
-    self, ZshiftBiasApi, ZshiftClip, ZshiftFormat, ZshiftOffsetKind, ZshiftRecommendation,
-    ZshiftScene,
+    self, ZshiftBiasApi, ZshiftClip, ZshiftDecal, ZshiftFormat, ZshiftOffsetKind,
+    ZshiftRecommendation, ZshiftScene,
 };
 
 /// The named inputs the exported functions take. Each function reads the fields it needs.
@@ -44,7 +44,48 @@ pub struct Inputs {
     pub api: ZshiftBiasApi,
     pub kind: ZshiftOffsetKind,
     pub scene: ZshiftScene,
+    /// The engine's own projection for the matrix-in entry points.
+    pub matrix: Matrix,
+    /// What the engine knows about a decal, for the matrix-in recommendation.
+    pub decal: ZshiftDecal,
+    /// An NDC offset toward the camera.
+    pub ndc: f64,
 }
+
+/// A column-major float[16], passed by pointer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Matrix(pub [f32; 16]);
+
+/// `glFrustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000)` as f32 (what VALID_SCENE describes).
+const VALID_MATRIX: Matrix = Matrix([
+    1.0,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    1.333_333_3,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    -1.000_2,
+    -1.0,
+    0.0,
+    0.0,
+    -0.200_02,
+    0.0,
+]);
+
+const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    viewport_width: 1920,
+    viewport_height: 1080,
+    format: ZshiftFormat { value: 0x81A6 },
+    subpixel_bits: 8,
+    decal_near: 49.0,
+    decal_far: 51.0,
+    slope: 0.5,
+    exact_depth: 0,
+};
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
     l: -0.1,
@@ -93,6 +134,9 @@ impl Inputs {
         api: ZshiftBiasApi { value: 0 },
         kind: ZshiftOffsetKind { value: 0 },
         scene: VALID_SCENE,
+        matrix: VALID_MATRIX,
+        decal: VALID_DECAL,
+        ndc: 1e-5,
     };
 
     /// Every f64 input, the scene's included, for code that sets them by index.
@@ -127,6 +171,10 @@ impl Inputs {
             &mut s.decal_near,
             &mut s.decal_far,
             &mut s.slope,
+            &mut self.ndc,
+            &mut self.decal.decal_near,
+            &mut self.decal.decal_far,
+            &mut self.decal.slope,
         ]
     }
 
@@ -182,6 +230,20 @@ by_value!(
     ZshiftBiasApi,
     ZshiftOffsetKind
 );
+
+impl Arg for Matrix {
+    type C = *const f32;
+    fn arg(&self) -> *const f32 {
+        self.0.as_ptr()
+    }
+}
+
+impl Arg for ZshiftDecal {
+    type C = *const ZshiftDecal;
+    fn arg(&self) -> *const ZshiftDecal {
+        self
+    }
+}
 
 impl Arg for ZshiftScene {
     type C = *const ZshiftScene;
@@ -295,6 +357,13 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_recommend_matrix(scene) -> [F32; 16]),
     writes!(zshift_recommend_clip(scene, clip) -> [F64; RECOMMENDATION]),
     writes!(zshift_recommend_clip_matrix(scene, clip) -> [F32; 16]),
+    writes!(zshift_offset_matrix(matrix, clip, delta, d) -> [F32; 16]),
+    writes!(zshift_offset_matrix_ndc(matrix, clip, ndc) -> [F32; 16]),
+    writes!(zshift_decal_matrix(matrix, clip, decal) -> [F32; 16]),
+    writes!(zshift_recommend_for_matrix(matrix, clip, decal) -> [F64; RECOMMENDATION]),
+    writes!(zshift_ortho(l, r, b, t, n, f, clip) -> [F32; 16]),
+    writes!(zshift_offset_ortho(l, r, b, t, n, f, clip, delta) -> [F32; 16]),
+    writes!(zshift_ortho_depth_step(n, f, clip, format, d) -> [F64; 1]),
 ];
 
 /// The entry named `name`.
@@ -619,6 +688,9 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
             value: src.below(2) as i32,
         },
         scene: VALID_SCENE,
+        matrix: VALID_MATRIX,
+        decal: VALID_DECAL,
+        ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
         l: i.l,
