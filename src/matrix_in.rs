@@ -356,19 +356,20 @@ fn frustum_of(m: &[f32; 16], r: &Recognized, handedness: f64) -> Result<Frustum>
     Frustum::new(l, rt, b, t, n, r.far)
 }
 
-/// The recommended offset for a decal drawn with the engine's own perspective matrix `m`
-/// (`crate::recommend`'s model, under `clip`), and the decal's matrix: `m` with the
-/// recommendation applied to its own offset element (10 for `[−1, 1]` and `[0, 1]`, a constant
-/// NDC offset; 14 for reversed Z, a relative one), rounded outward, every other element
-/// bit-identical. The recommendation's `matrix` field is replaced by that matrix.
+/// The recommended offset for a decal drawn with the engine's own matrix `m` under `clip`, and
+/// the decal's matrix: `m` with the recommendation applied to its own offset element, rounded
+/// outward, every other element bit-identical (the recommendation's `matrix` field).
 ///
-/// The frustum the model needs is read from `m` (see [`recognize`]); a tweaked infinite
-/// projection is treated as infinite (its tweak moves depth by less than one part in a
-/// thousand for any tweak up to 2⁻¹⁰, and the offset is applied to the engine's own elements).
+/// Perspective: [`crate::recommend::recommend_clip`]'s model on the frustum read from `m`
+/// (`l, r, b, t` from the x and y rows, `n, f` from [`recognize`]); element 10 (a constant NDC
+/// offset) under `[−1, 1]` and `[0, 1]`, element 14 (relative) reversed. A tweaked infinite
+/// projection is treated as infinite (its tweak, at most 2⁻¹⁰ here, moves depth by less than one
+/// part in a thousand; the offset is applied to the engine's own elements).
+/// Orthographic: [`crate::orthographic::recommend`] on the box read from `m`; element 14.
 ///
 /// # Errors
-/// As [`recognize`] and [`crate::recommend::recommend_clip`]; [`ErrorKind::Domain`] for an
-/// orthographic matrix (the model is for perspective depth) or a tweak above 2⁻¹⁰.
+/// As [`recognize`], [`crate::recommend::recommend_clip`] and
+/// [`crate::orthographic::recommend`]; [`crate::ErrorKind::Domain`] for a tweak above 2⁻¹⁰.
 pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRecommendation> {
     let r = recognize(m, clip)?;
     let Shape::Perspective {
@@ -376,15 +377,16 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
         tweaked,
     } = r.shape
     else {
-        return Err(domain(
-            "the recommendation needs a perspective matrix; for an orthographic one use the eye-shift or NDC offset with the depth step",
-        ));
+        let mut rec = crate::orthographic::recommend(&ortho_scene(m, &r, decal)?, clip)?;
+        rec.matrix = moved(m, 14, DoubleDouble::from_f64(rec.ndc_offset))?;
+        return Ok(rec);
     };
-    if tweaked && (handedness * f64::from(m[10]) + 1.0).abs() > 1.0 / 1024.0 {
+    let tweak = 1.0 - handedness * f64::from(m[10]);
+    if tweaked && tweak.abs() > 1.0 / 1024.0 {
         return Err(domain(
             "the matrix is a tweaked infinite projection with a tweak above 2^-10: the model would not describe its depth",
         )
-        .with_value("m[10]", f64::from(m[10])));
+        .with_value("tweak", tweak));
     }
     let scene = scene(frustum_of(m, &r, handedness)?, decal);
     let mut rec = crate::recommend::recommend_clip(&scene, clip)?;
@@ -396,6 +398,28 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
         moved(m, 10, DoubleDouble::from_f64(handedness * rec.ndc_offset))?
     };
     Ok(rec)
+}
+
+/// The orthographic model's scene for a recognised orthographic matrix: the box from the x and
+/// y rows (`x_ndc = m0·x + m12`), sorted (a y flip changes no footprint).
+fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::orthographic::Scene> {
+    let side = |scale: f32, shift: f32| {
+        let (scale, shift) = (f64::from(scale), f64::from(shift));
+        let (a, b) = ((-1.0 - shift) / scale, (1.0 - shift) / scale);
+        (a.min(b), a.max(b))
+    };
+    let (l, rt) = side(m[0], m[12]);
+    let (b, t) = side(m[5], m[13]);
+    let (near, far) = (r.near.min(r.far), r.near.max(r.far));
+    Ok(crate::orthographic::Scene {
+        ortho: crate::orthographic::Ortho::new(l, rt, b, t, near, far)?,
+        viewport: decal.viewport,
+        format: decal.format,
+        depth_range: decal.depth_range,
+        slope: decal.slope,
+        exact_depth: decal.exact_depth,
+        snapping: decal.snapping,
+    })
 }
 
 /// The model's scene for a decal under a frustum (the one place that knows `Scene`'s fields).

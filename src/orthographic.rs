@@ -158,3 +158,176 @@ pub fn offset_ortho(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]>
     m[14] = rounded_outward(m[14], DoubleDouble::product(f64::from(m[10]), delta))?;
     Ok(m)
 }
+
+// ---------------------------------------------------------------------------------------------
+// The recommended offset for orthographic depth: `crate::recommend`'s model (R1),
+// `Δw ≥ q + 2(T + V + I + S)`, with each term taken through the linear window depth
+// `w(d) = w₀ ± d/(f − n)` (`|dw/dd| = 1/(f − n)` =: g at every distance).
+// ---------------------------------------------------------------------------------------------
+
+use crate::recommend::{ClipRecommendation, ErrorTerms, Snapping};
+
+/// The unit roundoff of f32.
+const U: f64 = 1.0 / 16_777_216.0;
+
+/// What an engine knows about a decal over an orthographic base.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene {
+    /// The `glOrtho` box the base is drawn with.
+    pub ortho: Ortho,
+    /// Viewport width and height in pixels.
+    pub viewport: [u32; 2],
+    /// The depth attachment's format.
+    pub format: DepthFormat,
+    /// The decal's nearest and farthest eye distance (`n ≤ d₁ ≤ d₂ ≤ f`).
+    pub depth_range: [f64; 2],
+    /// Eye-space tilt of the plane, `|∂z/∂x| + |∂z/∂y|`.
+    pub slope: f64,
+    /// Every corner of base and decal has the same f32 eye-space z (requires `slope == 0`).
+    pub exact_depth: bool,
+    /// How the rasterizer positions vertices before depth setup.
+    pub snapping: Snapping,
+}
+
+/// The model's terms for an orthographic `scene` under `clip` (window-depth units):
+///
+/// * `q`: the format's spacing at the decal's largest window depth.
+/// * `T`: `clip_z = m10·z + m14` (two roundings, relative to `|m10|·d₂` and `|ndc|`), `w = 1`
+///   exactly, the viewport mapping (one rounding relative to `w`):
+///   `T = u·(k·(|m10|·d_max + |ndc|_max) + w_max)`, `k` = ½ under `[−1, 1]`, 1 otherwise.
+/// * `V`: rounding the decal's eye z (`u·d₂`) and, on a plane of slope `s`, its x or y
+///   (`s·u·X`, `X` the box's largest half-extent), through `g`: `V = u·g·(d₂ + s·X)`; 0 with
+///   `exact_depth`.
+/// * `I`: `u·(3·w_max + 3·(w_max − w_min))`, as in the perspective model; 0 with `exact_depth`.
+/// * `S`: `2^-(b+1)·(gₓ + g_y)` with `gₓ = s·g·(r − l)/W`, `g_y = s·g·(t − b)/H` per pixel; 0
+///   unsnapped.
+///
+/// # Errors
+/// As [`check`].
+pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
+    check(scene)?;
+    let o = &scene.ortho;
+    let [d1, d2] = scene.depth_range;
+    let (w1, w2) = (o.window_depth(clip, d1)?, o.window_depth(clip, d2)?);
+    let (w_min, w_max) = (w1.min(w2), w1.max(w2));
+    let span = o.far - o.near;
+    let g = 1.0 / span;
+    let (m10, _) = depth_row(o, clip);
+    let k = if clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let ndc_of = |w: f64| if k == 0.5 { 2.0 * w - 1.0 } else { w };
+    let ndc_max = ndc_of(w1).abs().max(ndc_of(w2).abs());
+    let d_max = d1.abs().max(d2.abs());
+    let half_extent = [o.left, o.right, o.bottom, o.top]
+        .into_iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let s = scene.slope;
+    let (vertex, interpolation) = if scene.exact_depth {
+        (0.0, 0.0)
+    } else {
+        (
+            U * g * (d_max + s * half_extent),
+            U * (3.0 * w_max + 3.0 * (w_max - w_min)),
+        )
+    };
+    let snap = match scene.snapping {
+        Snapping::Unsnapped => 0.0,
+        Snapping::SubpixelBits(b) => {
+            let [width, height] = scene.viewport.map(f64::from);
+            let gx = s * g * (o.right - o.left).abs() / width;
+            let gy = s * g * (o.top - o.bottom).abs() / height;
+            2f64.powi(-(b as i32) - 1) * (gx + gy)
+        }
+    };
+    Ok(ErrorTerms {
+        quantum: scene.format.spacing_at(w_max)?,
+        transform: U * (k * (m10.abs() * d_max + ndc_max) + w_max),
+        vertex,
+        interpolation,
+        snap,
+    })
+}
+
+/// The smallest constant offset that model (R1) guarantees ends z-fighting for a decal over an
+/// orthographic base under `clip`, and the decal's matrix ([`offset_ortho`] of the eye shift
+/// `Δw·(f − n)`, which moves window depth by `Δw` everywhere). `ndc_offset` is the signed NDC
+/// change (negative toward the camera, positive reversed), `epsilon` and `relative_epsilon`
+/// are 0 (no element-10 or relative form), `delta_at_far` the eye shift (the same at every
+/// distance), `bleed_gap` the eye distance of `2Δw − q`, `polygon_offset` the
+/// `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum.
+///
+/// # Errors
+/// As [`check`]; [`crate::ErrorKind::Overflow`] if the matrix leaves f32.
+pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
+    let terms = error_terms(scene, clip)?;
+    let window_offset = terms.window_offset();
+    let o = &scene.ortho;
+    let span = o.far - o.near;
+    let per_ndc = if clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let toward = if clip == ClipDepth::ReversedZeroToOne {
+        1.0
+    } else {
+        -1.0
+    };
+    let delta = window_offset * span;
+    let factor = match scene.snapping {
+        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::Unsnapped => 0.0,
+    };
+    Ok(ClipRecommendation {
+        clip,
+        ndc_offset: toward * window_offset / per_ndc,
+        relative_epsilon: 0.0,
+        epsilon: 0.0,
+        polygon_offset: [factor, (window_offset - 2.0 * terms.snap) / terms.quantum],
+        window_offset,
+        delta_at_far: delta,
+        bleed_gap: (2.0 * window_offset - terms.quantum) * span,
+        matrix: offset_ortho(o, clip, delta)?,
+        terms,
+    })
+}
+
+/// The scene's rules: the decal's range inside `[n, f]` and increasing, a nonzero viewport, a
+/// finite non-negative slope, `exact_depth` only facing the camera, at most 32 sub-pixel bits.
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] and [`crate::ErrorKind::Domain`], naming the input.
+pub fn check(scene: &Scene) -> Result<()> {
+    let [d1, d2] = scene.depth_range;
+    scene.ortho.check_distance(d1)?;
+    scene.ortho.check_distance(d2)?;
+    if d1 > d2 {
+        return Err(domain("the decal's nearest distance exceeds its farthest")
+            .with_value("decal_near", d1));
+    }
+    if scene.viewport.contains(&0) {
+        return Err(domain("the viewport must have a nonzero width and height"));
+    }
+    finite(scene.slope, "the plane slope is NaN or infinite")
+        .map_err(|e| e.with_value("slope", scene.slope))?;
+    if scene.slope < 0.0 {
+        return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0")
+            .with_value("slope", scene.slope));
+    }
+    if scene.exact_depth && scene.slope != 0.0 {
+        return Err(
+            domain("exact_depth needs a plane facing the camera (slope 0)")
+                .with_value("slope", scene.slope),
+        );
+    }
+    if let Snapping::SubpixelBits(b) = scene.snapping {
+        if b > 32 {
+            return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32")
+                .with_integer("subpixel_bits", i64::from(b)));
+        }
+    }
+    Ok(())
+}
