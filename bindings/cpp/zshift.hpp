@@ -412,6 +412,95 @@ inline Matrix recommend_clip_matrix(const Scene &scene, Clip clip) {
       [&](float *out) { return zshift_recommend_clip_matrix(&scene, detail::to_c(clip), out); });
 }
 
+// ---- The front door: the engine's own matrix in, the decal's matrix out ----
+
+/// What the engine knows about a decal besides its matrix (the C `ZshiftDecal`). Fill every
+/// field; make_decal() names them in order.
+using Decal = ZshiftDecal;
+
+/// A Decal: viewport, depth format, GL_SUBPIXEL_BITS (or subpixel_unsnapped), the decal's
+/// nearest and farthest eye distance, its plane's slope |dz/dx| + |dz/dy|, and whether every
+/// corner of base and decal has the same float eye z.
+inline Decal make_decal(std::uint32_t viewport_width, std::uint32_t viewport_height, Format format,
+                        std::int32_t subpixel_bits, double decal_near, double decal_far, double slope,
+                        bool exact_depth = false) noexcept {
+  Decal d{};
+  d.viewport_width = viewport_width;
+  d.viewport_height = viewport_height;
+  d.format = detail::to_c(format);
+  d.subpixel_bits = subpixel_bits;
+  d.decal_near = decal_near;
+  d.decal_far = decal_far;
+  d.slope = slope;
+  d.exact_depth = exact_depth ? 1u : 0u;
+  return d;
+}
+
+/// The decal's matrix: the engine's own projection `m` (16 floats, column-major, e.g.
+/// glm::value_ptr(P)) with the recommended offset for `decal` in its own offset element, every
+/// other element bit-identical (zshift_decal_matrix). Throws Error (what() names the element or
+/// field): a matrix that is not a perspective or orthographic projection, a convention mismatch
+/// (a reversed-Z matrix with Clip::neg_one_to_one), a bad decal.
+inline Matrix decal_matrix(const float *m, Clip clip, const Decal &decal) {
+  return detail::matrix([&](float *out) { return zshift_decal_matrix(m, detail::to_c(clip), &decal, out); });
+}
+/// decal_matrix() of a Matrix.
+inline Matrix decal_matrix(const Matrix &m, Clip clip, const Decal &decal) {
+  return decal_matrix(m.data(), clip, decal);
+}
+
+/// The recommendation behind decal_matrix() (zshift_recommend_for_matrix). Throws Error: as
+/// decal_matrix().
+inline Recommendation recommend_for_matrix(const float *m, Clip clip, const Decal &decal) {
+  Recommendation out{};
+  detail::check(zshift_recommend_for_matrix(m, detail::to_c(clip), &decal, &out));
+  return out;
+}
+
+/// The engine's own projection `m` with geometry at eye distance `d` moved toward the camera by
+/// `delta` (zshift_offset_matrix): element 10 (perspective [-1, 1], [0, 1]), 14 (perspective
+/// reversed, relative; orthographic, constant), rounded outward; every other element
+/// bit-identical. Throws Error: as decal_matrix(); d <= 0 or d - delta <= 0 (perspective).
+inline Matrix offset_matrix(const float *m, Clip clip, double delta, double d) {
+  return detail::matrix([&](float *out) { return zshift_offset_matrix(m, detail::to_c(clip), delta, d, out); });
+}
+/// offset_matrix() of a Matrix.
+inline Matrix offset_matrix(const Matrix &m, Clip clip, double delta, double d) {
+  return offset_matrix(m.data(), clip, delta, d);
+}
+
+/// The engine's own projection `m` with NDC depth moved toward the camera by `ndc`
+/// (zshift_offset_matrix_ndc). Throws Error: as decal_matrix().
+inline Matrix offset_matrix_ndc(const float *m, Clip clip, double ndc) {
+  return detail::matrix([&](float *out) { return zshift_offset_matrix_ndc(m, detail::to_c(clip), ndc, out); });
+}
+/// offset_matrix_ndc() of a Matrix.
+inline Matrix offset_matrix_ndc(const Matrix &m, Clip clip, double ndc) {
+  return offset_matrix_ndc(m.data(), clip, ndc);
+}
+
+/// glOrtho(l, r, b, t, n, f) with the depth row of `clip` (zshift_ortho).
+inline Matrix ortho(double l, double r, double b, double t, double n, double f, Clip clip) {
+  return detail::matrix([&](float *out) { return zshift_ortho(l, r, b, t, n, f, detail::to_c(clip), out); });
+}
+
+/// ortho() with every point moved toward the camera by `delta` (element 14, rounded outward).
+inline Matrix offset_ortho(double l, double r, double b, double t, double n, double f, Clip clip, double delta) {
+  return detail::matrix(
+      [&](float *out) { return zshift_offset_ortho(l, r, b, t, n, f, detail::to_c(clip), delta, out); });
+}
+
+/// The exact depth step of an orthographic projection at eye distance d: r * (f - n).
+inline double ortho_depth_step(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_ortho_depth_step(n, f, detail::to_c(clip), detail::to_c(format), d, out);
+  });
+}
+
+/// The detail of the last failed zshift call on this thread ("" after a success): which
+/// input, its value and why. zshift::Error::what() already carries it.
+inline std::string last_error() { return zshift_last_error(); }
+
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }
 
