@@ -38,6 +38,8 @@ __all__ = [
     "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
     "range_offset", "recommend_clip", "recommend_clip_matrix",
     "status_message", "version", "library_path",
+    "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
+    "ortho_depth_step",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
@@ -483,3 +485,130 @@ def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, s
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
+
+
+# ---- The front door: the engine's own matrix in, the decal's matrix out ----
+
+
+class _Decal(ctypes.Structure):
+    """The C ``ZshiftDecal`` (include/zshift.h), field for field."""
+
+    _fields_ = [
+        ("viewport_width", ctypes.c_uint32), ("viewport_height", ctypes.c_uint32),
+        ("format", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
+        ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
+        ("exact_depth", ctypes.c_uint32),
+    ]
+
+
+_FLOAT16 = ctypes.c_float * 16
+
+
+def _front_door():
+    """The library, with the front door's signatures declared (the argument types are structs of
+    one 32-bit integer, passed as that integer)."""
+    lib = _lib()
+    if not getattr(lib, "_zshift_front_door", False):
+        d, i32, status = ctypes.c_double, ctypes.c_int32, ctypes.c_int32
+        matrix, float_out = ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float)
+        decal, record = ctypes.POINTER(_Decal), ctypes.POINTER(_library.ZshiftRecommendation)
+        for name, argtypes in {
+            "zshift_offset_matrix": [matrix, i32, d, d, float_out],
+            "zshift_offset_matrix_ndc": [matrix, i32, d, float_out],
+            "zshift_decal_matrix": [matrix, i32, decal, float_out],
+            "zshift_recommend_for_matrix": [matrix, i32, decal, record],
+            "zshift_ortho": [d] * 6 + [i32, float_out],
+            "zshift_offset_ortho": [d] * 6 + [i32, d, float_out],
+            "zshift_ortho_depth_step": [d, d, i32, i32, d, ctypes.POINTER(ctypes.c_double)],
+        }.items():
+            fn = getattr(lib, name)
+            fn.argtypes, fn.restype = argtypes, status
+        lib._zshift_front_door = True
+    return lib
+
+
+def _engine_matrix(m):
+    # 16 floats, column-major. A 4x4 array is refused rather than guessed: numpy's C order would
+    # read a column-major matrix transposed (flatten with order="F", or pass the GL-ready array).
+    shape = getattr(m, "shape", None)
+    if shape is not None and tuple(shape) != (16,):
+        raise TypeError(f"the matrix must be 16 floats in column-major order, not an array of shape {tuple(shape)}")
+    values = list(m)
+    if len(values) != 16:
+        raise TypeError(f"the matrix must be 16 floats in column-major order, not {len(values)} values")
+    return _FLOAT16(*values)
+
+
+def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+    width, height = viewport
+    near, far = decal_depths
+    fmt = _enum(depth_format, Format)
+    for name, value, low, high in (
+        ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
+        ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
+    ):
+        if not isinstance(value, int) or not low <= value < high:
+            raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
+    return _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0)
+
+
+def offset_matrix(m, clip, delta, d):
+    """The engine's own projection ``m`` (16 floats, column-major: what glUniformMatrix4fv takes,
+    from any engine, perspective or orthographic) with geometry at eye distance ``d`` moved toward
+    the camera by ``delta`` (``zshift_offset_matrix``). Only the offset element changes (10, or 14
+    for reversed-Z perspective and for orthographic), rounded outward; the other 15 are
+    bit-identical. ``clip`` is the :class:`Clip` ``m`` was built for: a reversed-Z matrix passed as
+    ``Clip.NEG_ONE_TO_ONE`` is an error, not a wrong matrix.
+
+    Raises :class:`ZshiftError` naming the element or input (``DOMAIN``: not a projection, a
+    convention mismatch, ``d <= 0`` or ``d - delta <= 0``; ``NOT_FINITE``; ``OVERFLOW``);
+    ``TypeError`` for a matrix that is not 16 values.
+    """
+    mat = _engine_matrix(m)
+    return _matrix(lambda out: _front_door().zshift_offset_matrix(mat, _enum(clip, Clip), delta, d, out))
+
+
+def offset_matrix_ndc(m, clip, ndc):
+    """:func:`offset_matrix` for an NDC offset toward the camera (``zshift_offset_matrix_ndc``);
+    under ``Clip.NEG_ONE_TO_ONE`` an NDC offset is twice the window-depth offset."""
+    mat = _engine_matrix(m)
+    return _matrix(lambda out: _front_door().zshift_offset_matrix_ndc(mat, _enum(clip, Clip), ndc, out))
+
+
+def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                 subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The decal's matrix for the engine's own projection ``m``: the recommended offset
+    (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
+    ``m``'s own offset element, every other element bit-identical. The engine never restates its
+    frustum. Arguments as :func:`recommend`, with ``depth_format`` a :class:`Format` (or its GL
+    enum). Raises :class:`ZshiftError` naming the element or field."""
+    mat = _engine_matrix(m)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), out))
+
+
+def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                         subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
+    mat = _engine_matrix(m)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    out = _library.ZshiftRecommendation()
+    _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+def ortho(l, r, b, t, n, f, clip=Clip.NEG_ONE_TO_ONE):
+    """``glOrtho(l, r, b, t, n, f)`` with the depth row of ``clip`` (``zshift_ortho``)."""
+    return _matrix(lambda out: _front_door().zshift_ortho(l, r, b, t, n, f, _enum(clip, Clip), out))
+
+
+def offset_ortho(l, r, b, t, n, f, clip, delta):
+    """:func:`ortho` with every point moved toward the camera by ``delta`` (element 14, rounded
+    outward; ``zshift_offset_ortho``)."""
+    return _matrix(lambda out: _front_door().zshift_offset_ortho(l, r, b, t, n, f, _enum(clip, Clip), delta, out))
+
+
+def ortho_depth_step(n, f, clip, format, d):
+    """The exact depth step of an orthographic projection at eye distance ``d``: ``r*(f - n)``
+    (``zshift_ortho_depth_step``; the same at every distance for UNORM formats)."""
+    return _scalar(lambda out: _front_door().zshift_ortho_depth_step(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
