@@ -21,6 +21,7 @@ SOURCES = [
     "bindings/python/tests/test_quickstart.py",  # python3 -m unittest discover ...
     "tests/packaging/run.sh",  # bash tests/packaging/run.sh
     "tests/packaging/CMakeLists.txt",  # bash tests/packaging/run.sh
+    "tests/packaging/pip.sh",  # bash tests/packaging/pip.sh
 ]
 
 START = re.compile(r"\[quickstart-([a-z0-9-]+)\]")
