@@ -77,6 +77,40 @@ pub fn criterion_timings(dir: &Path) -> Vec<Timing> {
         .collect()
 }
 
+/// The interleaved Rust timings (benches/interleaved.rs), from its one-line JSON. Names start
+/// with "interleaved: " so that the headline finds them apart from criterion's.
+pub fn interleaved_timings(json: &str) -> Vec<Timing> {
+    [
+        ("glam_frustum", "interleaved: glam 0.34 opengl::frustum (f32), no offset"),
+        (
+            "glam_frustum_seed_tweak",
+            "interleaved: glam frustum + the seed's f32 tweak",
+        ),
+        ("zshift_frustum", "interleaved: zshift::frustum, no offset (Rust API)"),
+        (
+            "zshift_load_offset_matrix",
+            "interleaved: zshift::load_offset_matrix (Rust API)",
+        ),
+        (
+            "zshift_frustum_c_abi",
+            "interleaved: zshift_frustum, no offset (C ABI, called from Rust)",
+        ),
+        (
+            "zshift_recommend_epsilon_matrix",
+            "interleaved: zshift recommend + epsilon_matrix (Rust API, slope 1, 1920×1080)",
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(key, label)| {
+        Some(Timing {
+            source: "interleaved (Rust)",
+            name: label.to_string(),
+            ns: number_after(json, &format!("\"{key}\":"))?,
+        })
+    })
+    .collect()
+}
+
 /// The C++ harness's timings, from its one-line JSON.
 pub fn cpp_timings(json: &str) -> Vec<Timing> {
     let version = json

@@ -40,6 +40,9 @@ fn run() -> Result<(), String> {
     std::fs::create_dir_all(&docs).map_err(|e| format!("creating docs/: {e}"))?;
 
     let mut timings = cpu::criterion_timings(&target.join("criterion"));
+    if let Ok(json) = std::fs::read_to_string(target.join("bench-rust/interleaved.json")) {
+        timings.extend(cpu::interleaved_timings(&json));
+    }
     let glm_bench = target.join("bench-cpp/glm_bench");
     let cpp_json = run_tool(&glm_bench, &["time"], "")?;
     if let Some(json) = &cpp_json {
@@ -298,9 +301,9 @@ fn headline(w: &mut String, r: &Report) {
         "- CPU, through the C ABI from C++ (the same run, interleaved with GLM): \
          `zshift_frustum` costs {} of GLM's `glm::frustum<float>` and \
          `zshift_load_offset_matrix` {} of `glm::frustum<float>` + the seed's f32 tweak, every \
-         element correctly rounded (the offset element outward). Rust API (criterion): \
-         `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of glam + \
-         the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
+         element correctly rounded (the offset element outward). Rust API (interleaved, the same \
+         way): `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of \
+         glam + the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
          the seed's `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
         ratio(
             t,
@@ -312,9 +315,13 @@ fn headline(w: &mut String, r: &Report) {
             "zshift_load_offset_matrix (C ABI, called from C++)",
             "GLM 0.9.9.8 glm::frustum<float> + the seed"
         ),
-        ratio(t, "zshift::frustum", "glam 0.34"),
-        ratio(t, "zshift::load_offset_matrix", "glam frustum + the seed"),
-        ns("zshift recommend + epsilon_matrix"),
+        ratio(t, "interleaved: zshift::frustum", "interleaved: glam 0.34"),
+        ratio(
+            t,
+            "interleaved: zshift::load_offset_matrix",
+            "interleaved: glam frustum + the seed"
+        ),
+        ns("interleaved: zshift recommend + epsilon_matrix"),
         ratio(
             t,
             "zshift_load_offset_matrix + glLoadMatrixf",
@@ -382,7 +389,10 @@ fn cpu_table(w: &mut String, r: &Report) {
          each within its own harness. The C++ harness (g++ -O2) leaves every matrix whole in \
          memory (GLM's in its own `glm::mat4`, zshift's in the buffer it writes) and interleaves \
          its variants' batches, so a shared machine loads them alike. `cargo bench --bench cpu` \
-         reproduces the criterion rows; `target/bench-cpp/glm_bench time` the C++ rows.\n"
+         reproduces the criterion rows, `cargo bench --bench interleaved` the interleaved Rust \
+         rows (timed like the C++ harness) and `target/bench-cpp/glm_bench time` the C++ rows. \
+         Read ratios within one harness; criterion's, one variant after another, move most \
+         when other jobs share the machine.\n"
     );
     if !r.cpp_ran {
         let _ = writeln!(w, "(The C++ harness was not built: no GLM rows.)\n");
@@ -398,6 +408,8 @@ fn cpu_table(w: &mut String, r: &Report) {
                 r.timings,
                 "zshift_load_offset_matrix (C ABI, called from C++)",
             )
+        } else if t.source.starts_with("interleaved") {
+            find(r.timings, "interleaved: zshift::load_offset_matrix")
         } else {
             find(r.timings, "zshift::load_offset_matrix")
         };
