@@ -13,7 +13,7 @@ use std::time::Instant;
 mod seed;
 
 const CALLS: u32 = 100_000;
-const ROUNDS: usize = 31;
+const ROUNDS: usize = 41;
 
 /// Nanoseconds per call of `body` over one batch.
 fn batch<T>(mut body: impl FnMut() -> T) -> f64 {
@@ -120,10 +120,20 @@ fn main() {
             }
         }
     }
+    // Ratios round by round (the two sides under the same load), then their median.
+    let ratio = |a: usize, b: usize| {
+        median(times[a].iter().zip(&times[b]).map(|(x, y)| x / y).collect())
+    };
+    let ratios = [
+        ("ratio_frustum_to_glam", ratio(2, 0)),
+        ("ratio_offset_to_glam_tweak", ratio(3, 1)),
+    ];
     let fields: Vec<String> = variants
         .iter()
-        .zip(times)
-        .map(|((name, _), t)| format!("\"{name}\": {:.3}", median(t)))
+        .map(|(name, _)| *name)
+        .zip(times.iter().map(|t| median(t.clone())))
+        .chain(ratios)
+        .map(|(name, value)| format!("\"{name}\": {value:.3}"))
         .collect();
     println!("{{{}}}", fields.join(", "));
 }

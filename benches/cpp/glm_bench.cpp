@@ -104,7 +104,7 @@ int time_all() {
                           "zshift_load_offset_matrix_c_abi", "zshift_frustum_c_abi",
                           "zshift_perspective_c_abi"};
     std::vector<double> ns[7];
-    const int rounds = 41;
+    const int rounds = 61;
     for (int i = 0; i < rounds + 2; ++i) {
         double t[7] = {batch(glm_plain),  batch(glm_tweak),  batch(glm_double), batch(glm_perspective),
                        batch(zs_offset),  batch(zs_frustum), batch(zs_perspective)};
@@ -112,9 +112,18 @@ int time_all() {
         for (int k = 0; k < 7; ++k) ns[k].push_back(t[k]);
     }
     if (failures) return 2;
+    // Ratios round by round (the two sides a few milliseconds apart, under the same load), then
+    // their median: steadier than a ratio of medians on a machine shared with other jobs.
+    auto ratio = [&ns](int a, int b) {
+        std::vector<double> r;
+        for (size_t i = 0; i < ns[a].size(); ++i) r.push_back(ns[a][i] / ns[b][i]);
+        return median(r);
+    };
     std::printf("{\"glm_version\": \"%d.%d.%d.%d\"", GLM_VERSION_MAJOR, GLM_VERSION_MINOR,
                 GLM_VERSION_PATCH, GLM_VERSION_REVISION);
     for (int k = 0; k < 7; ++k) std::printf(", \"%s\": %.3f", keys[k], median(ns[k]));
+    std::printf(", \"ratio_frustum_to_glm\": %.3f, \"ratio_offset_to_glm_tweak\": %.3f",
+                ratio(5, 0), ratio(4, 1));
     std::printf("}\n");
     return 0;
 }

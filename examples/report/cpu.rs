@@ -159,6 +159,12 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
     .collect()
 }
 
+/// A round-by-round ratio the harnesses print (`ratio_*` keys): the median over rounds of the
+/// two sides' ratio, steadier than a ratio of medians on a shared machine.
+pub fn round_ratio(json: &str, key: &str) -> Option<f64> {
+    number_after(json, &format!("\"{key}\":"))
+}
+
 fn number_after(text: &str, key: &str) -> Option<f64> {
     let rest = text[text.find(key)? + key.len()..].trim_start();
     let end = rest

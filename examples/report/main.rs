@@ -40,8 +40,9 @@ fn run() -> Result<(), String> {
     std::fs::create_dir_all(&docs).map_err(|e| format!("creating docs/: {e}"))?;
 
     let mut timings = cpu::criterion_timings(&target.join("criterion"));
-    if let Ok(json) = std::fs::read_to_string(target.join("bench-rust/interleaved.json")) {
-        timings.extend(cpu::interleaved_timings(&json));
+    let rust_json = std::fs::read_to_string(target.join("bench-rust/interleaved.json")).ok();
+    if let Some(json) = &rust_json {
+        timings.extend(cpu::interleaved_timings(json));
     }
     let glm_bench = target.join("bench-cpp/glm_bench");
     let cpp_json = run_tool(&glm_bench, &["time"], "")?;
@@ -99,6 +100,13 @@ fn run() -> Result<(), String> {
         machine: machine(&gl_info),
         timings: &timings,
         cpp_ran: cpp_json.is_some(),
+        round_ratios: [
+            (cpp_json.as_deref(), "ratio_frustum_to_glm"),
+            (cpp_json.as_deref(), "ratio_offset_to_glm_tweak"),
+            (rust_json.as_deref(), "ratio_frustum_to_glam"),
+            (rust_json.as_deref(), "ratio_offset_to_glam_tweak"),
+        ]
+        .map(|(json, key)| json.and_then(|j| cpu::round_ratio(j, key))),
         cases: &cases,
         numeric: &numeric,
         scenes: &scenes,
@@ -254,6 +262,9 @@ struct Report<'a> {
     machine: String,
     timings: &'a [cpu::Timing],
     cpp_ran: bool,
+    /// zshift_frustum / GLM, zshift_load_offset_matrix / GLM + tweak (C++), zshift::frustum /
+    /// glam, zshift::load_offset_matrix / glam + tweak (Rust): medians of per-round ratios.
+    round_ratios: [Option<f64>; 4],
     cases: &'a [numeric::Case],
     numeric: &'a [numeric::VariantStats],
     scenes: &'a [gpu::Scene],
@@ -296,31 +307,21 @@ fn headline(w: &mut String, r: &Report) {
     let t = r.timings;
     let _ = writeln!(w, "## Headline\n");
     let ns = |name: &str| find(t, name).map_or("n/a".into(), |x| format!("{:.0} ns", x.ns));
+    let round = |x: Option<f64>| x.map_or("n/a".into(), |x| format!("{x:.2}×"));
     let _ = writeln!(
         w,
-        "- CPU, through the C ABI from C++ (the same run, interleaved with GLM): \
+        "- CPU, through the C ABI from C++ (interleaved with GLM; medians of round-by-round \
+         ratios): \
          `zshift_frustum` costs {} of GLM's `glm::frustum<float>` and \
          `zshift_load_offset_matrix` {} of `glm::frustum<float>` + the seed's f32 tweak, every \
          element correctly rounded (the offset element outward). Rust API (interleaved, the same \
          way): `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of \
          glam + the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
          the seed's `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
-        ratio(
-            t,
-            "zshift_frustum (C ABI, called from C++)",
-            "GLM 0.9.9.8 glm::frustum<float>, no"
-        ),
-        ratio(
-            t,
-            "zshift_load_offset_matrix (C ABI, called from C++)",
-            "GLM 0.9.9.8 glm::frustum<float> + the seed"
-        ),
-        ratio(t, "interleaved: zshift::frustum", "interleaved: glam 0.34"),
-        ratio(
-            t,
-            "interleaved: zshift::load_offset_matrix",
-            "interleaved: glam frustum + the seed"
-        ),
+        round(r.round_ratios[0]),
+        round(r.round_ratios[1]),
+        round(r.round_ratios[2]),
+        round(r.round_ratios[3]),
         ns("interleaved: zshift recommend + epsilon_matrix"),
         ratio(
             t,
