@@ -20,7 +20,7 @@
 use crate::domain::{finite, representable};
 use crate::double_double::DoubleDouble;
 use crate::error::Result;
-use crate::offset::{outward_fast, rounded_outward};
+use crate::offset::{outward_of_ratio, rounded_outward, Ratio};
 use crate::precision::DepthMapping;
 use crate::projection::{projection, projection_exact, to_f32, tweaked_infinite, ClipDepth, Frustum};
 #[cfg(doc)]
@@ -47,7 +47,7 @@ pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
 /// [`ndc_offset_matrix`] describes. The offset `−c` is exact, so the estimate of
 /// `plain[10] − c` has one rounding.
 fn with_ndc_offset(mut plain: [f32; 16], c: f64) -> Result<[f32; 16]> {
-    if let Some(x) = outward_fast(plain[10], -c, 0.0) {
+    if let Some(x) = outward_of_ratio(plain[10], Ratio(-c, 1.0), 0.0) {
         plain[10] = x;
         return Ok(plain);
     }
@@ -74,7 +74,7 @@ pub fn relative_offset_matrix(m: &[f64; 16], epsilon: f64) -> Result<[f32; 16]> 
 fn with_relative_offset(mut plain: [f32; 16], epsilon: f64) -> Result<[f32; 16]> {
     let p = plain[14];
     if epsilon > -1.0 {
-        if let Some(x) = outward_fast(p, f64::from(p) * epsilon, 1.0) {
+        if let Some(x) = outward_of_ratio(p, Ratio(f64::from(p) * epsilon, 1.0), 1.0) {
             plain[14] = x;
             return Ok(plain);
         }
@@ -157,13 +157,13 @@ pub fn offset_projection_fast(
     if clip == ClipDepth::ReversedZeroToOne {
         frustum.planes().check_eye_z(pz).ok()?;
         let epsilon = relative_epsilon(delta, pz).ok()?;
-        m[14] = outward_fast(m[14], f64::from(m[14]) * epsilon, 1.0)?;
+        m[14] = outward_of_ratio(m[14], Ratio(f64::from(m[14]) * epsilon, 1.0), 1.0)?;
         return Some(m);
     }
     let planes = frustum.planes();
     let mapping = DepthMapping::projection(planes.near(), planes.far(), clip).ok()?;
     let c = ndc_offset_of_shift(&mapping, delta, pz).ok()?;
-    m[10] = outward_fast(m[10], -c, 0.0)?;
+    m[10] = outward_of_ratio(m[10], Ratio(-c, 1.0), 0.0)?;
     Some(m)
 }
 

@@ -379,11 +379,10 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 /// computed it, on inputs scaled into the normal range). `None` (use the double-double value)
 /// when that cannot decide it, and for a zero or non-finite estimate.
 ///
-/// Two cases decide it. An offset smaller than the step to the next f32 beyond `plain` (the
-/// usual one: a few depth steps) rounds outward to that next f32, whatever its exact value.
-/// Otherwise, when no f32 lies within the estimate's error of `plain + estimate`, every value
-/// in that interval rounds outward to the same f32; that fails only for an f32 within about
-/// `1e-15` relative, which includes offsets that land exactly on one.
+/// When no f32 lies within the estimate's error of `plain + estimate`, every value in that
+/// interval rounds outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32
+/// are farther still); that fails for an f32 within about `1e-15` relative (offsets that land
+/// on one) and for offsets below that error, which [`outward_of_ratio`] decides first.
 #[inline(always)]
 pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32> {
     let target = f64::from(plain) + estimate;

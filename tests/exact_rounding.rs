@@ -613,6 +613,12 @@ fn in_batches(name: &str, check: impl Fn(&Rng) -> Outcome + Sync) {
         rate(built_deferred, built),
     );
     assert!(random + built >= total / 2, "{name}: too few valid inputs");
+    // The fast path must decide nearly every input away from boundaries (the bound predicts
+    // about 1e-7 per element); more means it has stopped doing its job.
+    assert!(
+        rate(random_deferred, random) < 1e-5,
+        "{name}: the fast path deferred too often"
+    );
 }
 
 /// Compares a fast result with the exact one.
