@@ -43,6 +43,30 @@ pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
     with_ndc_offset(to_f32(m)?, c)
 }
 
+/// [`ndc_offset_matrix`] for the projection of `frustum` under `clip`: every element but 10 the
+/// nearest f32 of the exact element (as [`projection`]), element 10 lowered by `c` and rounded
+/// outward.
+///
+/// # Errors
+/// As [`projection`] and [`ndc_offset_matrix`].
+pub fn ndc_offset_projection(frustum: &Frustum, clip: ClipDepth, c: f64) -> Result<[f32; 16]> {
+    with_ndc_offset(projection(frustum, clip)?, c)
+}
+
+/// [`relative_offset_matrix`] for the projection of `frustum` under `clip`: every element but 14
+/// the nearest f32 of the exact element (as [`projection`]), element 14 scaled by `1 + ε` and
+/// rounded outward.
+///
+/// # Errors
+/// As [`projection`] and [`relative_offset_matrix`].
+pub fn relative_offset_projection(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    epsilon: f64,
+) -> Result<[f32; 16]> {
+    with_relative_offset(projection(frustum, clip)?, epsilon)
+}
+
 /// `plain` with `c` added to every NDC depth through element 10, rounded outward as
 /// [`ndc_offset_matrix`] describes. The offset `−c` is exact, so the estimate of
 /// `plain[10] − c` has one rounding.

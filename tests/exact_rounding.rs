@@ -703,3 +703,51 @@ fn fast_offset_projections_match_the_exact_path_in_bulk() {
         agree(offset_projection_fast(&frustum, clip, delta, pz), exact, &what)
     });
 }
+
+// ---- The C entry points take the same fast path ---------------------------------------------
+
+/// The C ABI's builders (their own fast path, one store) give the Rust API's matrices, bit for
+/// bit, near rounding boundaries and away from them; on bad input they leave the output alone.
+#[test]
+fn c_entry_points_write_the_rust_matrices() {
+    use zshift::ffi::{
+        zshift_frustum, zshift_load_offset_matrix, zshift_perspective, zshift_projection,
+        zshift_tweaked_infinite, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+        ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_ERR_DOMAIN, ZSHIFT_OK,
+    };
+    let c_clips = [
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        ZSHIFT_CLIP_ZERO_TO_ONE,
+        ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+    ];
+    let rng = Rng::new(2718);
+    let bits = |m: &[f32; 16]| m.map(f32::to_bits);
+    for i in 0..6000 {
+        let k = i % 3;
+        let frustum = wide_or_near_boundary(&rng, CLIPS[k]);
+        let (l, r, b, t, n, f) = frustum.parameters();
+        let mut out = [f32::NAN; 16];
+        assert_eq!(zshift_frustum(l, r, b, t, n, f, out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(bits(&out), bits(&frustum.to_cols_array().unwrap()));
+        assert_eq!(zshift_projection(l, r, b, t, n, f, c_clips[k], out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(bits(&out), bits(&projection(&frustum, CLIPS[k]).unwrap()));
+        let tweak = rng.pick(&[0.0, MIN_INFINITE_TWEAK, rng.log_uniform(-9.0, -1.0)]);
+        assert_eq!(zshift_tweaked_infinite(l, r, b, t, n, tweak, out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(bits(&out), bits(&tweaked_infinite(&frustum, tweak).unwrap()));
+        let (delta, pz) = wide_shift(&rng, n, f);
+        let status = zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out.as_mut_ptr());
+        match offset_matrix(&frustum, delta, pz) {
+            Ok(m) => assert_eq!((status, bits(&out)), (ZSHIFT_OK, bits(&m))),
+            Err(_) => assert_ne!(status, ZSHIFT_OK),
+        }
+        let (fovy, aspect) = (0.5 + 179.0 * rng.next(), rng.log_uniform(-1.0, 1.0));
+        assert_eq!(zshift_perspective(fovy, aspect, n, f, out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(bits(&out), bits(&perspective_array(fovy, aspect, n, f).unwrap()));
+    }
+    // Refused input: the status says why and the output is untouched.
+    let mut out = [7.0f32; 16];
+    assert_eq!(zshift_frustum(1.0, 1.0, -1.0, 1.0, 0.1, 10.0, out.as_mut_ptr()), ZSHIFT_ERR_DOMAIN);
+    assert_eq!(out, [7.0; 16]);
+    let status = zshift_load_offset_matrix(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0, 1.0, -0.5, out.as_mut_ptr());
+    assert_eq!((status, out), (ZSHIFT_ERR_DOMAIN, [7.0; 16]));
+}
