@@ -24,6 +24,9 @@ fn batch<T>(mut body: impl FnMut() -> T) -> f64 {
     start.elapsed().as_nanos() as f64 / f64::from(CALLS)
 }
 
+/// One variant: a closure that times one batch.
+type Batch<'a> = Box<dyn FnMut() -> f64 + 'a>;
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -49,7 +52,7 @@ fn main() {
         )
     };
     let mut out = [0.0f32; 16];
-    let mut variants: Vec<(&str, Box<dyn FnMut() -> f64>)> = vec![
+    let mut variants: Vec<(&str, Batch)> = vec![
         ("glam_frustum", Box::new(|| batch(glam))),
         (
             "glam_frustum_seed_tweak",
@@ -121,9 +124,8 @@ fn main() {
         }
     }
     // Ratios round by round (the two sides under the same load), then their median.
-    let ratio = |a: usize, b: usize| {
-        median(times[a].iter().zip(&times[b]).map(|(x, y)| x / y).collect())
-    };
+    let ratio =
+        |a: usize, b: usize| median(times[a].iter().zip(&times[b]).map(|(x, y)| x / y).collect());
     let ratios = [
         ("ratio_frustum_to_glam", ratio(2, 0)),
         ("ratio_offset_to_glam_tweak", ratio(3, 1)),

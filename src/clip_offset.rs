@@ -22,9 +22,11 @@ use crate::double_double::DoubleDouble;
 use crate::error::Result;
 use crate::offset::{outward_of_ratio, rounded_outward, Ratio};
 use crate::precision::DepthMapping;
-use crate::projection::{projection, projection_exact, to_f32, tweaked_infinite, ClipDepth, Frustum};
 #[cfg(doc)]
 use crate::projection::tweaked_infinite_f64;
+use crate::projection::{
+    projection, projection_exact, to_f32, tweaked_infinite, ClipDepth, Frustum,
+};
 
 /// The f32 projection with `c` added to every NDC depth through element 10 (`m10 − c`).
 ///

@@ -318,10 +318,7 @@ fn ndc_offset_of_shift(
 
 /// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate of its numerator (two
 /// roundings) and denominator (one) and, on demand, its double-double value.
-fn ndc_offset_of_epsilon(
-    planes: &Planes,
-    epsilon: f64,
-) -> (Ratio, impl FnOnce() -> DoubleDouble) {
+fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (Ratio, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(planes.far());
     let far = (!planes.is_infinite()).then(|| (planes.far() * s, planes.near() * s));
     let estimate = match far {
@@ -391,8 +388,8 @@ pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32
     let up = estimate > 0.0;
     let nearest = target as f32;
     let gap = f64::from(nearest) - target; // exact
-    // The f32 one step beyond `nearest` in the offset's direction (for a nonzero finite f32,
-    // one unit of its bit pattern, away from zero when the direction agrees with its sign).
+                                           // The f32 one step beyond `nearest` in the offset's direction (for a nonzero finite f32,
+                                           // one unit of its bit pattern, away from zero when the direction agrees with its sign).
     let bits = nearest.to_bits();
     let stepped = f32::from_bits(if up == (nearest > 0.0) {
         bits.wrapping_add(1)

@@ -10,7 +10,9 @@ use glam::{DMat4, Mat4};
 use crate::domain::{check_tweak, domain, finite, representable, Planes};
 use crate::double_double::unit_scale;
 use crate::error::{Error, ErrorKind, Result};
-use crate::rounding::{nearest_columns_then, nearest_of_ratio, two_product, two_sum, Estimates, Ratio};
+use crate::rounding::{
+    nearest_columns_then, nearest_of_ratio, two_product, two_sum, Estimates, Ratio,
+};
 
 /// The six parameters of `glFrustum`, validated.
 ///
@@ -320,7 +322,15 @@ pub(crate) fn perspective_fast_columns(
     }
     let top = n * (fovy_degrees.to_radians() * 0.5).tan();
     let right = top * aspect;
-    fast(-right, right, -top, top, n, f, DepthRow::Clip(ClipDepth::NegOneToOne))
+    fast(
+        -right,
+        right,
+        -top,
+        top,
+        n,
+        f,
+        DepthRow::Clip(ClipDepth::NegOneToOne),
+    )
 }
 
 /// The fast path of [`projection`] alone: `None` where it defers to the exact path. When it
@@ -471,7 +481,7 @@ pub(crate) fn fast_then(
     let span = f - n;
     let (depth, depth_den) = match depth {
         DepthRow::Tweaked(tweak) => {
-            good = (tweak >= 0.0) & (tweak < 1.0);
+            good = (0.0..1.0).contains(&tweak);
             ([tweak - 1.0, (tweak - 2.0) * n], 1.0)
         }
         DepthRow::Clip(clip) if f == f64::INFINITY => match clip {
@@ -563,11 +573,14 @@ fn exact_depth_row(n: f64, f: f64, depth: DepthRow) -> (f32, f32) {
                 den: &[1.0],
                 scale: s,
             };
-            return (nearest_of_ratio(Ratio {
-                num: &[m10, m10_err],
-                den: &[1.0],
-                scale: 1.0,
-            }), nearest_of_ratio(m14));
+            return (
+                nearest_of_ratio(Ratio {
+                    num: &[m10, m10_err],
+                    den: &[1.0],
+                    scale: 1.0,
+                }),
+                nearest_of_ratio(m14),
+            );
         }
         DepthRow::Clip(clip) => clip,
     };

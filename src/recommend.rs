@@ -444,7 +444,12 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         // Window depth = NDC depth: the constant offset is (R1) itself.
         let dw = fits(terms.window_offset())?;
         let c = -dw / mapping.window_per_ndc();
-        (c, 0.0, dw, crate::clip_offset::ndc_offset_projection(frustum, clip, c)?)
+        (
+            c,
+            0.0,
+            dw,
+            crate::clip_offset::ndc_offset_projection(frustum, clip, c)?,
+        )
     } else {
         let eps = reversed_epsilon(scene, &mapping, budget)?;
         let b = scale(scene);

@@ -136,8 +136,22 @@ pub(crate) fn nearest_columns_portable(
     element_10: impl FnOnce(f32) -> Option<f32>,
 ) -> Option<Mat4> {
     let inv_z = 1.0 / e.depth_den;
-    let inv = [1.0 / e.den[0], 1.0 / e.den[1], 1.0 / e.den[0], 1.0 / e.den[1], inv_z, inv_z];
-    let num = [e.scale, e.scale, e.centre[0], e.centre[1], e.depth[0], e.depth[1]];
+    let inv = [
+        1.0 / e.den[0],
+        1.0 / e.den[1],
+        1.0 / e.den[0],
+        1.0 / e.den[1],
+        inv_z,
+        inv_z,
+    ];
+    let num = [
+        e.scale,
+        e.scale,
+        e.centre[0],
+        e.centre[1],
+        e.depth[0],
+        e.depth[1],
+    ];
     let mut m = [0.0f32; 6];
     let mut good = true;
     for i in 0..6 {
@@ -155,9 +169,9 @@ pub(crate) fn nearest_columns_portable(
     }
     m[4] = element_10(m[4])?;
     Some(Mat4::from_cols(
-            Vec4::new(m[0], 0.0, 0.0, 0.0),
-            Vec4::new(0.0, m[1], 0.0, 0.0),
-            Vec4::new(m[2], m[3], m[4], -1.0),
+        Vec4::new(m[0], 0.0, 0.0, 0.0),
+        Vec4::new(0.0, m[1], 0.0, 0.0),
+        Vec4::new(m[2], m[3], m[4], -1.0),
         Vec4::new(0.0, 0.0, m[5], 0.0),
     ))
 }
@@ -167,10 +181,7 @@ pub(crate) fn nearest_columns_portable(
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
-fn nearest_columns_sse2(
-    e: Estimates,
-    element_10: impl FnOnce(f32) -> Option<f32>,
-) -> Option<Mat4> {
+fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32>) -> Option<Mat4> {
     use std::arch::x86_64::*;
     // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
     unsafe {
@@ -188,7 +199,10 @@ fn nearest_columns_sse2(
                 _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(scale, factor), inv)),
                 _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(centre, factor), inv)),
             );
-            (xy, _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(depth, factor), inv_z)))
+            (
+                xy,
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(depth, factor), inv_z)),
+            )
         };
         let (lo_xy, lo_z) = end(down);
         let (hi_xy, hi_z) = end(up);
@@ -255,13 +269,14 @@ pub(crate) fn two_product(a: f64, b: f64) -> (f64, f64) {
 /// time), whose sign is that of its last nonzero component.
 fn sign_of_sum(terms: &mut [f64]) -> Ordering {
     for i in 1..terms.len() {
-        let mut q = terms[i];
-        for j in 0..i {
-            let (s, e) = two_sum(q, terms[j]);
-            terms[j] = e;
+        let (grown, rest) = terms.split_at_mut(i);
+        let mut q = rest[0];
+        for term in grown {
+            let (s, e) = two_sum(q, *term);
+            *term = e;
             q = s;
         }
-        terms[i] = q;
+        rest[0] = q;
     }
     match terms.iter().rev().find(|&&x| x != 0.0) {
         Some(&x) if x > 0.0 => Ordering::Greater,
@@ -381,7 +396,13 @@ mod tests {
         assert_eq!(enclosed(ulps(-7)), None);
         assert_eq!(enclosed(ulps(40)), Some(1.0 + f32::EPSILON));
         assert_eq!(enclosed(ulps(-40)), Some(1.0));
-        for (y, want) in [(1.0, 1.0f32), (-3.5, -3.5), (0.0, 0.0), (1e-300, 0.0), (1e-39, 1e-39)] {
+        for (y, want) in [
+            (1.0, 1.0f32),
+            (-3.5, -3.5),
+            (0.0, 0.0),
+            (1e-300, 0.0),
+            (1e-39, 1e-39),
+        ] {
             assert_eq!(enclosed(y), Some(want), "{y}");
         }
         for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)] {
@@ -416,7 +437,11 @@ mod tests {
                 planes: [v[0].abs(), v[5] - v[6]],
             };
             let portable = nearest_columns_portable(e, Some).map(|m| m.to_cols_array());
-            assert_eq!(nearest_columns_then(e, Some).map(|m| m.to_cols_array()), portable, "{e:?}");
+            assert_eq!(
+                nearest_columns_then(e, Some).map(|m| m.to_cols_array()),
+                portable,
+                "{e:?}"
+            );
         }
     }
 
@@ -432,21 +457,41 @@ mod tests {
         let one = [1.0];
         // (1 + 2⁻²⁴)/1 is the midpoint between 1 and 1 + 2⁻²³: ties to even (1).
         let tie = [1.0, 2f64.powi(-24)];
-        let r = Ratio { num: &tie, den: &one, scale: 1.0 };
+        let r = Ratio {
+            num: &tie,
+            den: &one,
+            scale: 1.0,
+        };
         assert_eq!(nearest_of_ratio(r), 1.0);
         // Just above the tie: up.
         let above = [1.0, 2f64.powi(-24), 2f64.powi(-80)];
-        let r = Ratio { num: &above, den: &one, scale: 1.0 };
+        let r = Ratio {
+            num: &above,
+            den: &one,
+            scale: 1.0,
+        };
         assert_eq!(nearest_of_ratio(r), 1.0f32.next_up());
         // 1/3 with a negative denominator, halved by the scale.
-        let r = Ratio { num: &one, den: &[-3.0], scale: 2.0 };
+        let r = Ratio {
+            num: &one,
+            den: &[-3.0],
+            scale: 2.0,
+        };
         assert_eq!(nearest_of_ratio(r), (-1.0f64 / 6.0) as f32);
         // Overflow threshold and a subnormal result.
         let threshold = [f64::from(f32::MAX), 2f64.powi(103)];
-        let r = Ratio { num: &threshold, den: &one, scale: 1.0 };
+        let r = Ratio {
+            num: &threshold,
+            den: &one,
+            scale: 1.0,
+        };
         assert_eq!(nearest_of_ratio(r), f32::INFINITY);
         let tiny = [3.0 * 2f64.powi(-150)];
-        let r = Ratio { num: &tiny, den: &one, scale: 1.0 };
+        let r = Ratio {
+            num: &tiny,
+            den: &one,
+            scale: 1.0,
+        };
         assert_eq!(nearest_of_ratio(r), 2.0 * 2f32.powi(-149)); // 1.5 ulp: tie to even, 2
     }
 }

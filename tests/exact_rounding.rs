@@ -23,10 +23,10 @@ use num_traits::{One, Signed, ToPrimitive, Zero};
 use zshift::clip_offset::{
     ndc_offset_of_shift, offset_projection, offset_projection_exact, offset_projection_fast,
 };
-use zshift::precision::DepthMapping;
 use zshift::offset::{
     epsilon_matrix_exact, epsilon_matrix_fast, offset_matrix_exact, offset_matrix_fast,
 };
+use zshift::precision::DepthMapping;
 use zshift::projection::{
     perspective_array, perspective_fast, perspective_frustum, projection, projection_exact,
     projection_fast, tweaked_infinite, tweaked_infinite_exact, tweaked_infinite_fast, ClipDepth,
@@ -161,8 +161,7 @@ fn assert_nearest(m: &[f32; 16], frustum: &Frustum, row: (Q, Q), what: &str) {
             .find(|(j, _)| *j == i)
             .map_or(0.0, |(_, e)| nearest_f32(e));
         assert_eq!(
-            *x,
-            want,
+            *x, want,
             "{what}: element {i} is {x:e}, the nearest f32 is {want:e} ({frustum:?})"
         );
     }
@@ -176,9 +175,20 @@ fn assert_outward(x: f32, p: f32, o: &Q, what: &str) {
         return;
     }
     let seen = q32(x) - q32(p);
-    assert_eq!(seen.is_positive(), o.is_positive(), "{what}: offset lost or reversed");
-    assert!(seen.abs() >= o.abs(), "{what}: offset short: {x:e} from {p:e}");
-    let before = if o.is_positive() { x.next_down() } else { x.next_up() };
+    assert_eq!(
+        seen.is_positive(),
+        o.is_positive(),
+        "{what}: offset lost or reversed"
+    );
+    assert!(
+        seen.abs() >= o.abs(),
+        "{what}: offset short: {x:e} from {p:e}"
+    );
+    let before = if o.is_positive() {
+        x.next_down()
+    } else {
+        x.next_up()
+    };
     let short = q32(before) - q32(p);
     assert!(
         short.abs() < o.abs() || short.is_zero(),
@@ -320,15 +330,25 @@ fn every_projection_element_is_the_nearest_f32_near_rounding_boundaries() {
             assert_eq!(m, frustum.to_cols_array().unwrap());
             assert_eq!(
                 m,
-                zshift::frustum(frustum.parameters().0, frustum.parameters().1, frustum.parameters().2, frustum.parameters().3, n, f)
-                    .unwrap()
-                    .to_cols_array()
+                zshift::frustum(
+                    frustum.parameters().0,
+                    frustum.parameters().1,
+                    frustum.parameters().2,
+                    frustum.parameters().3,
+                    n,
+                    f
+                )
+                .unwrap()
+                .to_cols_array()
             );
         }
         near += usize::from(projection_fast(&frustum, clip).is_none());
     }
     // The construction must reach the boundaries (else this test proves little).
-    assert!(near > 300, "only {near} of 6000 inputs were near a boundary");
+    assert!(
+        near > 300,
+        "only {near} of 6000 inputs were near a boundary"
+    );
     println!("{near} of 6000 constructed frustums sent an element to the exact decision");
 }
 
@@ -338,8 +358,16 @@ fn the_double_rounding_example_of_the_issue_is_fixed() {
     let m = zshift::frustum(l, r, b, t, n, f).unwrap().to_cols_array();
     let exact = q(2.0) * q(n) / (q(r) - q(l));
     assert_eq!(m[0], nearest_f32(&exact));
-    assert_eq!(m[0], 1.029_005_408_287_048_3);
-    assert_ne!(m[0], (2.0 * n / (r - l)) as f32, "the double rounding differs here");
+    assert_eq!(
+        f64::from(m[0]),
+        1.029_005_408_287_048_3,
+        "the issue's nearest f32"
+    );
+    assert_ne!(
+        m[0],
+        (2.0 * n / (r - l)) as f32,
+        "the double rounding differs here"
+    );
 }
 
 #[test]
@@ -349,7 +377,11 @@ fn infinite_far_planes_are_exact_and_nearest() {
         let clip = CLIPS[i % 3];
         let frustum = frustum_near_boundary(&rng, [0, 5, 8, 9][i % 4], clip);
         let (l, r, b, t, n, _) = frustum.parameters();
-        let n = if i % 2 == 0 { midpoint_near(&rng, n) } else { n };
+        let n = if i % 2 == 0 {
+            midpoint_near(&rng, n)
+        } else {
+            n
+        };
         let inf = Frustum::new(l, r, b, t, n, f64::INFINITY).unwrap();
         let m = projection(&inf, clip).unwrap();
         assert_nearest(&m, &inf, exact_row(n, f64::INFINITY, clip), "infinite");
@@ -364,11 +396,20 @@ fn tweaked_infinite_elements_are_the_nearest_f32() {
         let (l, r, b, t, n, _) = frustum.parameters();
         let (tweak, n) = match i % 3 {
             // ε − 1 near a midpoint
-            0 => (nudge_small(&rng, midpoint_near(&rng, -rng.log_uniform(-3.0, -0.2)) + 1.0), n),
+            0 => (
+                nudge_small(
+                    &rng,
+                    midpoint_near(&rng, -rng.log_uniform(-3.0, -0.2)) + 1.0,
+                ),
+                n,
+            ),
             // (ε − 2)·n near a midpoint
             1 => {
                 let tweak = rng.log_uniform(-9.0, -0.5);
-                (tweak, nudge_small(&rng, midpoint_near(&rng, -2.0 * n) / (tweak - 2.0)))
+                (
+                    tweak,
+                    nudge_small(&rng, midpoint_near(&rng, -2.0 * n) / (tweak - 2.0)),
+                )
             }
             _ => (rng.pick(&[0.0, MIN_INFINITE_TWEAK, 1e-20, 0.5]), n),
         };
@@ -385,7 +426,11 @@ fn perspective_elements_are_the_nearest_f32_of_its_frustum() {
     let rng = Rng::new(5);
     for i in 0..3000 {
         let n = rng.log_uniform(-4.0, 1.0);
-        let f = if i % 5 == 0 { f64::INFINITY } else { n * rng.log_uniform(0.01, 8.0) };
+        let f = if i % 5 == 0 {
+            f64::INFINITY
+        } else {
+            n * rng.log_uniform(0.01, 8.0)
+        };
         // m5 = cot(fovy/2) near a midpoint; m0 = m5/aspect near one.
         let m5 = midpoint_near(&rng, rng.log_uniform(-0.5, 1.0));
         let fovy = 2.0 * (1.0 / m5).atan().to_degrees();
@@ -396,10 +441,17 @@ fn perspective_elements_are_the_nearest_f32_of_its_frustum() {
         };
         let m = perspective_array(fovy, aspect, n, f).unwrap();
         let frustum = perspective_frustum(fovy, aspect, n, f).unwrap();
-        assert_nearest(&m, &frustum, exact_row(n, f, ClipDepth::NegOneToOne), "perspective");
+        assert_nearest(
+            &m,
+            &frustum,
+            exact_row(n, f, ClipDepth::NegOneToOne),
+            "perspective",
+        );
         assert_eq!(
             m,
-            zshift::projection::perspective(fovy, aspect, n, f).unwrap().to_cols_array()
+            zshift::projection::perspective(fovy, aspect, n, f)
+                .unwrap()
+                .to_cols_array()
         );
     }
 }
@@ -422,7 +474,11 @@ fn delta_for_landing(rng: &Rng, p: f32, n: f64, f: f64, pz: f64) -> f64 {
     let steps = rng.pick(&[1.0, 2.0, 3.0, 17.0, 1000.0]) * rng.sign();
     let spacing = f64::from(p.next_up()) - f64::from(p);
     let o = steps * spacing;
-    let a = if f.is_infinite() { 2.0 * n } else { 2.0 * f * n / (f - n) };
+    let a = if f.is_infinite() {
+        2.0 * n
+    } else {
+        2.0 * f * n / (f - n)
+    };
     nudge_small(rng, o * pz * pz / (a - o * pz))
 }
 
@@ -431,7 +487,8 @@ fn offset_elements_round_outward_by_the_least_f32_near_boundaries() {
     let rng = Rng::new(4242);
     let mut checked = 0;
     for i in 0..6000 {
-        let frustum = frustum_near_boundary(&rng, [0, 5, 8, 9, 10, 14][i % 6], ClipDepth::NegOneToOne);
+        let frustum =
+            frustum_near_boundary(&rng, [0, 5, 8, 9, 10, 14][i % 6], ClipDepth::NegOneToOne);
         let (l, r, b, t, n, f) = frustum.parameters();
         let f = if i % 7 == 0 { f64::INFINITY } else { f };
         let frustum = Frustum::new(l, r, b, t, n, f).unwrap();
@@ -447,13 +504,25 @@ fn offset_elements_round_outward_by_the_least_f32_near_boundaries() {
         };
         let (_, _, _, _, n, f) = frustum.parameters();
         let mut row = exact_row(n, f, ClipDepth::NegOneToOne);
-        assert_outward(m[10], nearest_f32(&row.0), &exact_shift_offset(n, f, delta, pz), "offset_matrix");
+        assert_outward(
+            m[10],
+            nearest_f32(&row.0),
+            &exact_shift_offset(n, f, delta, pz),
+            "offset_matrix",
+        );
         row.0 = q32(m[10]);
-        assert_nearest(&m, &frustum, row.clone(), "offset_matrix untouched elements");
+        assert_nearest(
+            &m,
+            &frustum,
+            row.clone(),
+            "offset_matrix untouched elements",
+        );
         assert_eq!(m, offset_matrix_exact(&frustum, delta, pz).unwrap());
         assert_eq!(
             m,
-            zshift::load_offset_matrix(l, r, b, t, n, f, delta, pz).unwrap().to_cols_array()
+            zshift::load_offset_matrix(l, r, b, t, n, f, delta, pz)
+                .unwrap()
+                .to_cols_array()
         );
         // The same offset as an ε: o = m10·ε, ε = o / m10 rounded to f64.
         let eps = (exact_shift_offset(n, f, delta, pz) / exact_row(n, f, ClipDepth::NegOneToOne).0)
@@ -488,7 +557,12 @@ fn offset_projections_keep_nearest_elements_and_outward_offsets() {
         if clip == ClipDepth::ReversedZeroToOne {
             // ε = δ/(d − δ) in f64 (the documented input of the relative offset), o = p14·ε.
             let eps = delta / (d - delta);
-            assert_outward(m[14], plain[14], &(q32(plain[14]) * q(eps)), "relative offset");
+            assert_outward(
+                m[14],
+                plain[14],
+                &(q32(plain[14]) * q(eps)),
+                "relative offset",
+            );
             row.1 = q32(m[14]);
         } else {
             // The constant NDC offset c (an f64 input of the rounding), element 10 lowered by c.
@@ -498,10 +572,21 @@ fn offset_projections_keep_nearest_elements_and_outward_offsets() {
             assert_outward(m[10], plain[10], &q(-c), "constant NDC offset");
             row.0 = q32(m[10]);
         }
-        assert_nearest(&m, &frustum, row, &format!("offset {clip:?} untouched elements"));
-        assert_eq!(m, offset_projection_exact(&frustum, clip, delta, pz).unwrap());
+        assert_nearest(
+            &m,
+            &frustum,
+            row,
+            &format!("offset {clip:?} untouched elements"),
+        );
+        assert_eq!(
+            m,
+            offset_projection_exact(&frustum, clip, delta, pz).unwrap()
+        );
     }
-    assert!(checked > 2000, "only {checked} offset projections were valid");
+    assert!(
+        checked > 2000,
+        "only {checked} offset projections were valid"
+    );
 }
 
 // ---- The fast path against the exact path, in bulk ------------------------------------------
@@ -622,7 +707,11 @@ fn in_batches(name: &str, check: impl Fn(&Rng) -> Outcome + Sync) {
 }
 
 /// Compares a fast result with the exact one.
-fn agree<E>(fast: Option<[f32; 16]>, exact: Result<[f32; 16], E>, what: &dyn Fn() -> String) -> Outcome {
+fn agree<E>(
+    fast: Option<[f32; 16]>,
+    exact: Result<[f32; 16], E>,
+    what: &dyn Fn() -> String,
+) -> Outcome {
     match (fast, exact) {
         (Some(m), Ok(e)) => {
             assert_eq!(m, e, "fast and exact paths differ: {}", what());
@@ -630,7 +719,10 @@ fn agree<E>(fast: Option<[f32; 16]>, exact: Result<[f32; 16], E>, what: &dyn Fn(
         }
         (None, Ok(_)) => Outcome::Deferred,
         (None, Err(_)) => Outcome::Refused,
-        (Some(_), Err(_)) => panic!("the fast path accepted what the exact path refuses: {}", what()),
+        (Some(_), Err(_)) => panic!(
+            "the fast path accepted what the exact path refuses: {}",
+            what()
+        ),
     }
 }
 
@@ -640,7 +732,9 @@ fn fast_projection_matches_the_exact_path_in_bulk() {
         let clip = rng.pick(&CLIPS);
         let frustum = wide_or_near_boundary(rng, clip);
         let exact = projection_exact(&frustum, clip);
-        agree(projection_fast(&frustum, clip), exact, &|| format!("{frustum:?} {clip:?}"))
+        agree(projection_fast(&frustum, clip), exact, &|| {
+            format!("{frustum:?} {clip:?}")
+        })
     });
 }
 
@@ -650,7 +744,9 @@ fn fast_tweaked_infinite_and_perspective_match_the_exact_path_in_bulk() {
         let frustum = wide_or_near_boundary(rng, ClipDepth::NegOneToOne);
         let tweak = rng.pick(&[0.0, MIN_INFINITE_TWEAK, rng.log_uniform(-15.0, -0.1)]);
         let exact = tweaked_infinite_exact(&frustum, tweak);
-        agree(tweaked_infinite_fast(&frustum, tweak), exact, &|| format!("{frustum:?} {tweak}"))
+        agree(tweaked_infinite_fast(&frustum, tweak), exact, &|| {
+            format!("{frustum:?} {tweak}")
+        })
     });
     in_batches("perspective", |rng| {
         let n = rng.log_uniform(-12.0, 4.0);
@@ -663,7 +759,9 @@ fn fast_tweaked_infinite_and_perspective_match_the_exact_path_in_bulk() {
         let (fovy, aspect) = (0.01 + 179.98 * rng.next(), rng.log_uniform(-2.0, 2.0));
         let frustum = perspective_frustum(fovy, aspect, n, f).unwrap();
         let exact = projection_exact(&frustum, ClipDepth::NegOneToOne);
-        agree(perspective_fast(fovy, aspect, n, f), exact, &|| format!("{fovy} {aspect} {n} {f}"))
+        agree(perspective_fast(fovy, aspect, n, f), exact, &|| {
+            format!("{fovy} {aspect} {n} {f}")
+        })
     });
 }
 
@@ -687,7 +785,9 @@ fn fast_offset_matrices_match_the_exact_path_in_bulk() {
         let frustum = wide_frustum(rng);
         let eps = rng.sign() * rng.log_uniform(-15.0, -0.5);
         let exact = epsilon_matrix_exact(&frustum, eps);
-        agree(epsilon_matrix_fast(&frustum, eps), exact, &|| format!("{frustum:?} {eps}"))
+        agree(epsilon_matrix_fast(&frustum, eps), exact, &|| {
+            format!("{frustum:?} {eps}")
+        })
     });
 }
 
@@ -700,7 +800,11 @@ fn fast_offset_projections_match_the_exact_path_in_bulk() {
         let clip = rng.pick(&CLIPS);
         let exact = offset_projection_exact(&frustum, clip, delta, pz);
         let what = || format!("{frustum:?} {clip:?} {delta} {pz}");
-        agree(offset_projection_fast(&frustum, clip, delta, pz), exact, &what)
+        agree(
+            offset_projection_fast(&frustum, clip, delta, pz),
+            exact,
+            &what,
+        )
     });
 }
 
@@ -727,13 +831,25 @@ fn c_entry_points_write_the_rust_matrices() {
         let frustum = wide_or_near_boundary(&rng, CLIPS[k]);
         let (l, r, b, t, n, f) = frustum.parameters();
         let mut out = [f32::NAN; 16];
-        assert_eq!(zshift_frustum(l, r, b, t, n, f, out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(
+            zshift_frustum(l, r, b, t, n, f, out.as_mut_ptr()),
+            ZSHIFT_OK
+        );
         assert_eq!(bits(&out), bits(&frustum.to_cols_array().unwrap()));
-        assert_eq!(zshift_projection(l, r, b, t, n, f, c_clips[k], out.as_mut_ptr()), ZSHIFT_OK);
+        assert_eq!(
+            zshift_projection(l, r, b, t, n, f, c_clips[k], out.as_mut_ptr()),
+            ZSHIFT_OK
+        );
         assert_eq!(bits(&out), bits(&projection(&frustum, CLIPS[k]).unwrap()));
         let tweak = rng.pick(&[0.0, MIN_INFINITE_TWEAK, rng.log_uniform(-9.0, -1.0)]);
-        assert_eq!(zshift_tweaked_infinite(l, r, b, t, n, tweak, out.as_mut_ptr()), ZSHIFT_OK);
-        assert_eq!(bits(&out), bits(&tweaked_infinite(&frustum, tweak).unwrap()));
+        assert_eq!(
+            zshift_tweaked_infinite(l, r, b, t, n, tweak, out.as_mut_ptr()),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            bits(&out),
+            bits(&tweaked_infinite(&frustum, tweak).unwrap())
+        );
         let (delta, pz) = wide_shift(&rng, n, f);
         let status = zshift_load_offset_matrix(l, r, b, t, n, f, delta, pz, out.as_mut_ptr());
         match offset_matrix(&frustum, delta, pz) {
@@ -741,13 +857,23 @@ fn c_entry_points_write_the_rust_matrices() {
             Err(_) => assert_ne!(status, ZSHIFT_OK),
         }
         let (fovy, aspect) = (0.5 + 179.0 * rng.next(), rng.log_uniform(-1.0, 1.0));
-        assert_eq!(zshift_perspective(fovy, aspect, n, f, out.as_mut_ptr()), ZSHIFT_OK);
-        assert_eq!(bits(&out), bits(&perspective_array(fovy, aspect, n, f).unwrap()));
+        assert_eq!(
+            zshift_perspective(fovy, aspect, n, f, out.as_mut_ptr()),
+            ZSHIFT_OK
+        );
+        assert_eq!(
+            bits(&out),
+            bits(&perspective_array(fovy, aspect, n, f).unwrap())
+        );
     }
     // Refused input: the status says why and the output is untouched.
     let mut out = [7.0f32; 16];
-    assert_eq!(zshift_frustum(1.0, 1.0, -1.0, 1.0, 0.1, 10.0, out.as_mut_ptr()), ZSHIFT_ERR_DOMAIN);
+    assert_eq!(
+        zshift_frustum(1.0, 1.0, -1.0, 1.0, 0.1, 10.0, out.as_mut_ptr()),
+        ZSHIFT_ERR_DOMAIN
+    );
     assert_eq!(out, [7.0; 16]);
-    let status = zshift_load_offset_matrix(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0, 1.0, -0.5, out.as_mut_ptr());
+    let status =
+        zshift_load_offset_matrix(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0, 1.0, -0.5, out.as_mut_ptr());
     assert_eq!((status, out), (ZSHIFT_ERR_DOMAIN, [7.0; 16]));
 }

@@ -81,12 +81,18 @@ pub fn criterion_timings(dir: &Path) -> Vec<Timing> {
 /// with "interleaved: " so that the headline finds them apart from criterion's.
 pub fn interleaved_timings(json: &str) -> Vec<Timing> {
     [
-        ("glam_frustum", "interleaved: glam 0.34 opengl::frustum (f32), no offset"),
+        (
+            "glam_frustum",
+            "interleaved: glam 0.34 opengl::frustum (f32), no offset",
+        ),
         (
             "glam_frustum_seed_tweak",
             "interleaved: glam frustum + the seed's f32 tweak",
         ),
-        ("zshift_frustum", "interleaved: zshift::frustum, no offset (Rust API)"),
+        (
+            "zshift_frustum",
+            "interleaved: zshift::frustum, no offset (Rust API)",
+        ),
         (
             "zshift_load_offset_matrix",
             "interleaved: zshift::load_offset_matrix (Rust API)",
