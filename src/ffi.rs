@@ -51,6 +51,9 @@ pub const ZSHIFT_ERR_UNRESOLVABLE: ZshiftStatus = ZshiftStatus(4);
 pub const ZSHIFT_ERR_OVERFLOW: ZshiftStatus = ZshiftStatus(5);
 /// A bug inside zshift was caught at the ABI boundary; please report it.
 pub const ZSHIFT_ERR_INTERNAL: ZshiftStatus = ZshiftStatus(6);
+/// The caller's OpenGL context could not do what `zshift_probe` needs (a missing entry point,
+/// a context older than 3.2 or none current, a refused depth format, a GL error).
+pub const ZSHIFT_ERR_GL: ZshiftStatus = ZshiftStatus(7);
 
 impl From<ErrorKind> for ZshiftStatus {
     fn from(kind: ErrorKind) -> Self {
@@ -59,6 +62,7 @@ impl From<ErrorKind> for ZshiftStatus {
             ErrorKind::Domain => ZSHIFT_ERR_DOMAIN,
             ErrorKind::Unresolvable => ZSHIFT_ERR_UNRESOLVABLE,
             ErrorKind::Overflow => ZSHIFT_ERR_OVERFLOW,
+            ErrorKind::Gl => ZSHIFT_ERR_GL,
         }
     }
 }
@@ -265,6 +269,7 @@ pub extern "C" fn zshift_status_message(status: ZshiftStatus) -> *const c_char {
         ZSHIFT_ERR_UNRESOLVABLE => c"no such value exists: the depth step is too large here",
         ZSHIFT_ERR_OVERFLOW => c"the result does not fit its floating-point type",
         ZSHIFT_ERR_INTERNAL => c"internal error in zshift (a caught panic); please report it",
+        ZSHIFT_ERR_GL => c"the current OpenGL context could not do what the probe needs",
         _ => c"unknown zshift status",
     };
     text.as_ptr()

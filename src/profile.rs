@@ -21,8 +21,17 @@ pub enum Snapping {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NearClip {
     /// New vertices are computed in f32 where the edges cross the near plane, and the depth plane
-    /// is set up from them: the worst case, and what Mesa's llvmpipe does.
+    /// is set up from them: the worst case, and what Mesa's llvmpipe does. The probe reports it
+    /// whenever a near-clipped plane's stored depth strays from the exact plane by more than
+    /// `2·plane_error + 2` quanta (D24): the model must add the clipping terms.
     ClippedF32,
+    /// A primitive crossing the near plane keeps the depth of its plane to within the same
+    /// per-pixel error as one that does not (homogeneous rasterization, a clipper working in
+    /// higher precision, or one that interpolates depth from the original vertices): measured on
+    /// a ground plane with corners ±1000 behind and ahead of the camera, its stored depth stays
+    /// within `2·plane_error + 2` quanta of the exact plane. The model adds no clipping term;
+    /// `plane_error` covers the clipped primitive too.
+    PlanePreserving,
 }
 
 /// The per-device facts the offset model needs. See the module docs.
@@ -41,6 +50,9 @@ pub struct RasterizerProfile {
     pub near_clip: NearClip,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
     pub measured: bool,
+    /// How long the probe took to measure this profile, in seconds (0 for
+    /// [`RasterizerProfile::worst_case`]). Informational: the model ignores it.
+    pub probe_seconds: f64,
 }
 
 impl RasterizerProfile {
@@ -53,6 +65,7 @@ impl RasterizerProfile {
             plane_error: [f64::NAN; 4],
             near_clip: NearClip::ClippedF32,
             measured: false,
+            probe_seconds: 0.0,
         }
     }
 }

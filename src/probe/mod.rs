@@ -1,0 +1,668 @@
+//! Measures a [`RasterizerProfile`] in the caller's own OpenGL context.
+//!
+//! [`probe`] draws a few dozen triangles into a framebuffer of its own (64×64 per depth format),
+//! reads the stored depth back with `glReadPixels` and compares it, pixel by pixel, with the exact
+//! depth of the plane the triangle lies in, computed in f64 from the very f32 clip coordinates the
+//! GPU received. It reaches GL only through the function loader the caller passes (as
+//! `glow::Context::from_loader_function_cstr` takes one): the library links no GL.
+//!
+//! # What it measures
+//! * **Snapping** ([`Snapping`]): a steep triangle (depth gradient ≈ 0.014 per pixel) whose
+//!   vertices sit at sub-pixel offsets, on `GL_DEPTH_COMPONENT32F`. For every hypothesis — depth
+//!   plane set up from the unsnapped positions, or from positions rounded (to nearest, or down) to
+//!   `2^-b` pixel for `b` in 0..=16 — the predicted depth of every pixel is computed exactly, and
+//!   the hypothesis closest to the stored depths wins. An offset of `2^-(b+1)` pixel moves depth by
+//!   ≥ 10⁻⁶ here, 30× the f32 spacing, so any `b ≤ 16` is told from none.
+//! * **`resolvable`** (`r`, per format): a gently sloped quad drawn twice, without and with
+//!   `glPolygonOffset(0, U)`; `r` = the mean stored difference ÷ `U`, in units of the format's
+//!   quantum (UNORM: `1/(2^m − 1)`; D32F: `2^(e − 23)`, `e` the exponent of the primitive's largest
+//!   depth, measured at two exponents and the larger kept). `U` makes the offset ≈ 2⁻⁸ of window
+//!   depth, so each pixel's difference is known to 1/256 of `r` or better. Wine's wined3d finds the
+//!   same scale by bisection over powers of two; the direct difference needs two draws and finds
+//!   factors that are not powers of two.
+//! * **`plane_error`** (per format): the largest `|stored − exact|` over every pixel whose centre
+//!   lies at least a pixel inside one of 24 triangles: perspective planes (f/n = 10, 10³, 10⁵)
+//!   with eye-space slopes 0 to 10, window depths from 0.02 to 0.998, vertices on screen or up to
+//!   4 viewports off it (but in front of the near plane); in units of the format's quantum at the
+//!   exact depth. It covers what the rasterizer adds after the vertex shader — the division by
+//!   `w`, the viewport transform, plane setup, interpolation and the conversion to the stored
+//!   format — and not the f32 rounding of the vertex transform or of the vertex coordinates
+//!   (`T`'s first part and `V` in [`crate::recommend`]).
+//! * **`near_clip`** ([`NearClip`]): a ground plane with corners ±1000 (n = 0.1, f = 1000) whose
+//!   triangle crosses the near plane, on D24. Its stored depth is compared with the exact plane:
+//!   within `2·plane_error + 2` quanta means the clipper keeps the plane
+//!   ([`NearClip::PlanePreserving`]); beyond, the clipped vertices were computed in f32
+//!   ([`NearClip::ClippedF32`], the worst case the model bounds).
+//!
+//! # The caller's GL state
+//! The probe needs OpenGL 3.2 or later (core or compatibility profile) current on the calling
+//! thread, and leaves no trace in it: it first fails if `glGetError` reports an error pending from
+//! the caller's own calls (reading it clears it: the error's detail says so), then saves and
+//! afterwards restores the draw and read framebuffer bindings, the renderbuffer, program, vertex
+//! array, array buffer and pixel-pack buffer bindings, every viewport and depth range (all of
+//! them under `ARB_viewport_array`), the depth function, write mask and clear value, polygon
+//! offset factor, units and clamp, polygon mode, the enables it touches (depth test, polygon
+//! offset fill, cull face, stencil, depth clamp, rasterizer discard, scissor per viewport,
+//! depth-bounds test, alpha test in compatibility), every `GL_PACK_*` parameter, `glClipControl`
+//! and, in a compatibility context, `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
+//! it creates, also on error. Not restored because it never changes them: colour state (its
+//! framebuffer has no colour attachment), textures, samplers, stencil values, uniform state of
+//! other programs. Not handled: an active transform feedback or occlusion query of the caller
+//! would see the probe's draws; end them before probing.
+//!
+//! # Errors
+//! [`crate::ErrorKind::Gl`] with a detail naming what failed: the entry point the loader
+//! returned NULL for, a context older than 3.2 or none current, a GL error pending on entry, a
+//! shader that does not compile, a depth format the framebuffer refuses (D16, D24 and D32F are
+//! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
+//!
+//! # Time
+//! About 20 ms on Mesa llvmpipe (2 cores; `examples/probe.rs` prints it), well under 100 ms; the
+//! profile records its own run time in [`RasterizerProfile::probe_seconds`].
+
+mod gl;
+mod state;
+
+use std::ffi::{c_void, CStr};
+use std::time::Instant;
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::profile::{NearClip, RasterizerProfile, Snapping};
+use gl::*;
+
+/// Width and height of the probe's framebuffer in pixels.
+const SIZE: usize = 64;
+
+/// Measures the rasterizer of the OpenGL context current on this thread. See the module docs.
+///
+/// `loader` returns the address of a GL entry point by name (`eglGetProcAddress`,
+/// `glfwGetProcAddress`, `SDL_GL_GetProcAddress`, glutin's `Display::get_proc_address`), or
+/// NULL when it has none.
+///
+/// # Safety
+/// An OpenGL context must be current on this thread, and every non-NULL pointer `loader` returns
+/// must be the named entry point of that context (what a GL loader promises).
+///
+/// # Errors
+/// [`ErrorKind::Gl`], as the module docs list; the context's state is restored in every case.
+pub unsafe fn probe(loader: impl FnMut(&CStr) -> *const c_void) -> Result<RasterizerProfile> {
+    probe_with_figures(loader).map(|(profile, _)| profile)
+}
+
+/// The raw figures behind a probed profile, for reports and tests: what each decision was made
+/// from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Figures {
+    /// `GL_RENDERER`, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)".
+    pub renderer: String,
+    /// `GL_VERSION`, e.g. "4.5 (Core Profile) Mesa 22.3.6".
+    pub version: String,
+    /// `GL_SUBPIXEL_BITS` as the driver reports it (what it snaps coverage to; not necessarily
+    /// what depth setup uses, which [`RasterizerProfile::snapping`] measures).
+    pub subpixel_bits: i32,
+    /// Pixels compared with the exact plane for `plane_error`, per format (D16, D24, D32, D32F;
+    /// 0 where the format was not measured).
+    pub plane_pixels: [usize; 4],
+    /// The worst `|stored − exact|` of the near-clipped ground plane, in D24 quanta.
+    pub near_clip_error: f64,
+    /// How well the snapping hypotheses fit, in window depth: the largest residual of the
+    /// unsnapped hypothesis, and of the best snapped one (`b`, `residual`).
+    pub snapping_residual: (f64, u32, f64),
+    /// `r` per measured band, for D32F (at window depths ≈ 0.45 and ≈ 0.055, in units of
+    /// `2^(e − 23)` at each).
+    pub float_resolvable: [f64; 2],
+}
+
+/// [`probe`], with the [`Figures`] it decided from.
+///
+/// # Safety
+/// As [`probe`].
+///
+/// # Errors
+/// As [`probe`].
+pub unsafe fn probe_with_figures(
+    mut loader: impl FnMut(&CStr) -> *const c_void,
+) -> Result<(RasterizerProfile, Figures)> {
+    let start = Instant::now();
+    let mut gl = Gl::load(&mut loader)?;
+    if gl.failed() {
+        return Err(Error::new(
+            ErrorKind::Gl,
+            "a GL error was pending before the probe ran (glGetError); it was read, which \
+             clears it: check the caller's GL calls before probing",
+        ));
+    }
+    let (_, _, compatibility) = gl.settle()?;
+    let saved = state::Saved::read(&gl, compatibility);
+    gl.failed(); // queries of state this context lacks only mean "absent"
+    saved.prepare(&gl);
+    let mut objects = Objects::default();
+    let result = measure(&gl, &mut objects);
+    objects.delete(&gl);
+    saved.restore(&gl);
+    let cleanup = gl.check("restoring the caller's GL state raised a GL error");
+    let (mut profile, figures) = result?;
+    cleanup?;
+    profile.probe_seconds = start.elapsed().as_secs_f64();
+    Ok((profile, figures))
+}
+
+/// The GL objects the probe creates (0 = not created yet).
+#[derive(Default)]
+struct Objects {
+    program: Uint,
+    vertex_array: Uint,
+    buffer: Uint,
+    framebuffer: Uint,
+    renderbuffer: Uint,
+}
+
+impl Objects {
+    unsafe fn delete(&self, gl: &Gl) {
+        (gl.BindFramebuffer)(FRAMEBUFFER, 0);
+        (gl.UseProgram)(0);
+        (gl.BindVertexArray)(0);
+        if self.program != 0 {
+            (gl.DeleteProgram)(self.program);
+        }
+        (gl.DeleteVertexArrays)(1, &self.vertex_array);
+        (gl.DeleteBuffers)(1, &self.buffer);
+        (gl.DeleteFramebuffers)(1, &self.framebuffer);
+        (gl.DeleteRenderbuffers)(1, &self.renderbuffer);
+    }
+}
+
+/// A depth format the probe measures, with its slot in the profile's arrays.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Format {
+    Unorm(u32),
+    Float,
+}
+
+impl Format {
+    /// (profile slot, GL internal format, format) in the profile's order: D16, D24, D32, D32F.
+    const ALL: [(usize, Enum, Format); 4] = [
+        (0, DEPTH_COMPONENT16, Format::Unorm(16)),
+        (1, DEPTH_COMPONENT24, Format::Unorm(24)),
+        (2, DEPTH_COMPONENT32, Format::Unorm(32)),
+        (3, DEPTH_COMPONENT32F, Format::Float),
+    ];
+
+    /// The quantum at exact window depth `w`: `1/(2^m − 1)`, or the f32 spacing `2^(e − 23)`.
+    fn quantum(self, w: f64) -> f64 {
+        match self {
+            Format::Unorm(m) => 1.0 / (2f64.powi(m as i32) - 1.0),
+            Format::Float => f32_spacing(w),
+        }
+    }
+}
+
+/// `2^(e − 23)` for the exponent `e` of `|w|` as an f32 (the smallest normal spacing below).
+fn f32_spacing(w: f64) -> f64 {
+    let w = w.abs().max(f32::MIN_POSITIVE as f64);
+    2f64.powi(w.log2().floor() as i32 - 23)
+}
+
+/// Everything measured, with the formats in the profile's order.
+unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, Figures)> {
+    create_objects(gl, objects)?;
+    let mut profile = RasterizerProfile::worst_case();
+    profile.measured = true;
+    let mut figures = Figures {
+        renderer: gl.string(RENDERER),
+        version: gl.string(VERSION),
+        subpixel_bits: gl.integer(SUBPIXEL_BITS),
+        plane_pixels: [0; 4],
+        near_clip_error: f64::NAN,
+        snapping_residual: (f64::NAN, 0, f64::NAN),
+        float_resolvable: [f64::NAN; 2],
+    };
+    for (slot, internal, format) in Format::ALL {
+        if !attach(gl, objects, internal)? {
+            if internal == DEPTH_COMPONENT32 {
+                continue; // optional: keeps the worst case
+            }
+            return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
+        }
+        let t0 = Instant::now();
+        let bands = resolvable(gl, format)?;
+        let t1 = Instant::now();
+        profile.resolvable[slot] = bands.iter().copied().fold(0.0, f64::max);
+        if format == Format::Float {
+            figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
+        }
+        (profile.plane_error[slot], figures.plane_pixels[slot]) = plane_error(gl, format)?;
+        let t2 = Instant::now();
+        if format == Format::Float {
+            (profile.snapping, figures.snapping_residual) = snapping(gl)?;
+        }
+        if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("{format:?}: r {:?} plane {:?} snap {:?}", t1-t0, t2-t1, t2.elapsed()); }
+        if internal == DEPTH_COMPONENT24 {
+            (profile.near_clip, figures.near_clip_error) = near_clip(gl, profile.plane_error[slot])?;
+        }
+    }
+    Ok((profile, figures))
+}
+
+fn incomplete_detail(internal: Enum) -> &'static str {
+    match internal {
+        DEPTH_COMPONENT16 => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT16 renderbuffer",
+        DEPTH_COMPONENT24 => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT24 renderbuffer",
+        _ => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT32F renderbuffer",
+    }
+}
+
+const VERTEX_SHADER: &[u8] = b"#version 150\nin vec4 clip;\nvoid main() { gl_Position = clip; }\n\0";
+const FRAGMENT_SHADER: &[u8] = b"#version 150\nvoid main() {}\n\0";
+
+unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
+    o.program = (gl.CreateProgram)();
+    for (kind, source, detail) in [
+        (VERTEX_SHADER_KIND, VERTEX_SHADER, "the probe's vertex shader (GLSL 1.50) did not compile"),
+        (FRAGMENT_SHADER_KIND, FRAGMENT_SHADER, "the probe's fragment shader (GLSL 1.50) did not compile"),
+    ] {
+        let shader = (gl.CreateShader)(kind);
+        let text = source.as_ptr().cast();
+        (gl.ShaderSource)(shader, 1, &text, std::ptr::null());
+        (gl.CompileShader)(shader);
+        let mut ok = 0;
+        (gl.GetShaderiv)(shader, COMPILE_STATUS, &mut ok);
+        (gl.AttachShader)(o.program, shader);
+        (gl.DeleteShader)(shader);
+        if ok == 0 {
+            return Err(Error::new(ErrorKind::Gl, detail));
+        }
+    }
+    (gl.BindAttribLocation)(o.program, 0, c"clip".as_ptr());
+    (gl.LinkProgram)(o.program);
+    let mut ok = 0;
+    (gl.GetProgramiv)(o.program, LINK_STATUS, &mut ok);
+    if ok == 0 {
+        return Err(Error::new(ErrorKind::Gl, "the probe's shader program did not link"));
+    }
+    (gl.GenVertexArrays)(1, &mut o.vertex_array);
+    (gl.GenBuffers)(1, &mut o.buffer);
+    (gl.GenFramebuffers)(1, &mut o.framebuffer);
+    (gl.GenRenderbuffers)(1, &mut o.renderbuffer);
+    (gl.UseProgram)(o.program);
+    (gl.BindVertexArray)(o.vertex_array);
+    (gl.BindBuffer)(ARRAY_BUFFER, o.buffer);
+    (gl.EnableVertexAttribArray)(0);
+    (gl.VertexAttribPointer)(0, 4, FLOAT, 0, 16, std::ptr::null());
+    (gl.BindFramebuffer)(FRAMEBUFFER, o.framebuffer);
+    (gl.DrawBuffer)(NONE);
+    (gl.ReadBuffer)(NONE);
+    (gl.Viewport)(0, 0, SIZE as Sizei, SIZE as Sizei);
+    (gl.DepthFunc)(ALWAYS);
+    gl.check("creating the probe's program, vertex array, buffer or framebuffer raised a GL error")
+}
+
+const VERTEX_SHADER_KIND: Enum = gl::VERTEX_SHADER;
+const FRAGMENT_SHADER_KIND: Enum = gl::FRAGMENT_SHADER;
+const ALWAYS: Enum = 0x0207;
+const DEPTH_BUFFER_BIT: u32 = 0x0100;
+
+/// Gives the renderbuffer `internal` storage and attaches it; `false` if the framebuffer is then
+/// incomplete (or the format refused).
+unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
+    (gl.BindRenderbuffer)(RENDERBUFFER, o.renderbuffer);
+    (gl.RenderbufferStorage)(RENDERBUFFER, internal, SIZE as Sizei, SIZE as Sizei);
+    let refused = gl.failed();
+    (gl.FramebufferRenderbuffer)(FRAMEBUFFER, DEPTH_ATTACHMENT, RENDERBUFFER, o.renderbuffer);
+    let complete = (gl.CheckFramebufferStatus)(FRAMEBUFFER) == FRAMEBUFFER_COMPLETE;
+    gl.check("attaching the probe's depth renderbuffer raised a GL error")?;
+    Ok(complete && !refused)
+}
+
+/// A triangle in clip coordinates, as the GPU receives it.
+type Triangle = [[f32; 4]; 3];
+
+/// Clears depth to 1, draws `triangles` (depth test `GL_ALWAYS`), reads the stored window depth
+/// back exactly (rows bottom-up).
+unsafe fn draw(gl: &Gl, format: Format, triangles: &[Triangle]) -> Result<Vec<f64>> {
+    (gl.ClearDepth)(1.0);
+    (gl.Clear)(DEPTH_BUFFER_BIT);
+    let bytes = std::mem::size_of_val(triangles);
+    (gl.BufferData)(ARRAY_BUFFER, bytes as isize, triangles.as_ptr().cast(), STREAM_DRAW);
+    (gl.DrawArrays)(TRIANGLES, 0, 3 * triangles.len() as Sizei);
+    gl.check("drawing the probe's triangles raised a GL error")?;
+    read_depth(gl, format)
+}
+
+/// The stored depth of every pixel, exactly: UNORM formats are read as `GL_UNSIGNED_INT` (the
+/// stored integer `k`, scaled to 32 bits) and returned as `k/(2^m − 1)`; D32F as `GL_FLOAT`.
+unsafe fn read_depth(gl: &Gl, format: Format) -> Result<Vec<f64>> {
+    let mut raw = vec![0u32; SIZE * SIZE];
+    let kind = match format {
+        Format::Unorm(_) => UNSIGNED_INT,
+        Format::Float => FLOAT,
+    };
+    let (s, ptr) = (SIZE as Sizei, raw.as_mut_ptr().cast());
+    (gl.ReadPixels)(0, 0, s, s, DEPTH_COMPONENT, kind, ptr);
+    gl.check("glReadPixels(GL_DEPTH_COMPONENT) raised a GL error")?;
+    Ok(match format {
+        Format::Unorm(m) => {
+            let steps = 2f64.powi(m as i32) - 1.0;
+            let scale = steps / (2f64.powi(32) - 1.0);
+            raw.iter().map(|&v| (v as f64 * scale).round() / steps).collect()
+        }
+        Format::Float => raw.iter().map(|&v| f32::from_bits(v) as f64).collect(),
+    })
+}
+
+/// A triangle's plane in window space, exactly: the homogeneous weights `a` with `Σ aᵢ·vᵢ` on
+/// the ray through NDC point `(x, y)` are the cross product of the rows `Xᵢ − x·Wᵢ` and
+/// `Yᵢ − y·Wᵢ`, which is affine in `(x, y)`: `a = X×Y + x·(Y×W) + y·(W×X)`. The point is inside
+/// when every `aᵢ` has the sign of `Σ aᵢ·Wᵢ`, and its NDC depth is `Σ aᵢ·Zᵢ / Σ aᵢ·Wᵢ`. Valid
+/// for triangles with vertices behind the camera, which a clipper cuts.
+struct Plane {
+    /// `[constant, ∂/∂x, ∂/∂y]` of each `aᵢ`, of `Σ aᵢ·Wᵢ` and of `Σ aᵢ·Zᵢ`.
+    weights: [[f64; 3]; 3],
+    w: [f64; 3],
+    z: [f64; 3],
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+impl Plane {
+    fn new(t: &Triangle) -> Plane {
+        let column = |k: usize| [t[0][k] as f64, t[1][k] as f64, t[2][k] as f64];
+        let (x, y, z, w) = (column(0), column(1), column(2), column(3));
+        let parts = [cross(x, y), cross(y, w), cross(w, x)];
+        let weights = std::array::from_fn(|i| parts.map(|p| p[i]));
+        let dot = |v: [f64; 3]| parts.map(|p| p[0] * v[0] + p[1] * v[1] + p[2] * v[2]);
+        Plane { weights, w: dot(w), z: dot(z) }
+    }
+
+    /// The exact window depth at window point `(x, y)`, if it lies inside the visible part of
+    /// the triangle (in front of the near plane, inside the far one).
+    fn depth_at(&self, x: f64, y: f64) -> Option<f64> {
+        let s = SIZE as f64;
+        let (xn, yn) = (2.0 * x / s - 1.0, 2.0 * y / s - 1.0);
+        let eval = |c: &[f64; 3]| c[0] + xn * c[1] + yn * c[2];
+        let w = eval(&self.w);
+        if w == 0.0 || self.weights.iter().any(|c| eval(c) * w <= 0.0) {
+            return None;
+        }
+        let ndc = eval(&self.z) / w;
+        (ndc > -1.0 + 1e-6 && ndc < 1.0 - 1e-6).then_some(0.5 * ndc + 0.5)
+    }
+
+    /// The exact window depth at pixel `(px, py)`'s centre, if the centre and its four
+    /// neighbours one pixel away are inside: pixels on an edge, whose coverage is ambiguous, are
+    /// left out.
+    fn depth_inside(&self, px: usize, py: usize) -> Option<f64> {
+        let (x, y) = (px as f64 + 0.5, py as f64 + 0.5);
+        for (dx, dy) in [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)] {
+            self.depth_at(x + dx, y + dy)?;
+        }
+        self.depth_at(x, y)
+    }
+}
+
+/// The largest `|stored − exact|` in quanta over the pixels [`exact_depth`] accepts, and how
+/// many there were.
+fn worst_error(format: Format, triangle: &Triangle, stored: &[f64]) -> (f64, usize) {
+    let plane = Plane::new(triangle);
+    let mut worst = 0.0f64;
+    let mut count = 0;
+    for py in 0..SIZE {
+        for px in 0..SIZE {
+            let Some(exact) = plane.depth_inside(px, py) else {
+                continue;
+            };
+            let stored = stored[py * SIZE + px];
+            worst = worst.max((stored - exact).abs() / format.quantum(exact));
+            count += 1;
+        }
+    }
+    (worst, count)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scenes: triangles on eye-space planes, projected with glFrustum in f64 and rounded to f32.
+// ---------------------------------------------------------------------------------------------
+
+/// A symmetric `glFrustum(−e·n, e·n, −e·n, e·n, n, f)`.
+#[derive(Clone, Copy)]
+struct View {
+    e: f64,
+    n: f64,
+    f: f64,
+}
+
+impl View {
+    /// Clip coordinates of eye point `p` (itself first rounded to f32, as a vertex buffer holds
+    /// it), each rounded to f32 as the vertex shader's output.
+    fn clip(&self, p: [f64; 3]) -> [f32; 4] {
+        let [x, y, z] = p.map(|c| c as f32 as f64);
+        let (n, f, e) = (self.n, self.f, self.e);
+        let m10 = -(f + n) / (f - n);
+        let m14 = -2.0 * f * n / (f - n);
+        [x / e, y / e, m10 * z + m14, -z].map(|c| c as f32)
+    }
+
+    /// The eye point on the plane `z = −d − sx·x − sy·y` seen at NDC `(xn, yn)`, if it lies
+    /// between the near and far planes.
+    fn on_plane(&self, xn: f64, yn: f64, d: f64, sx: f64, sy: f64) -> Option<[f64; 3]> {
+        let denominator = 1.0 - self.e * (sx * xn + sy * yn);
+        if denominator <= 0.0 {
+            return None;
+        }
+        let z = -d / denominator;
+        (-z > self.n * 1.001 && -z < self.f * 0.999).then_some([-z * xn * self.e, -z * yn * self.e, z])
+    }
+
+    /// Window depth at eye distance `d` (for choosing planes by the depth they store).
+    fn distance_at_depth(&self, w: f64) -> f64 {
+        // w = f(d − n)/(d(f − n))  ⇒  d = f·n/(f − w(f − n))
+        self.f * self.n / (self.f - w * (self.f - self.n))
+    }
+}
+
+/// Triangle corners in NDC: one on screen, one reaching four viewports past it.
+const CORNERS: [[[f64; 2]; 3]; 2] = [
+    [[-0.93, -0.871], [0.947, -0.613], [-0.207, 0.969]],
+    [[-4.1, -3.3], [3.7, -2.9], [0.31, 5.2]],
+];
+
+/// The plane-error scenes: 3 ranges × 2 depths × 2 slopes × 2 corner sets.
+fn plane_scenes() -> Vec<Triangle> {
+    let mut out = Vec::new();
+    for (view, depths) in [
+        (View { e: 0.5, n: 1.0, f: 10.0 }, [0.02, 0.6]),
+        (View { e: 0.7, n: 0.1, f: 100.0 }, [0.3, 0.95]),
+        (View { e: 0.4, n: 1.0, f: 1e5 }, [0.5, 0.998]),
+    ] {
+        for w in depths {
+            let d = view.distance_at_depth(w);
+            for (sx, sy) in [(0.0, 0.0), (0.37, 1.0), (-3.0, 1.9), (10.0, -0.3)] {
+                for corners in CORNERS {
+                    let t: Option<Vec<[f32; 4]>> = corners
+                        .iter()
+                        .map(|&[xn, yn]| view.on_plane(xn, yn, d, sx, sy).map(|p| view.clip(p)))
+                        .collect();
+                    if let Some(t) = t {
+                        out.push([t[0], t[1], t[2]]);
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The worst per-pixel error of sloped planes, in quanta (module docs).
+unsafe fn plane_error(gl: &Gl, format: Format) -> Result<(f64, usize)> {
+    let (mut worst, mut pixels) = (0.0f64, 0);
+    let mut gpu = std::time::Duration::ZERO;
+    for t in plane_scenes() {
+        let t0 = Instant::now();
+        let stored = draw(gl, format, &[t])?;
+        gpu += t0.elapsed();
+        let (error, count) = worst_error(format, &t, &stored);
+        worst = worst.max(error);
+        pixels += count;
+    }
+    if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("  plane gpu {gpu:?} scenes {}", plane_scenes().len()); }
+    Ok((worst, pixels))
+}
+
+// ---------------------------------------------------------------------------------------------
+// glPolygonOffset's r
+// ---------------------------------------------------------------------------------------------
+
+/// The `units` of every offset draw: one value, because a rasterizer may compile a variant per
+/// value (llvmpipe does). Up to 4 quanta per unit it keeps D16 below window depth 1 (2^12 × 4 /
+/// 65535 ≈ 0.25 above 0.45), and it moves D32 by 2^-20 or more, 30× its f32 pipeline's noise.
+const OFFSET_UNITS: f32 = 4096.0;
+
+/// `r` in quanta (module docs): a quad covering the viewport, window depth `lo` to `hi` across x.
+unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
+    let bands: &[(f64, f64)] = match format {
+        Format::Unorm(_) => &[(0.40, 0.45)],
+        Format::Float => &[(0.40, 0.45), (0.050, 0.055)],
+    };
+    let mut r = Vec::new();
+    for &(lo, hi) in bands {
+        let z = |w: f64| (2.0 * w - 1.0) as f32;
+        let (a, b) = (z(lo), z(hi));
+        let quad: [Triangle; 2] = [
+            [[-1.0, -1.0, a, 1.0], [1.0, -1.0, b, 1.0], [1.0, 1.0, b, 1.0]],
+            [[-1.0, -1.0, a, 1.0], [1.0, 1.0, b, 1.0], [-1.0, 1.0, a, 1.0]],
+        ];
+        // The unit is the quantum at the primitive's largest depth (for D32F, `2^(e − 23)`).
+        let unit = format.quantum(0.5 * b as f64 + 0.5);
+        let plain = draw(gl, format, &quad)?;
+        (gl.Enable)(POLYGON_OFFSET_FILL);
+        (gl.PolygonOffset)(0.0, OFFSET_UNITS);
+        let offset = draw(gl, format, &quad);
+        (gl.Disable)(POLYGON_OFFSET_FILL);
+        let offset = offset?;
+        let sum: f64 = offset.iter().zip(&plain).map(|(o, p)| o - p).sum();
+        let mean = sum / plain.len() as f64;
+        r.push(mean / OFFSET_UNITS as f64 / unit);
+    }
+    Ok(r)
+}
+
+// ---------------------------------------------------------------------------------------------
+// Snapping
+// ---------------------------------------------------------------------------------------------
+
+/// Which snapping hypothesis the stored depth of steep triangles fits best (module docs).
+unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
+    // Window positions with assorted sub-pixel parts; depth grows with x only.
+    let sets: [[[f64; 2]; 3]; 2] = [
+        [[6.3071, 5.1187], [58.6523, 9.4402], [11.8816, 59.7311]],
+        [[4.5939, 7.8023], [60.1252, 3.2765], [33.3388, 61.0909]],
+    ];
+    let s = SIZE as f64;
+    let mut residual = [0.0f64; 2 * 17 + 1]; // unsnapped, then (nearest, down) × b = 0..=16
+    for set in sets {
+        let t: Triangle = set.map(|[x, y]| {
+            let z = 0.9 * (2.0 * x / s - 1.0);
+            [(2.0 * x / s - 1.0) as f32, (2.0 * y / s - 1.0) as f32, z as f32, 1.0]
+        });
+        let stored = draw(gl, Format::Float, &[t])?;
+        let plane = Plane::new(&t);
+        let inside: Vec<(usize, usize)> = (0..SIZE * SIZE)
+            .map(|i| (i % SIZE, i / SIZE))
+            .filter(|&(px, py)| plane.depth_inside(px, py).is_some())
+            .collect();
+        for (h, slot) in residual.iter_mut().enumerate() {
+            let snapped = Plane::new(&snap(&t, h));
+            for &(px, py) in &inside {
+                let Some(predicted) = snapped.depth_at(px as f64 + 0.5, py as f64 + 0.5) else {
+                    continue;
+                };
+                *slot = slot.max((stored[py * SIZE + px] - predicted).abs());
+            }
+        }
+    }
+    let best = (0..residual.len())
+        .min_by(|&a, &b| residual[a].total_cmp(&residual[b]))
+        .unwrap_or(0);
+    let snapped = (1..residual.len())
+        .min_by(|&a, &b| residual[a].total_cmp(&residual[b]))
+        .unwrap_or(1);
+    let figures = (residual[0], ((snapped - 1) / 2) as u32, residual[snapped]);
+    Ok(match best {
+        0 => (Snapping::Unsnapped, figures),
+        h => (Snapping::SubpixelBits(((h - 1) / 2) as u32), figures),
+    })
+}
+
+/// `t` (with w = 1) with its window positions snapped per hypothesis `h`: 0 none; `1 + 2b` to
+/// the nearest `2^-b` pixel; `2 + 2b` down to it.
+fn snap(t: &Triangle, h: usize) -> Triangle {
+    if h == 0 {
+        return *t;
+    }
+    let (b, down) = ((h - 1) / 2, (h - 1) % 2 == 1);
+    let grid = 2f64.powi(b as i32);
+    let s = SIZE as f64;
+    t.map(|[x, y, z, w]| {
+        let snap_ndc = |c: f32| {
+            let window = (c as f64 + 1.0) * s / 2.0 * grid;
+            let window = if down { window.floor() } else { window.round() } / grid;
+            // f64 here: the prediction must not add an f32 rounding of its own
+            window * 2.0 / s - 1.0
+        };
+        [snap_ndc(x) as f32, snap_ndc(y) as f32, z, w]
+    })
+}
+
+// ---------------------------------------------------------------------------------------------
+// Near-plane clipping
+// ---------------------------------------------------------------------------------------------
+
+/// How a triangle crossing the near plane keeps its depth (module docs): the worst error of
+/// near-clipped ground planes against `2·plane_error + 2` quanta (D24).
+unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
+    let mut worst = 0.0f64;
+    for t in near_scenes() {
+        let stored = draw(gl, Format::Unorm(24), &[t])?;
+        let (error, count) = worst_error(Format::Unorm(24), &t, &stored);
+        if count < SIZE * SIZE / 8 {
+            return Err(Error::new(
+                ErrorKind::Gl,
+                "a near-clipped ground plane covered less than an eighth of the probe's framebuffer",
+            ));
+        }
+        if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("near scene: {error:.2} quanta over {count} px"); }
+        worst = worst.max(error);
+    }
+    let clip = if worst <= 2.0 * plane_error + 2.0 {
+        NearClip::PlanePreserving
+    } else {
+        NearClip::ClippedF32
+    };
+    Ok((clip, worst))
+}
+
+/// Ground planes whose triangles reach 1000 units behind and ahead of the camera (n = 0.1,
+/// f = 1000, a 16:9 frustum): sloped ones seen from 10 units, and a floor 1.7 units below the eye.
+fn near_scenes() -> Vec<Triangle> {
+    let view = View { e: 1.0, n: 0.1, f: 1000.0 };
+    let clip = |[x, y, z]: [f64; 3]| {
+        let mut c = view.clip([x, y, z]);
+        c[1] = (y as f32 as f64 / 0.5625) as f32;
+        c
+    };
+    let mut out = Vec::new();
+    for slope in [-0.5, 1.0, 3.0] {
+        let on = |x: f64, y: f64| clip([x, y, -10.0 + slope * y]);
+        // the corner ahead of the camera is where the plane runs away from it
+        let ahead = if slope < 0.0 { 1000.0 } else { -1000.0 };
+        out.push([on(-1000.0, -ahead), on(1000.0, -ahead), on(0.0, ahead)]);
+    }
+    out.push([
+        clip([-1000.0, -1.7, 1000.0]),
+        clip([1000.0, -1.7, 1000.0]),
+        clip([0.0, -1.7, -1000.0]),
+    ]);
+    out
+}
