@@ -10,9 +10,10 @@
 //! * **Snapping** ([`Snapping`]): a steep triangle (depth gradient ≈ 0.014 per pixel) whose
 //!   vertices sit at sub-pixel offsets, on `GL_DEPTH_COMPONENT32F`. For every hypothesis — depth
 //!   plane set up from the unsnapped positions, or from positions rounded (to nearest, or down) to
-//!   `2^-b` pixel for `b` in 0..=16 — the predicted depth of every pixel is computed exactly, and
-//!   the hypothesis closest to the stored depths wins. An offset of `2^-(b+1)` pixel moves depth by
-//!   ≥ 10⁻⁶ here, 30× the f32 spacing, so any `b ≤ 16` is told from none.
+//!   `2^-b` pixel for `b` in 0..=12 — the predicted depth of every pixel is computed exactly, and
+//!   the hypothesis closest to the stored depths wins. Snapping to `2^-12` pixel moves depth by
+//!   1.7·10⁻⁶ here, 17× the f32 noise of the stored depth; finer snapping cannot be told from
+//!   none, and its term in the model is as small.
 //! * **`resolvable`** (`r`, per format): a gently sloped quad drawn twice, without and with
 //!   `glPolygonOffset(0, U)`; `r` = the mean stored difference ÷ `U`, in units of the format's
 //!   quantum (UNORM: `1/(2^m − 1)`; D32F: `2^(e − 23)`, `e` the exponent of the primitive's largest
@@ -224,19 +225,15 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             }
             return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
         }
-        let t0 = Instant::now();
         let bands = resolvable(gl, format)?;
-        let t1 = Instant::now();
         profile.resolvable[slot] = bands.iter().copied().fold(0.0, f64::max);
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
         (profile.plane_error[slot], figures.plane_pixels[slot]) = plane_error(gl, format)?;
-        let t2 = Instant::now();
         if format == Format::Float {
             (profile.snapping, figures.snapping_residual) = snapping(gl)?;
         }
-        if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("{format:?}: r {:?} plane {:?} snap {:?}", t1-t0, t2-t1, t2.elapsed()); }
         if internal == DEPTH_COMPONENT24 {
             (profile.near_clip, figures.near_clip_error) = near_clip(gl, profile.plane_error[slot])?;
         }
@@ -402,7 +399,7 @@ impl Plane {
     }
 }
 
-/// The largest `|stored − exact|` in quanta over the pixels [`exact_depth`] accepts, and how
+/// The largest `|stored − exact|` in quanta over the pixels [`Plane::depth_inside`] accepts, and how
 /// many there were.
 fn worst_error(format: Format, triangle: &Triangle, stored: &[f64]) -> (f64, usize) {
     let plane = Plane::new(triangle);
@@ -497,16 +494,12 @@ fn plane_scenes() -> Vec<Triangle> {
 /// The worst per-pixel error of sloped planes, in quanta (module docs).
 unsafe fn plane_error(gl: &Gl, format: Format) -> Result<(f64, usize)> {
     let (mut worst, mut pixels) = (0.0f64, 0);
-    let mut gpu = std::time::Duration::ZERO;
     for t in plane_scenes() {
-        let t0 = Instant::now();
         let stored = draw(gl, format, &[t])?;
-        gpu += t0.elapsed();
         let (error, count) = worst_error(format, &t, &stored);
         worst = worst.max(error);
         pixels += count;
     }
-    if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("  plane gpu {gpu:?} scenes {}", plane_scenes().len()); }
     Ok((worst, pixels))
 }
 
@@ -552,6 +545,11 @@ unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
 // Snapping
 // ---------------------------------------------------------------------------------------------
 
+/// The finest snapping the probe tells from none: `2^-(12+1)` pixel moves the test triangle's
+/// depth by 1.7·10⁻⁶, 17× the f32 noise of its depth (≈ 10⁻⁷); finer grids move it by less
+/// than the noise, and their term in the model is as small (they read as unsnapped).
+const MAX_SNAP_BITS: u32 = 12;
+
 /// Which snapping hypothesis the stored depth of steep triangles fits best (module docs).
 unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
     // Window positions with assorted sub-pixel parts; depth grows with x only.
@@ -560,7 +558,7 @@ unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
         [[4.5939, 7.8023], [60.1252, 3.2765], [33.3388, 61.0909]],
     ];
     let s = SIZE as f64;
-    let mut residual = [0.0f64; 2 * 17 + 1]; // unsnapped, then (nearest, down) × b = 0..=16
+    let mut residual = [0.0f64; 2 * (MAX_SNAP_BITS as usize + 1) + 1]; // none, (nearest, down) × b
     for set in sets {
         let t: Triangle = set.map(|[x, y]| {
             let z = 0.9 * (2.0 * x / s - 1.0);
@@ -632,7 +630,6 @@ unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
                 "a near-clipped ground plane covered less than an eighth of the probe's framebuffer",
             ));
         }
-        if std::env::var_os("ZSHIFT_PROBE_TIMING").is_some() { eprintln!("near scene: {error:.2} quanta over {count} px"); }
         worst = worst.max(error);
     }
     let clip = if worst <= 2.0 * plane_error + 2.0 {

@@ -1,0 +1,254 @@
+//! The rasterizer probe on a real context (Mesa llvmpipe through EGL, core and compatibility
+//! profiles): its figures against what is known of llvmpipe and against an independent
+//! readback, the caller's state left as it was, and errors that name what failed.
+//!
+//! Fails, never skips, when no GL context can be made.
+
+use std::ffi::{c_char, c_void, CStr};
+
+use zshift::ffi::{
+    zshift_probe, zshift_profile_worst_case, ZshiftProfile, ZSHIFT_ERR_GL, ZSHIFT_ERR_NULL_POINTER,
+    ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
+};
+use zshift::probe::{probe, probe_with_figures};
+use zshift::profile::{NearClip, RasterizerProfile, Snapping};
+use zshift::ErrorKind;
+use zshift_harness::glow::{self, HasContext};
+use zshift_harness::{ClipDepth, DepthFormat, DrawState, Gl, Profile, Quad};
+
+fn context(profile: Profile) -> Gl {
+    Gl::new(profile).unwrap_or_else(|e| panic!("no {profile:?} OpenGL context (EGL surfaceless): {e}"))
+}
+
+/// The harness context's loader, as an engine would pass its own.
+fn loader(gl: &Gl) -> impl FnMut(&CStr) -> *const c_void + '_ {
+    |name| gl.proc_address(name.to_str().unwrap_or(""))
+}
+
+fn measured(gl: &Gl) -> RasterizerProfile {
+    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
+    unsafe { probe(loader(gl)) }.unwrap_or_else(|e| panic!("probe failed: {e}"))
+}
+
+/// The stored offset of `glPolygonOffset(0, units)` on a camera-facing quad, in window depth,
+/// read back through the harness (its own shader, its own readback), independent of the probe.
+fn offset_of_one_unit(gl: &mut Gl, format: DepthFormat, depth: f32) -> f64 {
+    gl.set_target(32, 32, format).unwrap();
+    let identity: [f32; 16] = [1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.];
+    let quad = Quad::rect(-1.0, 1.0, -1.0, 1.0, 2.0 * depth - 1.0);
+    let always = DrawState { depth_func: glow::ALWAYS, ..DrawState::default() };
+    let units = 1024.0;
+    let mut read = |offset: Option<(f32, f32)>| {
+        gl.clear([0.0; 4], 1.0).unwrap();
+        let state = DrawState { polygon_offset: offset, ..always };
+        gl.draw_quad(&quad, &identity, [1.0; 4], &state).unwrap();
+        let d = gl.read_depth().unwrap();
+        d.iter().map(|&v| v as f64).sum::<f64>() / d.len() as f64
+    };
+    let plain = read(None);
+    let offset = read(Some((0.0, units)));
+    (offset - plain) / units as f64
+}
+
+#[test]
+fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
+    for kind in [Profile::Core, Profile::Compatibility] {
+        let mut gl = context(kind);
+        assert!(gl.renderer().contains("llvmpipe"), "these figures are llvmpipe's: {}", gl.renderer());
+        // SAFETY: as in `measured`.
+        let (p, figures) = unsafe { probe_with_figures(loader(&gl)) }.unwrap();
+        println!("{kind:?}: {p:?}\n{figures:?}");
+        assert!(p.measured);
+        assert!(p.probe_seconds > 0.0);
+        // llvmpipe snaps coverage to GL_SUBPIXEL_BITS but sets the depth plane up from the float
+        // positions (lp_setup_tri.c): unsnapped, and clearly so.
+        assert_eq!(p.snapping, Snapping::Unsnapped);
+        assert!(figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2, "{figures:?}");
+        // r: lp_state_setup.c scales units by 2·mrd on UNORM (mrd = 1/(2^m − 1)) and by 2^(e−23)
+        // on float depth. Checked against the harness's own readback of one offset draw.
+        for (slot, format, depth, quantum) in [
+            (0, DepthFormat::D16, 0.5f32, 1.0 / 65535.0),
+            (1, DepthFormat::D24, 0.5, 1.0 / 16_777_215.0),
+            (3, DepthFormat::D32F, 0.75, 2f64.powi(-24)),
+        ] {
+            let r = offset_of_one_unit(&mut gl, format, depth) / quantum;
+            let expected = if format == DepthFormat::D32F { 1.0 } else { 2.0 };
+            assert!((r - expected).abs() < 0.01, "{format:?}: readback r = {r}");
+            assert!((p.resolvable[slot] - r).abs() < 0.01, "{format:?}: probe {} vs readback {r}", p.resolvable[slot]);
+        }
+        // Per-pixel error of a plane: D16 rounds to nearest (≤ ½ quantum plus f32 noise far
+        // below it); D24 and D32F carry a few f32 roundings of values ≤ 1.
+        assert!(p.plane_error[0] <= 0.55, "{:?}", p.plane_error);
+        assert!(p.plane_error[1] <= 4.0 && p.plane_error[3] <= 4.0, "{:?}", p.plane_error);
+        assert!(figures.plane_pixels.iter().all(|&n| n > 20_000), "{figures:?}");
+        // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
+        assert_eq!(p.near_clip, NearClip::ClippedF32);
+        assert!(figures.near_clip_error > 10.0, "{figures:?}");
+    }
+}
+
+/// Odd values for everything the probe touches, set through glow.
+unsafe fn set_odd_state(g: &glow::Context) -> (glow::Framebuffer, glow::VertexArray, glow::Buffer) {
+    let fbo = g.create_framebuffer().unwrap();
+    let vao = g.create_vertex_array().unwrap();
+    let buffer = g.create_buffer().unwrap();
+    g.bind_framebuffer(glow::DRAW_FRAMEBUFFER, Some(fbo));
+    g.bind_vertex_array(Some(vao));
+    g.bind_buffer(glow::ARRAY_BUFFER, Some(buffer));
+    g.viewport(3, 5, 17, 19);
+    g.depth_range_f64(0.125, 0.875);
+    g.depth_func(glow::GREATER);
+    g.depth_mask(false);
+    g.clear_depth_f64(0.25);
+    g.enable(glow::POLYGON_OFFSET_FILL);
+    g.polygon_offset(1.5, -2.5);
+    g.enable(glow::CULL_FACE);
+    g.enable(glow::SCISSOR_TEST);
+    g.enable(glow::DEPTH_CLAMP);
+    g.disable(glow::DEPTH_TEST);
+    g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+    g.pixel_store_i32(glow::PACK_ROW_LENGTH, 7);
+    g.pixel_store_i32(glow::PACK_SKIP_ROWS, 2);
+    (fbo, vao, buffer)
+}
+
+/// Everything [`set_odd_state`] set, read back.
+unsafe fn state(g: &glow::Context) -> Vec<String> {
+    let mut viewport = [0; 4];
+    g.get_parameter_i32_slice(glow::VIEWPORT, &mut viewport);
+    let mut range = [0.0f32; 2];
+    g.get_parameter_f32_slice(glow::DEPTH_RANGE, &mut range);
+    let enabled = [
+        glow::POLYGON_OFFSET_FILL,
+        glow::CULL_FACE,
+        glow::SCISSOR_TEST,
+        glow::DEPTH_CLAMP,
+        glow::DEPTH_TEST,
+        glow::STENCIL_TEST,
+        glow::RASTERIZER_DISCARD,
+    ]
+    .map(|cap| g.is_enabled(cap));
+    let ints = [
+        glow::DRAW_FRAMEBUFFER_BINDING,
+        glow::READ_FRAMEBUFFER_BINDING,
+        glow::RENDERBUFFER_BINDING,
+        glow::CURRENT_PROGRAM,
+        glow::VERTEX_ARRAY_BINDING,
+        glow::ARRAY_BUFFER_BINDING,
+        glow::PIXEL_PACK_BUFFER_BINDING,
+        glow::DEPTH_FUNC,
+        glow::PACK_ALIGNMENT,
+        glow::PACK_ROW_LENGTH,
+        glow::PACK_SKIP_ROWS,
+        glow::PACK_SKIP_PIXELS,
+        glow::CLIP_ORIGIN,
+        glow::CLIP_DEPTH_MODE,
+    ]
+    .map(|p| g.get_parameter_i32(p));
+    let floats = [glow::DEPTH_CLEAR_VALUE, glow::POLYGON_OFFSET_FACTOR, glow::POLYGON_OFFSET_UNITS]
+        .map(|p| g.get_parameter_f32(p));
+    let mask = g.get_parameter_bool(glow::DEPTH_WRITEMASK);
+    vec![
+        format!("viewport {viewport:?} depth range {range:?}"),
+        format!("enabled {enabled:?}"),
+        format!("ints {ints:?}"),
+        format!("floats {floats:?} depth mask {mask}"),
+    ]
+}
+
+#[test]
+fn the_callers_state_is_restored() {
+    for kind in [Profile::Core, Profile::Compatibility] {
+        let mut gl = context(kind);
+        gl.clip_control(ClipDepth::ZeroToOne).unwrap();
+        let g = gl.glow();
+        // SAFETY: the context is current on this thread.
+        let before = unsafe {
+            set_odd_state(g);
+            assert_eq!(g.get_error(), glow::NO_ERROR);
+            state(g)
+        };
+        measured(&gl);
+        let after = unsafe { state(g) };
+        assert_eq!(before, after, "{kind:?}");
+        assert_eq!(unsafe { g.get_error() }, glow::NO_ERROR, "{kind:?}: the probe left a GL error");
+        // The same after a failing probe (a loader without glReadPixels fails after saving).
+        let failing = |name: &CStr| {
+            if name == c"glReadPixels" { std::ptr::null() } else { gl.proc_address(name.to_str().unwrap()) }
+        };
+        // SAFETY: as above; NULL is allowed.
+        assert!(unsafe { probe(failing) }.is_err());
+        assert_eq!(before, unsafe { state(g) }, "{kind:?} after an error");
+    }
+}
+
+#[test]
+fn errors_name_what_failed() {
+    let gl = context(Profile::Core);
+    for missing in [c"glReadPixels", c"glPolygonOffset", c"glCheckFramebufferStatus"] {
+        let without = |name: &CStr| {
+            if name == missing { std::ptr::null() } else { gl.proc_address(name.to_str().unwrap()) }
+        };
+        // SAFETY: the context is current; NULL is allowed.
+        let e = unsafe { probe(without) }.unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Gl);
+        assert!(e.detail().contains(missing.to_str().unwrap()), "{missing:?}: {}", e.detail());
+    }
+    // A GL error the caller left pending is reported, not blamed on a probe step.
+    unsafe { gl.glow().enable(0xFFFF) };
+    let e = unsafe { probe(loader(&gl)) }.unwrap_err();
+    assert!(e.detail().contains("pending"), "{}", e.detail());
+    // Optional entry points (glClipControl, viewport arrays) may be missing.
+    let without_optional = |name: &CStr| {
+        if name == c"glClipControl" || name == c"glViewportIndexedf" {
+            std::ptr::null()
+        } else {
+            gl.proc_address(name.to_str().unwrap())
+        }
+    };
+    assert!(unsafe { probe(without_optional) }.is_ok());
+}
+
+unsafe extern "C" fn egl_loader(name: *const c_char, user: *mut c_void) -> *mut c_void {
+    let gl = &*(user as *const Gl);
+    gl.proc_address(CStr::from_ptr(name).to_str().unwrap()) as *mut c_void
+}
+
+unsafe extern "C" fn null_loader(_: *const c_char, _: *mut c_void) -> *mut c_void {
+    std::ptr::null_mut()
+}
+
+#[test]
+fn the_c_entry_point_checks_pointers_and_leaves_out_untouched_on_error() {
+    let gl = context(Profile::Core);
+    let user = &gl as *const Gl as *mut c_void;
+    let mut worst = std::mem::MaybeUninit::<ZshiftProfile>::uninit();
+    assert_eq!(zshift_profile_worst_case(worst.as_mut_ptr()), ZSHIFT_OK);
+    let worst = unsafe { worst.assume_init() };
+    // Debug formatting: NaN entries (not measured) compare equal that way.
+    let same = |a: &RasterizerProfile, b: &RasterizerProfile| format!("{a:?}") == format!("{b:?}");
+    assert!(same(&worst.to_profile().unwrap(), &RasterizerProfile::worst_case()));
+    // A sentinel byte pattern: on error `out` must keep every byte.
+    let mut out: ZshiftProfile = unsafe { std::mem::transmute([0xABu8; std::mem::size_of::<ZshiftProfile>()]) };
+    let bytes = |p: &ZshiftProfile| format!("{p:?}");
+    let sentinel = bytes(&out);
+    unsafe {
+        assert_eq!(zshift_probe(None, user, &mut out), ZSHIFT_ERR_NULL_POINTER);
+        assert_eq!(zshift_probe(Some(egl_loader), user, std::ptr::null_mut()), ZSHIFT_ERR_NULL_POINTER);
+        assert_eq!(zshift_probe(Some(null_loader), user, &mut out), ZSHIFT_ERR_GL);
+        assert_eq!(bytes(&out), sentinel, "out written on error");
+        assert_eq!(zshift_probe(Some(egl_loader), user, &mut out), ZSHIFT_OK);
+    }
+    let rust = measured(&gl);
+    let mut c = out.to_profile().unwrap();
+    c.probe_seconds = rust.probe_seconds;
+    assert!(same(&c, &rust), "{c:?} vs {rust:?}");
+    assert_eq!(out.measured, 1);
+    assert_eq!(out.subpixel_bits, -1);
+    assert_eq!(out.near_clip, ZSHIFT_NEAR_CLIP_CLIPPED_F32);
+    // A zero-filled record is refused, naming the field.
+    let zero: ZshiftProfile = unsafe { std::mem::zeroed() };
+    let e = zero.to_profile().unwrap_err();
+    assert_eq!(e.kind(), ErrorKind::Domain);
+    assert!(e.detail().contains("near_clip"), "{}", e.detail());
+}
