@@ -28,12 +28,20 @@ fn main() {
         figures.snapping_residual.2
     );
     println!("near clip      {:?} (near-clipped ground plane: {:.1} D24 quanta off)", p.near_clip, figures.near_clip_error);
-    println!("format  r (quanta)  plane_error (quanta)  pixels");
+    println!("format  r (quanta)  plane_error (quanta)  interpolation (u*M)  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(
-            "{name:<6}  {:<10.4}  {:<20.4}  {}",
-            p.resolvable[i], p.plane_error[i], figures.plane_pixels[i]
+            "{name:<6}  {:<10.4}  {:<20.4}  {:<19.3}  {}",
+            p.resolvable[i], p.plane_error[i], figures.interpolation[i], figures.plane_pixels[i]
         );
     }
+    println!(
+        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; interpolation_ulps (both mappings) {:.3}",
+        p.plane_error_reversed, figures.reversed_pixels, p.interpolation_ulps
+    );
+    println!(
+        "D32F plane error in quanta at each pixel's own depth: [-1,1] {:.2}, reversed {:.2}",
+        figures.float_local_plane_error[0], figures.float_local_plane_error[1]
+    );
     println!("D32F r per band (w ~ 0.45, w ~ 0.055): {:?}", figures.float_resolvable);
 }

@@ -91,10 +91,21 @@ typedef struct {
   // primitive's largest depth). Finite and > 0. The worst case is 4.
   double resolvable[4];
   // The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-  // units of the format's quantum at that depth; NAN where not measured (the model's bound
-  // applies). Covers the rasterizer after the vertex shader (division by w, viewport
-  // transform, depth setup, interpolation, conversion to the format). NAN or finite >= 0.
+  // units of the format's quantum (for D32F the float spacing 2^(e - 23) at the primitive's
+  // largest window depth), under the [-1, 1] mapping; NAN where not measured (the model's
+  // bound applies). Covers the rasterizer after the vertex shader (division by w, viewport
+  // transform, depth setup, interpolation, conversion to the format), measured against the
+  // plane through the clip coordinates it received. NAN or finite >= 0.
   double plane_error[4];
+  // plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+  // window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
+  double plane_error_reversed;
+  // How the per-pixel error grows with a steep plane's window position: every measured pixel
+  // kept |stored - exact| <= (1 quantum for D16/D24/D32, 0 for D32F)
+  // + interpolation_ulps * 2^-24 * M, with M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the
+  // plane's window depth extrapolated to window (0, 0), x, y the pixel's window
+  // coordinates). NAN where not measured. NAN or finite >= 0.
+  double interpolation_ulps;
   // How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
   // ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
   int32_t near_clip;
@@ -353,6 +364,8 @@ typedef int32_t Int;
 #define LOWER_LEFT 36001
 
 #define NEGATIVE_ONE_TO_ONE 37726
+
+#define ZERO_TO_ONE 37727
 
 #define POLYGON_OFFSET_CLAMP 36379
 
@@ -686,8 +699,7 @@ ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
 
 // Measures the rasterizer of the OpenGL context current on the calling thread and writes its
 // profile to `out` (see `ZshiftProfile`). Draws about a hundred small triangles into a 64x64
-// framebuffer of its own and reads their depth back: about 70 ms on Mesa llvmpipe, a few ms on
-// a GPU. Call it once after making the context current, not per frame.
+// framebuffer of its own and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once after making the context current, not per frame.
 //
 // GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
 // later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is
@@ -701,7 +713,9 @@ ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
 //
 // # Safety
 // `loader` must return, for each name, NULL or that entry point of the current context.
-ZshiftStatus zshift_probe(ZshiftGlLoader loader, void *user, ZshiftProfile *out);
+ZshiftStatus zshift_probe(ZshiftGlLoader loader,
+                          void *user,
+                          ZshiftProfile *out);
 
 // Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
 // base on a real rasterizer, by an error model whose every term is a worst-case bound: the

@@ -76,10 +76,15 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             assert!((r - expected).abs() < 0.01, "{format:?}: readback r = {r}");
             assert!((p.resolvable[slot] - r).abs() < 0.01, "{format:?}: probe {} vs readback {r}", p.resolvable[slot]);
         }
-        // Per-pixel error of a plane: D16 rounds to nearest (≤ ½ quantum plus f32 noise far
-        // below it); D24 and D32F carry a few f32 roundings of values ≤ 1.
-        assert!(p.plane_error[0] <= 0.55, "{:?}", p.plane_error);
-        assert!(p.plane_error[1] <= 4.0 && p.plane_error[3] <= 4.0, "{:?}", p.plane_error);
+        // Per-pixel error of a plane: D16 rounds to nearest (½ quantum) plus f32 noise well
+        // below a quantum; D24 and D32F carry a few f32 roundings of the plane's terms, whose
+        // magnitude grows with a steep plane's distance from the window origin (up to ~25 here),
+        // which interpolation_ulps measures: a few roundings, the same on every format.
+        assert!(p.plane_error[0] < 1.0, "{:?}", p.plane_error);
+        assert!(p.plane_error[1] < 64.0 && p.plane_error[3] < 64.0, "{:?}", p.plane_error);
+        assert!(p.interpolation_ulps > 0.5 && p.interpolation_ulps < 4.0, "{p:?}");
+        assert!(figures.interpolation[1] <= p.interpolation_ulps, "{figures:?}");
+        assert!(p.plane_error_reversed < 64.0, "{p:?}");
         assert!(figures.plane_pixels.iter().all(|&n| n > 20_000), "{figures:?}");
         // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
         assert_eq!(p.near_clip, NearClip::ClippedF32);

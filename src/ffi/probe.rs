@@ -39,10 +39,21 @@ pub struct ZshiftProfile {
     /// primitive's largest depth). Finite and > 0. The worst case is 4.
     pub resolvable: [f64; 4],
     /// The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-    /// units of the format's quantum at that depth; NAN where not measured (the model's bound
-    /// applies). Covers the rasterizer after the vertex shader (division by w, viewport
-    /// transform, depth setup, interpolation, conversion to the format). NAN or finite >= 0.
+    /// units of the format's quantum (for D32F the float spacing 2^(e - 23) at the primitive's
+    /// largest window depth), under the [-1, 1] mapping; NAN where not measured (the model's
+    /// bound applies). Covers the rasterizer after the vertex shader (division by w, viewport
+    /// transform, depth setup, interpolation, conversion to the format), measured against the
+    /// plane through the clip coordinates it received. NAN or finite >= 0.
     pub plane_error: [f64; 4],
+    /// plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+    /// window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
+    pub plane_error_reversed: f64,
+    /// How the per-pixel error grows with a steep plane's window position: every measured pixel
+    /// kept |stored - exact| <= (1 quantum for D16/D24/D32, 0 for D32F)
+    /// + interpolation_ulps * 2^-24 * M, with M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the
+    /// plane's window depth extrapolated to window (0, 0), x, y the pixel's window
+    /// coordinates). NAN where not measured. NAN or finite >= 0.
+    pub interpolation_ulps: f64,
     /// How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
     /// ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
     pub near_clip: i32,
@@ -67,6 +78,8 @@ impl From<RasterizerProfile> for ZshiftProfile {
             },
             resolvable: p.resolvable,
             plane_error: p.plane_error,
+            plane_error_reversed: p.plane_error_reversed,
+            interpolation_ulps: p.interpolation_ulps,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -103,13 +116,20 @@ impl ZshiftProfile {
         if self.resolvable.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
             return Err(domain("a ZshiftProfile.resolvable entry is not finite and > 0"));
         }
-        if self.plane_error.iter().any(|e| *e < 0.0 || e.is_infinite()) {
-            return Err(domain("a ZshiftProfile.plane_error entry is negative or infinite (NAN means not measured)"));
+        let errors = [self.plane_error_reversed, self.interpolation_ulps];
+        if self.plane_error.iter().chain(&errors).any(|e| *e < 0.0 || e.is_infinite()) {
+            return Err(domain(
+                "ZshiftProfile.plane_error, plane_error_reversed or interpolation_ulps is negative \
+                 or infinite \
+                 (NAN means not measured)",
+            ));
         }
         Ok(RasterizerProfile {
             snapping,
             resolvable: self.resolvable,
             plane_error: self.plane_error,
+            plane_error_reversed: self.plane_error_reversed,
+            interpolation_ulps: self.interpolation_ulps,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() { self.probe_seconds } else { 0.0 },
@@ -129,8 +149,7 @@ pub extern "C" fn zshift_profile_worst_case(out: *mut ZshiftProfile) -> ZshiftSt
 
 /// Measures the rasterizer of the OpenGL context current on the calling thread and writes its
 /// profile to `out` (see `ZshiftProfile`). Draws about a hundred small triangles into a 64x64
-/// framebuffer of its own and reads their depth back: about 70 ms on Mesa llvmpipe, a few ms on
-/// a GPU. Call it once after making the context current, not per frame.
+/// framebuffer of its own and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once after making the context current, not per frame.
 ///
 /// GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
 /// later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is

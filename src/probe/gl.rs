@@ -83,6 +83,7 @@ pub const CLIP_ORIGIN: Enum = 0x935C;
 pub const CLIP_DEPTH_MODE: Enum = 0x935D;
 pub const LOWER_LEFT: Enum = 0x8CA1;
 pub const NEGATIVE_ONE_TO_ONE: Enum = 0x935E;
+pub const ZERO_TO_ONE: Enum = 0x935F;
 pub const POLYGON_OFFSET_CLAMP: Enum = 0x8E1B;
 pub const DEPTH_BOUNDS_TEST_EXT: Enum = 0x8890;
 pub const EXTENSIONS: Enum = 0x1F03;

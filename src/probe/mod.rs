@@ -22,13 +22,20 @@
 //!   same scale by bisection over powers of two; the direct difference needs two draws and finds
 //!   factors that are not powers of two.
 //! * **`plane_error`** (per format): the largest `|stored − exact|` over every pixel whose centre
-//!   lies at least a pixel inside one of 24 triangles: perspective planes (f/n = 10, 10³, 10⁵)
-//!   with eye-space slopes 0 to 10, window depths from 0.02 to 0.998, vertices on screen or up to
-//!   4 viewports off it (but in front of the near plane); in units of the format's quantum at the
-//!   exact depth. It covers what the rasterizer adds after the vertex shader — the division by
-//!   `w`, the viewport transform, plane setup, interpolation and the conversion to the stored
-//!   format — and not the f32 rounding of the vertex transform or of the vertex coordinates
-//!   (`T`'s first part and `V` in [`crate::recommend`]).
+//!   lies at least a pixel inside one of 48 triangles: perspective planes (f/n = 10, 10³, 10⁵)
+//!   facing the camera, gently sloped, steep and grazing (eye-space slopes up to 10), axis depths
+//!   from 0.02 to 0.998, corners on screen or up to four viewports off it (in front of the near
+//!   plane). Each is drawn in a 64×64 tile of its own, the tiles side by side within 512 pixels
+//!   of the window origin. Units: the format's quantum (D32F: the f32 spacing at the primitive's
+//!   largest depth, as for its `r`). It covers what the rasterizer adds after the vertex shader
+//!   — the division by `w`, the viewport transform, plane setup, interpolation and the
+//!   conversion to the stored format — not the f32 rounding of the vertex transform or of the
+//!   vertex coordinates (`T`'s first part and `V` in [`crate::recommend`]). D32F is measured
+//!   again under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, window depths 2·10⁻⁵ to 0.7) into
+//!   `plane_error_reversed`.
+//! * **`interpolation_ulps`**: the same pixels' error divided by `2⁻²⁴·M`, `M` the magnitude of
+//!   the terms of the plane evaluated from the window origin (see the field): how the error of a
+//!   steep plane grows with its distance from the origin, for viewports larger than the tiles.
 //! * **`near_clip`** ([`NearClip`]): a ground plane with corners ±1000 (n = 0.1, f = 1000) whose
 //!   triangle crosses the near plane, on D24. Its stored depth is compared with the exact plane:
 //!   within `2·plane_error + 2` quanta means the clipper keeps the plane
@@ -58,8 +65,9 @@
 //! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
 //!
 //! # Time
-//! About 20 ms on Mesa llvmpipe (2 cores; `examples/probe.rs` prints it), well under 100 ms; the
-//! profile records its own run time in [`RasterizerProfile::probe_seconds`].
+//! 40–55 ms on Mesa llvmpipe on 2 shared cores (`examples/probe.rs` prints it), most of it
+//! llvmpipe compiling a shader variant per depth format; the profile records its own run time
+//! in [`RasterizerProfile::probe_seconds`].
 
 mod gl;
 mod state;
@@ -73,6 +81,10 @@ use gl::*;
 
 /// Width and height of the probe's framebuffer in pixels.
 const SIZE: usize = 64;
+
+/// The framebuffer holds `TILES × TILES` tiles of `SIZE × SIZE`: a batch of scenes is drawn,
+/// one per tile (its own viewport), and read back with one `glReadPixels`.
+const TILES: usize = 8;
 
 /// Measures the rasterizer of the OpenGL context current on this thread. See the module docs.
 ///
@@ -112,6 +124,16 @@ pub struct Figures {
     /// `r` per measured band, for D32F (at window depths ≈ 0.45 and ≈ 0.055, in units of
     /// `2^(e − 23)` at each).
     pub float_resolvable: [f64; 2],
+    /// Pixels compared for [`RasterizerProfile::plane_error_reversed`] (0 without
+    /// `glClipControl`).
+    pub reversed_pixels: usize,
+    /// Per format, the worst `(|stored − exact| − q)⁺ / (2⁻²⁴·M)` (q = 0 for D32F): what
+    /// [`RasterizerProfile::interpolation_ulps`] is for D32F, for each format.
+    pub interpolation: [f64; 4],
+    /// D32F's worst plane error in units of the f32 spacing at each pixel's own depth (not at
+    /// the primitive's largest), under `[−1, 1]` and under reversed Z: what a primitive spanning
+    /// several binades does to its smallest depths.
+    pub float_local_plane_error: [f64; 2],
 }
 
 /// [`probe`], with the [`Figures`] it decided from.
@@ -217,6 +239,9 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         near_clip_error: f64::NAN,
         snapping_residual: (f64::NAN, 0, f64::NAN),
         float_resolvable: [f64::NAN; 2],
+        reversed_pixels: 0,
+        interpolation: [f64::NAN; 4],
+        float_local_plane_error: [f64::NAN; 2],
     };
     for (slot, internal, format) in Format::ALL {
         if !attach(gl, objects, internal)? {
@@ -230,7 +255,20 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
-        (profile.plane_error[slot], figures.plane_pixels[slot]) = plane_error(gl, format)?;
+        let errors = plane_error(gl, format, false)?;
+        profile.plane_error[slot] = errors.worst;
+        figures.plane_pixels[slot] = errors.pixels;
+        figures.interpolation[slot] = errors.interpolation;
+        if format == Format::Float {
+            figures.float_local_plane_error[0] = errors.local;
+            profile.interpolation_ulps = errors.interpolation;
+            if let Some(reversed) = reversed_plane_error(gl)? {
+                profile.plane_error_reversed = reversed.worst;
+                figures.reversed_pixels = reversed.pixels;
+                figures.float_local_plane_error[1] = reversed.local;
+                profile.interpolation_ulps = profile.interpolation_ulps.max(reversed.interpolation);
+            }
+        }
         if format == Format::Float {
             (profile.snapping, figures.snapping_residual) = snapping(gl)?;
         }
@@ -303,7 +341,8 @@ const DEPTH_BUFFER_BIT: u32 = 0x0100;
 /// incomplete (or the format refused).
 unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
     (gl.BindRenderbuffer)(RENDERBUFFER, o.renderbuffer);
-    (gl.RenderbufferStorage)(RENDERBUFFER, internal, SIZE as Sizei, SIZE as Sizei);
+    let side = (SIZE * TILES) as Sizei;
+    (gl.RenderbufferStorage)(RENDERBUFFER, internal, side, side);
     let refused = gl.failed();
     (gl.FramebufferRenderbuffer)(FRAMEBUFFER, DEPTH_ATTACHMENT, RENDERBUFFER, o.renderbuffer);
     let complete = (gl.CheckFramebufferStatus)(FRAMEBUFFER) == FRAMEBUFFER_COMPLETE;
@@ -314,28 +353,58 @@ unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
 /// A triangle in clip coordinates, as the GPU receives it.
 type Triangle = [[f32; 4]; 3];
 
-/// Clears depth to 1, draws `triangles` (depth test `GL_ALWAYS`), reads the stored window depth
-/// back exactly (rows bottom-up).
+/// Clears depth to 1, draws `triangles` into the first tile (depth test `GL_ALWAYS`), and
+/// reads the stored window depth back exactly (rows bottom-up).
 unsafe fn draw(gl: &Gl, format: Format, triangles: &[Triangle]) -> Result<Vec<f64>> {
-    (gl.ClearDepth)(1.0);
-    (gl.Clear)(DEPTH_BUFFER_BIT);
-    let bytes = std::mem::size_of_val(triangles);
-    (gl.BufferData)(ARRAY_BUFFER, bytes as isize, triangles.as_ptr().cast(), STREAM_DRAW);
-    (gl.DrawArrays)(TRIANGLES, 0, 3 * triangles.len() as Sizei);
-    gl.check("drawing the probe's triangles raised a GL error")?;
-    read_depth(gl, format)
+    let mut tiles = draw_tiles(gl, format, &[triangles])?;
+    Ok(tiles.swap_remove(0))
 }
 
-/// The stored depth of every pixel, exactly: UNORM formats are read as `GL_UNSIGNED_INT` (the
-/// stored integer `k`, scaled to 32 bits) and returned as `k/(2^m − 1)`; D32F as `GL_FLOAT`.
-unsafe fn read_depth(gl: &Gl, format: Format) -> Result<Vec<f64>> {
-    let mut raw = vec![0u32; SIZE * SIZE];
+/// Draws each scene into a tile of its own (at most `TILES²`) and returns each tile's stored
+/// window depth, `SIZE × SIZE` rows bottom-up.
+unsafe fn draw_tiles(gl: &Gl, format: Format, scenes: &[&[Triangle]]) -> Result<Vec<Vec<f64>>> {
+    (gl.Viewport)(0, 0, (SIZE * TILES) as Sizei, (SIZE * TILES) as Sizei);
+    (gl.ClearDepth)(1.0);
+    (gl.Clear)(DEPTH_BUFFER_BIT);
+    let all: Vec<Triangle> = scenes.iter().flat_map(|s| s.iter().copied()).collect();
+    let bytes = std::mem::size_of_val(all.as_slice());
+    (gl.BufferData)(ARRAY_BUFFER, bytes as isize, all.as_ptr().cast(), STREAM_DRAW);
+    let mut first = 0;
+    for (i, scene) in scenes.iter().enumerate().take(TILES * TILES) {
+        let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
+        (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
+        (gl.DrawArrays)(TRIANGLES, first, 3 * scene.len() as Sizei);
+        first += 3 * scene.len() as Int;
+    }
+    gl.check("drawing the probe's triangles raised a GL error")?;
+    let columns = scenes.len().clamp(1, TILES);
+    let rows = scenes.len().div_ceil(TILES).clamp(1, TILES);
+    let (width, height) = (columns * SIZE, rows * SIZE);
+    let depth = read_depth(gl, format, width, height)?;
+    Ok((0..scenes.len().min(TILES * TILES))
+        .map(|i| {
+            let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
+            (0..SIZE)
+                .flat_map(|row| {
+                    let start = (y + row) * width + x;
+                    depth[start..start + SIZE].iter().copied()
+                })
+                .collect()
+        })
+        .collect())
+}
+
+/// The stored depth of the `width × height` pixels at the origin, exactly: UNORM formats are
+/// read as `GL_UNSIGNED_INT` (the stored integer `k`, scaled to 32 bits) and returned as
+/// `k/(2^m − 1)`; D32F as `GL_FLOAT`.
+unsafe fn read_depth(gl: &Gl, format: Format, width: usize, height: usize) -> Result<Vec<f64>> {
+    let mut raw = vec![0u32; width * height];
     let kind = match format {
         Format::Unorm(_) => UNSIGNED_INT,
         Format::Float => FLOAT,
     };
-    let (s, ptr) = (SIZE as Sizei, raw.as_mut_ptr().cast());
-    (gl.ReadPixels)(0, 0, s, s, DEPTH_COMPONENT, kind, ptr);
+    let (w, h, ptr) = (width as Sizei, height as Sizei, raw.as_mut_ptr().cast());
+    (gl.ReadPixels)(0, 0, w, h, DEPTH_COMPONENT, kind, ptr);
     gl.check("glReadPixels(GL_DEPTH_COMPONENT) raised a GL error")?;
     Ok(match format {
         Format::Unorm(m) => {
@@ -357,6 +426,10 @@ struct Plane {
     weights: [[f64; 3]; 3],
     w: [f64; 3],
     z: [f64; 3],
+    /// NDC depth in `[0, 1]` (`glClipControl(GL_ZERO_TO_ONE)`), stored as is; else `[−1, 1]`.
+    zero_to_one: bool,
+    /// The largest window depth of the vertices in front of the camera.
+    largest: f64,
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -365,12 +438,24 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 
 impl Plane {
     fn new(t: &Triangle) -> Plane {
+        Plane::with_mapping(t, false)
+    }
+
+    fn with_mapping(t: &Triangle, zero_to_one: bool) -> Plane {
         let column = |k: usize| [t[0][k] as f64, t[1][k] as f64, t[2][k] as f64];
         let (x, y, z, w) = (column(0), column(1), column(2), column(3));
         let parts = [cross(x, y), cross(y, w), cross(w, x)];
         let weights = std::array::from_fn(|i| parts.map(|p| p[i]));
         let dot = |v: [f64; 3]| parts.map(|p| p[0] * v[0] + p[1] * v[1] + p[2] * v[2]);
-        Plane { weights, w: dot(w), z: dot(z) }
+        let largest = t
+            .iter()
+            .filter(|v| v[3] > 0.0)
+            .map(|v| {
+                let ndc = v[2] as f64 / v[3] as f64;
+                if zero_to_one { ndc } else { 0.5 * ndc + 0.5 }
+            })
+            .fold(0.0, f64::max);
+        Plane { weights, w: dot(w), z: dot(z), zero_to_one, largest }
     }
 
     /// The exact window depth at window point `(x, y)`, if it lies inside the visible part of
@@ -384,7 +469,28 @@ impl Plane {
             return None;
         }
         let ndc = eval(&self.z) / w;
-        (ndc > -1.0 + 1e-6 && ndc < 1.0 - 1e-6).then_some(0.5 * ndc + 0.5)
+        let window = if self.zero_to_one { ndc } else { 0.5 * ndc + 0.5 };
+        let lowest = if self.zero_to_one { 0.0 } else { -1.0 + 1e-6 };
+        (ndc > lowest && ndc < 1.0 - 1e-6).then_some(window)
+    }
+
+    /// The window depth of the plane at tile point `(x, y)`, inside the triangle or not.
+    fn extended(&self, x: f64, y: f64) -> f64 {
+        let s = SIZE as f64;
+        let (xn, yn) = (2.0 * x / s - 1.0, 2.0 * y / s - 1.0);
+        let eval = |c: &[f64; 3]| c[0] + xn * c[1] + yn * c[2];
+        let ndc = eval(&self.z) / eval(&self.w);
+        if self.zero_to_one { ndc } else { 0.5 * ndc + 0.5 }
+    }
+
+    /// `M(px, py) = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` for the pixels of a tile whose corner is at
+    /// window `(tx, ty)`: the magnitude of the terms of the plane evaluated from the window
+    /// origin (`w₀` its depth extrapolated to window `(0, 0)`, `x`, `y` window coordinates).
+    fn magnitude(&self, (tx, ty): (f64, f64)) -> impl Fn(usize, usize) -> f64 {
+        let origin = self.extended(-tx, -ty);
+        let gx = (self.extended(1.0 - tx, -ty) - origin).abs();
+        let gy = (self.extended(-tx, 1.0 - ty) - origin).abs();
+        move |px, py| origin.abs() + gx * (tx + px as f64 + 0.5) + gy * (ty + py as f64 + 0.5)
     }
 
     /// The exact window depth at pixel `(px, py)`'s centre, if the centre and its four
@@ -392,17 +498,31 @@ impl Plane {
     /// left out.
     fn depth_inside(&self, px: usize, py: usize) -> Option<f64> {
         let (x, y) = (px as f64 + 0.5, py as f64 + 0.5);
-        for (dx, dy) in [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)] {
-            self.depth_at(x + dx, y + dy)?;
-        }
-        self.depth_at(x, y)
+        let window = self.depth_at(x, y)?;
+        // Each weight is affine: it keeps its sign a pixel away in x and y when its value
+        // exceeds what a one-pixel step in both can change (one NDC pixel is 2/SIZE).
+        let (xn, yn) = (2.0 * x / SIZE as f64 - 1.0, 2.0 * y / SIZE as f64 - 1.0);
+        let step = 2.0 / SIZE as f64;
+        let sign = (self.w[0] + xn * self.w[1] + yn * self.w[2]).signum();
+        let margin_ok = self.weights.iter().all(|c| {
+            sign * (c[0] + xn * c[1] + yn * c[2]) > step * (c[1].abs() + c[2].abs())
+        });
+        margin_ok.then_some(window)
     }
 }
 
 /// The largest `|stored − exact|` in quanta over the pixels [`Plane::depth_inside`] accepts, and how
-/// many there were.
-fn worst_error(format: Format, triangle: &Triangle, stored: &[f64]) -> (f64, usize) {
-    let plane = Plane::new(triangle);
+/// many there were. For D32F the quantum is the f32 spacing at the primitive's largest depth
+/// (as for its `r`): f32 setup and interpolation err relative to the largest value they handle.
+/// [`worst_local_error`] gives the same in units of the spacing at each pixel's own depth.
+fn worst_error(format: Format, plane: &Plane, stored: &[f64]) -> (f64, usize) {
+    let (worst, count) = worst_local_error(format, plane, stored, plane.largest);
+    (worst, count)
+}
+
+/// As [`worst_error`], each pixel's error in units of the quantum at the larger of its exact
+/// depth and `floor` (0: the spacing at the pixel's own depth).
+fn worst_local_error(format: Format, plane: &Plane, stored: &[f64], floor: f64) -> (f64, usize) {
     let mut worst = 0.0f64;
     let mut count = 0;
     for py in 0..SIZE {
@@ -411,7 +531,7 @@ fn worst_error(format: Format, triangle: &Triangle, stored: &[f64]) -> (f64, usi
                 continue;
             };
             let stored = stored[py * SIZE + px];
-            worst = worst.max((stored - exact).abs() / format.quantum(exact));
+            worst = worst.max((stored - exact).abs() / format.quantum(exact.max(floor)));
             count += 1;
         }
     }
@@ -428,6 +548,8 @@ struct View {
     e: f64,
     n: f64,
     f: f64,
+    /// Reversed depth for `glClipControl(GL_ZERO_TO_ONE)`: window depth `n(f − d)/((f − n)d)`.
+    reversed: bool,
 }
 
 impl View {
@@ -436,8 +558,11 @@ impl View {
     fn clip(&self, p: [f64; 3]) -> [f32; 4] {
         let [x, y, z] = p.map(|c| c as f32 as f64);
         let (n, f, e) = (self.n, self.f, self.e);
-        let m10 = -(f + n) / (f - n);
-        let m14 = -2.0 * f * n / (f - n);
+        let (m10, m14) = if self.reversed {
+            (n / (f - n), f * n / (f - n))
+        } else {
+            (-(f + n) / (f - n), -2.0 * f * n / (f - n))
+        };
         [x / e, y / e, m10 * z + m14, -z].map(|c| c as f32)
     }
 
@@ -454,8 +579,14 @@ impl View {
 
     /// Window depth at eye distance `d` (for choosing planes by the depth they store).
     fn distance_at_depth(&self, w: f64) -> f64 {
-        // w = f(d − n)/(d(f − n))  ⇒  d = f·n/(f − w(f − n))
-        self.f * self.n / (self.f - w * (self.f - self.n))
+        let (n, f) = (self.n, self.f);
+        if self.reversed {
+            // w = n(f − d)/((f − n)d)  ⇒  d = f·n/(n + w(f − n))
+            f * n / (n + w * (f - n))
+        } else {
+            // w = f(d − n)/(d(f − n))  ⇒  d = f·n/(f − w(f − n))
+            f * n / (f - w * (f - n))
+        }
     }
 }
 
@@ -465,23 +596,41 @@ const CORNERS: [[[f64; 2]; 3]; 2] = [
     [[-4.1, -3.3], [3.7, -2.9], [0.31, 5.2]],
 ];
 
-/// The plane-error scenes: 3 ranges × 2 depths × 2 slopes × 2 corner sets.
-fn plane_scenes() -> Vec<Triangle> {
+/// Eye-space slopes `(∂z/∂x, ∂z/∂y)` of the plane-error scenes: facing, gentle, steep, grazing.
+const SLOPES: [(f64, f64); 4] = [(0.0, 0.0), (0.37, 1.0), (-3.0, 1.9), (10.0, -0.3)];
+
+/// The plane-error scenes of one depth mapping: for each view, axis depth and slope, each
+/// corner set shrunk toward the view axis (halved, up to 4 times) until every corner lies
+/// between the near and far planes.
+fn plane_scenes(reversed: bool) -> Vec<Triangle> {
+    let views: [(View, [f64; 2]); 3] = if reversed {
+        [
+            (View { e: 0.5, n: 0.1, f: 1e4, reversed }, [0.002, 0.3]),
+            (View { e: 0.7, n: 1.0, f: 1e6, reversed }, [2e-5, 0.05]),
+            (View { e: 0.4, n: 0.5, f: 100.0, reversed }, [0.02, 0.7]),
+        ]
+    } else {
+        [
+            (View { e: 0.5, n: 1.0, f: 10.0, reversed }, [0.02, 0.6]),
+            (View { e: 0.7, n: 0.1, f: 100.0, reversed }, [0.3, 0.95]),
+            (View { e: 0.4, n: 1.0, f: 1e5, reversed }, [0.5, 0.998]),
+        ]
+    };
     let mut out = Vec::new();
-    for (view, depths) in [
-        (View { e: 0.5, n: 1.0, f: 10.0 }, [0.02, 0.6]),
-        (View { e: 0.7, n: 0.1, f: 100.0 }, [0.3, 0.95]),
-        (View { e: 0.4, n: 1.0, f: 1e5 }, [0.5, 0.998]),
-    ] {
+    for (view, depths) in views {
         for w in depths {
             let d = view.distance_at_depth(w);
-            for (sx, sy) in [(0.0, 0.0), (0.37, 1.0), (-3.0, 1.9), (10.0, -0.3)] {
+            for (sx, sy) in SLOPES {
                 for corners in CORNERS {
-                    let t: Option<Vec<[f32; 4]>> = corners
-                        .iter()
-                        .map(|&[xn, yn]| view.on_plane(xn, yn, d, sx, sy).map(|p| view.clip(p)))
-                        .collect();
-                    if let Some(t) = t {
+                    let fits = (0..5).find_map(|halvings| {
+                        let k = 0.5f64.powi(halvings);
+                        let t: Option<Vec<[f32; 4]>> = corners
+                            .iter()
+                            .map(|&[xn, yn]| view.on_plane(k * xn, k * yn, d, sx, sy).map(|p| view.clip(p)))
+                            .collect();
+                        t
+                    });
+                    if let Some(t) = fits {
                         out.push([t[0], t[1], t[2]]);
                     }
                 }
@@ -492,15 +641,67 @@ fn plane_scenes() -> Vec<Triangle> {
 }
 
 /// The worst per-pixel error of sloped planes, in quanta (module docs).
-unsafe fn plane_error(gl: &Gl, format: Format) -> Result<(f64, usize)> {
-    let (mut worst, mut pixels) = (0.0f64, 0);
-    for t in plane_scenes() {
-        let stored = draw(gl, format, &[t])?;
-        let (error, count) = worst_error(format, &t, &stored);
-        worst = worst.max(error);
-        pixels += count;
+/// The figures of [`plane_error`] for one format and mapping.
+struct PlaneErrors {
+    /// As [`worst_error`], over every scene.
+    worst: f64,
+    /// Pixels compared.
+    pixels: usize,
+    /// The worst error in units of the spacing at each pixel's own depth.
+    local: f64,
+    /// The worst `|stored − exact| / (2⁻²⁴·M)` ([`Plane::magnitude`]).
+    interpolation: f64,
+}
+
+/// The plane errors of every scene of `format` under one mapping (module docs).
+unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneErrors> {
+    let mut e = PlaneErrors { worst: 0.0, pixels: 0, local: 0.0, interpolation: 0.0 };
+    let scenes = plane_scenes(reversed);
+    let batches: Vec<&[Triangle]> = scenes.chunks(1).collect();
+    let mut stored_tiles = Vec::new();
+    for batch in batches.chunks(TILES * TILES) {
+        stored_tiles.extend(draw_tiles(gl, format, batch)?);
     }
-    Ok((worst, pixels))
+    for (i, (t, stored)) in scenes.iter().zip(stored_tiles).enumerate() {
+        let plane = Plane::with_mapping(t, reversed);
+        let tile = i % (TILES * TILES);
+        let corner = (((tile % TILES) * SIZE) as f64, ((tile / TILES) * SIZE) as f64);
+        let magnitude = plane.magnitude(corner);
+        for py in 0..SIZE {
+            for px in 0..SIZE {
+                let Some(exact) = plane.depth_inside(px, py) else {
+                    continue;
+                };
+                let error = (stored[py * SIZE + px] - exact).abs();
+                e.worst = e.worst.max(error / format.quantum(exact.max(plane.largest)));
+                e.local = e.local.max(error / format.quantum(exact));
+                e.pixels += 1;
+                let conversion = match format {
+                    Format::Float => 0.0,
+                    Format::Unorm(_) => format.quantum(exact),
+                };
+                let scale = F32_UNIT_ROUNDOFF * magnitude(px, py);
+                e.interpolation = e.interpolation.max((error - conversion).max(0.0) / scale);
+            }
+        }
+    }
+    Ok(e)
+}
+
+/// The unit roundoff of f32, `2⁻²⁴`.
+const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// [`plane_error`] of D32F under reversed Z (`glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`,
+/// reversed projection), where float depth keeps its relative precision; `None` without
+/// `glClipControl`.
+unsafe fn reversed_plane_error(gl: &Gl) -> Result<Option<PlaneErrors>> {
+    let Some(clip_control) = gl.ClipControl else {
+        return Ok(None);
+    };
+    clip_control(LOWER_LEFT, ZERO_TO_ONE);
+    let result = plane_error(gl, Format::Float, true);
+    clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
+    result.map(Some)
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -621,9 +822,10 @@ fn snap(t: &Triangle, h: usize) -> Triangle {
 /// near-clipped ground planes against `2·plane_error + 2` quanta (D24).
 unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
     let mut worst = 0.0f64;
-    for t in near_scenes() {
-        let stored = draw(gl, Format::Unorm(24), &[t])?;
-        let (error, count) = worst_error(Format::Unorm(24), &t, &stored);
+    let scenes = near_scenes();
+    let batch: Vec<&[Triangle]> = scenes.chunks(1).collect();
+    for (t, stored) in scenes.iter().zip(draw_tiles(gl, Format::Unorm(24), &batch)?) {
+        let (error, count) = worst_error(Format::Unorm(24), &Plane::new(t), &stored);
         if count < SIZE * SIZE / 8 {
             return Err(Error::new(
                 ErrorKind::Gl,
@@ -643,7 +845,7 @@ unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
 /// Ground planes whose triangles reach 1000 units behind and ahead of the camera (n = 0.1,
 /// f = 1000, a 16:9 frustum): sloped ones seen from 10 units, and a floor 1.7 units below the eye.
 fn near_scenes() -> Vec<Triangle> {
-    let view = View { e: 1.0, n: 0.1, f: 1000.0 };
+    let view = View { e: 1.0, n: 0.1, f: 1000.0, reversed: false };
     let clip = |[x, y, z]: [f64; 3]| {
         let mut c = view.clip([x, y, z]);
         c[1] = (y as f32 as f64 / 0.5625) as f32;
