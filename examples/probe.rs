@@ -27,7 +27,10 @@ fn main() {
         figures.snapping_residual.1,
         figures.snapping_residual.2
     );
-    println!("near clip      {:?} (near-clipped ground plane: {:.1} D24 quanta off)", p.near_clip, figures.near_clip_error);
+    println!(
+        "near clip      {:?} (near-clipped ground plane: {:.1} D24 quanta off)",
+        p.near_clip, figures.near_clip_error
+    );
     println!("format  r (quanta)  plane_error (quanta)  interpolation (u*M)  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(
@@ -43,5 +46,8 @@ fn main() {
         "D32F plane error in quanta at each pixel's own depth: [-1,1] {:.2}, reversed {:.2}",
         figures.float_local_plane_error[0], figures.float_local_plane_error[1]
     );
-    println!("D32F r per band (w ~ 0.45, w ~ 0.055): {:?}", figures.float_resolvable);
+    println!(
+        "D32F r per band (w ~ 0.45, w ~ 0.055): {:?}",
+        figures.float_resolvable
+    );
 }

@@ -101,10 +101,10 @@ typedef struct {
   // window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
   double plane_error_reversed;
   // How the per-pixel error grows with a steep plane's window position: every measured pixel
-  // kept |stored - exact| <= (1 quantum for D16/D24/D32, 0 for D32F)
-  // + interpolation_ulps * 2^-24 * M, with M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the
-  // plane's window depth extrapolated to window (0, 0), x, y the pixel's window
-  // coordinates). NAN where not measured. NAN or finite >= 0.
+  // kept |stored - exact| <= c + interpolation_ulps * 2^-24 * M, where c is 1 quantum for
+  // D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+  // window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+  // where not measured. NAN or finite >= 0.
   double interpolation_ulps;
   // How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
   // ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
@@ -698,8 +698,9 @@ ZshiftStatus zshift_min_relative_epsilon(double n,
 ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
 
 // Measures the rasterizer of the OpenGL context current on the calling thread and writes its
-// profile to `out` (see `ZshiftProfile`). Draws about a hundred small triangles into a 64x64
-// framebuffer of its own and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once after making the context current, not per frame.
+// profile to `out` (see `ZshiftProfile`). Draws about 250 triangles into a framebuffer of its
+// own (512x512) and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once
+// after making the context current, not per frame.
 //
 // GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
 // later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is
@@ -713,9 +714,7 @@ ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
 //
 // # Safety
 // `loader` must return, for each name, NULL or that entry point of the current context.
-ZshiftStatus zshift_probe(ZshiftGlLoader loader,
-                          void *user,
-                          ZshiftProfile *out);
+ZshiftStatus zshift_probe(ZshiftGlLoader loader, void *user, ZshiftProfile *out);
 
 // Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
 // base on a real rasterizer, by an error model whose every term is a worst-case bound: the

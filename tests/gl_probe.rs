@@ -17,7 +17,8 @@ use zshift_harness::glow::{self, HasContext};
 use zshift_harness::{ClipDepth, DepthFormat, DrawState, Gl, Profile, Quad};
 
 fn context(profile: Profile) -> Gl {
-    Gl::new(profile).unwrap_or_else(|e| panic!("no {profile:?} OpenGL context (EGL surfaceless): {e}"))
+    Gl::new(profile)
+        .unwrap_or_else(|e| panic!("no {profile:?} OpenGL context (EGL surfaceless): {e}"))
 }
 
 /// The harness context's loader, as an engine would pass its own.
@@ -34,13 +35,21 @@ fn measured(gl: &Gl) -> RasterizerProfile {
 /// read back through the harness (its own shader, its own readback), independent of the probe.
 fn offset_of_one_unit(gl: &mut Gl, format: DepthFormat, depth: f32) -> f64 {
     gl.set_target(32, 32, format).unwrap();
-    let identity: [f32; 16] = [1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.];
+    let identity: [f32; 16] = [
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.,
+    ];
     let quad = Quad::rect(-1.0, 1.0, -1.0, 1.0, 2.0 * depth - 1.0);
-    let always = DrawState { depth_func: glow::ALWAYS, ..DrawState::default() };
+    let always = DrawState {
+        depth_func: glow::ALWAYS,
+        ..DrawState::default()
+    };
     let units = 1024.0;
     let mut read = |offset: Option<(f32, f32)>| {
         gl.clear([0.0; 4], 1.0).unwrap();
-        let state = DrawState { polygon_offset: offset, ..always };
+        let state = DrawState {
+            polygon_offset: offset,
+            ..always
+        };
         gl.draw_quad(&quad, &identity, [1.0; 4], &state).unwrap();
         let d = gl.read_depth().unwrap();
         d.iter().map(|&v| v as f64).sum::<f64>() / d.len() as f64
@@ -54,7 +63,11 @@ fn offset_of_one_unit(gl: &mut Gl, format: DepthFormat, depth: f32) -> f64 {
 fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
     for kind in [Profile::Core, Profile::Compatibility] {
         let mut gl = context(kind);
-        assert!(gl.renderer().contains("llvmpipe"), "these figures are llvmpipe's: {}", gl.renderer());
+        assert!(
+            gl.renderer().contains("llvmpipe"),
+            "these figures are llvmpipe's: {}",
+            gl.renderer()
+        );
         // SAFETY: as in `measured`.
         let (p, figures) = unsafe { probe_with_figures(loader(&gl)) }.unwrap();
         println!("{kind:?}: {p:?}\n{figures:?}");
@@ -63,7 +76,10 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         // llvmpipe snaps coverage to GL_SUBPIXEL_BITS but sets the depth plane up from the float
         // positions (lp_setup_tri.c): unsnapped, and clearly so.
         assert_eq!(p.snapping, Snapping::Unsnapped);
-        assert!(figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2, "{figures:?}");
+        assert!(
+            figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2,
+            "{figures:?}"
+        );
         // r: lp_state_setup.c scales units by 2·mrd on UNORM (mrd = 1/(2^m − 1)) and by 2^(e−23)
         // on float depth. Checked against the harness's own readback of one offset draw.
         for (slot, format, depth, quantum) in [
@@ -72,20 +88,41 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             (3, DepthFormat::D32F, 0.75, 2f64.powi(-24)),
         ] {
             let r = offset_of_one_unit(&mut gl, format, depth) / quantum;
-            let expected = if format == DepthFormat::D32F { 1.0 } else { 2.0 };
+            let expected = if format == DepthFormat::D32F {
+                1.0
+            } else {
+                2.0
+            };
             assert!((r - expected).abs() < 0.01, "{format:?}: readback r = {r}");
-            assert!((p.resolvable[slot] - r).abs() < 0.01, "{format:?}: probe {} vs readback {r}", p.resolvable[slot]);
+            assert!(
+                (p.resolvable[slot] - r).abs() < 0.01,
+                "{format:?}: probe {} vs readback {r}",
+                p.resolvable[slot]
+            );
         }
         // Per-pixel error of a plane: D16 rounds to nearest (½ quantum) plus f32 noise well
         // below a quantum; D24 and D32F carry a few f32 roundings of the plane's terms, whose
         // magnitude grows with a steep plane's distance from the window origin (up to ~25 here),
         // which interpolation_ulps measures: a few roundings, the same on every format.
         assert!(p.plane_error[0] < 1.0, "{:?}", p.plane_error);
-        assert!(p.plane_error[1] < 64.0 && p.plane_error[3] < 64.0, "{:?}", p.plane_error);
-        assert!(p.interpolation_ulps > 0.5 && p.interpolation_ulps < 4.0, "{p:?}");
-        assert!(figures.interpolation[1] <= p.interpolation_ulps, "{figures:?}");
+        assert!(
+            p.plane_error[1] < 64.0 && p.plane_error[3] < 64.0,
+            "{:?}",
+            p.plane_error
+        );
+        assert!(
+            p.interpolation_ulps > 0.5 && p.interpolation_ulps < 4.0,
+            "{p:?}"
+        );
+        assert!(
+            figures.interpolation[1] <= p.interpolation_ulps,
+            "{figures:?}"
+        );
         assert!(p.plane_error_reversed < 64.0, "{p:?}");
-        assert!(figures.plane_pixels.iter().all(|&n| n > 20_000), "{figures:?}");
+        assert!(
+            figures.plane_pixels.iter().all(|&n| n > 20_000),
+            "{figures:?}"
+        );
         // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
         assert_eq!(p.near_clip, NearClip::ClippedF32);
         assert!(figures.near_clip_error > 10.0, "{figures:?}");
@@ -150,8 +187,12 @@ unsafe fn state(g: &glow::Context) -> Vec<String> {
         glow::CLIP_DEPTH_MODE,
     ]
     .map(|p| g.get_parameter_i32(p));
-    let floats = [glow::DEPTH_CLEAR_VALUE, glow::POLYGON_OFFSET_FACTOR, glow::POLYGON_OFFSET_UNITS]
-        .map(|p| g.get_parameter_f32(p));
+    let floats = [
+        glow::DEPTH_CLEAR_VALUE,
+        glow::POLYGON_OFFSET_FACTOR,
+        glow::POLYGON_OFFSET_UNITS,
+    ]
+    .map(|p| g.get_parameter_f32(p));
     let mask = g.get_parameter_bool(glow::DEPTH_WRITEMASK);
     vec![
         format!("viewport {viewport:?} depth range {range:?}"),
@@ -176,10 +217,18 @@ fn the_callers_state_is_restored() {
         measured(&gl);
         let after = unsafe { state(g) };
         assert_eq!(before, after, "{kind:?}");
-        assert_eq!(unsafe { g.get_error() }, glow::NO_ERROR, "{kind:?}: the probe left a GL error");
+        assert_eq!(
+            unsafe { g.get_error() },
+            glow::NO_ERROR,
+            "{kind:?}: the probe left a GL error"
+        );
         // The same after a failing probe (a loader without glReadPixels fails after saving).
         let failing = |name: &CStr| {
-            if name == c"glReadPixels" { std::ptr::null() } else { gl.proc_address(name.to_str().unwrap()) }
+            if name == c"glReadPixels" {
+                std::ptr::null()
+            } else {
+                gl.proc_address(name.to_str().unwrap())
+            }
         };
         // SAFETY: as above; NULL is allowed.
         assert!(unsafe { probe(failing) }.is_err());
@@ -190,14 +239,26 @@ fn the_callers_state_is_restored() {
 #[test]
 fn errors_name_what_failed() {
     let gl = context(Profile::Core);
-    for missing in [c"glReadPixels", c"glPolygonOffset", c"glCheckFramebufferStatus"] {
+    for missing in [
+        c"glReadPixels",
+        c"glPolygonOffset",
+        c"glCheckFramebufferStatus",
+    ] {
         let without = |name: &CStr| {
-            if name == missing { std::ptr::null() } else { gl.proc_address(name.to_str().unwrap()) }
+            if name == missing {
+                std::ptr::null()
+            } else {
+                gl.proc_address(name.to_str().unwrap())
+            }
         };
         // SAFETY: the context is current; NULL is allowed.
         let e = unsafe { probe(without) }.unwrap_err();
         assert_eq!(e.kind(), ErrorKind::Gl);
-        assert!(e.detail().contains(missing.to_str().unwrap()), "{missing:?}: {}", e.detail());
+        assert!(
+            e.detail().contains(missing.to_str().unwrap()),
+            "{missing:?}: {}",
+            e.detail()
+        );
     }
     // A GL error the caller left pending is reported, not blamed on a probe step.
     unsafe { gl.glow().enable(0xFFFF) };
@@ -232,15 +293,25 @@ fn the_c_entry_point_checks_pointers_and_leaves_out_untouched_on_error() {
     let worst = unsafe { worst.assume_init() };
     // Debug formatting: NaN entries (not measured) compare equal that way.
     let same = |a: &RasterizerProfile, b: &RasterizerProfile| format!("{a:?}") == format!("{b:?}");
-    assert!(same(&worst.to_profile().unwrap(), &RasterizerProfile::worst_case()));
+    assert!(same(
+        &worst.to_profile().unwrap(),
+        &RasterizerProfile::worst_case()
+    ));
     // A sentinel byte pattern: on error `out` must keep every byte.
-    let mut out: ZshiftProfile = unsafe { std::mem::transmute([0xABu8; std::mem::size_of::<ZshiftProfile>()]) };
+    let mut out: ZshiftProfile =
+        unsafe { std::mem::transmute([0xABu8; std::mem::size_of::<ZshiftProfile>()]) };
     let bytes = |p: &ZshiftProfile| format!("{p:?}");
     let sentinel = bytes(&out);
     unsafe {
         assert_eq!(zshift_probe(None, user, &mut out), ZSHIFT_ERR_NULL_POINTER);
-        assert_eq!(zshift_probe(Some(egl_loader), user, std::ptr::null_mut()), ZSHIFT_ERR_NULL_POINTER);
-        assert_eq!(zshift_probe(Some(null_loader), user, &mut out), ZSHIFT_ERR_GL);
+        assert_eq!(
+            zshift_probe(Some(egl_loader), user, std::ptr::null_mut()),
+            ZSHIFT_ERR_NULL_POINTER
+        );
+        assert_eq!(
+            zshift_probe(Some(null_loader), user, &mut out),
+            ZSHIFT_ERR_GL
+        );
         assert_eq!(bytes(&out), sentinel, "out written on error");
         assert_eq!(zshift_probe(Some(egl_loader), user, &mut out), ZSHIFT_OK);
     }

@@ -49,10 +49,10 @@ pub struct ZshiftProfile {
     /// window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
     pub plane_error_reversed: f64,
     /// How the per-pixel error grows with a steep plane's window position: every measured pixel
-    /// kept |stored - exact| <= (1 quantum for D16/D24/D32, 0 for D32F)
-    /// + interpolation_ulps * 2^-24 * M, with M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the
-    /// plane's window depth extrapolated to window (0, 0), x, y the pixel's window
-    /// coordinates). NAN where not measured. NAN or finite >= 0.
+    /// kept |stored - exact| <= c + interpolation_ulps * 2^-24 * M, where c is 1 quantum for
+    /// D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+    /// window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+    /// where not measured. NAN or finite >= 0.
     pub interpolation_ulps: f64,
     /// How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
     /// ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
@@ -114,10 +114,17 @@ impl ZshiftProfile {
             _ => return Err(domain("ZshiftProfile.subpixel_bits is outside -1..=16")),
         };
         if self.resolvable.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
-            return Err(domain("a ZshiftProfile.resolvable entry is not finite and > 0"));
+            return Err(domain(
+                "a ZshiftProfile.resolvable entry is not finite and > 0",
+            ));
         }
         let errors = [self.plane_error_reversed, self.interpolation_ulps];
-        if self.plane_error.iter().chain(&errors).any(|e| *e < 0.0 || e.is_infinite()) {
+        if self
+            .plane_error
+            .iter()
+            .chain(&errors)
+            .any(|e| *e < 0.0 || e.is_infinite())
+        {
             return Err(domain(
                 "ZshiftProfile.plane_error, plane_error_reversed or interpolation_ulps is negative \
                  or infinite \
@@ -132,7 +139,11 @@ impl ZshiftProfile {
             interpolation_ulps: self.interpolation_ulps,
             near_clip,
             measured: self.measured != 0,
-            probe_seconds: if self.probe_seconds.is_finite() { self.probe_seconds } else { 0.0 },
+            probe_seconds: if self.probe_seconds.is_finite() {
+                self.probe_seconds
+            } else {
+                0.0
+            },
         })
     }
 }
@@ -144,12 +155,17 @@ impl ZshiftProfile {
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.
 #[no_mangle]
 pub extern "C" fn zshift_profile_worst_case(out: *mut ZshiftProfile) -> ZshiftStatus {
-    checked(out, || Ok(ZshiftProfile::from(RasterizerProfile::worst_case())), write)
+    checked(
+        out,
+        || Ok(ZshiftProfile::from(RasterizerProfile::worst_case())),
+        write,
+    )
 }
 
 /// Measures the rasterizer of the OpenGL context current on the calling thread and writes its
-/// profile to `out` (see `ZshiftProfile`). Draws about a hundred small triangles into a 64x64
-/// framebuffer of its own and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once after making the context current, not per frame.
+/// profile to `out` (see `ZshiftProfile`). Draws about 250 triangles into a framebuffer of its
+/// own (512x512) and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once
+/// after making the context current, not per frame.
 ///
 /// GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
 /// later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is

@@ -233,7 +233,8 @@ impl Gl {
                  or no context is current on this thread",
             ));
         }
-        let compatibility = self.integer(CONTEXT_PROFILE_MASK) & CONTEXT_COMPATIBILITY_PROFILE_BIT != 0;
+        let compatibility =
+            self.integer(CONTEXT_PROFILE_MASK) & CONTEXT_COMPATIBILITY_PROFILE_BIT != 0;
         let at_least = |a: Int, b: Int| (major, minor) >= (a, b);
         if !(at_least(4, 5) || self.has_extension(b"GL_ARB_clip_control")) {
             self.ClipControl = None;

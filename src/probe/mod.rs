@@ -273,7 +273,8 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             (profile.snapping, figures.snapping_residual) = snapping(gl)?;
         }
         if internal == DEPTH_COMPONENT24 {
-            (profile.near_clip, figures.near_clip_error) = near_clip(gl, profile.plane_error[slot])?;
+            (profile.near_clip, figures.near_clip_error) =
+                near_clip(gl, profile.plane_error[slot])?;
         }
     }
     Ok((profile, figures))
@@ -281,20 +282,33 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
 
 fn incomplete_detail(internal: Enum) -> &'static str {
     match internal {
-        DEPTH_COMPONENT16 => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT16 renderbuffer",
-        DEPTH_COMPONENT24 => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT24 renderbuffer",
+        DEPTH_COMPONENT16 => {
+            "the framebuffer is incomplete with a GL_DEPTH_COMPONENT16 renderbuffer"
+        }
+        DEPTH_COMPONENT24 => {
+            "the framebuffer is incomplete with a GL_DEPTH_COMPONENT24 renderbuffer"
+        }
         _ => "the framebuffer is incomplete with a GL_DEPTH_COMPONENT32F renderbuffer",
     }
 }
 
-const VERTEX_SHADER: &[u8] = b"#version 150\nin vec4 clip;\nvoid main() { gl_Position = clip; }\n\0";
+const VERTEX_SHADER: &[u8] =
+    b"#version 150\nin vec4 clip;\nvoid main() { gl_Position = clip; }\n\0";
 const FRAGMENT_SHADER: &[u8] = b"#version 150\nvoid main() {}\n\0";
 
 unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
     o.program = (gl.CreateProgram)();
     for (kind, source, detail) in [
-        (VERTEX_SHADER_KIND, VERTEX_SHADER, "the probe's vertex shader (GLSL 1.50) did not compile"),
-        (FRAGMENT_SHADER_KIND, FRAGMENT_SHADER, "the probe's fragment shader (GLSL 1.50) did not compile"),
+        (
+            VERTEX_SHADER_KIND,
+            VERTEX_SHADER,
+            "the probe's vertex shader (GLSL 1.50) did not compile",
+        ),
+        (
+            FRAGMENT_SHADER_KIND,
+            FRAGMENT_SHADER,
+            "the probe's fragment shader (GLSL 1.50) did not compile",
+        ),
     ] {
         let shader = (gl.CreateShader)(kind);
         let text = source.as_ptr().cast();
@@ -313,7 +327,10 @@ unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
     let mut ok = 0;
     (gl.GetProgramiv)(o.program, LINK_STATUS, &mut ok);
     if ok == 0 {
-        return Err(Error::new(ErrorKind::Gl, "the probe's shader program did not link"));
+        return Err(Error::new(
+            ErrorKind::Gl,
+            "the probe's shader program did not link",
+        ));
     }
     (gl.GenVertexArrays)(1, &mut o.vertex_array);
     (gl.GenBuffers)(1, &mut o.buffer);
@@ -368,7 +385,12 @@ unsafe fn draw_tiles(gl: &Gl, format: Format, scenes: &[&[Triangle]]) -> Result<
     (gl.Clear)(DEPTH_BUFFER_BIT);
     let all: Vec<Triangle> = scenes.iter().flat_map(|s| s.iter().copied()).collect();
     let bytes = std::mem::size_of_val(all.as_slice());
-    (gl.BufferData)(ARRAY_BUFFER, bytes as isize, all.as_ptr().cast(), STREAM_DRAW);
+    (gl.BufferData)(
+        ARRAY_BUFFER,
+        bytes as isize,
+        all.as_ptr().cast(),
+        STREAM_DRAW,
+    );
     let mut first = 0;
     for (i, scene) in scenes.iter().enumerate().take(TILES * TILES) {
         let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
@@ -410,7 +432,9 @@ unsafe fn read_depth(gl: &Gl, format: Format, width: usize, height: usize) -> Re
         Format::Unorm(m) => {
             let steps = 2f64.powi(m as i32) - 1.0;
             let scale = steps / (2f64.powi(32) - 1.0);
-            raw.iter().map(|&v| (v as f64 * scale).round() / steps).collect()
+            raw.iter()
+                .map(|&v| (v as f64 * scale).round() / steps)
+                .collect()
         }
         Format::Float => raw.iter().map(|&v| f32::from_bits(v) as f64).collect(),
     })
@@ -433,7 +457,11 @@ struct Plane {
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 impl Plane {
@@ -452,10 +480,20 @@ impl Plane {
             .filter(|v| v[3] > 0.0)
             .map(|v| {
                 let ndc = v[2] as f64 / v[3] as f64;
-                if zero_to_one { ndc } else { 0.5 * ndc + 0.5 }
+                if zero_to_one {
+                    ndc
+                } else {
+                    0.5 * ndc + 0.5
+                }
             })
             .fold(0.0, f64::max);
-        Plane { weights, w: dot(w), z: dot(z), zero_to_one, largest }
+        Plane {
+            weights,
+            w: dot(w),
+            z: dot(z),
+            zero_to_one,
+            largest,
+        }
     }
 
     /// The exact window depth at window point `(x, y)`, if it lies inside the visible part of
@@ -469,7 +507,11 @@ impl Plane {
             return None;
         }
         let ndc = eval(&self.z) / w;
-        let window = if self.zero_to_one { ndc } else { 0.5 * ndc + 0.5 };
+        let window = if self.zero_to_one {
+            ndc
+        } else {
+            0.5 * ndc + 0.5
+        };
         let lowest = if self.zero_to_one { 0.0 } else { -1.0 + 1e-6 };
         (ndc > lowest && ndc < 1.0 - 1e-6).then_some(window)
     }
@@ -480,7 +522,11 @@ impl Plane {
         let (xn, yn) = (2.0 * x / s - 1.0, 2.0 * y / s - 1.0);
         let eval = |c: &[f64; 3]| c[0] + xn * c[1] + yn * c[2];
         let ndc = eval(&self.z) / eval(&self.w);
-        if self.zero_to_one { ndc } else { 0.5 * ndc + 0.5 }
+        if self.zero_to_one {
+            ndc
+        } else {
+            0.5 * ndc + 0.5
+        }
     }
 
     /// `M(px, py) = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` for the pixels of a tile whose corner is at
@@ -504,9 +550,10 @@ impl Plane {
         let (xn, yn) = (2.0 * x / SIZE as f64 - 1.0, 2.0 * y / SIZE as f64 - 1.0);
         let step = 2.0 / SIZE as f64;
         let sign = (self.w[0] + xn * self.w[1] + yn * self.w[2]).signum();
-        let margin_ok = self.weights.iter().all(|c| {
-            sign * (c[0] + xn * c[1] + yn * c[2]) > step * (c[1].abs() + c[2].abs())
-        });
+        let margin_ok = self
+            .weights
+            .iter()
+            .all(|c| sign * (c[0] + xn * c[1] + yn * c[2]) > step * (c[1].abs() + c[2].abs()));
         margin_ok.then_some(window)
     }
 }
@@ -574,7 +621,11 @@ impl View {
             return None;
         }
         let z = -d / denominator;
-        (-z > self.n * 1.001 && -z < self.f * 0.999).then_some([-z * xn * self.e, -z * yn * self.e, z])
+        (-z > self.n * 1.001 && -z < self.f * 0.999).then_some([
+            -z * xn * self.e,
+            -z * yn * self.e,
+            z,
+        ])
     }
 
     /// Window depth at eye distance `d` (for choosing planes by the depth they store).
@@ -605,15 +656,63 @@ const SLOPES: [(f64, f64); 4] = [(0.0, 0.0), (0.37, 1.0), (-3.0, 1.9), (10.0, -0
 fn plane_scenes(reversed: bool) -> Vec<Triangle> {
     let views: [(View, [f64; 2]); 3] = if reversed {
         [
-            (View { e: 0.5, n: 0.1, f: 1e4, reversed }, [0.002, 0.3]),
-            (View { e: 0.7, n: 1.0, f: 1e6, reversed }, [2e-5, 0.05]),
-            (View { e: 0.4, n: 0.5, f: 100.0, reversed }, [0.02, 0.7]),
+            (
+                View {
+                    e: 0.5,
+                    n: 0.1,
+                    f: 1e4,
+                    reversed,
+                },
+                [0.002, 0.3],
+            ),
+            (
+                View {
+                    e: 0.7,
+                    n: 1.0,
+                    f: 1e6,
+                    reversed,
+                },
+                [2e-5, 0.05],
+            ),
+            (
+                View {
+                    e: 0.4,
+                    n: 0.5,
+                    f: 100.0,
+                    reversed,
+                },
+                [0.02, 0.7],
+            ),
         ]
     } else {
         [
-            (View { e: 0.5, n: 1.0, f: 10.0, reversed }, [0.02, 0.6]),
-            (View { e: 0.7, n: 0.1, f: 100.0, reversed }, [0.3, 0.95]),
-            (View { e: 0.4, n: 1.0, f: 1e5, reversed }, [0.5, 0.998]),
+            (
+                View {
+                    e: 0.5,
+                    n: 1.0,
+                    f: 10.0,
+                    reversed,
+                },
+                [0.02, 0.6],
+            ),
+            (
+                View {
+                    e: 0.7,
+                    n: 0.1,
+                    f: 100.0,
+                    reversed,
+                },
+                [0.3, 0.95],
+            ),
+            (
+                View {
+                    e: 0.4,
+                    n: 1.0,
+                    f: 1e5,
+                    reversed,
+                },
+                [0.5, 0.998],
+            ),
         ]
     };
     let mut out = Vec::new();
@@ -626,7 +725,10 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                         let k = 0.5f64.powi(halvings);
                         let t: Option<Vec<[f32; 4]>> = corners
                             .iter()
-                            .map(|&[xn, yn]| view.on_plane(k * xn, k * yn, d, sx, sy).map(|p| view.clip(p)))
+                            .map(|&[xn, yn]| {
+                                view.on_plane(k * xn, k * yn, d, sx, sy)
+                                    .map(|p| view.clip(p))
+                            })
                             .collect();
                         t
                     });
@@ -655,7 +757,12 @@ struct PlaneErrors {
 
 /// The plane errors of every scene of `format` under one mapping (module docs).
 unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneErrors> {
-    let mut e = PlaneErrors { worst: 0.0, pixels: 0, local: 0.0, interpolation: 0.0 };
+    let mut e = PlaneErrors {
+        worst: 0.0,
+        pixels: 0,
+        local: 0.0,
+        interpolation: 0.0,
+    };
     let scenes = plane_scenes(reversed);
     let batches: Vec<&[Triangle]> = scenes.chunks(1).collect();
     let mut stored_tiles = Vec::new();
@@ -665,7 +772,10 @@ unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneEr
     for (i, (t, stored)) in scenes.iter().zip(stored_tiles).enumerate() {
         let plane = Plane::with_mapping(t, reversed);
         let tile = i % (TILES * TILES);
-        let corner = (((tile % TILES) * SIZE) as f64, ((tile / TILES) * SIZE) as f64);
+        let corner = (
+            ((tile % TILES) * SIZE) as f64,
+            ((tile / TILES) * SIZE) as f64,
+        );
         let magnitude = plane.magnitude(corner);
         for py in 0..SIZE {
             for px in 0..SIZE {
@@ -673,7 +783,9 @@ unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneEr
                     continue;
                 };
                 let error = (stored[py * SIZE + px] - exact).abs();
-                e.worst = e.worst.max(error / format.quantum(exact.max(plane.largest)));
+                e.worst = e
+                    .worst
+                    .max(error / format.quantum(exact.max(plane.largest)));
                 e.local = e.local.max(error / format.quantum(exact));
                 e.pixels += 1;
                 let conversion = match format {
@@ -724,8 +836,16 @@ unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
         let z = |w: f64| (2.0 * w - 1.0) as f32;
         let (a, b) = (z(lo), z(hi));
         let quad: [Triangle; 2] = [
-            [[-1.0, -1.0, a, 1.0], [1.0, -1.0, b, 1.0], [1.0, 1.0, b, 1.0]],
-            [[-1.0, -1.0, a, 1.0], [1.0, 1.0, b, 1.0], [-1.0, 1.0, a, 1.0]],
+            [
+                [-1.0, -1.0, a, 1.0],
+                [1.0, -1.0, b, 1.0],
+                [1.0, 1.0, b, 1.0],
+            ],
+            [
+                [-1.0, -1.0, a, 1.0],
+                [1.0, 1.0, b, 1.0],
+                [-1.0, 1.0, a, 1.0],
+            ],
         ];
         // The unit is the quantum at the primitive's largest depth (for D32F, `2^(e − 23)`).
         let unit = format.quantum(0.5 * b as f64 + 0.5);
@@ -763,7 +883,12 @@ unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
     for set in sets {
         let t: Triangle = set.map(|[x, y]| {
             let z = 0.9 * (2.0 * x / s - 1.0);
-            [(2.0 * x / s - 1.0) as f32, (2.0 * y / s - 1.0) as f32, z as f32, 1.0]
+            [
+                (2.0 * x / s - 1.0) as f32,
+                (2.0 * y / s - 1.0) as f32,
+                z as f32,
+                1.0,
+            ]
         });
         let stored = draw(gl, Format::Float, &[t])?;
         let plane = Plane::new(&t);
@@ -824,7 +949,10 @@ unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
     let mut worst = 0.0f64;
     let scenes = near_scenes();
     let batch: Vec<&[Triangle]> = scenes.chunks(1).collect();
-    for (t, stored) in scenes.iter().zip(draw_tiles(gl, Format::Unorm(24), &batch)?) {
+    for (t, stored) in scenes
+        .iter()
+        .zip(draw_tiles(gl, Format::Unorm(24), &batch)?)
+    {
         let (error, count) = worst_error(Format::Unorm(24), &Plane::new(t), &stored);
         if count < SIZE * SIZE / 8 {
             return Err(Error::new(
@@ -845,7 +973,12 @@ unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
 /// Ground planes whose triangles reach 1000 units behind and ahead of the camera (n = 0.1,
 /// f = 1000, a 16:9 frustum): sloped ones seen from 10 units, and a floor 1.7 units below the eye.
 fn near_scenes() -> Vec<Triangle> {
-    let view = View { e: 1.0, n: 0.1, f: 1000.0, reversed: false };
+    let view = View {
+        e: 1.0,
+        n: 0.1,
+        f: 1000.0,
+        reversed: false,
+    };
     let clip = |[x, y, z]: [f64; 3]| {
         let mut c = view.clip([x, y, z]);
         c[1] = (y as f32 as f64 / 0.5625) as f32;

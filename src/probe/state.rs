@@ -224,7 +224,12 @@ unsafe fn read_viewports(gl: &Gl) -> Vec<([f32; 4], [f64; 2], bool)> {
 }
 
 unsafe fn restore_viewports(gl: &Gl, viewports: &[([f32; 4], [f64; 2], bool)]) {
-    let indexed = (gl.ViewportIndexedf, gl.DepthRangeIndexed, gl.Enablei, gl.Disablei);
+    let indexed = (
+        gl.ViewportIndexedf,
+        gl.DepthRangeIndexed,
+        gl.Enablei,
+        gl.Disablei,
+    );
     match (viewports, indexed) {
         ([(v, r, _)], _) => {
             (gl.Viewport)(v[0] as Int, v[1] as Int, v[2] as Sizei, v[3] as Sizei);
