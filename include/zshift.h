@@ -113,11 +113,15 @@ typedef struct {
   double probe_seconds;
 } ZshiftProfile;
 
-// A GL function loader: returns the address of the GL entry point `name` (a NUL-terminated
-// string such as "glReadPixels") of the context current on this thread, or NULL. `user` is
-// passed through unchanged. Wrap eglGetProcAddress, glfwGetProcAddress,
-// SDL_GL_GetProcAddress or wglGetProcAddress in a function of this type.
-typedef void *(*ZshiftGlLoader)(const char *name, void *user);
+// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
+// function pointer, cast to its real type by the caller, or NULL.
+typedef void (*ZshiftGlProc)(void);
+
+// A GL function loader: returns the GL entry point `name` (a NUL-terminated string such as
+// "glReadPixels") of the context current on this thread, or NULL. `user` is passed through
+// unchanged. eglGetProcAddress and glfwGetProcAddress return this type already (wrap them to
+// add the `user` argument); wrap SDL_GL_GetProcAddress or wglGetProcAddress likewise.
+typedef ZshiftGlProc (*ZshiftGlLoader)(const char *name, void *user);
 
 // What a scene knows about one decal and the surface under it, for `zshift_recommend`.
 //

@@ -7,7 +7,7 @@
 use std::ffi::{c_char, c_void, CStr};
 
 use zshift::ffi::{
-    zshift_probe, zshift_profile_worst_case, ZshiftProfile, ZSHIFT_ERR_GL, ZSHIFT_ERR_NULL_POINTER,
+    zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL, ZSHIFT_ERR_NULL_POINTER,
     ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
 };
 use zshift::probe::{probe, probe_with_figures};
@@ -275,13 +275,15 @@ fn errors_name_what_failed() {
     assert!(unsafe { probe(without_optional) }.is_ok());
 }
 
-unsafe extern "C" fn egl_loader(name: *const c_char, user: *mut c_void) -> *mut c_void {
+unsafe extern "C" fn egl_loader(name: *const c_char, user: *mut c_void) -> ZshiftGlProc {
     let gl = &*(user as *const Gl);
-    gl.proc_address(CStr::from_ptr(name).to_str().unwrap()) as *mut c_void
+    let address = gl.proc_address(CStr::from_ptr(name).to_str().unwrap());
+    // SAFETY: a non-NULL address is a GL entry point; the probe casts it to its real type.
+    (!address.is_null()).then(|| std::mem::transmute::<*const c_void, unsafe extern "C" fn()>(address))
 }
 
-unsafe extern "C" fn null_loader(_: *const c_char, _: *mut c_void) -> *mut c_void {
-    std::ptr::null_mut()
+unsafe extern "C" fn null_loader(_: *const c_char, _: *mut c_void) -> ZshiftGlProc {
+    None
 }
 
 #[test]

@@ -61,12 +61,16 @@ pub struct ZshiftProfile {
     pub probe_seconds: f64,
 }
 
-/// A GL function loader: returns the address of the GL entry point `name` (a NUL-terminated
-/// string such as "glReadPixels") of the context current on this thread, or NULL. `user` is
-/// passed through unchanged. Wrap eglGetProcAddress, glfwGetProcAddress,
-/// SDL_GL_GetProcAddress or wglGetProcAddress in a function of this type.
+/// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
+/// function pointer, cast to its real type by the caller, or NULL.
+pub type ZshiftGlProc = Option<unsafe extern "C" fn()>;
+
+/// A GL function loader: returns the GL entry point `name` (a NUL-terminated string such as
+/// "glReadPixels") of the context current on this thread, or NULL. `user` is passed through
+/// unchanged. eglGetProcAddress and glfwGetProcAddress return this type already (wrap them to
+/// add the `user` argument); wrap SDL_GL_GetProcAddress or wglGetProcAddress likewise.
 pub type ZshiftGlLoader =
-    Option<unsafe extern "C" fn(name: *const c_char, user: *mut c_void) -> *mut c_void>;
+    Option<unsafe extern "C" fn(name: *const c_char, user: *mut c_void) -> ZshiftGlProc>;
 
 impl From<RasterizerProfile> for ZshiftProfile {
     fn from(p: RasterizerProfile) -> Self {
@@ -195,7 +199,8 @@ pub unsafe extern "C" fn zshift_probe(
         move || {
             let load = |name: &CStr| -> *const c_void {
                 // SAFETY: `name` is NUL-terminated; the caller vouches for the loader.
-                unsafe { loader(name.as_ptr(), user as *mut c_void) as *const c_void }
+                let proc = unsafe { loader(name.as_ptr(), user as *mut c_void) };
+                proc.map_or(std::ptr::null(), |f| f as *const c_void)
             };
             // SAFETY: the caller promises a current context and a loader for it.
             unsafe { crate::probe::probe(load) }.map(ZshiftProfile::from)
