@@ -5,10 +5,11 @@
 //! Fails, never skips, when no GL context can be made.
 
 use std::ffi::{c_char, c_void, CStr};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use zshift::ffi::{
-    zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL, ZSHIFT_ERR_NULL_POINTER,
-    ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
+    zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL,
+    ZSHIFT_ERR_NULL_POINTER, ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
 };
 use zshift::probe::{probe, probe_with_figures};
 use zshift::profile::{NearClip, RasterizerProfile, Snapping};
@@ -202,6 +203,25 @@ unsafe fn state(g: &glow::Context) -> Vec<String> {
     ]
 }
 
+/// The real glEnable, for [`failing_read_pixels`].
+static GL_ENABLE: AtomicUsize = AtomicUsize::new(0);
+
+/// A glReadPixels that raises GL_INVALID_ENUM (through glEnable(0xFFFF)) and reads nothing.
+extern "system" fn failing_read_pixels(
+    _: i32,
+    _: i32,
+    _: i32,
+    _: i32,
+    _: u32,
+    _: u32,
+    _: *mut c_void,
+) {
+    let enable = GL_ENABLE.load(Ordering::SeqCst);
+    // SAFETY: GL_ENABLE holds glEnable's address, stored before the probe runs.
+    let enable: extern "system" fn(u32) = unsafe { std::mem::transmute(enable) };
+    enable(0xFFFF);
+}
+
 #[test]
 fn the_callers_state_is_restored() {
     for kind in [Profile::Core, Profile::Compatibility] {
@@ -222,16 +242,24 @@ fn the_callers_state_is_restored() {
             glow::NO_ERROR,
             "{kind:?}: the probe left a GL error"
         );
-        // The same after a failing probe (a loader without glReadPixels fails after saving).
+        // The same after a probe that fails halfway: its glReadPixels raises a GL error, after
+        // the probe has changed the state and made its objects.
+        GL_ENABLE.store(gl.proc_address("glEnable") as usize, Ordering::SeqCst);
         let failing = |name: &CStr| {
             if name == c"glReadPixels" {
-                std::ptr::null()
+                failing_read_pixels as *const c_void
             } else {
                 gl.proc_address(name.to_str().unwrap())
             }
         };
-        // SAFETY: as above; NULL is allowed.
-        assert!(unsafe { probe(failing) }.is_err());
+        // SAFETY: as above; the replacement has glReadPixels's signature.
+        let e = unsafe { probe(failing) }.unwrap_err();
+        assert!(e.detail().contains("glReadPixels"), "{}", e.detail());
+        assert_eq!(
+            unsafe { g.get_error() },
+            glow::NO_ERROR,
+            "{kind:?}: error left pending"
+        );
         assert_eq!(before, unsafe { state(g) }, "{kind:?} after an error");
     }
 }
@@ -279,7 +307,8 @@ unsafe extern "C" fn egl_loader(name: *const c_char, user: *mut c_void) -> Zshif
     let gl = &*(user as *const Gl);
     let address = gl.proc_address(CStr::from_ptr(name).to_str().unwrap());
     // SAFETY: a non-NULL address is a GL entry point; the probe casts it to its real type.
-    (!address.is_null()).then(|| std::mem::transmute::<*const c_void, unsafe extern "C" fn()>(address))
+    (!address.is_null())
+        .then(|| std::mem::transmute::<*const c_void, unsafe extern "C" fn()>(address))
 }
 
 unsafe extern "C" fn null_loader(_: *const c_char, _: *mut c_void) -> ZshiftGlProc {
