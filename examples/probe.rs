@@ -28,8 +28,8 @@ fn main() {
         figures.snapping_residual.2
     );
     println!(
-        "near clip      {:?} (near-clipped ground plane: {:.1} D24 quanta off)",
-        p.near_clip, figures.near_clip_error
+        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1})",
+        p.near_clip, figures.near_clip_error, figures.near_preclipped_error
     );
     println!("format  r (quanta)  plane_error (quanta)  interpolation (u*M)  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {

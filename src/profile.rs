@@ -22,15 +22,16 @@ pub enum Snapping {
 pub enum NearClip {
     /// New vertices are computed in f32 where the edges cross the near plane, and the depth plane
     /// is set up from them: the worst case, and what Mesa's llvmpipe does. The probe reports it
-    /// whenever a near-clipped plane's stored depth strays from the exact plane by more than
-    /// `2·plane_error + 2` quanta (D24): the model must add the clipping terms.
+    /// when ground planes the rasterizer clips stray from the plane of their given vertices by
+    /// more than twice (plus 2 D24 quanta) what the same planes do when clipped in f64 first:
+    /// the model must add the clipping terms.
     ClippedF32,
     /// A primitive crossing the near plane keeps the depth of its plane to within the same
     /// per-pixel error as one that does not (homogeneous rasterization, a clipper working in
-    /// higher precision, or one that interpolates depth from the original vertices): measured on
-    /// a ground plane with corners ±1000 behind and ahead of the camera, its stored depth stays
-    /// within `2·plane_error + 2` quanta of the exact plane. The model adds no clipping term;
-    /// `plane_error` covers the clipped primitive too.
+    /// higher precision, or one that interpolates depth from the original vertices): ground
+    /// planes with corners ±1000 behind and ahead of the camera, clipped by the rasterizer, err
+    /// at most twice (plus 2 D24 quanta) what they do when clipped in f64 before drawing. The
+    /// model adds no clipping term; `plane_error` covers the clipped primitive too.
     PlanePreserving,
 }
 

@@ -127,6 +127,9 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
         assert_eq!(p.near_clip, NearClip::ClippedF32);
         assert!(figures.near_clip_error > 10.0, "{figures:?}");
+        // The same planes clipped in f64 before drawing keep their plane: the clipper's f32
+        // intersections, not the far-away vertices, move the depth.
+        assert!(figures.near_preclipped_error < 4.0, "{figures:?}");
     }
 }
 

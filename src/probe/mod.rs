@@ -36,11 +36,14 @@
 //! * **`interpolation_ulps`**: the same pixels' error divided by `2⁻²⁴·M`, `M` the magnitude of
 //!   the terms of the plane evaluated from the window origin (see the field): how the error of a
 //!   steep plane grows with its distance from the origin, for viewports larger than the tiles.
-//! * **`near_clip`** ([`NearClip`]): a ground plane with corners ±1000 (n = 0.1, f = 1000) whose
-//!   triangle crosses the near plane, on D24. Its stored depth is compared with the exact plane:
-//!   within `2·plane_error + 2` quanta means the clipper keeps the plane
-//!   ([`NearClip::PlanePreserving`]); beyond, the clipped vertices were computed in f32
-//!   ([`NearClip::ClippedF32`], the worst case the model bounds).
+//! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
+//!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
+//!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
+//!   in f64 at twice the near distance, so that nothing is left to clip; each image is compared
+//!   with the plane of the coordinates it was given, on the pixels both cover. A clipper that
+//!   keeps the plane errs as little as the unclipped drawing (within twice its error plus 2
+//!   quanta: [`NearClip::PlanePreserving`]); one that computes the new vertices in f32 errs by
+//!   tens of quanta more ([`NearClip::ClippedF32`], the worst case the model must bound).
 //!
 //! # The caller's GL state
 //! The probe needs OpenGL 3.2 or later (core or compatibility profile) current on the calling
@@ -116,8 +119,12 @@ pub struct Figures {
     /// Pixels compared with the exact plane for `plane_error`, per format (D16, D24, D32, D32F;
     /// 0 where the format was not measured).
     pub plane_pixels: [usize; 4],
-    /// The worst `|stored − exact|` of the near-clipped ground plane, in D24 quanta.
+    /// The worst `|stored − exact|` of the ground planes the rasterizer clipped at the near
+    /// plane, in D24 quanta, on the pixels compared.
     pub near_clip_error: f64,
+    /// The same planes clipped by the probe in f64 (at twice the near distance) before
+    /// drawing, on the same pixels: what the rasterizer does without clipping.
+    pub near_preclipped_error: f64,
     /// How well the snapping hypotheses fit, in window depth: the largest residual of the
     /// unsnapped hypothesis, and of the best snapped one (`b`, `residual`).
     pub snapping_residual: (f64, u32, f64),
@@ -237,6 +244,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         subpixel_bits: gl.integer(SUBPIXEL_BITS),
         plane_pixels: [0; 4],
         near_clip_error: f64::NAN,
+        near_preclipped_error: f64::NAN,
         snapping_residual: (f64::NAN, 0, f64::NAN),
         float_resolvable: [f64::NAN; 2],
         reversed_pixels: 0,
@@ -273,8 +281,11 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             (profile.snapping, figures.snapping_residual) = snapping(gl)?;
         }
         if internal == DEPTH_COMPONENT24 {
-            (profile.near_clip, figures.near_clip_error) =
-                near_clip(gl, profile.plane_error[slot])?;
+            (
+                profile.near_clip,
+                figures.near_clip_error,
+                figures.near_preclipped_error,
+            ) = near_clip(gl)?;
         }
     }
     Ok((profile, figures))
@@ -558,33 +569,6 @@ impl Plane {
     }
 }
 
-/// The largest `|stored − exact|` in quanta over the pixels [`Plane::depth_inside`] accepts, and how
-/// many there were. For D32F the quantum is the f32 spacing at the primitive's largest depth
-/// (as for its `r`): f32 setup and interpolation err relative to the largest value they handle.
-/// [`worst_local_error`] gives the same in units of the spacing at each pixel's own depth.
-fn worst_error(format: Format, plane: &Plane, stored: &[f64]) -> (f64, usize) {
-    let (worst, count) = worst_local_error(format, plane, stored, plane.largest);
-    (worst, count)
-}
-
-/// As [`worst_error`], each pixel's error in units of the quantum at the larger of its exact
-/// depth and `floor` (0: the spacing at the pixel's own depth).
-fn worst_local_error(format: Format, plane: &Plane, stored: &[f64], floor: f64) -> (f64, usize) {
-    let mut worst = 0.0f64;
-    let mut count = 0;
-    for py in 0..SIZE {
-        for px in 0..SIZE {
-            let Some(exact) = plane.depth_inside(px, py) else {
-                continue;
-            };
-            let stored = stored[py * SIZE + px];
-            worst = worst.max((stored - exact).abs() / format.quantum(exact.max(floor)));
-            count += 1;
-        }
-    }
-    (worst, count)
-}
-
 // ---------------------------------------------------------------------------------------------
 // Scenes: triangles on eye-space planes, projected with glFrustum in f64 and rounded to f32.
 // ---------------------------------------------------------------------------------------------
@@ -745,7 +729,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
 /// The worst per-pixel error of sloped planes, in quanta (module docs).
 /// The figures of [`plane_error`] for one format and mapping.
 struct PlaneErrors {
-    /// As [`worst_error`], over every scene.
+    /// The worst error in quanta (D32F: at the primitive's largest depth), over every scene.
     worst: f64,
     /// Pixels compared.
     pixels: usize,
@@ -943,58 +927,123 @@ fn snap(t: &Triangle, h: usize) -> Triangle {
 // Near-plane clipping
 // ---------------------------------------------------------------------------------------------
 
-/// How a triangle crossing the near plane keeps its depth (module docs): the worst error of
-/// near-clipped ground planes against `2·plane_error + 2` quanta (D24).
-unsafe fn near_clip(gl: &Gl, plane_error: f64) -> Result<(NearClip, f64)> {
-    let mut worst = 0.0f64;
-    let scenes = near_scenes();
-    let batch: Vec<&[Triangle]> = scenes.chunks(1).collect();
-    for (t, stored) in scenes
+/// How a triangle crossing the near plane keeps its depth (module docs): each ground plane is
+/// drawn twice, once as given (the rasterizer clips it) and once clipped by the probe in f64 at
+/// twice the near distance (nothing left for the rasterizer to clip); on the pixels both cover,
+/// each is compared with the plane of the coordinates it was given (D24 quanta). Returns the
+/// verdict and the two worst errors.
+unsafe fn near_clip(gl: &Gl) -> Result<(NearClip, f64, f64)> {
+    let grounds = near_grounds();
+    let given: Vec<Vec<Triangle>> = grounds
         .iter()
-        .zip(draw_tiles(gl, Format::Unorm(24), &batch)?)
-    {
-        let (error, count) = worst_error(Format::Unorm(24), &Plane::new(t), &stored);
-        if count < SIZE * SIZE / 8 {
+        .map(|g| vec![g.map(near_clip_coords)])
+        .collect();
+    let preclipped: Vec<Vec<Triangle>> = grounds
+        .iter()
+        .map(|g| {
+            clip_in_f64(*g, 2.0 * NEAR)
+                .into_iter()
+                .map(|t| t.map(near_clip_coords))
+                .collect()
+        })
+        .collect();
+    let scenes: Vec<&[Triangle]> = given.iter().chain(&preclipped).map(Vec::as_slice).collect();
+    let stored = draw_tiles(gl, Format::Unorm(24), &scenes)?;
+    let (mut worst_given, mut worst_preclipped) = (0.0f64, 0.0f64);
+    for (i, fan) in preclipped.iter().enumerate() {
+        let given_errors = pixel_errors(&given[i], &stored[i]);
+        let preclipped_errors = pixel_errors(fan, &stored[given.len() + i]);
+        let both: Vec<(f64, f64)> = given_errors
+            .iter()
+            .zip(&preclipped_errors)
+            .filter_map(|(a, b)| Some(((*a)?, (*b)?)))
+            .collect();
+        if both.len() < SIZE * SIZE / 8 {
             return Err(Error::new(
                 ErrorKind::Gl,
-                "a near-clipped ground plane covered less than an eighth of the probe's framebuffer",
+                "a near-clipped ground plane covered less than an eighth of its tile: the \
+                 rasterizer drew something else than the probe's triangles",
             ));
         }
-        worst = worst.max(error);
+        for (a, b) in both {
+            worst_given = worst_given.max(a);
+            worst_preclipped = worst_preclipped.max(b);
+        }
     }
-    let clip = if worst <= 2.0 * plane_error + 2.0 {
+    let clip = if worst_given <= 2.0 * worst_preclipped + 2.0 {
         NearClip::PlanePreserving
     } else {
         NearClip::ClippedF32
     };
-    Ok((clip, worst))
+    Ok((clip, worst_given, worst_preclipped))
 }
 
-/// Ground planes whose triangles reach 1000 units behind and ahead of the camera (n = 0.1,
-/// f = 1000, a 16:9 frustum): sloped ones seen from 10 units, and a floor 1.7 units below the eye.
-fn near_scenes() -> Vec<Triangle> {
+/// Per pixel of a tile, `|stored − exact|` in D24 quanta against the first of `triangles`
+/// that covers it (by [`Plane::depth_inside`]), or `None`.
+fn pixel_errors(triangles: &[Triangle], stored: &[f64]) -> Vec<Option<f64>> {
+    let planes: Vec<Plane> = triangles.iter().map(Plane::new).collect();
+    let q = Format::Unorm(24).quantum(0.5);
+    (0..SIZE * SIZE)
+        .map(|i| {
+            let exact = planes
+                .iter()
+                .find_map(|p| p.depth_inside(i % SIZE, i / SIZE))?;
+            Some((stored[i] - exact).abs() / q)
+        })
+        .collect()
+}
+
+/// The near plane of the near-clip scenes.
+const NEAR: f64 = 0.1;
+
+/// Clip coordinates of eye point `p` under `glFrustum(−0.1, 0.1, −0.05625, 0.05625, 0.1, 1000)`
+/// (16:9), the eye point first rounded to f32, each result rounded to f32.
+fn near_clip_coords(p: [f64; 3]) -> [f32; 4] {
     let view = View {
         e: 1.0,
-        n: 0.1,
+        n: NEAR,
         f: 1000.0,
         reversed: false,
     };
-    let clip = |[x, y, z]: [f64; 3]| {
-        let mut c = view.clip([x, y, z]);
-        c[1] = (y as f32 as f64 / 0.5625) as f32;
-        c
-    };
+    let mut c = view.clip(p);
+    c[1] = (p[1] as f32 as f64 / 0.5625) as f32;
+    c
+}
+
+/// Ground planes whose triangles reach 1000 units behind and ahead of the camera, as eye-space
+/// corners: sloped ones seen from 10 units, and a floor 1.7 units below the eye.
+fn near_grounds() -> Vec<[[f64; 3]; 3]> {
     let mut out = Vec::new();
     for slope in [-0.5, 1.0, 3.0] {
-        let on = |x: f64, y: f64| clip([x, y, -10.0 + slope * y]);
+        let on = |x: f64, y: f64| [x, y, -10.0 + slope * y];
         // the corner ahead of the camera is where the plane runs away from it
         let ahead = if slope < 0.0 { 1000.0 } else { -1000.0 };
         out.push([on(-1000.0, -ahead), on(1000.0, -ahead), on(0.0, ahead)]);
     }
     out.push([
-        clip([-1000.0, -1.7, 1000.0]),
-        clip([1000.0, -1.7, 1000.0]),
-        clip([0.0, -1.7, -1000.0]),
+        [-1000.0, -1.7, 1000.0],
+        [1000.0, -1.7, 1000.0],
+        [0.0, -1.7, -1000.0],
     ]);
     out
+}
+
+/// The part of eye-space triangle `t` beyond the plane `z = −depth`, in f64 (one
+/// Sutherland–Hodgman pass), as a fan of triangles.
+fn clip_in_f64(t: [[f64; 3]; 3], depth: f64) -> Vec<[[f64; 3]; 3]> {
+    let inside = |p: &[f64; 3]| -p[2] >= depth;
+    let mut polygon = Vec::new();
+    for i in 0..3 {
+        let (a, b) = (t[i], t[(i + 1) % 3]);
+        if inside(&a) {
+            polygon.push(a);
+        }
+        if inside(&a) != inside(&b) {
+            let s = (-depth - a[2]) / (b[2] - a[2]);
+            polygon.push(std::array::from_fn(|k| a[k] + s * (b[k] - a[k])));
+        }
+    }
+    (2..polygon.len())
+        .map(|i| [polygon[0], polygon[i - 1], polygon[i]])
+        .collect()
 }
