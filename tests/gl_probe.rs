@@ -8,7 +8,7 @@ use std::ffi::{c_char, c_void, CStr};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use zshift::ffi::{
-    zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL,
+    zshift_last_error, zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL,
     ZSHIFT_ERR_NULL_POINTER, ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
 };
 use zshift::probe::{probe, probe_with_figures};
@@ -346,6 +346,9 @@ fn the_c_entry_point_checks_pointers_and_leaves_out_untouched_on_error() {
             zshift_probe(Some(null_loader), user, &mut out),
             ZSHIFT_ERR_GL
         );
+        // The last-error detail names the first entry point the loader lacked.
+        let detail = CStr::from_ptr(zshift_last_error()).to_str().unwrap();
+        assert!(detail.contains("glGetError"), "{detail}");
         assert_eq!(bytes(&out), sentinel, "out written on error");
         assert_eq!(zshift_probe(Some(egl_loader), user, &mut out), ZSHIFT_OK);
     }

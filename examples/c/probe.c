@@ -39,7 +39,8 @@ static int probe_once(enum headless_profile kind, const char *label) {
   ZshiftProfile profile;
   ZshiftStatus status = zshift_probe(egl_loader, NULL, &profile);
   if (status != ZSHIFT_OK) {
-    fprintf(stderr, "%s: zshift_probe failed: %s\n", label, zshift_status_message(status));
+    fprintf(stderr, "%s: zshift_probe failed: %s: %s\n", label, zshift_status_message(status),
+            zshift_last_error());
     return 1;
   }
   get_integerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo_after);
@@ -68,6 +69,12 @@ static int probe_once(enum headless_profile kind, const char *label) {
     fprintf(stderr, "%s: a loader that finds nothing must give ZSHIFT_ERR_GL and leave out alone\n", label);
     return 1;
   }
+  if (strstr(zshift_last_error(), "glGetError") == NULL) {
+    fprintf(stderr, "%s: the detail must name the first missing entry point: \"%s\"\n", label,
+            zshift_last_error());
+    return 1;
+  }
+  printf("  a loader that finds nothing: %s\n", zshift_last_error());
   if (zshift_probe(egl_loader, NULL, NULL) != ZSHIFT_ERR_NULL_POINTER ||
       zshift_probe(NULL, NULL, &untouched) != ZSHIFT_ERR_NULL_POINTER) {
     fprintf(stderr, "%s: NULL loader or output must give ZSHIFT_ERR_NULL_POINTER\n", label);

@@ -3,7 +3,7 @@
 
 use std::ffi::{c_char, c_void, CStr};
 
-use super::{checked, ZshiftStatus, ZSHIFT_ERR_NULL_POINTER};
+use super::{checked, null_pointer, ZshiftStatus};
 use crate::domain::domain;
 use crate::error::Result;
 use crate::profile::{NearClip, RasterizerProfile, Snapping};
@@ -180,7 +180,8 @@ pub extern "C" fn zshift_profile_worst_case(out: *mut ZshiftProfile) -> ZshiftSt
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `loader` or `out` is NULL; ZSHIFT_ERR_GL if the loader
 /// returned NULL for a needed entry point, no context or one older than 3.2 is current, a GL
 /// error was pending on entry (it is read, which clears it), D16, D24 or D32F cannot be
-/// attached to a framebuffer, or a GL call failed. `out` is untouched on error.
+/// attached to a framebuffer, or a GL call failed; `zshift_last_error()` names which (e.g.
+/// "the GL loader returned NULL for glReadPixels, ..."). `out` is untouched on error.
 ///
 /// # Safety
 /// `loader` must return, for each name, NULL or that entry point of the current context.
@@ -191,7 +192,7 @@ pub unsafe extern "C" fn zshift_probe(
     out: *mut ZshiftProfile,
 ) -> ZshiftStatus {
     let Some(loader) = loader else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("loader");
     };
     // The user pointer crosses the panic boundary as an address: the probe only passes it back.
     let user = user as usize;
