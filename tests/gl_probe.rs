@@ -324,6 +324,10 @@ fn the_c_entry_point_checks_pointers_and_leaves_out_untouched_on_error() {
     let user = &gl as *const Gl as *mut c_void;
     let mut worst = std::mem::MaybeUninit::<ZshiftProfile>::uninit();
     assert_eq!(zshift_profile_worst_case(worst.as_mut_ptr()), ZSHIFT_OK);
+    assert_eq!(
+        zshift_profile_worst_case(std::ptr::null_mut()),
+        ZSHIFT_ERR_NULL_POINTER
+    );
     let worst = unsafe { worst.assume_init() };
     // Debug formatting: NaN entries (not measured) compare equal that way.
     let same = |a: &RasterizerProfile, b: &RasterizerProfile| format!("{a:?}") == format!("{b:?}");
