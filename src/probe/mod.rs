@@ -13,7 +13,8 @@
 //!   `2^-b` pixel for `b` in 0..=12 — the predicted depth of every pixel is computed exactly, and
 //!   the hypothesis closest to the stored depths wins. Snapping to `2^-12` pixel moves depth by
 //!   1.7·10⁻⁶ here, 17× the f32 noise of the stored depth; finer snapping cannot be told from
-//!   none, and its term in the model is as small.
+//!   none, and its term in the model is as small. If no hypothesis fits to 10⁻⁶, the answer is
+//!   the conservative `GL_SUBPIXEL_BITS` the driver reports.
 //! * **`resolvable`** (`r`, per format): a gently sloped quad drawn twice, without and with
 //!   `glPolygonOffset(0, U)`; `r` = the mean stored difference ÷ `U`, in units of the format's
 //!   quantum (UNORM: `1/(2^m − 1)`; D32F: `2^(e − 23)`, `e` the exponent of the primitive's largest
@@ -278,7 +279,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             }
         }
         if format == Format::Float {
-            (profile.snapping, figures.snapping_residual) = snapping(gl)?;
+            (profile.snapping, figures.snapping_residual) = snapping(gl, figures.subpixel_bits)?;
         }
         if internal == DEPTH_COMPONENT24 {
             (
@@ -855,8 +856,15 @@ unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
 /// than the noise, and their term in the model is as small (they read as unsnapped).
 const MAX_SNAP_BITS: u32 = 12;
 
-/// Which snapping hypothesis the stored depth of steep triangles fits best (module docs).
-unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
+/// The largest residual (window depth) a snapping hypothesis may leave and still be believed:
+/// 10× the f32 noise of the test triangles' depth, below the shift of any `b ≤ 12`.
+const SNAP_FIT: f64 = 1e-6;
+
+/// Which snapping hypothesis the stored depth of steep triangles fits best (module docs). When
+/// none fits to [`SNAP_FIT`] the rasterizer does something the hypotheses do not describe, and
+/// the answer is the conservative `GL_SUBPIXEL_BITS` it reports (8 if it reports none in
+/// 1..=12).
+unsafe fn snapping(gl: &Gl, reported_bits: i32) -> Result<(Snapping, (f64, u32, f64))> {
     // Window positions with assorted sub-pixel parts; depth grows with x only.
     let sets: [[[f64; 2]; 3]; 2] = [
         [[6.3071, 5.1187], [58.6523, 9.4402], [11.8816, 59.7311]],
@@ -897,7 +905,12 @@ unsafe fn snapping(gl: &Gl) -> Result<(Snapping, (f64, u32, f64))> {
         .min_by(|&a, &b| residual[a].total_cmp(&residual[b]))
         .unwrap_or(1);
     let figures = (residual[0], ((snapped - 1) / 2) as u32, residual[snapped]);
+    let conservative = match reported_bits {
+        b @ 1..=12 => b as u32,
+        _ => 8,
+    };
     Ok(match best {
+        _ if residual[best] > SNAP_FIT => (Snapping::SubpixelBits(conservative), figures),
         0 => (Snapping::Unsnapped, figures),
         h => (Snapping::SubpixelBits(((h - 1) / 2) as u32), figures),
     })
@@ -1046,4 +1059,107 @@ fn clip_in_f64(t: [[f64; 3]; 3], depth: f64) -> Vec<[[f64; 3]; 3]> {
     (2..polygon.len())
         .map(|i| [polygon[0], polygon[i - 1], polygon[i]])
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A triangle with w = 1 (no perspective): window depth is the screen-space barycentric
+    /// blend of the vertices' depths, computed here independently of [`Plane`].
+    #[test]
+    fn plane_depth_matches_screen_space_barycentrics_without_perspective() {
+        let t: Triangle = [
+            [-0.8, -0.7, -0.5, 1.0],
+            [0.9, -0.6, 0.25, 1.0],
+            [-0.1, 0.85, 0.75, 1.0],
+        ];
+        let plane = Plane::new(&t);
+        let window = |v: [f32; 4]| {
+            let s = SIZE as f64;
+            (
+                (v[0] as f64 + 1.0) * s / 2.0,
+                (v[1] as f64 + 1.0) * s / 2.0,
+                0.5 * v[2] as f64 + 0.5,
+            )
+        };
+        let [a, b, c] = t.map(window);
+        let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+        let (x, y) = (30.5, 20.5);
+        let la = ((b.0 - x) * (c.1 - y) - (c.0 - x) * (b.1 - y)) / area;
+        let lb = ((c.0 - x) * (a.1 - y) - (a.0 - x) * (c.1 - y)) / area;
+        let lc = 1.0 - la - lb;
+        let expected = la * a.2 + lb * b.2 + lc * c.2;
+        let got = plane.depth_at(x, y).unwrap();
+        assert!((got - expected).abs() < 1e-14, "{got} vs {expected}");
+        assert!(
+            plane.depth_at(0.5, 63.5).is_none(),
+            "a corner outside the triangle"
+        );
+    }
+
+    /// With perspective, the depth at a pixel is that of the eye point on the triangle's plane
+    /// seen there: found here by intersecting the pixel's ray with the eye-space plane.
+    #[test]
+    fn plane_depth_matches_the_ray_through_the_pixel() {
+        let view = View {
+            e: 0.5,
+            n: 1.0,
+            f: 100.0,
+            reversed: false,
+        };
+        let eye = [[-3.0, -2.0, -8.0], [4.0, -1.0, -20.0], [0.5, 3.0, -12.0]];
+        let t: Triangle = eye.map(|p| view.clip(p));
+        let plane = Plane::new(&t);
+        // the eye-space plane through the (f32-rounded) corners
+        let p = eye.map(|v| v.map(|c| c as f32 as f64));
+        let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
+        let v = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
+        let normal = cross(u, v);
+        let (x, y) = (33.5, 31.5);
+        let (xn, yn) = (2.0 * x / SIZE as f64 - 1.0, 2.0 * y / SIZE as f64 - 1.0);
+        let ray = [xn * view.e, yn * view.e, -1.0]; // the eye point at distance d is d·ray
+        let d = (normal[0] * p[0][0] + normal[1] * p[0][1] + normal[2] * p[0][2])
+            / (normal[0] * ray[0] + normal[1] * ray[1] + normal[2] * ray[2]);
+        let (n, f) = (view.n, view.f);
+        let expected = f * (d - n) / (d * (f - n));
+        let got = plane.depth_at(x, y).unwrap();
+        // the clip coordinates are f32-rounded: agreement to a few f32 ulps, not to f64
+        assert!((got - expected).abs() < 1e-6, "{got} vs {expected}");
+    }
+
+    #[test]
+    fn clipping_in_f64_keeps_the_part_beyond_the_plane() {
+        let t = [
+            [-1000.0, -1000.0, 490.0],
+            [1000.0, -1000.0, 490.0],
+            [0.0, 1000.0, -510.0],
+        ];
+        let fan = clip_in_f64(t, 0.2);
+        assert_eq!(fan.len(), 1, "one vertex in front: a triangle");
+        for v in fan.iter().flatten() {
+            assert!(-v[2] >= 0.2 - 1e-12, "{v:?} in front of the clip plane");
+            assert!(
+                (v[2] - (-10.0 - 0.5 * v[1])).abs() < 1e-9,
+                "{v:?} off the plane"
+            );
+        }
+    }
+
+    #[test]
+    fn snapping_hypotheses_round_window_positions() {
+        let t: Triangle = [
+            [0.30, -0.25, 0.0, 1.0],
+            [0.5, 0.5, 0.0, 1.0],
+            [-0.5, 0.5, 0.0, 1.0],
+        ];
+        assert_eq!(snap(&t, 0), t);
+        // b = 0, nearest: window x = (0.3 + 1)·32 = 41.6 → 42; down: 41
+        let window_x = |t: Triangle| (t[0][0] as f64 + 1.0) * SIZE as f64 / 2.0;
+        assert_eq!(window_x(snap(&t, 1)), 42.0);
+        assert_eq!(window_x(snap(&t, 2)), 41.0);
+        // b = 2: quarter pixels, 41.6 → 41.5 (nearest), 41.5 (down)
+        assert_eq!(window_x(snap(&t, 5)), 41.5);
+        assert_eq!(window_x(snap(&t, 6)), 41.5);
+    }
 }
