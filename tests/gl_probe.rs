@@ -151,6 +151,8 @@ unsafe fn set_odd_state(g: &glow::Context) -> (glow::Framebuffer, glow::VertexAr
     g.enable(glow::CULL_FACE);
     g.enable(glow::SCISSOR_TEST);
     g.enable(glow::DEPTH_CLAMP);
+    g.enable(glow::CLIP_DISTANCE0 + 3);
+    g.enable(glow::POLYGON_SMOOTH);
     g.disable(glow::DEPTH_TEST);
     g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
     g.pixel_store_i32(glow::PACK_ROW_LENGTH, 7);
@@ -172,6 +174,8 @@ unsafe fn state(g: &glow::Context) -> Vec<String> {
         glow::DEPTH_TEST,
         glow::STENCIL_TEST,
         glow::RASTERIZER_DISCARD,
+        glow::CLIP_DISTANCE0 + 3,
+        glow::POLYGON_SMOOTH,
     ]
     .map(|cap| g.is_enabled(cap));
     let ints = [

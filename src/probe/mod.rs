@@ -54,13 +54,13 @@
 //! array, array buffer and pixel-pack buffer bindings, every viewport and depth range (all of
 //! them under `ARB_viewport_array`), the depth function, write mask and clear value, polygon
 //! offset factor, units and clamp, polygon mode, the enables it touches (depth test, polygon
-//! offset fill, cull face, stencil, depth clamp, rasterizer discard, scissor per viewport,
-//! depth-bounds test, alpha test in compatibility), every `GL_PACK_*` parameter, `glClipControl`
+//! offset fill, cull face, polygon smooth, stencil, depth clamp, rasterizer discard, scissor
+//! per viewport, every clip distance, depth-bounds test, alpha test in compatibility), every `GL_PACK_*` parameter, `glClipControl`
 //! and, in a compatibility context, `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
 //! it creates, also on error. Not restored because it never changes them: colour state (its
 //! framebuffer has no colour attachment), textures, samplers, stencil values, uniform state of
-//! other programs. Not handled: an active transform feedback or occlusion query of the caller
-//! would see the probe's draws; end them before probing.
+//! other programs. Not handled: an active transform feedback, query or conditional render of
+//! the caller would see (or discard) the probe's draws; end them before probing.
 //!
 //! # Errors
 //! [`crate::ErrorKind::Gl`] with a detail naming what failed: the entry point the loader

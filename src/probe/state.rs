@@ -33,7 +33,8 @@ pub struct Saved {
 }
 
 /// Capabilities the probe turns on or off; each is restored as it was.
-const CAPABILITIES: [Enum; 7] = [
+const CAPABILITIES: [Enum; 8] = [
+    POLYGON_SMOOTH,
     DEPTH_TEST,
     POLYGON_OFFSET_FILL,
     CULL_FACE,
@@ -68,6 +69,15 @@ impl Saved {
             capabilities.push(Capability {
                 cap: ALPHA_TEST,
                 on: (gl.IsEnabled)(ALPHA_TEST) != 0,
+            });
+        }
+        // User clip distances (clip planes in compatibility): enabled but not written by the
+        // probe's shader, they would clip its triangles by undefined values.
+        let clip_distances = gl.integer(MAX_CLIP_DISTANCES).clamp(0, 32) as Enum;
+        for cap in (0..clip_distances).map(|i| CLIP_DISTANCE0 + i) {
+            capabilities.push(Capability {
+                cap,
+                on: (gl.IsEnabled)(cap) != 0,
             });
         }
         // GL_DEPTH_BOUNDS_TEST_EXT exists only with its extension: an unknown enum raises
