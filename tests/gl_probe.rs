@@ -8,8 +8,8 @@ use std::ffi::{c_char, c_void, CStr};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use zshift::ffi::{
-    zshift_last_error, zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile, ZSHIFT_ERR_GL,
-    ZSHIFT_ERR_NULL_POINTER, ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
+    zshift_last_error, zshift_probe, zshift_profile_worst_case, ZshiftGlProc, ZshiftProfile,
+    ZSHIFT_ERR_GL, ZSHIFT_ERR_NULL_POINTER, ZSHIFT_NEAR_CLIP_CLIPPED_F32, ZSHIFT_OK,
 };
 use zshift::probe::{probe, probe_with_figures};
 use zshift::profile::{NearClip, RasterizerProfile, Snapping};
@@ -101,6 +101,15 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
                 p.resolvable[slot]
             );
         }
+        // The same r by Wine's bisection: the units that separate a coplanar quad are 1/r on
+        // D16. On D24 one quantum is one f32 ulp of the depth, and the f32 sum depth + offset
+        // needs a little more (1.25 quanta measured): between 1 and 1.5 quanta.
+        let units = wine_style_units(&mut gl, DepthFormat::D16);
+        let quanta = units * p.resolvable[0];
+        assert!((quanta - 1.0).abs() < 0.02, "D16: {units} units separate");
+        let units = wine_style_units(&mut gl, DepthFormat::D24);
+        let quanta = units * p.resolvable[1];
+        assert!((1.0..1.5).contains(&quanta), "D24: {units} units separate");
         // Per-pixel error of a plane: D16 rounds to nearest (½ quantum) plus f32 noise well
         // below a quantum; D24 and D32F carry a few f32 roundings of the plane's terms, whose
         // magnitude grows with a steep plane's distance from the window origin (up to ~25 here),
@@ -131,6 +140,54 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         // intersections, not the far-away vertices, move the depth.
         assert!(figures.near_preclipped_error < 4.0, "{figures:?}");
     }
+}
+
+/// Wine's wined3d way, independent of the probe: the smallest `units` (by bisection) for which a
+/// quad drawn with `glPolygonOffset(0, −units)` under `GL_LESS` wins every pixel over the same
+/// quad drawn plainly. Stored values are rounded, so one quantum of offset always suffices and
+/// half a quantum never does: the answer is `1/r` to within the bisection's step.
+fn wine_style_units(gl: &mut Gl, format: DepthFormat) -> f64 {
+    gl.set_target(64, 64, format).unwrap();
+    let identity: [f32; 16] = [
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.,
+    ];
+    // depth varies along x, so the pixels sample every position within a quantum
+    let quad = Quad {
+        corners: [
+            [-1.0, -1.0, -0.2],
+            [1.0, -1.0, 0.2],
+            [1.0, 1.0, 0.2],
+            [-1.0, 1.0, -0.2],
+        ],
+    };
+    let mut lost = |units: f32| {
+        gl.clear([0.0; 4], 1.0).unwrap();
+        gl.draw_quad(
+            &quad,
+            &identity,
+            [0.0, 0.0, 1.0, 1.0],
+            &DrawState::default(),
+        )
+        .unwrap();
+        let decal = DrawState {
+            polygon_offset: Some((0.0, -units)),
+            ..DrawState::default()
+        };
+        gl.draw_quad(&quad, &identity, [1.0, 0.0, 0.0, 1.0], &decal)
+            .unwrap();
+        64 * 64 - gl.read_color().unwrap().count([255, 0, 0, 255], None)
+    };
+    let (mut low, mut high) = (0.0f32, 4.0f32);
+    assert_eq!(lost(high), 0, "{format:?}: 4 units must suffice");
+    for _ in 0..10 {
+        let middle = 0.5 * (low + high);
+        if lost(middle) == 0 {
+            high = middle;
+        } else {
+            low = middle;
+        }
+    }
+    high as f64
 }
 
 /// Odd values for everything the probe touches, set through glow.
