@@ -31,7 +31,7 @@ fn main() {
         "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1})",
         p.near_clip, figures.near_clip_error, figures.near_preclipped_error
     );
-    println!("format  r (quanta)  plane_error (quanta)  interpolation (u*M)  pixels");
+    println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(
             "{name:<6}  {:<10.4}  {:<20.4}  {:<19.3}  {}",
@@ -39,8 +39,8 @@ fn main() {
         );
     }
     println!(
-        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; interpolation_ulps (both mappings) {:.3}",
-        p.plane_error_reversed, figures.reversed_pixels, p.interpolation_ulps
+        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; error_ulps {:.3}",
+        p.plane_error_reversed, figures.reversed_pixels, p.error_ulps
     );
     println!(
         "D32F plane error in quanta at each pixel's own depth: [-1,1] {:.2}, reversed {:.2}",

@@ -297,26 +297,27 @@ typedef struct {
   double resolvable[4];
   /*
    The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-   units of the format's quantum (for D32F the float spacing 2^(e - 23) at the primitive's
-   largest window depth), under the [-1, 1] mapping; NAN where not measured (the model's
-   bound applies). Covers the rasterizer after the vertex shader (division by w, viewport
-   transform, depth setup, interpolation, conversion to the format), measured against the
-   plane through the clip coordinates it received. NAN or finite >= 0.
+   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+   vertices times an f32 projection in the vertex shader), against the plane through the
+   vertices times the matrix in double: covers the f32 transform, division by w, viewport
+   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
    */
   double plane_error[4];
   /*
    plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
-   window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
+   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
    */
   double plane_error_reversed;
   /*
    How the per-pixel error grows with a steep plane's window position: every measured pixel
-   kept |stored - exact| <= c + interpolation_ulps * 2^-24 * M, where c is 1 quantum for
+   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
    D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
    window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
    where not measured. NAN or finite >= 0.
    */
-  double interpolation_ulps;
+  double error_ulps;
   /*
    How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
    ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
@@ -400,6 +401,12 @@ typedef int32_t Int;
 #define FRONT_AND_BACK 1032
 
 #define CULL_FACE 2884
+
+#define POLYGON_SMOOTH 2881
+
+#define MAX_CLIP_DISTANCES 3378
+
+#define CLIP_DISTANCE0 12288
 
 #define POLYGON_MODE 2880
 

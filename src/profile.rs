@@ -45,29 +45,32 @@ pub struct RasterizerProfile {
     pub resolvable: [f64; 4],
     /// The worst `|stored − exact|` window depth per pixel of a plane (facing to grazing), per
     /// format (D16, D24, D32, D32F), under the standard `[−1, 1]` mapping, in units of the
-    /// format's quantum: `1/(2^m − 1)` for UNORM; for D32F the f32 spacing `2^(e − 23)` at the
-    /// primitive's largest window depth (as for `resolvable`: float setup and interpolation err
-    /// relative to the largest value they handle). NaN where not measured (the model's bound
-    /// applies). "Exact" is the plane through the clip coordinates the rasterizer received, so
-    /// it covers the division by `w`, the viewport transform, depth setup, interpolation and
-    /// the conversion to the format (rounding or truncation included), not the f32 rounding of
-    /// the vertex transform or of the vertex coordinates (terms `T` and `V` of the model). If
+    /// format's quantum `1/(2^m − 1)`; for D32F in units of 2⁻²⁴ (float depth's error is mostly
+    /// absolute). NaN where not measured (the model's bound applies). The planes are drawn as
+    /// an engine draws them — f32 eye-space vertices times an f32 projection in the vertex
+    /// shader — and "exact" is the plane through the vertices times the matrix in f64, so the
+    /// figure covers the f32 transform, the division by `w`, the viewport transform, depth
+    /// setup, interpolation and the conversion to the format (rounding included): the model's
+    /// `T + I` and its quantization, not `V` (the rounding of the coordinates themselves). If
     /// every pixel of two planes errs by at most `e` quanta, their stored order is the exact one
-    /// wherever the exact depths differ by more than `2e` quanta.
+    /// wherever the exact depths differ by more than `2e` quanta (no extra quantum needed).
     pub plane_error: [f64; 4],
     /// D32F's `plane_error` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, window depth
-    /// `n(f − d)/((f − n)d)`), same units; NaN where not measured (no `glClipControl`).
+    /// `n(f − d)/((f − n)d)`), in units of the f32 spacing `2^(e − 23)` at the primitive's
+    /// largest window depth (errors there are relative); NaN where not measured (no
+    /// `glClipControl`).
     pub plane_error_reversed: f64,
     /// How the per-pixel error grows with the window position of a steep plane, in f32 unit
-    /// roundoffs `u = 2⁻²⁴` of `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y`, the magnitude of the terms
-    /// when the plane's window depth is evaluated from the window origin (`w₀` the plane's
+    /// roundoffs `u = 2⁻²⁴` of `1 + M`, `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` the magnitude of the
+    /// terms when the plane's window depth is evaluated from the window origin (`w₀` the plane's
     /// depth extrapolated to window `(0, 0)`, `∂w/∂x`, `∂w/∂y` its window-depth gradients per
-    /// pixel, `x`, `y` the pixel's window coordinates): every measured pixel kept
-    /// `|stored − exact| ≤ q_conversion + interpolation_ulps·u·M` (D32F: no conversion term;
-    /// UNORM: one quantum). Use it where `plane_error`'s scenes (64-pixel tiles within 512
-    /// pixels of the origin) do not cover the engine's viewport: on llvmpipe a grazing plane's
-    /// error grows with its distance from the window origin. NaN where not measured.
-    pub interpolation_ulps: f64,
+    /// pixel, `x`, `y` the pixel's window coordinates; the 1 stands for the transform's and the
+    /// viewport mapping's own roundings): every measured pixel under `[−1, 1]` kept
+    /// `|stored − exact| ≤ c + error_ulps·u·(1 + M)`, `c` one quantum on UNORM, 0 on D32F. Use
+    /// it where `plane_error`'s scenes (64-pixel tiles within 512 pixels of the origin) do not
+    /// cover the engine's viewport: on llvmpipe a grazing plane's error grows with its distance
+    /// from the window origin. NaN where not measured.
+    pub error_ulps: f64,
     /// How primitives crossing the near plane are clipped.
     pub near_clip: NearClip,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
@@ -86,7 +89,7 @@ impl RasterizerProfile {
             resolvable: [4.0; 4],
             plane_error: [f64::NAN; 4],
             plane_error_reversed: f64::NAN,
-            interpolation_ulps: f64::NAN,
+            error_ulps: f64::NAN,
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

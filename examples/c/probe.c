@@ -59,8 +59,8 @@ static int probe_once(enum headless_profile kind, const char *label) {
   for (int i = 0; i < 4; i++)
     printf("  %-4s  r = %.3f quanta, plane error %.2f quanta\n", names[i], profile.resolvable[i],
            profile.plane_error[i]);
-  printf("  D32F reversed Z: plane error %.2f quanta; interpolation %.2f ulps of M\n",
-         profile.plane_error_reversed, profile.interpolation_ulps);
+  printf("  D32F reversed Z: plane error %.2f quanta; error %.2f ulps of 1 + M\n",
+         profile.plane_error_reversed, profile.error_ulps);
 
   /* Errors: out untouched, a status that says what was wrong. */
   ZshiftProfile untouched = profile;

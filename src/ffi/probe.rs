@@ -40,21 +40,22 @@ pub struct ZshiftProfile {
     /// primitive's largest depth). Finite and > 0. The worst case is 4.
     pub resolvable: [f64; 4],
     /// The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-    /// units of the format's quantum (for D32F the float spacing 2^(e - 23) at the primitive's
-    /// largest window depth), under the [-1, 1] mapping; NAN where not measured (the model's
-    /// bound applies). Covers the rasterizer after the vertex shader (division by w, viewport
-    /// transform, depth setup, interpolation, conversion to the format), measured against the
-    /// plane through the clip coordinates it received. NAN or finite >= 0.
+    /// units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+    /// not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+    /// vertices times an f32 projection in the vertex shader), against the plane through the
+    /// vertices times the matrix in double: covers the f32 transform, division by w, viewport
+    /// transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
     pub plane_error: [f64; 4],
     /// plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
-    /// window depth n(f - d)/((f - n)d)); NAN where not measured. NAN or finite >= 0.
+    /// window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+    /// primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
     pub plane_error_reversed: f64,
     /// How the per-pixel error grows with a steep plane's window position: every measured pixel
-    /// kept |stored - exact| <= c + interpolation_ulps * 2^-24 * M, where c is 1 quantum for
+    /// kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
     /// D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
     /// window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
     /// where not measured. NAN or finite >= 0.
-    pub interpolation_ulps: f64,
+    pub error_ulps: f64,
     /// How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
     /// ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
     pub near_clip: i32,
@@ -84,7 +85,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             resolvable: p.resolvable,
             plane_error: p.plane_error,
             plane_error_reversed: p.plane_error_reversed,
-            interpolation_ulps: p.interpolation_ulps,
+            error_ulps: p.error_ulps,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -123,7 +124,7 @@ impl ZshiftProfile {
                 "a ZshiftProfile.resolvable entry is not finite and > 0",
             ));
         }
-        let errors = [self.plane_error_reversed, self.interpolation_ulps];
+        let errors = [self.plane_error_reversed, self.error_ulps];
         if self
             .plane_error
             .iter()
@@ -131,7 +132,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed or interpolation_ulps is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed or error_ulps is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -141,7 +142,7 @@ impl ZshiftProfile {
             resolvable: self.resolvable,
             plane_error: self.plane_error,
             plane_error_reversed: self.plane_error_reversed,
-            interpolation_ulps: self.interpolation_ulps,
+            error_ulps: self.error_ulps,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

@@ -205,6 +205,8 @@ entry_points! {
         DrawArrays: "glDrawArrays" fn(Enum, Int, Sizei);
         GetStringi: "glGetStringi" fn(Enum, Uint) -> *const u8;
         GetString: "glGetString" fn(Enum) -> *const u8;
+        GetUniformLocation: "glGetUniformLocation" fn(Uint, *const c_char) -> Int;
+        UniformMatrix4fv: "glUniformMatrix4fv" fn(Int, Sizei, Boolean, *const f32);
     }
     optional {
         ClipControl: "glClipControl" fn(Enum, Enum);

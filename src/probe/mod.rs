@@ -26,17 +26,20 @@
 //!   lies at least a pixel inside one of 48 triangles: perspective planes (f/n = 10, 10³, 10⁵)
 //!   facing the camera, gently sloped, steep and grazing (eye-space slopes up to 10), axis depths
 //!   from 0.02 to 0.998, corners on screen or up to four viewports off it (in front of the near
-//!   plane). Each is drawn in a 64×64 tile of its own, the tiles side by side within 512 pixels
-//!   of the window origin. Units: the format's quantum (D32F: the f32 spacing at the primitive's
-//!   largest depth, as for its `r`). It covers what the rasterizer adds after the vertex shader
-//!   — the division by `w`, the viewport transform, plane setup, interpolation and the
-//!   conversion to the stored format — not the f32 rounding of the vertex transform or of the
-//!   vertex coordinates (`T`'s first part and `V` in [`crate::recommend`]). D32F is measured
-//!   again under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, window depths 2·10⁻⁵ to 0.7) into
-//!   `plane_error_reversed`.
-//! * **`interpolation_ulps`**: the same pixels' error divided by `2⁻²⁴·M`, `M` the magnitude of
-//!   the terms of the plane evaluated from the window origin (see the field): how the error of a
-//!   steep plane grows with its distance from the origin, for viewports larger than the tiles.
+//!   plane). Each is drawn as an engine draws: f32 eye-space vertices times an f32 `glFrustum`
+//!   matrix in the vertex shader, in a 64×64 tile of its own, the tiles side by side within 512
+//!   pixels of the window origin. "Exact" is the plane through the vertices times the matrix in
+//!   f64, so the error covers the whole pipeline after the vertex coordinates: the shader's f32
+//!   transform, the division by `w`, the viewport transform, plane setup, interpolation and the
+//!   conversion to the stored format (`T`, `I` and the quantization of [`crate::recommend`]; not
+//!   `V`, the rounding of the coordinates themselves). Units: the format's quantum; D32F in
+//!   units of 2⁻²⁴ (its error is mostly absolute). D32F is measured again under reversed Z
+//!   (`glClipControl(GL_ZERO_TO_ONE)`, window depths 2·10⁻⁵ to 0.7) into `plane_error_reversed`,
+//!   in units of the spacing at the primitive's largest depth.
+//! * **`error_ulps`**: the same pixels' error (less one quantum of conversion on UNORM) divided
+//!   by `2⁻²⁴·(1 + M)`, `M` the magnitude of the terms of the plane evaluated from the window
+//!   origin (see the field): how the error of a steep plane grows with its distance from the
+//!   origin, for viewports larger than the tiles.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -135,8 +138,8 @@ pub struct Figures {
     /// Pixels compared for [`RasterizerProfile::plane_error_reversed`] (0 without
     /// `glClipControl`).
     pub reversed_pixels: usize,
-    /// Per format, the worst `(|stored − exact| − q)⁺ / (2⁻²⁴·M)` (q = 0 for D32F): what
-    /// [`RasterizerProfile::interpolation_ulps`] is for D32F, for each format.
+    /// Per format, the worst `(|stored − exact| − q)⁺ / (2⁻²⁴·(1 + M))` (q = 0 for D32F) under
+    /// `[−1, 1]`; [`RasterizerProfile::error_ulps`] is the largest.
     pub interpolation: [f64; 4],
     /// D32F's worst plane error in units of the f32 spacing at each pixel's own depth (not at
     /// the primitive's largest), under `[−1, 1]` and under reversed Z: what a primitive spanning
@@ -186,6 +189,8 @@ struct Objects {
     buffer: Uint,
     framebuffer: Uint,
     renderbuffer: Uint,
+    /// The location of the vertex shader's `projection` uniform.
+    projection: Int,
 }
 
 impl Objects {
@@ -237,6 +242,7 @@ fn f32_spacing(w: f64) -> f64 {
 /// Everything measured, with the formats in the profile's order.
 unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, Figures)> {
     create_objects(gl, objects)?;
+    let o = &*objects;
     let mut profile = RasterizerProfile::worst_case();
     profile.measured = true;
     let mut figures = Figures {
@@ -253,40 +259,39 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         float_local_plane_error: [f64::NAN; 2],
     };
     for (slot, internal, format) in Format::ALL {
-        if !attach(gl, objects, internal)? {
+        if !attach(gl, o, internal)? {
             if internal == DEPTH_COMPONENT32 {
                 continue; // optional: keeps the worst case
             }
             return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
         }
-        let bands = resolvable(gl, format)?;
+        let bands = resolvable(gl, o, format)?;
         profile.resolvable[slot] = bands.iter().copied().fold(0.0, f64::max);
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
-        let errors = plane_error(gl, format, false)?;
+        let errors = plane_error(gl, o, format, false)?;
         profile.plane_error[slot] = errors.worst;
         figures.plane_pixels[slot] = errors.pixels;
         figures.interpolation[slot] = errors.interpolation;
         if format == Format::Float {
             figures.float_local_plane_error[0] = errors.local;
-            profile.interpolation_ulps = errors.interpolation;
-            if let Some(reversed) = reversed_plane_error(gl)? {
+            profile.error_ulps = figures.interpolation.iter().copied().fold(0.0, f64::max);
+            if let Some(reversed) = reversed_plane_error(gl, o)? {
                 profile.plane_error_reversed = reversed.worst;
                 figures.reversed_pixels = reversed.pixels;
                 figures.float_local_plane_error[1] = reversed.local;
-                profile.interpolation_ulps = profile.interpolation_ulps.max(reversed.interpolation);
             }
         }
         if format == Format::Float {
-            (profile.snapping, figures.snapping_residual) = snapping(gl, figures.subpixel_bits)?;
+            (profile.snapping, figures.snapping_residual) = snapping(gl, o, figures.subpixel_bits)?;
         }
         if internal == DEPTH_COMPONENT24 {
             (
                 profile.near_clip,
                 figures.near_clip_error,
                 figures.near_preclipped_error,
-            ) = near_clip(gl)?;
+            ) = near_clip(gl, o)?;
         }
     }
     Ok((profile, figures))
@@ -304,8 +309,9 @@ fn incomplete_detail(internal: Enum) -> &'static str {
     }
 }
 
-const VERTEX_SHADER: &[u8] =
-    b"#version 150\nin vec4 clip;\nvoid main() { gl_Position = clip; }\n\0";
+/// The engine's own transform: a vertex times a projection matrix, in f32 on the GPU.
+const VERTEX_SHADER: &[u8] = b"#version 150\nin vec4 eye;\nuniform mat4 projection;\n\
+void main() { gl_Position = projection * eye; }\n\0";
 const FRAGMENT_SHADER: &[u8] = b"#version 150\nvoid main() {}\n\0";
 
 unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
@@ -334,7 +340,7 @@ unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
             return Err(Error::new(ErrorKind::Gl, detail));
         }
     }
-    (gl.BindAttribLocation)(o.program, 0, c"clip".as_ptr());
+    (gl.BindAttribLocation)(o.program, 0, c"eye".as_ptr());
     (gl.LinkProgram)(o.program);
     let mut ok = 0;
     (gl.GetProgramiv)(o.program, LINK_STATUS, &mut ok);
@@ -349,6 +355,13 @@ unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
     (gl.GenFramebuffers)(1, &mut o.framebuffer);
     (gl.GenRenderbuffers)(1, &mut o.renderbuffer);
     (gl.UseProgram)(o.program);
+    o.projection = (gl.GetUniformLocation)(o.program, c"projection".as_ptr());
+    if o.projection < 0 {
+        return Err(Error::new(
+            ErrorKind::Gl,
+            "the probe's linked program has no `projection` uniform (glGetUniformLocation)",
+        ));
+    }
     (gl.BindVertexArray)(o.vertex_array);
     (gl.BindBuffer)(ARRAY_BUFFER, o.buffer);
     (gl.EnableVertexAttribArray)(0);
@@ -379,23 +392,71 @@ unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
     Ok(complete && !refused)
 }
 
-/// A triangle in clip coordinates, as the GPU receives it.
+/// A triangle's vertices as the vertex buffer holds them (eye space, `w = 1`; or clip
+/// coordinates when drawn with [`IDENTITY`]).
 type Triangle = [[f32; 4]; 3];
 
-/// Clears depth to 1, draws `triangles` into the first tile (depth test `GL_ALWAYS`), and
-/// reads the stored window depth back exactly (rows bottom-up).
-unsafe fn draw(gl: &Gl, format: Format, triangles: &[Triangle]) -> Result<Vec<f64>> {
-    let mut tiles = draw_tiles(gl, format, &[triangles])?;
+/// A triangle's exact clip coordinates: its f32 vertices times the f32 matrix, in f64.
+type ClipTriangle = [[f64; 4]; 3];
+
+/// The identity matrix: vertices are clip coordinates.
+const IDENTITY: [f32; 16] = [
+    1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+];
+
+/// Triangles drawn with one projection matrix (column-major, as `glUniformMatrix4fv` takes it).
+struct Scene {
+    matrix: [f32; 16],
+    triangles: Vec<Triangle>,
+}
+
+impl Scene {
+    /// Triangles whose vertices are clip coordinates.
+    fn clip(triangles: Vec<Triangle>) -> Scene {
+        Scene {
+            matrix: IDENTITY,
+            triangles,
+        }
+    }
+
+    /// Each triangle's exact clip coordinates: the products of f32 values are exact in f64 and
+    /// the sums of four of them err by ~10⁻¹⁶ relative, far below the GPU's f32 arithmetic.
+    fn exact(&self) -> Vec<ClipTriangle> {
+        let m = self.matrix.map(f64::from);
+        self.triangles
+            .iter()
+            .map(|t| {
+                t.map(|v| {
+                    let v = v.map(f64::from);
+                    std::array::from_fn(|row| (0..4).map(|k| m[4 * k + row] * v[k]).sum())
+                })
+            })
+            .collect()
+    }
+}
+
+/// Clears depth to 1, draws `scene` into the first tile (depth test `GL_ALWAYS`), and reads the
+/// stored window depth back exactly (rows bottom-up).
+unsafe fn draw(gl: &Gl, o: &Objects, format: Format, scene: &Scene) -> Result<Vec<f64>> {
+    let mut tiles = draw_tiles(gl, o, format, std::slice::from_ref(scene))?;
     Ok(tiles.swap_remove(0))
 }
 
 /// Draws each scene into a tile of its own (at most `TILES²`) and returns each tile's stored
 /// window depth, `SIZE × SIZE` rows bottom-up.
-unsafe fn draw_tiles(gl: &Gl, format: Format, scenes: &[&[Triangle]]) -> Result<Vec<Vec<f64>>> {
+unsafe fn draw_tiles(
+    gl: &Gl,
+    o: &Objects,
+    format: Format,
+    scenes: &[Scene],
+) -> Result<Vec<Vec<f64>>> {
     (gl.Viewport)(0, 0, (SIZE * TILES) as Sizei, (SIZE * TILES) as Sizei);
     (gl.ClearDepth)(1.0);
     (gl.Clear)(DEPTH_BUFFER_BIT);
-    let all: Vec<Triangle> = scenes.iter().flat_map(|s| s.iter().copied()).collect();
+    let all: Vec<Triangle> = scenes
+        .iter()
+        .flat_map(|s| s.triangles.iter().copied())
+        .collect();
     let bytes = std::mem::size_of_val(all.as_slice());
     (gl.BufferData)(
         ARRAY_BUFFER,
@@ -407,8 +468,9 @@ unsafe fn draw_tiles(gl: &Gl, format: Format, scenes: &[&[Triangle]]) -> Result<
     for (i, scene) in scenes.iter().enumerate().take(TILES * TILES) {
         let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
         (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
-        (gl.DrawArrays)(TRIANGLES, first, 3 * scene.len() as Sizei);
-        first += 3 * scene.len() as Int;
+        (gl.UniformMatrix4fv)(o.projection, 1, 0, scene.matrix.as_ptr());
+        (gl.DrawArrays)(TRIANGLES, first, 3 * scene.triangles.len() as Sizei);
+        first += 3 * scene.triangles.len() as Int;
     }
     gl.check("drawing the probe's triangles raised a GL error")?;
     let columns = scenes.len().clamp(1, TILES);
@@ -477,12 +539,12 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 impl Plane {
-    fn new(t: &Triangle) -> Plane {
+    fn new(t: &ClipTriangle) -> Plane {
         Plane::with_mapping(t, false)
     }
 
-    fn with_mapping(t: &Triangle, zero_to_one: bool) -> Plane {
-        let column = |k: usize| [t[0][k] as f64, t[1][k] as f64, t[2][k] as f64];
+    fn with_mapping(t: &ClipTriangle, zero_to_one: bool) -> Plane {
+        let column = |k: usize| [t[0][k], t[1][k], t[2][k]];
         let (x, y, z, w) = (column(0), column(1), column(2), column(3));
         let parts = [cross(x, y), cross(y, w), cross(w, x)];
         let weights = std::array::from_fn(|i| parts.map(|p| p[i]));
@@ -491,7 +553,7 @@ impl Plane {
             .iter()
             .filter(|v| v[3] > 0.0)
             .map(|v| {
-                let ndc = v[2] as f64 / v[3] as f64;
+                let ndc = v[2] / v[3];
                 if zero_to_one {
                     ndc
                 } else {
@@ -582,35 +644,42 @@ struct View {
     f: f64,
     /// Reversed depth for `glClipControl(GL_ZERO_TO_ONE)`: window depth `n(f − d)/((f − n)d)`.
     reversed: bool,
+    /// The vertical half-extent tangent over the horizontal one (0.5625 for 16:9).
+    squash: f64,
 }
 
 impl View {
-    /// Clip coordinates of eye point `p` (itself first rounded to f32, as a vertex buffer holds
-    /// it), each rounded to f32 as the vertex shader's output.
-    fn clip(&self, p: [f64; 3]) -> [f32; 4] {
-        let [x, y, z] = p.map(|c| c as f32 as f64);
-        let (n, f, e) = (self.n, self.f, self.e);
+    /// The projection matrix, each element computed in f64 and rounded to f32 as an engine
+    /// passes it (`glFrustum`'s, or its reversed `[0, 1]` form).
+    fn matrix(&self) -> [f32; 16] {
+        let (n, f) = (self.n, self.f);
         let (m10, m14) = if self.reversed {
             (n / (f - n), f * n / (f - n))
         } else {
             (-(f + n) / (f - n), -2.0 * f * n / (f - n))
         };
-        [x / e, y / e, m10 * z + m14, -z].map(|c| c as f32)
+        let (sx, sy) = (1.0 / self.e, 1.0 / (self.e * self.squash));
+        [
+            sx, 0.0, 0.0, 0.0, 0.0, sy, 0.0, 0.0, 0.0, 0.0, m10, -1.0, 0.0, 0.0, m14, 0.0,
+        ]
+        .map(|m| m as f32)
+    }
+
+    /// The triangle `t` (eye space) as a vertex buffer holds it: f32 coordinates, `w = 1`.
+    fn triangle(t: [[f64; 3]; 3]) -> Triangle {
+        t.map(|[x, y, z]| [x as f32, y as f32, z as f32, 1.0])
     }
 
     /// The eye point on the plane `z = −d − sx·x − sy·y` seen at NDC `(xn, yn)`, if it lies
     /// between the near and far planes.
     fn on_plane(&self, xn: f64, yn: f64, d: f64, sx: f64, sy: f64) -> Option<[f64; 3]> {
-        let denominator = 1.0 - self.e * (sx * xn + sy * yn);
+        let ey = self.e * self.squash;
+        let denominator = 1.0 - (self.e * sx * xn + ey * sy * yn);
         if denominator <= 0.0 {
             return None;
         }
         let z = -d / denominator;
-        (-z > self.n * 1.001 && -z < self.f * 0.999).then_some([
-            -z * xn * self.e,
-            -z * yn * self.e,
-            z,
-        ])
+        (-z > self.n * 1.001 && -z < self.f * 0.999).then_some([-z * xn * self.e, -z * yn * ey, z])
     }
 
     /// Window depth at eye distance `d` (for choosing planes by the depth they store).
@@ -638,7 +707,7 @@ const SLOPES: [(f64, f64); 4] = [(0.0, 0.0), (0.37, 1.0), (-3.0, 1.9), (10.0, -0
 /// The plane-error scenes of one depth mapping: for each view, axis depth and slope, each
 /// corner set shrunk toward the view axis (halved, up to 4 times) until every corner lies
 /// between the near and far planes.
-fn plane_scenes(reversed: bool) -> Vec<Triangle> {
+fn plane_scenes(reversed: bool) -> Vec<Scene> {
     let views: [(View, [f64; 2]); 3] = if reversed {
         [
             (
@@ -647,6 +716,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 0.1,
                     f: 1e4,
                     reversed,
+                    squash: 1.0,
                 },
                 [0.002, 0.3],
             ),
@@ -656,6 +726,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 1.0,
                     f: 1e6,
                     reversed,
+                    squash: 1.0,
                 },
                 [2e-5, 0.05],
             ),
@@ -665,6 +736,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 0.5,
                     f: 100.0,
                     reversed,
+                    squash: 1.0,
                 },
                 [0.02, 0.7],
             ),
@@ -677,6 +749,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 1.0,
                     f: 10.0,
                     reversed,
+                    squash: 1.0,
                 },
                 [0.02, 0.6],
             ),
@@ -686,6 +759,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 0.1,
                     f: 100.0,
                     reversed,
+                    squash: 1.0,
                 },
                 [0.3, 0.95],
             ),
@@ -695,6 +769,7 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                     n: 1.0,
                     f: 1e5,
                     reversed,
+                    squash: 1.0,
                 },
                 [0.5, 0.998],
             ),
@@ -708,17 +783,17 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
                 for corners in CORNERS {
                     let fits = (0..5).find_map(|halvings| {
                         let k = 0.5f64.powi(halvings);
-                        let t: Option<Vec<[f32; 4]>> = corners
+                        let t: Option<Vec<[f64; 3]>> = corners
                             .iter()
-                            .map(|&[xn, yn]| {
-                                view.on_plane(k * xn, k * yn, d, sx, sy)
-                                    .map(|p| view.clip(p))
-                            })
+                            .map(|&[xn, yn]| view.on_plane(k * xn, k * yn, d, sx, sy))
                             .collect();
                         t
                     });
                     if let Some(t) = fits {
-                        out.push([t[0], t[1], t[2]]);
+                        out.push(Scene {
+                            matrix: view.matrix(),
+                            triangles: vec![View::triangle([t[0], t[1], t[2]])],
+                        });
                     }
                 }
             }
@@ -727,21 +802,21 @@ fn plane_scenes(reversed: bool) -> Vec<Triangle> {
     out
 }
 
-/// The worst per-pixel error of sloped planes, in quanta (module docs).
 /// The figures of [`plane_error`] for one format and mapping.
 struct PlaneErrors {
-    /// The worst error in quanta (D32F: at the primitive's largest depth), over every scene.
+    /// The worst error in quanta (D32F: 2⁻²⁴ under `[−1, 1]`, the spacing at the primitive's
+    /// largest depth under reversed Z), over every scene.
     worst: f64,
     /// Pixels compared.
     pixels: usize,
     /// The worst error in units of the spacing at each pixel's own depth.
     local: f64,
-    /// The worst `|stored − exact| / (2⁻²⁴·M)` ([`Plane::magnitude`]).
+    /// The worst `(|stored − exact| − conversion)⁺ / (2⁻²⁴·(1 + M))` ([`Plane::magnitude`]).
     interpolation: f64,
 }
 
 /// The plane errors of every scene of `format` under one mapping (module docs).
-unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneErrors> {
+unsafe fn plane_error(gl: &Gl, o: &Objects, format: Format, reversed: bool) -> Result<PlaneErrors> {
     let mut e = PlaneErrors {
         worst: 0.0,
         pixels: 0,
@@ -749,13 +824,20 @@ unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneEr
         interpolation: 0.0,
     };
     let scenes = plane_scenes(reversed);
-    let batches: Vec<&[Triangle]> = scenes.chunks(1).collect();
     let mut stored_tiles = Vec::new();
-    for batch in batches.chunks(TILES * TILES) {
-        stored_tiles.extend(draw_tiles(gl, format, batch)?);
+    for batch in scenes.chunks(TILES * TILES) {
+        stored_tiles.extend(draw_tiles(gl, o, format, batch)?);
     }
-    for (i, (t, stored)) in scenes.iter().zip(stored_tiles).enumerate() {
-        let plane = Plane::with_mapping(t, reversed);
+    for (i, (scene, stored)) in scenes.iter().zip(stored_tiles).enumerate() {
+        let plane = Plane::with_mapping(&scene.exact()[0], reversed);
+        // D32F under [−1, 1] errs mostly in absolute terms (u·|m10| from the transform), so its
+        // unit is 2⁻²⁴, the spacing at w ≥ ½; under reversed Z the error is relative to the
+        // primitive's largest depth, and so is its unit.
+        let unit = |exact: f64| match (format, reversed) {
+            (Format::Float, false) => F32_UNIT_ROUNDOFF,
+            (Format::Float, true) => f32_spacing(plane.largest),
+            _ => format.quantum(exact),
+        };
         let tile = i % (TILES * TILES);
         let corner = (
             ((tile % TILES) * SIZE) as f64,
@@ -768,16 +850,14 @@ unsafe fn plane_error(gl: &Gl, format: Format, reversed: bool) -> Result<PlaneEr
                     continue;
                 };
                 let error = (stored[py * SIZE + px] - exact).abs();
-                e.worst = e
-                    .worst
-                    .max(error / format.quantum(exact.max(plane.largest)));
+                e.worst = e.worst.max(error / unit(exact));
                 e.local = e.local.max(error / format.quantum(exact));
                 e.pixels += 1;
                 let conversion = match format {
                     Format::Float => 0.0,
                     Format::Unorm(_) => format.quantum(exact),
                 };
-                let scale = F32_UNIT_ROUNDOFF * magnitude(px, py);
+                let scale = F32_UNIT_ROUNDOFF * (1.0 + magnitude(px, py));
                 e.interpolation = e.interpolation.max((error - conversion).max(0.0) / scale);
             }
         }
@@ -791,12 +871,12 @@ const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 /// [`plane_error`] of D32F under reversed Z (`glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`,
 /// reversed projection), where float depth keeps its relative precision; `None` without
 /// `glClipControl`.
-unsafe fn reversed_plane_error(gl: &Gl) -> Result<Option<PlaneErrors>> {
+unsafe fn reversed_plane_error(gl: &Gl, o: &Objects) -> Result<Option<PlaneErrors>> {
     let Some(clip_control) = gl.ClipControl else {
         return Ok(None);
     };
     clip_control(LOWER_LEFT, ZERO_TO_ONE);
-    let result = plane_error(gl, Format::Float, true);
+    let result = plane_error(gl, o, Format::Float, true);
     clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
     result.map(Some)
 }
@@ -811,7 +891,7 @@ unsafe fn reversed_plane_error(gl: &Gl) -> Result<Option<PlaneErrors>> {
 const OFFSET_UNITS: f32 = 4096.0;
 
 /// `r` in quanta (module docs): a quad covering the viewport, window depth `lo` to `hi` across x.
-unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
+unsafe fn resolvable(gl: &Gl, o: &Objects, format: Format) -> Result<Vec<f64>> {
     let bands: &[(f64, f64)] = match format {
         Format::Unorm(_) => &[(0.40, 0.45)],
         Format::Float => &[(0.40, 0.45), (0.050, 0.055)],
@@ -820,7 +900,7 @@ unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
     for &(lo, hi) in bands {
         let z = |w: f64| (2.0 * w - 1.0) as f32;
         let (a, b) = (z(lo), z(hi));
-        let quad: [Triangle; 2] = [
+        let quad = Scene::clip(vec![
             [
                 [-1.0, -1.0, a, 1.0],
                 [1.0, -1.0, b, 1.0],
@@ -831,13 +911,13 @@ unsafe fn resolvable(gl: &Gl, format: Format) -> Result<Vec<f64>> {
                 [1.0, 1.0, b, 1.0],
                 [-1.0, 1.0, a, 1.0],
             ],
-        ];
+        ]);
         // The unit is the quantum at the primitive's largest depth (for D32F, `2^(e − 23)`).
         let unit = format.quantum(0.5 * b as f64 + 0.5);
-        let plain = draw(gl, format, &quad)?;
+        let plain = draw(gl, o, format, &quad)?;
         (gl.Enable)(POLYGON_OFFSET_FILL);
         (gl.PolygonOffset)(0.0, OFFSET_UNITS);
-        let offset = draw(gl, format, &quad);
+        let offset = draw(gl, o, format, &quad);
         (gl.Disable)(POLYGON_OFFSET_FILL);
         let offset = offset?;
         let sum: f64 = offset.iter().zip(&plain).map(|(o, p)| o - p).sum();
@@ -864,7 +944,11 @@ const SNAP_FIT: f64 = 1e-6;
 /// none fits to [`SNAP_FIT`] the rasterizer does something the hypotheses do not describe, and
 /// the answer is the conservative `GL_SUBPIXEL_BITS` it reports (8 if it reports none in
 /// 1..=12).
-unsafe fn snapping(gl: &Gl, reported_bits: i32) -> Result<(Snapping, (f64, u32, f64))> {
+unsafe fn snapping(
+    gl: &Gl,
+    o: &Objects,
+    reported_bits: i32,
+) -> Result<(Snapping, (f64, u32, f64))> {
     // Window positions with assorted sub-pixel parts; depth grows with x only.
     let sets: [[[f64; 2]; 3]; 2] = [
         [[6.3071, 5.1187], [58.6523, 9.4402], [11.8816, 59.7311]],
@@ -882,8 +966,9 @@ unsafe fn snapping(gl: &Gl, reported_bits: i32) -> Result<(Snapping, (f64, u32, 
                 1.0,
             ]
         });
-        let stored = draw(gl, Format::Float, &[t])?;
-        let plane = Plane::new(&t);
+        let scene = Scene::clip(vec![t]);
+        let stored = draw(gl, o, Format::Float, &scene)?;
+        let plane = Plane::new(&scene.exact()[0]);
         let inside: Vec<(usize, usize)> = (0..SIZE * SIZE)
             .map(|i| (i % SIZE, i / SIZE))
             .filter(|&(px, py)| plane.depth_inside(px, py).is_some())
@@ -918,21 +1003,21 @@ unsafe fn snapping(gl: &Gl, reported_bits: i32) -> Result<(Snapping, (f64, u32, 
 
 /// `t` (with w = 1) with its window positions snapped per hypothesis `h`: 0 none; `1 + 2b` to
 /// the nearest `2^-b` pixel; `2 + 2b` down to it.
-fn snap(t: &Triangle, h: usize) -> Triangle {
-    if h == 0 {
-        return *t;
-    }
-    let (b, down) = ((h - 1) / 2, (h - 1) % 2 == 1);
+fn snap(t: &Triangle, h: usize) -> ClipTriangle {
+    let (b, down) = (h.saturating_sub(1) / 2, h > 0 && (h - 1) % 2 == 1);
     let grid = 2f64.powi(b as i32);
     let s = SIZE as f64;
-    t.map(|[x, y, z, w]| {
-        let snap_ndc = |c: f32| {
-            let window = (c as f64 + 1.0) * s / 2.0 * grid;
+    t.map(|v| {
+        let [x, y, z, w] = v.map(f64::from);
+        let snap_ndc = |c: f64| {
+            if h == 0 {
+                return c;
+            }
+            let window = (c + 1.0) * s / 2.0 * grid;
             let window = if down { window.floor() } else { window.round() } / grid;
-            // f64 here: the prediction must not add an f32 rounding of its own
             window * 2.0 / s - 1.0
         };
-        [snap_ndc(x) as f32, snap_ndc(y) as f32, z, w]
+        [snap_ndc(x), snap_ndc(y), z, w]
     })
 }
 
@@ -945,27 +1030,27 @@ fn snap(t: &Triangle, h: usize) -> Triangle {
 /// twice the near distance (nothing left for the rasterizer to clip); on the pixels both cover,
 /// each is compared with the plane of the coordinates it was given (D24 quanta). Returns the
 /// verdict and the two worst errors.
-unsafe fn near_clip(gl: &Gl) -> Result<(NearClip, f64, f64)> {
+unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64)> {
+    let view = NEAR_VIEW;
     let grounds = near_grounds();
-    let given: Vec<Vec<Triangle>> = grounds
-        .iter()
-        .map(|g| vec![g.map(near_clip_coords)])
-        .collect();
-    let preclipped: Vec<Vec<Triangle>> = grounds
-        .iter()
-        .map(|g| {
-            clip_in_f64(*g, 2.0 * NEAR)
-                .into_iter()
-                .map(|t| t.map(near_clip_coords))
-                .collect()
-        })
-        .collect();
-    let scenes: Vec<&[Triangle]> = given.iter().chain(&preclipped).map(Vec::as_slice).collect();
-    let stored = draw_tiles(gl, Format::Unorm(24), &scenes)?;
+    let given = grounds.iter().map(|g| Scene {
+        matrix: view.matrix(),
+        triangles: vec![View::triangle(*g)],
+    });
+    let preclipped = grounds.iter().map(|g| Scene {
+        matrix: view.matrix(),
+        triangles: clip_in_f64(*g, 2.0 * view.n)
+            .into_iter()
+            .map(View::triangle)
+            .collect(),
+    });
+    let scenes: Vec<Scene> = given.chain(preclipped).collect();
+    let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
     let (mut worst_given, mut worst_preclipped) = (0.0f64, 0.0f64);
-    for (i, fan) in preclipped.iter().enumerate() {
-        let given_errors = pixel_errors(&given[i], &stored[i]);
-        let preclipped_errors = pixel_errors(fan, &stored[given.len() + i]);
+    let count = grounds.len();
+    for i in 0..count {
+        let given_errors = pixel_errors(&scenes[i], &stored[i]);
+        let preclipped_errors = pixel_errors(&scenes[count + i], &stored[count + i]);
         let both: Vec<(f64, f64)> = given_errors
             .iter()
             .zip(&preclipped_errors)
@@ -991,10 +1076,10 @@ unsafe fn near_clip(gl: &Gl) -> Result<(NearClip, f64, f64)> {
     Ok((clip, worst_given, worst_preclipped))
 }
 
-/// Per pixel of a tile, `|stored − exact|` in D24 quanta against the first of `triangles`
-/// that covers it (by [`Plane::depth_inside`]), or `None`.
-fn pixel_errors(triangles: &[Triangle], stored: &[f64]) -> Vec<Option<f64>> {
-    let planes: Vec<Plane> = triangles.iter().map(Plane::new).collect();
+/// Per pixel of a tile, `|stored − exact|` in D24 quanta against the first of the scene's
+/// triangles that covers it (by [`Plane::depth_inside`]), or `None`.
+fn pixel_errors(scene: &Scene, stored: &[f64]) -> Vec<Option<f64>> {
+    let planes: Vec<Plane> = scene.exact().iter().map(Plane::new).collect();
     let q = Format::Unorm(24).quantum(0.5);
     (0..SIZE * SIZE)
         .map(|i| {
@@ -1006,22 +1091,14 @@ fn pixel_errors(triangles: &[Triangle], stored: &[f64]) -> Vec<Option<f64>> {
         .collect()
 }
 
-/// The near plane of the near-clip scenes.
-const NEAR: f64 = 0.1;
-
-/// Clip coordinates of eye point `p` under `glFrustum(−0.1, 0.1, −0.05625, 0.05625, 0.1, 1000)`
-/// (16:9), the eye point first rounded to f32, each result rounded to f32.
-fn near_clip_coords(p: [f64; 3]) -> [f32; 4] {
-    let view = View {
-        e: 1.0,
-        n: NEAR,
-        f: 1000.0,
-        reversed: false,
-    };
-    let mut c = view.clip(p);
-    c[1] = (p[1] as f32 as f64 / 0.5625) as f32;
-    c
-}
+/// The near-clip scenes' view: `glFrustum(−0.1, 0.1, −0.05625, 0.05625, 0.1, 1000)` (16:9).
+const NEAR_VIEW: View = View {
+    e: 1.0,
+    n: 0.1,
+    f: 1000.0,
+    reversed: false,
+    squash: 0.5625,
+};
 
 /// Ground planes whose triangles reach 1000 units behind and ahead of the camera, as eye-space
 /// corners: sloped ones seen from 10 units, and a floor 1.7 units below the eye.
@@ -1074,7 +1151,7 @@ mod tests {
             [0.9, -0.6, 0.25, 1.0],
             [-0.1, 0.85, 0.75, 1.0],
         ];
-        let plane = Plane::new(&t);
+        let plane = Plane::new(&Scene::clip(vec![t]).exact()[0]);
         let window = |v: [f32; 4]| {
             let s = SIZE as f64;
             (
@@ -1107,10 +1184,14 @@ mod tests {
             n: 1.0,
             f: 100.0,
             reversed: false,
+            squash: 1.0,
         };
         let eye = [[-3.0, -2.0, -8.0], [4.0, -1.0, -20.0], [0.5, 3.0, -12.0]];
-        let t: Triangle = eye.map(|p| view.clip(p));
-        let plane = Plane::new(&t);
+        let scene = Scene {
+            matrix: view.matrix(),
+            triangles: vec![View::triangle(eye)],
+        };
+        let plane = Plane::new(&scene.exact()[0]);
         // the eye-space plane through the (f32-rounded) corners
         let p = eye.map(|v| v.map(|c| c as f32 as f64));
         let u = [p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]];
@@ -1124,7 +1205,7 @@ mod tests {
         let (n, f) = (view.n, view.f);
         let expected = f * (d - n) / (d * (f - n));
         let got = plane.depth_at(x, y).unwrap();
-        // the clip coordinates are f32-rounded: agreement to a few f32 ulps, not to f64
+        // the matrix is f32-rounded: agreement to a few f32 ulps, not to f64
         assert!((got - expected).abs() < 1e-6, "{got} vs {expected}");
     }
 
@@ -1153,9 +1234,9 @@ mod tests {
             [0.5, 0.5, 0.0, 1.0],
             [-0.5, 0.5, 0.0, 1.0],
         ];
-        assert_eq!(snap(&t, 0), t);
+        assert_eq!(snap(&t, 0), t.map(|v| v.map(f64::from)));
         // b = 0, nearest: window x = (0.3 + 1)·32 = 41.6 → 42; down: 41
-        let window_x = |t: Triangle| (t[0][0] as f64 + 1.0) * SIZE as f64 / 2.0;
+        let window_x = |t: ClipTriangle| (t[0][0] + 1.0) * SIZE as f64 / 2.0;
         assert_eq!(window_x(snap(&t, 1)), 42.0);
         assert_eq!(window_x(snap(&t, 2)), 41.0);
         // b = 2: quarter pixels, 41.6 → 41.5 (nearest), 41.5 (down)

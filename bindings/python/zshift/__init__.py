@@ -636,7 +636,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("resolvable", ctypes.c_double * 4),
         ("plane_error", ctypes.c_double * 4),
         ("plane_error_reversed", ctypes.c_double),
-        ("interpolation_ulps", ctypes.c_double),
+        ("error_ulps", ctypes.c_double),
         ("near_clip", ctypes.c_int32),
         ("probe_seconds", ctypes.c_double),
     ]
