@@ -1,0 +1,250 @@
+// An OpenSceneGraph 3.6 program drawing a decal with zshift's projection.
+//
+// The ground and the occluder are drawn with the camera's own projection; the decal subgraph
+// sits under an osg::Projection node whose matrix is zshift's decal matrix, built from the
+// camera's projection. The program renders the scene (README, "Inside real engines") with no
+// offset and with zshift's matrix, reads every frame back with osgViewer's
+// ScreenCaptureHandler, saves the pictures and exits nonzero unless the decal z-fights without
+// an offset and loses no pixel (and bleeds through no occluder) with zshift's.
+//
+// Usage: decal_osg [OUTPUT_DIR]   (needs an X display: run it under xvfb-run)
+#include <osg/Depth>
+#include <osg/Geode>
+#include <osg/Geometry>
+#include <osg/GL>
+#include <osg/Projection>
+#include <osgDB/WriteFile>
+#include <osgViewer/Viewer>
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+
+#include "zshift.h"
+
+#include "../common/decal_scene.h"
+
+using namespace decal_scene;
+
+// [engines-osg]
+// zshift inside OpenSceneGraph: the decal subgraph's projection. `camera_projection` is the
+// camera's own (any glFrustum/gluPerspective-style matrix); the result moves the decal toward
+// the camera by just enough to beat the rasterizer's rounding, for the decal's eye distances
+// and plane tilt, the viewport and the depth buffer. Put the decal under
+// `osg::Projection(decal_projection)` and draw it after the surface it lies on.
+static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const osg::Viewport &vp,
+                                    int depth_bits, int subpixel_bits, double decal_near,
+                                    double decal_far, double slope, osg::Matrixd &decal_projection) {
+  ZshiftScene scene = {};
+  if (!camera_projection.getFrustum(scene.l, scene.r, scene.b, scene.t, scene.n, scene.f)) {
+    std::cerr << "zshift: the camera's projection is not a perspective frustum\n";
+    return false;
+  }
+  scene.viewport_width = (uint32_t)vp.width();
+  scene.viewport_height = (uint32_t)vp.height();
+  scene.depth_format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16 // glGetIntegerv(GL_DEPTH_BITS)
+                       : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
+                                          : ZSHIFT_FORMAT_UNORM32;
+  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
+  scene.decal_far = decal_far;
+  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
+  scene.exact_depth = 0;         // its corners are not the ground's
+  scene.subpixel_bits = subpixel_bits;
+  float m[16]; // column-major: the memory order of osg::Matrix too
+  ZshiftStatus s = zshift_recommend_matrix(&scene, m);
+  if (s != ZSHIFT_OK) {
+    std::cerr << "zshift_recommend_matrix: " << zshift_status_message(s) << "\n";
+    return false;
+  }
+  decal_projection.set(m);
+  return true;
+}
+// [/engines-osg]
+
+static osg::Geode *rectangle(const Rect &r, const osg::Vec4 &color) {
+  float c[4][3];
+  corners(r, 1.0, c);
+  osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
+  const int order[6] = {0, 1, 2, 0, 2, 3};
+  for (int i : order) v->push_back(osg::Vec3(c[i][0], c[i][1], c[i][2]));
+  osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array;
+  colors->push_back(color);
+  osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
+  g->setVertexArray(v.get());
+  g->setColorArray(colors.get(), osg::Array::BIND_OVERALL);
+  g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 6));
+  g->setCullingActive(false);
+  osg::Geode *geode = new osg::Geode;
+  geode->addDrawable(g.get());
+  return geode;
+}
+
+// Renders one frame and reads it back the engine's way: OSG copies the camera's colour
+// attachment into the attached osg::Image after drawing. Saves it as `png` when non-empty.
+static bool shoot(osgViewer::Viewer &viewer, osg::Image &image, Picture &out, const std::string &png) {
+  viewer.frame();
+  out.width = image.s();
+  out.height = image.t();
+  const unsigned char *data = image.data();
+  if (!data || image.getPixelFormat() != GL_RGBA || image.getDataType() != GL_UNSIGNED_BYTE) {
+    std::cerr << "FAIL: OpenSceneGraph read no RGBA8 picture back\n";
+    return false;
+  }
+  out.rgba.assign(data, data + (size_t)4 * out.width * out.height);
+  if (!png.empty() && !osgDB::writeImageFile(image, png)) {
+    std::cerr << "FAIL: could not write " << png << "\n";
+    return false;
+  }
+  return true;
+}
+
+int main(int argc, char **argv) {
+  int depth_bits = 24;
+  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
+  std::string out_dir;
+  for (int i = 1; i < argc; i++) {
+    std::string a = argv[i];
+    if (a == "--depth" && i + 1 < argc) depth_bits = std::atoi(argv[++i]);
+    else if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
+    else out_dir = a;
+  }
+  if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
+    std::cerr << "usage: decal_osg [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]\n";
+    return 2;
+  }
+  if (!getenv("DISPLAY")) {
+    std::cerr << "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s '-screen 0 "
+                 "1024x768x24'\n";
+    return 1;
+  }
+
+  osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
+  traits->readDISPLAY(); // the X display and screen from $DISPLAY
+  traits->setUndefinedScreenDetailsToDefaultScreen();
+  traits->width = kWidth;
+  traits->height = kHeight;
+  traits->red = traits->green = traits->blue = traits->alpha = 8;
+  traits->depth = 24;
+  traits->doubleBuffer = true;
+  // A window on the X display (Mesa's pbuffers raise X errors under Xvfb); the frame itself goes
+  // to the camera's framebuffer object.
+  traits->windowDecoration = false;
+  osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
+  if (!gc.valid()) {
+    std::cerr << "FAIL: OpenSceneGraph could not create a " << kWidth << "x" << kHeight
+              << " window on display " << traits->displayName() << "\n";
+    return 1;
+  }
+
+  osgViewer::Viewer viewer;
+  viewer.setThreadingModel(osgViewer::ViewerBase::SingleThreaded);
+  osg::Camera *camera = viewer.getCamera();
+  camera->setGraphicsContext(gc.get());
+  osg::ref_ptr<osg::Viewport> vp = new osg::Viewport(0, 0, kWidth, kHeight);
+  camera->setViewport(vp.get());
+  camera->setClearColor(osg::Vec4(0, 0, 0, 1));
+  camera->setProjectionMatrixAsPerspective(kFovyDegrees, (double)kWidth / kHeight, kNear, kFar);
+  camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+  camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
+  camera->setViewMatrixAsLookAt(osg::Vec3d(kEye[0], kEye[1], kEye[2]),
+                                osg::Vec3d(kTarget[0], kTarget[1], kTarget[2]),
+                                osg::Vec3d(0, 1, 0));
+  // Render to a framebuffer object with exactly the depth format asked for (a window system
+  // picks its own: Mesa's GLX on Xvfb gives 32 bits), and let OSG read the colour back.
+  const GLenum depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16
+                              : depth_bits == 24 ? GL_DEPTH_COMPONENT24
+                                                 : GL_DEPTH_COMPONENT32;
+  osg::ref_ptr<osg::Image> image = new osg::Image;
+  image->allocateImage(kWidth, kHeight, 1, GL_RGBA, GL_UNSIGNED_BYTE);
+  camera->setRenderTargetImplementation(osg::Camera::FRAME_BUFFER_OBJECT,
+                                        osg::Camera::FRAME_BUFFER);
+  camera->attach(osg::Camera::DEPTH_BUFFER, depth_format);
+  camera->attach(osg::Camera::COLOR_BUFFER, image.get());
+
+  osg::ref_ptr<osg::Group> root = new osg::Group;
+  root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  osg::ref_ptr<osg::Geode> ground = rectangle(kGround, osg::Vec4(0, 0, 1, 1));
+  osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, osg::Vec4(1, 1, 0, 1));
+  osg::ref_ptr<osg::Projection> decal_node = new osg::Projection;
+  decal_node->addChild(rectangle(kDecal, osg::Vec4(1, 0, 0, 1)));
+  // After the ground: bin 1 draws after the default bin 0.
+  decal_node->getOrCreateStateSet()->setRenderBinDetails(1, "RenderBin");
+  root->addChild(ground.get());
+  root->addChild(occluder.get());
+  root->addChild(decal_node.get());
+  viewer.setSceneData(root.get());
+  viewer.realize();
+  if (!viewer.isRealized()) {
+    std::cerr << "FAIL: the OpenSceneGraph viewer could not be realized\n";
+    return 1;
+  }
+
+  // One frame, then ask GL what the framebuffer object really has.
+  Picture first;
+  if (!shoot(viewer, *image, first, "")) return 1;
+  GLint subpixel_bits = 0, stored_bits = 0;
+  gc->makeCurrent();
+  glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
+  std::printf("OpenSceneGraph %s on %s; subpixel bits %d\n", osgGetVersion(),
+              (const char *)glGetString(GL_RENDERER), subpixel_bits);
+  gc->releaseContext();
+  if (subpixel_override != -2) subpixel_bits = subpixel_override;
+  osg::Camera::BufferAttachmentMap &buffers = camera->getBufferAttachmentMap();
+  stored_bits = buffers[osg::Camera::DEPTH_BUFFER]._internalFormat == depth_format ? depth_bits : 0;
+  if (stored_bits != depth_bits || camera->getRenderTargetImplementation() != osg::Camera::FRAME_BUFFER_OBJECT) {
+    std::cerr << "FAIL: OpenSceneGraph did not keep the " << depth_bits << "-bit framebuffer object\n";
+    return 1;
+  }
+
+  // What the engine knows about its decal, from the camera's view matrix.
+  float decal_corners[4][3];
+  corners(kDecal, 1.0, decal_corners);
+  const osg::Matrixd projection = camera->getProjectionMatrix();
+  DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
+  std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
+              ext.nearest, ext.farthest, ext.slope);
+
+  osg::Matrixd zshift_projection;
+  if (!zshift_decal_projection(projection, *vp, depth_bits, subpixel_bits, ext.nearest,
+                               ext.farthest, ext.slope, zshift_projection))
+    return 1;
+  std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
+              (float)zshift_projection(2, 2));
+
+  std::string tag = "osg_d" + std::to_string(depth_bits) + "_";
+  auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
+  Picture occluder_only, scene_none, decal_none, scene_lequal, scene_zshift, decal_zshift;
+  bool ok = true;
+  decal_node->setNodeMask(0);
+  ok = ok && shoot(viewer, *image, occluder_only, "");
+  decal_node->setNodeMask(~0u);
+  decal_node->setMatrix(projection);
+  ok = ok && shoot(viewer, *image, scene_none, file("none.png"));
+  // The same with GL_LEQUAL, where ties go to the decal: what is left is the rounding noise.
+  decal_node->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::LEQUAL));
+  ok = ok && shoot(viewer, *image, scene_lequal, file("none_lequal.png"));
+  decal_node->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::DEPTH);
+  ground->setNodeMask(0);
+  occluder->setNodeMask(0);
+  ok = ok && shoot(viewer, *image, decal_none, "");
+  decal_node->setMatrix(zshift_projection);
+  ok = ok && shoot(viewer, *image, decal_zshift, "");
+  ground->setNodeMask(~0u);
+  occluder->setNodeMask(~0u);
+  ok = ok && shoot(viewer, *image, scene_zshift, file("zshift.png"));
+  if (!ok) return 1;
+
+  std::string engine = "OSG D" + std::to_string(depth_bits);
+  Tally none = tally(scene_none, decal_none, occluder_only);
+  Tally lequal = tally(scene_lequal, decal_none, occluder_only);
+  Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
+  print_tally(engine.c_str(), "no offset", none);
+  print_tally(engine.c_str(), "no offset, GL_LEQUAL", lequal);
+  print_tally(engine.c_str(), "zshift", zs);
+  if (lequal.lost == 0) {
+    std::cerr << "FAIL " << engine << ": with no offset and GL_LEQUAL no decal pixel was lost\n";
+    return 1;
+  }
+  return verdict(engine.c_str(), none, zs);
+}
