@@ -1,0 +1,250 @@
+// An Irrlicht 1.8 program drawing a decal with zshift's projection.
+//
+// The scene manager draws the ground and the occluder with the camera's own projection; the
+// decal pass sets zshift's decal matrix with IVideoDriver::setTransform(ETS_PROJECTION, ...)
+// and draws the decal. The program renders the scene (README, "Inside real engines") with no
+// offset and with zshift's matrix, reads every frame back with IVideoDriver::createScreenShot,
+// saves the pictures and exits nonzero unless the decal z-fights without an offset and loses
+// no pixel (and bleeds through no occluder) with zshift's.
+//
+// Usage: decal_irrlicht [--subpixel-bits B] [OUTPUT_DIR]   (Irrlicht opens an X11 window: run
+// it under xvfb-run)
+#include <irrlicht.h>
+
+#include <GL/gl.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "zshift.h"
+
+#include "../common/decal_scene.h"
+
+using namespace irr;
+using namespace decal_scene;
+
+// [engines-irrlicht]
+// zshift inside Irrlicht: the decal pass's projection. Irrlicht's OpenGL driver loads the
+// camera's Direct3D-style matrix as is (eye z forward, NDC depth f/(f-n) (1 - n/z) in [0, 1],
+// which glDepthRange maps to window depth [1/2, 1]): the window depth is 1/2 + w/2 for
+// OpenGL's w, so an NDC offset c on element 10 moves window depth by c/2, as zshift's
+// `ndc_offset` does for a glFrustum matrix, and the rounding terms zshift bounds are no larger.
+// The decal matrix is the camera's with element 10 lowered by zshift's `ndc_offset`, rounded
+// down so the offset is not lost to float rounding.
+static bool zshift_decal_projection(const scene::ICameraSceneNode &camera,
+                                    const core::dimension2du &viewport, int depth_bits,
+                                    int subpixel_bits, double decal_near, double decal_far,
+                                    double slope, core::matrix4 &decal_projection) {
+  const core::matrix4 &m = camera.getProjectionMatrix();
+  ZshiftScene scene = {};
+  scene.n = camera.getNearValue();
+  scene.f = camera.getFarValue();
+  scene.r = scene.n / m[0]; // a centred frustum: m[0] = 2n/(r-l), m[5] = 2n/(t-b)
+  scene.l = -scene.r;
+  scene.t = scene.n / m[5];
+  scene.b = -scene.t;
+  scene.viewport_width = viewport.Width;
+  scene.viewport_height = viewport.Height;
+  scene.depth_format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16 // glGetIntegerv(GL_DEPTH_BITS)
+                       : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
+                                          : ZSHIFT_FORMAT_UNORM32;
+  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
+  scene.decal_far = decal_far;
+  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
+  scene.exact_depth = 0;         // its corners are not the ground's
+  scene.subpixel_bits = subpixel_bits;
+  ZshiftRecommendation rec;
+  ZshiftStatus s = zshift_recommend(&scene, &rec);
+  if (s != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_recommend: %s\n", zshift_status_message(s));
+    return false;
+  }
+  double lowered = (double)m[10] - rec.ndc_offset;
+  float element = (float)lowered;
+  if ((double)element > lowered) element = std::nextafter(element, -INFINITY);
+  decal_projection = m;
+  decal_projection[10] = element;
+  return true;
+}
+// [/engines-irrlicht]
+
+// A rectangle as a mesh buffer of one colour (z mirrored: Irrlicht's world is left-handed).
+static void fill(scene::SMeshBuffer &buffer, const Rect &r, video::SColor color) {
+  float c[4][3];
+  corners(r, -1.0, c);
+  buffer.Vertices.clear();
+  buffer.Indices.clear();
+  for (int i = 0; i < 4; i++)
+    buffer.Vertices.push_back(video::S3DVertex(c[i][0], c[i][1], c[i][2], 0, 1, 0, color, 0, 0));
+  const u16 order[6] = {0, 2, 1, 0, 3, 2};
+  for (u16 i : order) buffer.Indices.push_back(i);
+  buffer.Material.Lighting = false;
+  buffer.Material.BackfaceCulling = false;
+  buffer.recalculateBoundingBox();
+}
+
+static scene::IMeshSceneNode *add_rectangle(scene::ISceneManager *smgr, const Rect &r,
+                                            video::SColor color) {
+  scene::SMeshBuffer *buffer = new scene::SMeshBuffer;
+  fill(*buffer, r, color);
+  scene::SMesh *mesh = new scene::SMesh;
+  mesh->addMeshBuffer(buffer);
+  mesh->recalculateBoundingBox();
+  buffer->drop();
+  scene::IMeshSceneNode *node = smgr->addMeshSceneNode(mesh);
+  mesh->drop();
+  node->setAutomaticCulling(scene::EAC_OFF);
+  return node;
+}
+
+struct Frame {
+  IrrlichtDevice *device;
+  scene::ICameraSceneNode *camera;
+  scene::SMeshBuffer *decal;
+  const core::matrix4 *decal_projection; // null: no decal pass
+
+  // Draws one frame (scene manager, then the decal pass) and reads it back with the engine's
+  // screenshot; saves it as `png` when non-empty.
+  bool shoot(Picture &out, const std::string &png) {
+    video::IVideoDriver *driver = device->getVideoDriver();
+    device->run();
+    driver->beginScene(true, true, video::SColor(255, 0, 0, 0));
+    device->getSceneManager()->drawAll();
+    if (decal_projection) {
+      driver->setTransform(video::ETS_PROJECTION, *decal_projection);
+      driver->setTransform(video::ETS_VIEW, camera->getViewMatrix());
+      driver->setTransform(video::ETS_WORLD, core::IdentityMatrix);
+      driver->setMaterial(decal->Material);
+      driver->drawMeshBuffer(decal);
+    }
+    driver->endScene();
+    video::IImage *shot = driver->createScreenShot();
+    if (!shot) {
+      std::fprintf(stderr, "FAIL: IVideoDriver::createScreenShot returned no image\n");
+      return false;
+    }
+    core::dimension2du size = shot->getDimension();
+    out.width = (int)size.Width;
+    out.height = (int)size.Height;
+    out.rgba.assign((size_t)4 * out.width * out.height, 0);
+    for (int y = 0; y < out.height; y++) {
+      for (int x = 0; x < out.width; x++) {
+        video::SColor c = shot->getPixel(x, out.height - 1 - y); // top-down -> bottom-up
+        unsigned char *p = &out.rgba[4 * ((size_t)y * out.width + x)];
+        p[0] = (unsigned char)c.getRed();
+        p[1] = (unsigned char)c.getGreen();
+        p[2] = (unsigned char)c.getBlue();
+        p[3] = (unsigned char)c.getAlpha();
+      }
+    }
+    bool ok = png.empty() || driver->writeImageToFile(shot, png.c_str());
+    shot->drop();
+    if (!ok) std::fprintf(stderr, "FAIL: could not write %s\n", png.c_str());
+    return ok;
+  }
+};
+
+int main(int argc, char **argv) {
+  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
+  std::string out_dir;
+  for (int i = 1; i < argc; i++) {
+    std::string a = argv[i];
+    if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
+    else out_dir = a;
+  }
+  if (!std::getenv("DISPLAY")) {
+    std::fprintf(stderr, "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s "
+                         "'-screen 0 1024x768x24'\n");
+    return 1;
+  }
+
+  SIrrlichtCreationParameters params;
+  params.DriverType = video::EDT_OPENGL;
+  params.WindowSize = core::dimension2du(kWidth, kHeight);
+  params.Bits = 32;
+  params.ZBufferBits = kDepthBits;
+  params.Stencilbuffer = false;
+  params.AntiAlias = 0;
+  params.Vsync = false;
+  params.Doublebuffer = false; // createScreenShot reads GL_FRONT, which Mesa under Xvfb leaves
+                               // black after a swap: draw straight into it
+  IrrlichtDevice *device = createDeviceEx(params);
+  if (!device) {
+    std::fprintf(stderr, "FAIL: Irrlicht could not open a %dx%d OpenGL window\n", kWidth, kHeight);
+    return 1;
+  }
+  device->getLogger()->setLogLevel(ELL_WARNING);
+  scene::ISceneManager *smgr = device->getSceneManager();
+
+  GLint depth_bits = 0, subpixel_bits = 0;
+  glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+  glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
+  std::printf("Irrlicht %s on %s; depth bits %d, subpixel bits %d\n", device->getVersion(),
+              (const char *)glGetString(GL_RENDERER), depth_bits, subpixel_bits);
+  if (subpixel_override != -2) subpixel_bits = subpixel_override;
+  if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
+    std::fprintf(stderr, "FAIL: the window has %d depth bits, not 16, 24 or 32\n", depth_bits);
+    device->drop();
+    return 1;
+  }
+
+  scene::IMeshSceneNode *ground = add_rectangle(smgr, kGround, video::SColor(255, 0, 0, 255));
+  scene::IMeshSceneNode *occluder = add_rectangle(smgr, kOccluder, video::SColor(255, 255, 255, 0));
+  scene::SMeshBuffer decal;
+  fill(decal, kDecal, video::SColor(255, 255, 0, 0));
+
+  scene::ICameraSceneNode *camera = smgr->addCameraSceneNode(
+      0, core::vector3df((f32)kEye[0], (f32)kEye[1], (f32)-kEye[2]),
+      core::vector3df((f32)kTarget[0], (f32)kTarget[1], (f32)-kTarget[2]));
+  camera->setFOV((f32)(kFovyDegrees * M_PI / 180.0));
+  camera->setAspectRatio((f32)kWidth / kHeight);
+  camera->setNearValue((f32)kNear);
+  camera->setFarValue((f32)kFar);
+  camera->updateAbsolutePosition();
+  smgr->drawAll(); // the camera computes its view and projection matrices as it draws
+
+  // What the engine knows about its decal, from the camera's view matrix (left-handed: +z ahead).
+  double view[16];
+  for (int i = 0; i < 16; i++) view[i] = camera->getViewMatrix()[i];
+  float decal_corners[4][3];
+  corners(kDecal, -1.0, decal_corners);
+  DecalExtent ext = decal_extent(view, decal_corners, 1.0);
+  std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
+              ext.nearest, ext.farthest, ext.slope);
+
+  const core::matrix4 projection = camera->getProjectionMatrix();
+  core::matrix4 zshift_projection;
+  if (!zshift_decal_projection(*camera, params.WindowSize, depth_bits, subpixel_bits, ext.nearest,
+                               ext.farthest, ext.slope, zshift_projection)) {
+    device->drop();
+    return 1;
+  }
+  std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
+
+  std::string tag = "irrlicht_d" + std::to_string(depth_bits) + "_";
+  auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
+  Frame frame = {device, camera, &decal, nullptr};
+  Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift;
+  bool ok = frame.shoot(occluder_only, "");
+  frame.decal_projection = &projection;
+  ok = ok && frame.shoot(scene_none, file("none.png"));
+  ground->setVisible(false);
+  occluder->setVisible(false);
+  ok = ok && frame.shoot(decal_none, "");
+  frame.decal_projection = &zshift_projection;
+  ok = ok && frame.shoot(decal_zshift, "");
+  ground->setVisible(true);
+  occluder->setVisible(true);
+  ok = ok && frame.shoot(scene_zshift, file("zshift.png"));
+  device->drop();
+  if (!ok) return 1;
+
+  std::string engine = "Irrlicht D" + std::to_string(depth_bits);
+  Tally none = tally(scene_none, decal_none, occluder_only);
+  Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
+  print_tally(engine.c_str(), "no offset, GL_LEQUAL", none);
+  print_tally(engine.c_str(), "zshift", zs);
+  return verdict(engine.c_str(), none, zs);
+}
