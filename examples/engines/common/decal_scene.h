@@ -9,6 +9,7 @@
 //   scene     base, occluder, then the decal (the picture a user sees)
 //   decal     the decal alone (where its pixels are: the reference footprint)
 //   occluder  base and occluder without the decal, once (where the occluder covers)
+// and, as a control, the scene with kControlScale times zshift's offset, which must bleed.
 // A decal pixel is *lost* when it lies in the decal's footprint, outside the occluder, and the
 // scene does not show it; it *bleeds* when the occluder covers it and the scene shows the decal.
 #ifndef ZSHIFT_ENGINES_DECAL_SCENE_H
@@ -121,9 +122,14 @@ inline void print_tally(const char *engine, const char *method, const Tally &t) 
               engine, method, t.footprint, t.lost, t.covered, t.bled, t.stray);
 }
 
-// The verdict: the pictures are sound, the scene z-fights without an offset, and zshift's
-// matrix loses no decal pixel and lets none bleed through the occluder. Prints why not.
-inline int verdict(const char *engine, const Tally &none, const Tally &zshift) {
+// How many times zshift's offset the control draws with: enough to push the decal through
+// the occluder, which proves the bleed check can fail in this scene.
+const double kControlScale = 100.0;
+
+// The verdict: the pictures are sound, the scene z-fights without an offset, zshift's matrix
+// loses no decal pixel and lets none bleed through the occluder, and the control (`over`,
+// kControlScale times zshift's offset) does bleed. Prints why not.
+inline int verdict(const char *engine, const Tally &none, const Tally &zshift, const Tally &over) {
   int failed = 0;
   if (none.footprint < 1000 || none.covered < 100 || zshift.footprint != none.footprint) {
     std::fprintf(stderr, "FAIL %s: the decal covers %d/%d pixels, the occluder %d: not the scene\n",
@@ -142,6 +148,11 @@ inline int verdict(const char *engine, const Tally &none, const Tally &zshift) {
   if (zshift.lost != 0 || zshift.bled != 0) {
     std::fprintf(stderr, "FAIL %s: with zshift's matrix %d decal pixels were lost, %d bled\n",
                  engine, zshift.lost, zshift.bled);
+    failed = 1;
+  }
+  if (over.bled == 0) {
+    std::fprintf(stderr, "FAIL %s: even %g times zshift's offset does not bleed through the "
+                 "occluder: the bleed check proves nothing\n", engine, kControlScale);
     failed = 1;
   }
   if (!failed) std::printf("%s: ok\n", engine);

@@ -226,7 +226,10 @@ int main(int argc, char **argv) {
   std::string tag = "irrlicht_d" + std::to_string(depth_bits) + "_";
   auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
   Frame frame = {device, camera, &decal, nullptr};
-  Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift;
+  // The control: element 10 moved kControlScale times as far as zshift moves it.
+  core::matrix4 over_projection = zshift_projection;
+  over_projection[10] = projection[10] + (f32)kControlScale * (zshift_projection[10] - projection[10]);
+  Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift, scene_over, decal_over;
   bool ok = frame.shoot(occluder_only, "");
   frame.decal_projection = &projection;
   ok = ok && frame.shoot(scene_none, file("none.png"));
@@ -235,6 +238,12 @@ int main(int argc, char **argv) {
   ok = ok && frame.shoot(decal_none, "");
   frame.decal_projection = &zshift_projection;
   ok = ok && frame.shoot(decal_zshift, "");
+  frame.decal_projection = &over_projection;
+  ok = ok && frame.shoot(decal_over, "");
+  ground->setVisible(true);
+  occluder->setVisible(true);
+  ok = ok && frame.shoot(scene_over, file("control.png"));
+  frame.decal_projection = &zshift_projection;
   ground->setVisible(true);
   occluder->setVisible(true);
   ok = ok && frame.shoot(scene_zshift, file("zshift.png"));
@@ -244,7 +253,9 @@ int main(int argc, char **argv) {
   std::string engine = "Irrlicht D" + std::to_string(depth_bits);
   Tally none = tally(scene_none, decal_none, occluder_only);
   Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
+  Tally over = tally(scene_over, decal_over, occluder_only);
   print_tally(engine.c_str(), "no offset, GL_LEQUAL", none);
   print_tally(engine.c_str(), "zshift", zs);
-  return verdict(engine.c_str(), none, zs);
+  print_tally(engine.c_str(), "control: 100x zshift", over);
+  return verdict(engine.c_str(), none, zs, over);
 }

@@ -214,7 +214,11 @@ int main(int argc, char **argv) {
 
   std::string tag = "osg_d" + std::to_string(depth_bits) + "_";
   auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
+  // The control: element 10 moved kControlScale times as far as zshift moves it.
+  osg::Matrixd over_projection = zshift_projection;
+  over_projection(2, 2) = projection(2, 2) + kControlScale * (zshift_projection(2, 2) - projection(2, 2));
   Picture occluder_only, scene_none, decal_none, scene_lequal, scene_zshift, decal_zshift;
+  Picture scene_over, decal_over;
   bool ok = true;
   decal_node->setNodeMask(0);
   ok = ok && shoot(viewer, *image, occluder_only, "");
@@ -230,6 +234,12 @@ int main(int argc, char **argv) {
   ok = ok && shoot(viewer, *image, decal_none, "");
   decal_node->setMatrix(zshift_projection);
   ok = ok && shoot(viewer, *image, decal_zshift, "");
+  decal_node->setMatrix(over_projection);
+  ok = ok && shoot(viewer, *image, decal_over, "");
+  ground->setNodeMask(~0u);
+  occluder->setNodeMask(~0u);
+  ok = ok && shoot(viewer, *image, scene_over, file("control.png"));
+  decal_node->setMatrix(zshift_projection);
   ground->setNodeMask(~0u);
   occluder->setNodeMask(~0u);
   ok = ok && shoot(viewer, *image, scene_zshift, file("zshift.png"));
@@ -239,12 +249,14 @@ int main(int argc, char **argv) {
   Tally none = tally(scene_none, decal_none, occluder_only);
   Tally lequal = tally(scene_lequal, decal_none, occluder_only);
   Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
+  Tally over = tally(scene_over, decal_over, occluder_only);
   print_tally(engine.c_str(), "no offset", none);
   print_tally(engine.c_str(), "no offset, GL_LEQUAL", lequal);
   print_tally(engine.c_str(), "zshift", zs);
+  print_tally(engine.c_str(), "control: 100x zshift", over);
   if (lequal.lost == 0) {
     std::cerr << "FAIL " << engine << ": with no offset and GL_LEQUAL no decal pixel was lost\n";
     return 1;
   }
-  return verdict(engine.c_str(), none, zs);
+  return verdict(engine.c_str(), none, zs, over);
 }
