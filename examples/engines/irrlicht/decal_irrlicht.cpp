@@ -25,7 +25,7 @@
 using namespace irr;
 using namespace decal_scene;
 
-// [engines-irrlicht]
+// [quickstart-engines-irrlicht]
 // zshift inside Irrlicht: the decal pass's projection. Irrlicht's OpenGL driver loads the
 // camera's Direct3D-style matrix as is (eye z forward, NDC depth f/(f-n) (1 - n/z) in [0, 1],
 // which glDepthRange maps to window depth [1/2, 1]): the window depth is 1/2 + w/2 for
@@ -68,7 +68,7 @@ static bool zshift_decal_projection(const scene::ICameraSceneNode &camera,
   decal_projection[10] = element;
   return true;
 }
-// [/engines-irrlicht]
+// [/quickstart-engines-irrlicht]
 
 // A rectangle as a mesh buffer of one colour (z mirrored: Irrlicht's world is left-handed).
 static void fill(scene::SMeshBuffer &buffer, const Rect &r, video::SColor color) {
@@ -113,11 +113,14 @@ struct Frame {
     driver->beginScene(true, true, video::SColor(255, 0, 0, 0));
     device->getSceneManager()->drawAll();
     if (decal_projection) {
+      // [quickstart-engines-irrlicht-pass]
+      // The decal pass, after smgr->drawAll(): zshift's projection, the camera's view.
       driver->setTransform(video::ETS_PROJECTION, *decal_projection);
       driver->setTransform(video::ETS_VIEW, camera->getViewMatrix());
       driver->setTransform(video::ETS_WORLD, core::IdentityMatrix);
       driver->setMaterial(decal->Material);
       driver->drawMeshBuffer(decal);
+      // [/quickstart-engines-irrlicht-pass]
     }
     driver->endScene();
     video::IImage *shot = driver->createScreenShot();

@@ -27,7 +27,7 @@
 
 using namespace decal_scene;
 
-// [engines-osg]
+// [quickstart-engines-osg]
 // zshift inside OpenSceneGraph: the decal subgraph's projection. `camera_projection` is the
 // camera's own (any glFrustum/gluPerspective-style matrix); the result moves the decal toward
 // the camera by just enough to beat the rasterizer's rounding, for the decal's eye distances
@@ -60,7 +60,7 @@ static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const
   decal_projection.set(m);
   return true;
 }
-// [/engines-osg]
+// [/quickstart-engines-osg]
 
 static osg::Geode *rectangle(const Rect &r, const osg::Vec4 &color) {
   float c[4][3];
@@ -145,7 +145,11 @@ int main(int argc, char **argv) {
   camera->setViewport(vp.get());
   camera->setClearColor(osg::Vec4(0, 0, 0, 1));
   camera->setProjectionMatrixAsPerspective(kFovyDegrees, (double)kWidth / kHeight, kNear, kFar);
+  // [quickstart-engines-osg-near-far]
+  // By default OSG refits near and far to the scene's bounds every frame, so the projection it
+  // draws with is not the one set here; the decal's is derived from it, so keep it fixed.
   camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+  // [/quickstart-engines-osg-near-far]
   camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
   camera->setViewMatrixAsLookAt(osg::Vec3d(kEye[0], kEye[1], kEye[2]),
                                 osg::Vec3d(kTarget[0], kTarget[1], kTarget[2]),
@@ -166,13 +170,17 @@ int main(int argc, char **argv) {
   root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
   osg::ref_ptr<osg::Geode> ground = rectangle(kGround, osg::Vec4(0, 0, 1, 1));
   osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, osg::Vec4(1, 1, 0, 1));
-  osg::ref_ptr<osg::Projection> decal_node = new osg::Projection;
-  decal_node->addChild(rectangle(kDecal, osg::Vec4(1, 0, 0, 1)));
-  // After the ground: bin 1 draws after the default bin 0.
-  decal_node->getOrCreateStateSet()->setRenderBinDetails(1, "RenderBin");
+  osg::ref_ptr<osg::Geode> decal = rectangle(kDecal, osg::Vec4(1, 0, 0, 1));
   root->addChild(ground.get());
   root->addChild(occluder.get());
+  // [quickstart-engines-osg-graph]
+  // The decal's subgraph under its own projection, drawn after the ground (render bin 1 follows
+  // the default bin 0); decal_node->setMatrix(zshift's matrix) once the context is up.
+  osg::ref_ptr<osg::Projection> decal_node = new osg::Projection;
+  decal_node->addChild(decal.get());
+  decal_node->getOrCreateStateSet()->setRenderBinDetails(1, "RenderBin");
   root->addChild(decal_node.get());
+  // [/quickstart-engines-osg-graph]
   viewer.setSceneData(root.get());
   viewer.realize();
   if (!viewer.isRealized()) {
