@@ -23,6 +23,7 @@ SOURCES = [
     "tests/packaging/CMakeLists.txt",  # bash tests/packaging/run.sh
     "examples/engines/osg/decal_osg.cpp",  # make -C examples/engines check
     "examples/engines/irrlicht/decal_irrlicht.cpp",  # make -C examples/engines check
+    "examples/engines/ogre/decal_ogre.cpp",  # make -C examples/engines check
 ]
 
 START = re.compile(r"\[quickstart-([a-z0-9-]+)\]")

@@ -1,0 +1,250 @@
+// An Ogre 1.12 program drawing a decal with zshift's projection.
+//
+// Two viewports share one render window: the first, cleared, shows the ground and the occluder
+// through the main camera; the second, not cleared and drawn after it, shows only the decal
+// through a camera at the same place whose custom projection matrix is zshift's decal matrix,
+// built from the main camera's. The program renders the scene (README, "Inside real engines")
+// with no offset and with zshift's matrix, reads every frame back with
+// RenderTarget::copyContentsToMemory, saves the pictures and exits nonzero unless the decal
+// z-fights without an offset and loses no pixel (and bleeds through no occluder) with zshift's.
+//
+// Usage: decal_ogre [--subpixel-bits B] [OUTPUT_DIR]   (Ogre's OpenGL render system opens an
+// X11 window: run it under xvfb-run)
+#include <Ogre.h>
+
+#include <GL/gl.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "zshift.h"
+
+#include "../common/decal_scene.h"
+
+using namespace decal_scene;
+
+// [quickstart-engines-ogre]
+// zshift inside Ogre: the decal camera's projection. `camera` is the main camera (any
+// perspective frustum, OpenGL render system); the result moves the decal toward the camera by
+// just enough to beat the rasterizer's rounding, for the decal's eye distances and plane tilt,
+// the viewport and the depth buffer. Give it to a second camera at the same place:
+// decal_camera->setCustomProjectionMatrix(true, decal_projection).
+static bool zshift_decal_projection(const Ogre::Camera &camera, const Ogre::Viewport &vp,
+                                    int depth_bits, int subpixel_bits, double decal_near,
+                                    double decal_far, double slope,
+                                    Ogre::Matrix4 &decal_projection) {
+  Ogre::RealRect extents = camera.getFrustumExtents();
+  ZshiftScene scene = {};
+  scene.l = extents.left;
+  scene.r = extents.right;
+  scene.b = extents.bottom;
+  scene.t = extents.top;
+  scene.n = camera.getNearClipDistance();
+  scene.f = camera.getFarClipDistance();
+  scene.viewport_width = (uint32_t)vp.getActualWidth();
+  scene.viewport_height = (uint32_t)vp.getActualHeight();
+  scene.depth_format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16 // glGetIntegerv(GL_DEPTH_BITS)
+                       : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
+                                          : ZSHIFT_FORMAT_UNORM32;
+  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
+  scene.decal_far = decal_far;
+  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
+  scene.exact_depth = 0;         // its corners are not the ground's
+  scene.subpixel_bits = subpixel_bits;
+  float m[16]; // column-major; Ogre::Matrix4 is row-major: transpose
+  ZshiftStatus s = zshift_recommend_matrix(&scene, m);
+  if (s != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_recommend_matrix: %s\n", zshift_status_message(s));
+    return false;
+  }
+  decal_projection = Ogre::Matrix4(m).transpose();
+  return true;
+}
+// [/quickstart-engines-ogre]
+
+// A rectangle of one colour, unlit.
+static Ogre::ManualObject *rectangle(Ogre::SceneManager *sm, const char *name, const Rect &r,
+                                     const Ogre::ColourValue &colour) {
+  float c[4][3];
+  corners(r, 1.0, c);
+  Ogre::ManualObject *obj = sm->createManualObject(name);
+  obj->begin("zshift/unlit", Ogre::RenderOperation::OT_TRIANGLE_LIST);
+  for (int i = 0; i < 4; i++) {
+    obj->position(c[i][0], c[i][1], c[i][2]);
+    obj->colour(colour);
+  }
+  obj->triangle(0, 1, 2);
+  obj->triangle(0, 2, 3);
+  obj->end();
+  obj->setCastShadows(false);
+  sm->getRootSceneNode()->createChildSceneNode()->attachObject(obj);
+  return obj;
+}
+
+static bool shoot(Ogre::Root &root, Ogre::RenderWindow *window, Picture &out,
+                  const std::string &png) {
+  root.renderOneFrame();
+  out.width = (int)window->getWidth();
+  out.height = (int)window->getHeight();
+  out.rgba.assign((size_t)4 * out.width * out.height, 0);
+  // Ogre's PF_BYTE_RGBA is R, G, B, A in memory; rows come top-down.
+  std::vector<unsigned char> top_down(out.rgba.size());
+  Ogre::PixelBox box(out.width, out.height, 1, Ogre::PF_BYTE_RGBA, top_down.data());
+  window->copyContentsToMemory(Ogre::Box(0, 0, out.width, out.height), box,
+                               Ogre::RenderTarget::FB_BACK);
+  for (int y = 0; y < out.height; y++)
+    std::copy_n(&top_down[(size_t)4 * out.width * (out.height - 1 - y)], 4 * out.width,
+                &out.rgba[(size_t)4 * out.width * y]);
+  if (!png.empty()) window->writeContentsToFile(png);
+  return true;
+}
+
+int main(int argc, char **argv) {
+  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
+  std::string out_dir;
+  for (int i = 1; i < argc; i++) {
+    std::string a = argv[i];
+    if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
+    else out_dir = a;
+  }
+  if (!std::getenv("DISPLAY")) {
+    std::fprintf(stderr, "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s "
+                         "'-screen 0 1024x768x24'\n");
+    return 1;
+  }
+
+  try {
+    Ogre::LogManager *logs = new Ogre::LogManager;
+    logs->createLog("", true, false, true); // default log, not written to a file or stdout
+    Ogre::Root root("", "", "");
+    root.loadPlugin(OGRE_PLUGIN_DIR "/RenderSystem_GL");
+    root.loadPlugin(OGRE_PLUGIN_DIR "/Codec_STBI"); // writes the PNG pictures
+    Ogre::RenderSystem *rs = root.getRenderSystemByName("OpenGL Rendering Subsystem");
+    if (!rs) {
+      std::fprintf(stderr, "FAIL: Ogre has no OpenGL render system\n");
+      return 1;
+    }
+    root.setRenderSystem(rs);
+    root.initialise(false);
+    Ogre::NameValuePairList params;
+    params["FSAA"] = "0";
+    params["vsync"] = "false";
+    Ogre::RenderWindow *window = root.createRenderWindow("zshift decal", kWidth, kHeight, false, &params);
+    window->setAutoUpdated(true);
+
+    GLint depth_bits = 0, subpixel_bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+    glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
+    std::printf("Ogre %d.%d.%d on %s; depth bits %d, subpixel bits %d\n", OGRE_VERSION_MAJOR,
+                OGRE_VERSION_MINOR, OGRE_VERSION_PATCH, (const char *)glGetString(GL_RENDERER),
+                depth_bits, subpixel_bits);
+    if (subpixel_override != -2) subpixel_bits = subpixel_override;
+    if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
+      std::fprintf(stderr, "FAIL: the window has %d depth bits, not 16, 24 or 32\n", depth_bits);
+      return 1;
+    }
+
+    Ogre::ResourceGroupManager::getSingleton().initialiseAllResourceGroups();
+    Ogre::MaterialPtr unlit = Ogre::MaterialManager::getSingleton().create(
+        "zshift/unlit", Ogre::ResourceGroupManager::DEFAULT_RESOURCE_GROUP_NAME);
+    Ogre::Pass *pass = unlit->getTechnique(0)->getPass(0);
+    pass->setLightingEnabled(false);
+    pass->setCullingMode(Ogre::CULL_NONE);
+
+    Ogre::SceneManager *sm = root.createSceneManager();
+    const Ogre::uint32 kBase = 1, kDecalMask = 2;
+    Ogre::ManualObject *ground = rectangle(sm, "ground", kGround, Ogre::ColourValue(0, 0, 1));
+    Ogre::ManualObject *occluder = rectangle(sm, "occluder", kOccluder, Ogre::ColourValue(1, 1, 0));
+    Ogre::ManualObject *decal = rectangle(sm, "decal", kDecal, Ogre::ColourValue(1, 0, 0));
+    ground->setVisibilityFlags(kBase);
+    occluder->setVisibilityFlags(kBase);
+    decal->setVisibilityFlags(kDecalMask);
+
+    Ogre::Camera *camera = sm->createCamera("main");
+    camera->setFOVy(Ogre::Degree((Ogre::Real)kFovyDegrees));
+    camera->setAspectRatio((Ogre::Real)kWidth / kHeight);
+    camera->setNearClipDistance((Ogre::Real)kNear);
+    camera->setFarClipDistance((Ogre::Real)kFar);
+    Ogre::SceneNode *eye = sm->getRootSceneNode()->createChildSceneNode();
+    eye->setPosition((Ogre::Real)kEye[0], (Ogre::Real)kEye[1], (Ogre::Real)kEye[2]);
+    eye->lookAt(Ogre::Vector3((Ogre::Real)kTarget[0], (Ogre::Real)kTarget[1], (Ogre::Real)kTarget[2]),
+                Ogre::Node::TS_WORLD);
+    eye->attachObject(camera);
+    Ogre::Camera *decal_camera = sm->createCamera("decal");
+    decal_camera->setFOVy(camera->getFOVy());
+    decal_camera->setAspectRatio(camera->getAspectRatio());
+    decal_camera->setNearClipDistance(camera->getNearClipDistance());
+    decal_camera->setFarClipDistance(camera->getFarClipDistance());
+    eye->attachObject(decal_camera);
+
+    // [quickstart-engines-ogre-viewports]
+    // The base through the main camera; then the decal alone, over it, through the decal camera
+    // (same place, zshift's projection), keeping the base's depth.
+    Ogre::Viewport *base_vp = window->addViewport(camera, 0);
+    base_vp->setVisibilityMask(kBase);
+    Ogre::Viewport *decal_vp = window->addViewport(decal_camera, 1);
+    decal_vp->setVisibilityMask(kDecalMask);
+    decal_vp->setClearEveryFrame(false);
+    // [/quickstart-engines-ogre-viewports]
+    base_vp->setBackgroundColour(Ogre::ColourValue(0, 0, 0, 1));
+    base_vp->setOverlaysEnabled(false);
+    decal_vp->setOverlaysEnabled(false);
+
+    // What the engine knows about its decal, from the camera's view matrix.
+    root.renderOneFrame();
+    Ogre::Affine3 v = camera->getViewMatrix();
+    double view[16];
+    for (int col = 0; col < 4; col++)
+      for (int row = 0; row < 4; row++) view[4 * col + row] = row < 3 ? v[row][col] : (col == 3);
+    float decal_corners[4][3];
+    corners(kDecal, 1.0, decal_corners);
+    DecalExtent ext = decal_extent(view, decal_corners, -1.0);
+    std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
+                ext.nearest, ext.farthest, ext.slope);
+
+    const Ogre::Matrix4 projection = camera->getProjectionMatrix();
+    Ogre::Matrix4 zshift_projection;
+    if (!zshift_decal_projection(*camera, *base_vp, depth_bits, subpixel_bits, ext.nearest,
+                                 ext.farthest, ext.slope, zshift_projection))
+      return 1;
+    std::printf("element 10: camera %.9g, zshift %.9g\n", projection[2][2], zshift_projection[2][2]);
+    // The control: element 10 moved kControlScale times as far as zshift moves it.
+    Ogre::Matrix4 over_projection = zshift_projection;
+    over_projection[2][2] =
+        projection[2][2] + (Ogre::Real)kControlScale * (zshift_projection[2][2] - projection[2][2]);
+
+    std::string tag = "ogre_d" + std::to_string(depth_bits) + "_";
+    auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
+    Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift, scene_over, decal_over;
+    bool ok = true;
+    decal_vp->setVisibilityMask(0);
+    ok = ok && shoot(root, window, occluder_only, "");
+    decal_vp->setVisibilityMask(kDecalMask);
+    decal_camera->setCustomProjectionMatrix(true, projection);
+    ok = ok && shoot(root, window, scene_none, file("none.png"));
+    base_vp->setVisibilityMask(0);
+    ok = ok && shoot(root, window, decal_none, "");
+    decal_camera->setCustomProjectionMatrix(true, zshift_projection);
+    ok = ok && shoot(root, window, decal_zshift, "");
+    decal_camera->setCustomProjectionMatrix(true, over_projection);
+    ok = ok && shoot(root, window, decal_over, "");
+    base_vp->setVisibilityMask(kBase);
+    ok = ok && shoot(root, window, scene_over, file("control.png"));
+    decal_camera->setCustomProjectionMatrix(true, zshift_projection);
+    ok = ok && shoot(root, window, scene_zshift, file("zshift.png"));
+    if (!ok) return 1;
+
+    std::string engine = "Ogre D" + std::to_string(depth_bits);
+    Tally none = tally(scene_none, decal_none, occluder_only);
+    Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
+    Tally over = tally(scene_over, decal_over, occluder_only);
+    print_tally(engine.c_str(), "no offset, GL_LEQUAL", none);
+    print_tally(engine.c_str(), "zshift", zs);
+    print_tally(engine.c_str(), "control: 100x zshift", over);
+    return verdict(engine.c_str(), none, zs, over);
+  } catch (const Ogre::Exception &e) {
+    std::fprintf(stderr, "FAIL: Ogre: %s\n", e.getFullDescription().c_str());
+    return 1;
+  }
+}
