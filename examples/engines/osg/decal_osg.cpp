@@ -43,9 +43,9 @@ static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const
   }
   scene.viewport_width = (uint32_t)vp.width();
   scene.viewport_height = (uint32_t)vp.height();
-  scene.depth_format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16 // glGetIntegerv(GL_DEPTH_BITS)
-                       : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
-                                          : ZSHIFT_FORMAT_UNORM32;
+  scene.depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16 // glGetIntegerv(GL_DEPTH_BITS)
+                       : depth_bits == 24 ? GL_DEPTH_COMPONENT24
+                                          : GL_DEPTH_COMPONENT32;
   scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
   scene.decal_far = decal_far;
   scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
