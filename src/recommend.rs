@@ -119,15 +119,8 @@ const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
 
-/// Whether the rasterizer snaps vertex positions before setting up the depth plane.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Snapping {
-    /// Snapped to `2^-bits` pixel, `bits` = `GL_SUBPIXEL_BITS` (the conservative assumption for a
-    /// GPU; adds the slope-scaled term `S`).
-    SubpixelBits(u32),
-    /// Depth interpolated from the unsnapped float positions (measured on Mesa llvmpipe): `S = 0`.
-    Unsnapped,
-}
+/// Whether the rasterizer snaps vertex positions before depth setup (see [`crate::profile`]).
+pub use crate::profile::Snapping;
 
 /// What a scene knows about one decal and the surface under it.
 #[derive(Debug, Clone, Copy, PartialEq)]
