@@ -5,7 +5,8 @@
 // y-up and right-handed (OpenGL's); an engine with a left-handed world (Irrlicht) mirrors z.
 // The depth buffer has 24 bits, the depth test is the engine's default (GL_LESS or GL_LEQUAL).
 //
-// Each engine renders three frames per method and reads each back with its own screenshot call:
+// Each engine renders these frames per method (`compare` below) and reads each back with its
+// own screenshot call:
 //   scene     base, occluder, then the decal (the picture a user sees)
 //   decal     the decal alone (where its pixels are: the reference footprint)
 //   occluder  base and occluder without the decal, once (where the occluder covers)
@@ -17,6 +18,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace decal_scene {
@@ -157,6 +161,102 @@ inline int verdict(const char *engine, const Tally &none, const Tally &zshift, c
   }
   if (!failed) std::printf("%s: ok\n", engine);
   return failed;
+}
+
+// The command line of every engine example: [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR].
+const int kAskGL = -2; // subpixel_bits: what glGetIntegerv(GL_SUBPIXEL_BITS) reports
+struct Options {
+  int depth_bits = kDepthBits; // for engines that let the program choose the depth buffer
+  int subpixel_bits = kAskGL;  // -1 is ZSHIFT_SUBPIXEL_UNSNAPPED
+  std::string out_dir;         // where the pictures go; none when empty
+};
+
+// Parses the command line and checks that there is an X display to open; prints why not.
+inline bool parse_options(int argc, char **argv, Options &o) {
+  for (int i = 1; i < argc; i++) {
+    std::string a = argv[i];
+    if (a == "--depth" && i + 1 < argc) o.depth_bits = std::atoi(argv[++i]);
+    else if (a == "--subpixel-bits" && i + 1 < argc) o.subpixel_bits = std::atoi(argv[++i]);
+    else if (a.rfind("--", 0) != 0) o.out_dir = a;
+    else {
+      std::fprintf(stderr, "usage: %s [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]\n", argv[0]);
+      return false;
+    }
+  }
+  if (o.depth_bits != 16 && o.depth_bits != 24 && o.depth_bits != 32) {
+    std::fprintf(stderr, "FAIL: --depth %d: 16, 24 or 32 bits\n", o.depth_bits);
+    return false;
+  }
+  if (!std::getenv("DISPLAY")) {
+    std::fprintf(stderr, "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s "
+                         "'-screen 0 1024x768x24'\n");
+    return false;
+  }
+  return true;
+}
+
+// Checks the depth buffer a context reports (glGetIntegerv(GL_DEPTH_BITS)).
+inline bool known_depth_bits(int bits) {
+  if (bits == 16 || bits == 24 || bits == 32) return true;
+  std::fprintf(stderr, "FAIL: the framebuffer has %d depth bits, not 16, 24 or 32\n", bits);
+  return false;
+}
+
+// The decal's projection in a frame: the camera's own, zshift's, or the control.
+enum Method { kNoOffset, kZshift, kControl };
+
+// What `compare` needs from an engine: each a few lines of the engine's own API.
+struct Engine {
+  std::string name;                  // e.g. "OSG D24"
+  const char *depth_test;            // the engine's default: "GL_LESS" or "GL_LEQUAL"
+  std::function<void(bool)> show_base;  // the ground and the occluder
+  std::function<void(bool)> show_decal;
+  std::function<void(Method)> decal_projection;
+  std::function<void(bool)> decal_lequal; // GL_LEQUAL for the decal; empty if already the default
+  std::function<bool(Picture &, const std::string &png)> shoot; // draw, read back, save if named
+};
+
+// Renders the frames, counts the pixels, prints the table and returns the verdict (0: passed).
+inline int compare(const Engine &e, const std::string &out_dir, const std::string &tag) {
+  auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
+  Picture occluder, scene_none, scene_lequal, decal_none, scene_zshift, decal_zshift, scene_over,
+      decal_over;
+  bool ok = true;
+  e.show_base(true);
+  e.show_decal(false);
+  ok = ok && e.shoot(occluder, "");
+  e.show_decal(true);
+  e.decal_projection(kNoOffset);
+  ok = ok && e.shoot(scene_none, file("none.png"));
+  if (e.decal_lequal) {
+    e.decal_lequal(true); // ties go to the decal: what is left is the rounding noise
+    ok = ok && e.shoot(scene_lequal, file("none_lequal.png"));
+    e.decal_lequal(false);
+  }
+  e.show_base(false);
+  ok = ok && e.shoot(decal_none, "");
+  e.decal_projection(kZshift);
+  ok = ok && e.shoot(decal_zshift, "");
+  e.decal_projection(kControl);
+  ok = ok && e.shoot(decal_over, "");
+  e.show_base(true);
+  ok = ok && e.shoot(scene_over, file("control.png"));
+  e.decal_projection(kZshift);
+  ok = ok && e.shoot(scene_zshift, file("zshift.png"));
+  if (!ok) return 1;
+
+  const char *engine = e.name.c_str();
+  Tally none = tally(scene_none, decal_none, occluder);
+  Tally zshift = tally(scene_zshift, decal_zshift, occluder);
+  Tally over = tally(scene_over, decal_over, occluder);
+  print_tally(engine, (std::string("no offset, ") + e.depth_test).c_str(), none);
+  if (e.decal_lequal) {
+    Tally lequal = tally(scene_lequal, decal_none, occluder);
+    print_tally(engine, "no offset, GL_LEQUAL", lequal);
+  }
+  print_tally(engine, "zshift", zshift);
+  print_tally(engine, ("control: " + std::to_string((int)kControlScale) + "x zshift").c_str(), over);
+  return verdict(engine, none, zshift, over);
 }
 
 } // namespace decal_scene

@@ -103,7 +103,8 @@ struct Frame {
   IrrlichtDevice *device;
   scene::ICameraSceneNode *camera;
   scene::SMeshBuffer *decal;
-  const core::matrix4 *decal_projection; // null: no decal pass
+  const core::matrix4 *decal_projection;
+  bool decal_shown;
 
   // Draws one frame (scene manager, then the decal pass) and reads it back with the engine's
   // screenshot; saves it as `png` when non-empty.
@@ -112,7 +113,7 @@ struct Frame {
     device->run();
     driver->beginScene(true, true, video::SColor(255, 0, 0, 0));
     device->getSceneManager()->drawAll();
-    if (decal_projection) {
+    if (decal_shown) {
       // [quickstart-engines-irrlicht-pass]
       // The decal pass, after smgr->drawAll(): zshift's projection, the camera's view.
       driver->setTransform(video::ETS_PROJECTION, *decal_projection);
@@ -150,18 +151,8 @@ struct Frame {
 };
 
 int main(int argc, char **argv) {
-  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
-  std::string out_dir;
-  for (int i = 1; i < argc; i++) {
-    std::string a = argv[i];
-    if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
-    else out_dir = a;
-  }
-  if (!std::getenv("DISPLAY")) {
-    std::fprintf(stderr, "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s "
-                         "'-screen 0 1024x768x24'\n");
-    return 1;
-  }
+  Options options;
+  if (!parse_options(argc, argv, options)) return 1;
 
   SIrrlichtCreationParameters params;
   params.DriverType = video::EDT_OPENGL;
@@ -186,9 +177,8 @@ int main(int argc, char **argv) {
   glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
   std::printf("Irrlicht %s on %s; depth bits %d, subpixel bits %d\n", device->getVersion(),
               (const char *)glGetString(GL_RENDERER), depth_bits, subpixel_bits);
-  if (subpixel_override != -2) subpixel_bits = subpixel_override;
-  if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
-    std::fprintf(stderr, "FAIL: the window has %d depth bits, not 16, 24 or 32\n", depth_bits);
+  if (options.subpixel_bits != kAskGL) subpixel_bits = options.subpixel_bits;
+  if (!known_depth_bits(depth_bits)) {
     device->drop();
     return 1;
   }
@@ -226,39 +216,24 @@ int main(int argc, char **argv) {
   }
   std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
 
-  std::string tag = "irrlicht_d" + std::to_string(depth_bits) + "_";
-  auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
-  Frame frame = {device, camera, &decal, nullptr};
   // The control: element 10 moved kControlScale times as far as zshift moves it.
   core::matrix4 over_projection = zshift_projection;
   over_projection[10] = projection[10] + (f32)kControlScale * (zshift_projection[10] - projection[10]);
-  Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift, scene_over, decal_over;
-  bool ok = frame.shoot(occluder_only, "");
-  frame.decal_projection = &projection;
-  ok = ok && frame.shoot(scene_none, file("none.png"));
-  ground->setVisible(false);
-  occluder->setVisible(false);
-  ok = ok && frame.shoot(decal_none, "");
-  frame.decal_projection = &zshift_projection;
-  ok = ok && frame.shoot(decal_zshift, "");
-  frame.decal_projection = &over_projection;
-  ok = ok && frame.shoot(decal_over, "");
-  ground->setVisible(true);
-  occluder->setVisible(true);
-  ok = ok && frame.shoot(scene_over, file("control.png"));
-  frame.decal_projection = &zshift_projection;
-  ground->setVisible(true);
-  occluder->setVisible(true);
-  ok = ok && frame.shoot(scene_zshift, file("zshift.png"));
-  device->drop();
-  if (!ok) return 1;
 
-  std::string engine = "Irrlicht D" + std::to_string(depth_bits);
-  Tally none = tally(scene_none, decal_none, occluder_only);
-  Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
-  Tally over = tally(scene_over, decal_over, occluder_only);
-  print_tally(engine.c_str(), "no offset, GL_LEQUAL", none);
-  print_tally(engine.c_str(), "zshift", zs);
-  print_tally(engine.c_str(), "control: 100x zshift", over);
-  return verdict(engine.c_str(), none, zs, over);
+  Frame frame = {device, camera, &decal, &projection, false};
+  Engine engine;
+  engine.name = "Irrlicht D" + std::to_string(depth_bits);
+  engine.depth_test = "GL_LEQUAL"; // SMaterial::ZBuffer's default, ECFN_LESSEQUAL
+  engine.show_base = [&](bool on) {
+    ground->setVisible(on);
+    occluder->setVisible(on);
+  };
+  engine.show_decal = [&](bool on) { frame.decal_shown = on; };
+  engine.decal_projection = [&](Method m) {
+    frame.decal_projection = m == kNoOffset ? &projection : m == kZshift ? &zshift_projection : &over_projection;
+  };
+  engine.shoot = [&](Picture &out, const std::string &png) { return frame.shoot(out, png); };
+  int verdict = compare(engine, options.out_dir, "irrlicht_d" + std::to_string(depth_bits) + "_");
+  device->drop();
+  return verdict;
 }

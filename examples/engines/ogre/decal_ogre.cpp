@@ -101,18 +101,8 @@ static bool shoot(Ogre::Root &root, Ogre::RenderWindow *window, Picture &out,
 }
 
 int main(int argc, char **argv) {
-  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
-  std::string out_dir;
-  for (int i = 1; i < argc; i++) {
-    std::string a = argv[i];
-    if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
-    else out_dir = a;
-  }
-  if (!std::getenv("DISPLAY")) {
-    std::fprintf(stderr, "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s "
-                         "'-screen 0 1024x768x24'\n");
-    return 1;
-  }
+  Options options;
+  if (!parse_options(argc, argv, options)) return 1;
 
   try {
     Ogre::LogManager *logs = new Ogre::LogManager;
@@ -139,11 +129,8 @@ int main(int argc, char **argv) {
     std::printf("Ogre %d.%d.%d on %s; depth bits %d, subpixel bits %d\n", OGRE_VERSION_MAJOR,
                 OGRE_VERSION_MINOR, OGRE_VERSION_PATCH, (const char *)glGetString(GL_RENDERER),
                 depth_bits, subpixel_bits);
-    if (subpixel_override != -2) subpixel_bits = subpixel_override;
-    if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
-      std::fprintf(stderr, "FAIL: the window has %d depth bits, not 16, 24 or 32\n", depth_bits);
-      return 1;
-    }
+    if (options.subpixel_bits != kAskGL) subpixel_bits = options.subpixel_bits;
+    if (!known_depth_bits(depth_bits)) return 1;
 
     Ogre::ResourceGroupManager::getSingleton().initialiseAllResourceGroups();
     Ogre::MaterialPtr unlit = Ogre::MaterialManager::getSingleton().create(
@@ -214,35 +201,17 @@ int main(int argc, char **argv) {
     over_projection[2][2] =
         projection[2][2] + (Ogre::Real)kControlScale * (zshift_projection[2][2] - projection[2][2]);
 
-    std::string tag = "ogre_d" + std::to_string(depth_bits) + "_";
-    auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
-    Picture occluder_only, scene_none, decal_none, scene_zshift, decal_zshift, scene_over, decal_over;
-    bool ok = true;
-    decal_vp->setVisibilityMask(0);
-    ok = ok && shoot(root, window, occluder_only, "");
-    decal_vp->setVisibilityMask(kDecalMask);
-    decal_camera->setCustomProjectionMatrix(true, projection);
-    ok = ok && shoot(root, window, scene_none, file("none.png"));
-    base_vp->setVisibilityMask(0);
-    ok = ok && shoot(root, window, decal_none, "");
-    decal_camera->setCustomProjectionMatrix(true, zshift_projection);
-    ok = ok && shoot(root, window, decal_zshift, "");
-    decal_camera->setCustomProjectionMatrix(true, over_projection);
-    ok = ok && shoot(root, window, decal_over, "");
-    base_vp->setVisibilityMask(kBase);
-    ok = ok && shoot(root, window, scene_over, file("control.png"));
-    decal_camera->setCustomProjectionMatrix(true, zshift_projection);
-    ok = ok && shoot(root, window, scene_zshift, file("zshift.png"));
-    if (!ok) return 1;
-
-    std::string engine = "Ogre D" + std::to_string(depth_bits);
-    Tally none = tally(scene_none, decal_none, occluder_only);
-    Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
-    Tally over = tally(scene_over, decal_over, occluder_only);
-    print_tally(engine.c_str(), "no offset, GL_LEQUAL", none);
-    print_tally(engine.c_str(), "zshift", zs);
-    print_tally(engine.c_str(), "control: 100x zshift", over);
-    return verdict(engine.c_str(), none, zs, over);
+    Engine engine;
+    engine.name = "Ogre D" + std::to_string(depth_bits);
+    engine.depth_test = "GL_LEQUAL"; // Ogre's default depth function, CMPF_LESS_EQUAL
+    engine.show_base = [&](bool on) { base_vp->setVisibilityMask(on ? kBase : 0); };
+    engine.show_decal = [&](bool on) { decal_vp->setVisibilityMask(on ? kDecalMask : 0); };
+    engine.decal_projection = [&](Method m) {
+      decal_camera->setCustomProjectionMatrix(
+          true, m == kNoOffset ? projection : m == kZshift ? zshift_projection : over_projection);
+    };
+    engine.shoot = [&](Picture &out, const std::string &png) { return shoot(root, window, out, png); };
+    return compare(engine, options.out_dir, "ogre_d" + std::to_string(depth_bits) + "_");
   } catch (const Ogre::Exception &e) {
     std::fprintf(stderr, "FAIL: Ogre: %s\n", e.getFullDescription().c_str());
     return 1;

@@ -17,7 +17,6 @@
 #include <osgViewer/Viewer>
 
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <string>
 
@@ -75,6 +74,7 @@ static osg::Geode *rectangle(const Rect &r, const osg::Vec4 &color) {
   g->setColorArray(colors.get(), osg::Array::BIND_OVERALL);
   g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 6));
   g->setCullingActive(false);
+  g->setUseDisplayList(false); // draw callbacks then run at draw time, inside the FBO
   osg::Geode *geode = new osg::Geode;
   geode->addDrawable(g.get());
   return geode;
@@ -99,25 +99,22 @@ static bool shoot(osgViewer::Viewer &viewer, osg::Image &image, Picture &out, co
   return true;
 }
 
+// Reads GL_DEPTH_BITS while a drawable draws, so inside the camera's framebuffer object.
+struct DepthBits : osg::Drawable::DrawCallback {
+  mutable GLint bits = 0, subpixel_bits = 0;
+  mutable std::string renderer;
+  void drawImplementation(osg::RenderInfo &info, const osg::Drawable *drawable) const override {
+    renderer = (const char *)glGetString(GL_RENDERER);
+    glGetIntegerv(GL_DEPTH_BITS, &bits);
+    glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
+    drawable->drawImplementation(info);
+  }
+};
+
 int main(int argc, char **argv) {
-  int depth_bits = 24;
-  int subpixel_override = -2; // what GL_SUBPIXEL_BITS reports, unless told otherwise
-  std::string out_dir;
-  for (int i = 1; i < argc; i++) {
-    std::string a = argv[i];
-    if (a == "--depth" && i + 1 < argc) depth_bits = std::atoi(argv[++i]);
-    else if (a == "--subpixel-bits" && i + 1 < argc) subpixel_override = std::atoi(argv[++i]);
-    else out_dir = a;
-  }
-  if (depth_bits != 16 && depth_bits != 24 && depth_bits != 32) {
-    std::cerr << "usage: decal_osg [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]\n";
-    return 2;
-  }
-  if (!getenv("DISPLAY")) {
-    std::cerr << "FAIL: no X display (DISPLAY is unset): run under xvfb-run -a -s '-screen 0 "
-                 "1024x768x24'\n";
-    return 1;
-  }
+  Options options;
+  if (!parse_options(argc, argv, options)) return 1;
+  const int depth_bits = options.depth_bits;
 
   osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
   traits->readDISPLAY(); // the X display and screen from $DISPLAY
@@ -189,21 +186,20 @@ int main(int argc, char **argv) {
   }
 
   // One frame, then ask GL what the framebuffer object really has.
+  osg::ref_ptr<DepthBits> probe = new DepthBits;
+  osg::Drawable *ground_drawable = ground->getDrawable(0);
+  ground_drawable->setDrawCallback(probe.get());
   Picture first;
   if (!shoot(viewer, *image, first, "")) return 1;
-  GLint subpixel_bits = 0, stored_bits = 0;
-  gc->makeCurrent();
-  glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
-  std::printf("OpenSceneGraph %s on %s; subpixel bits %d\n", osgGetVersion(),
-              (const char *)glGetString(GL_RENDERER), subpixel_bits);
-  gc->releaseContext();
-  if (subpixel_override != -2) subpixel_bits = subpixel_override;
-  osg::Camera::BufferAttachmentMap &buffers = camera->getBufferAttachmentMap();
-  stored_bits = buffers[osg::Camera::DEPTH_BUFFER]._internalFormat == depth_format ? depth_bits : 0;
-  if (stored_bits != depth_bits || camera->getRenderTargetImplementation() != osg::Camera::FRAME_BUFFER_OBJECT) {
-    std::cerr << "FAIL: OpenSceneGraph did not keep the " << depth_bits << "-bit framebuffer object\n";
+  ground_drawable->setDrawCallback(nullptr);
+  std::printf("OpenSceneGraph %s on %s; framebuffer object depth bits %d, subpixel bits %d\n",
+              osgGetVersion(), probe->renderer.c_str(), probe->bits, probe->subpixel_bits);
+  if (probe->bits != depth_bits) {
+    std::fprintf(stderr, "FAIL: the framebuffer object has %d depth bits, not %d\n", probe->bits,
+                 depth_bits);
     return 1;
   }
+  int subpixel_bits = options.subpixel_bits == kAskGL ? probe->subpixel_bits : options.subpixel_bits;
 
   // What the engine knows about its decal, from the camera's view matrix.
   float decal_corners[4][3];
@@ -219,52 +215,25 @@ int main(int argc, char **argv) {
     return 1;
   std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
               (float)zshift_projection(2, 2));
-
-  std::string tag = "osg_d" + std::to_string(depth_bits) + "_";
-  auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
   // The control: element 10 moved kControlScale times as far as zshift moves it.
   osg::Matrixd over_projection = zshift_projection;
   over_projection(2, 2) = projection(2, 2) + kControlScale * (zshift_projection(2, 2) - projection(2, 2));
-  Picture occluder_only, scene_none, decal_none, scene_lequal, scene_zshift, decal_zshift;
-  Picture scene_over, decal_over;
-  bool ok = true;
-  decal_node->setNodeMask(0);
-  ok = ok && shoot(viewer, *image, occluder_only, "");
-  decal_node->setNodeMask(~0u);
-  decal_node->setMatrix(projection);
-  ok = ok && shoot(viewer, *image, scene_none, file("none.png"));
-  // The same with GL_LEQUAL, where ties go to the decal: what is left is the rounding noise.
-  decal_node->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::LEQUAL));
-  ok = ok && shoot(viewer, *image, scene_lequal, file("none_lequal.png"));
-  decal_node->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::DEPTH);
-  ground->setNodeMask(0);
-  occluder->setNodeMask(0);
-  ok = ok && shoot(viewer, *image, decal_none, "");
-  decal_node->setMatrix(zshift_projection);
-  ok = ok && shoot(viewer, *image, decal_zshift, "");
-  decal_node->setMatrix(over_projection);
-  ok = ok && shoot(viewer, *image, decal_over, "");
-  ground->setNodeMask(~0u);
-  occluder->setNodeMask(~0u);
-  ok = ok && shoot(viewer, *image, scene_over, file("control.png"));
-  decal_node->setMatrix(zshift_projection);
-  ground->setNodeMask(~0u);
-  occluder->setNodeMask(~0u);
-  ok = ok && shoot(viewer, *image, scene_zshift, file("zshift.png"));
-  if (!ok) return 1;
 
-  std::string engine = "OSG D" + std::to_string(depth_bits);
-  Tally none = tally(scene_none, decal_none, occluder_only);
-  Tally lequal = tally(scene_lequal, decal_none, occluder_only);
-  Tally zs = tally(scene_zshift, decal_zshift, occluder_only);
-  Tally over = tally(scene_over, decal_over, occluder_only);
-  print_tally(engine.c_str(), "no offset", none);
-  print_tally(engine.c_str(), "no offset, GL_LEQUAL", lequal);
-  print_tally(engine.c_str(), "zshift", zs);
-  print_tally(engine.c_str(), "control: 100x zshift", over);
-  if (lequal.lost == 0) {
-    std::cerr << "FAIL " << engine << ": with no offset and GL_LEQUAL no decal pixel was lost\n";
-    return 1;
-  }
-  return verdict(engine.c_str(), none, zs, over);
+  Engine engine;
+  engine.name = "OSG D" + std::to_string(depth_bits);
+  engine.depth_test = "GL_LESS";
+  engine.show_base = [&](bool on) {
+    ground->setNodeMask(on ? ~0u : 0u);
+    occluder->setNodeMask(on ? ~0u : 0u);
+  };
+  engine.show_decal = [&](bool on) { decal_node->setNodeMask(on ? ~0u : 0u); };
+  engine.decal_projection = [&](Method m) {
+    decal_node->setMatrix(m == kNoOffset ? projection : m == kZshift ? zshift_projection : over_projection);
+  };
+  engine.decal_lequal = [&](bool on) {
+    if (on) decal_node->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::LEQUAL));
+    else decal_node->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::DEPTH);
+  };
+  engine.shoot = [&](Picture &out, const std::string &png) { return shoot(viewer, *image, out, png); };
+  return compare(engine, options.out_dir, "osg_d" + std::to_string(depth_bits) + "_");
 }
