@@ -70,25 +70,25 @@ static bool zshift_decal_projection(const scene::ICameraSceneNode &camera,
 }
 // [/quickstart-engines-irrlicht]
 
-// A rectangle as a mesh buffer of one colour (z mirrored: Irrlicht's world is left-handed).
-static void fill(scene::SMeshBuffer &buffer, const Rect &r, video::SColor color) {
-  float c[4][3];
-  corners(r, -1.0, c);
+// A rectangle (tiled when tile > 0) as a mesh buffer of one colour, z mirrored: Irrlicht's
+// world is left-handed.
+static void fill(scene::SMeshBuffer &buffer, const Rect &r, double tile, video::SColor color) {
+  std::vector<float> xyz = triangles(r, tile, -1.0);
   buffer.Vertices.clear();
   buffer.Indices.clear();
-  for (int i = 0; i < 4; i++)
-    buffer.Vertices.push_back(video::S3DVertex(c[i][0], c[i][1], c[i][2], 0, 1, 0, color, 0, 0));
-  const u16 order[6] = {0, 2, 1, 0, 3, 2};
-  for (u16 i : order) buffer.Indices.push_back(i);
+  for (size_t i = 0; i < xyz.size(); i += 3) {
+    buffer.Vertices.push_back(video::S3DVertex(xyz[i], xyz[i + 1], xyz[i + 2], 0, 1, 0, color, 0, 0));
+    buffer.Indices.push_back((u16)(i / 3));
+  }
   buffer.Material.Lighting = false;
   buffer.Material.BackfaceCulling = false;
   buffer.recalculateBoundingBox();
 }
 
-static scene::IMeshSceneNode *add_rectangle(scene::ISceneManager *smgr, const Rect &r,
+static scene::IMeshSceneNode *add_rectangle(scene::ISceneManager *smgr, const Rect &r, double tile,
                                             video::SColor color) {
   scene::SMeshBuffer *buffer = new scene::SMeshBuffer;
-  fill(*buffer, r, color);
+  fill(*buffer, r, tile, color);
   scene::SMesh *mesh = new scene::SMesh;
   mesh->addMeshBuffer(buffer);
   mesh->recalculateBoundingBox();
@@ -162,6 +162,7 @@ int main(int argc, char **argv) {
   params.Stencilbuffer = false;
   params.AntiAlias = 0;
   params.Vsync = false;
+  params.LoggingLevel = ELL_WARNING;
   params.Doublebuffer = false; // createScreenShot reads GL_FRONT, which Mesa under Xvfb leaves
                                // black after a swap: draw straight into it
   IrrlichtDevice *device = createDeviceEx(params);
@@ -169,7 +170,6 @@ int main(int argc, char **argv) {
     std::fprintf(stderr, "FAIL: Irrlicht could not open a %dx%d OpenGL window\n", kWidth, kHeight);
     return 1;
   }
-  device->getLogger()->setLogLevel(ELL_WARNING);
   scene::ISceneManager *smgr = device->getSceneManager();
 
   GLint depth_bits = 0, subpixel_bits = 0;
@@ -183,49 +183,28 @@ int main(int argc, char **argv) {
     return 1;
   }
 
-  scene::IMeshSceneNode *ground = add_rectangle(smgr, kGround, video::SColor(255, 0, 0, 255));
-  scene::IMeshSceneNode *occluder = add_rectangle(smgr, kOccluder, video::SColor(255, 255, 255, 0));
+  const video::SColor blue(255, 0, 0, 255);
+  scene::IMeshSceneNode *ground = add_rectangle(smgr, kGround, 0.0, blue);
+  scene::IMeshSceneNode *tiles = add_rectangle(smgr, kGround, kViews[1].ground_tile, blue);
+  scene::IMeshSceneNode *occluder = add_rectangle(smgr, kOccluder, 0.0, video::SColor(255, 255, 255, 0));
   scene::SMeshBuffer decal;
-  fill(decal, kDecal, video::SColor(255, 255, 0, 0));
+  fill(decal, kDecal, 0.0, video::SColor(255, 255, 0, 0));
 
-  scene::ICameraSceneNode *camera = smgr->addCameraSceneNode(
-      0, core::vector3df((f32)kEye[0], (f32)kEye[1], (f32)-kEye[2]),
-      core::vector3df((f32)kTarget[0], (f32)kTarget[1], (f32)-kTarget[2]));
+  scene::ICameraSceneNode *camera = smgr->addCameraSceneNode();
   camera->setFOV((f32)(kFovyDegrees * M_PI / 180.0));
   camera->setAspectRatio((f32)kWidth / kHeight);
   camera->setNearValue((f32)kNear);
   camera->setFarValue((f32)kFar);
-  camera->updateAbsolutePosition();
-  smgr->drawAll(); // the camera computes its view and projection matrices as it draws
-
-  // What the engine knows about its decal, from the camera's view matrix (left-handed: +z ahead).
-  double view[16];
-  for (int i = 0; i < 16; i++) view[i] = camera->getViewMatrix()[i];
-  float decal_corners[4][3];
-  corners(kDecal, -1.0, decal_corners);
-  DecalExtent ext = decal_extent(view, decal_corners, 1.0);
-  std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
-              ext.nearest, ext.farthest, ext.slope);
-
   const core::matrix4 projection = camera->getProjectionMatrix();
-  core::matrix4 zshift_projection;
-  if (!zshift_decal_projection(*camera, params.WindowSize, depth_bits, subpixel_bits, ext.nearest,
-                               ext.farthest, ext.slope, zshift_projection)) {
-    device->drop();
-    return 1;
-  }
-  std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
-
-  // The control: element 10 moved kControlScale times as far as zshift moves it.
-  core::matrix4 over_projection = zshift_projection;
-  over_projection[10] = projection[10] + (f32)kControlScale * (zshift_projection[10] - projection[10]);
+  core::matrix4 zshift_projection, over_projection;
 
   Frame frame = {device, camera, &decal, &projection, false};
   Engine engine;
-  engine.name = "Irrlicht D" + std::to_string(depth_bits);
   engine.depth_test = "GL_LEQUAL"; // SMaterial::ZBuffer's default, ECFN_LESSEQUAL
+  const View *current = &kViews[0];
   engine.show_base = [&](bool on) {
-    ground->setVisible(on);
+    ground->setVisible(on && current->ground_tile == 0.0);
+    tiles->setVisible(on && current->ground_tile != 0.0);
     occluder->setVisible(on);
   };
   engine.show_decal = [&](bool on) { frame.decal_shown = on; };
@@ -233,7 +212,45 @@ int main(int argc, char **argv) {
     frame.decal_projection = m == kNoOffset ? &projection : m == kZshift ? &zshift_projection : &over_projection;
   };
   engine.shoot = [&](Picture &out, const std::string &png) { return frame.shoot(out, png); };
-  int verdict = compare(engine, options.out_dir, "irrlicht_d" + std::to_string(depth_bits) + "_");
+
+  int failed = 0;
+  for (const View &view : kViews) {
+    current = &view;
+    Axes a = axes(view);
+    camera->setPosition(core::vector3df((f32)view.eye[0], (f32)view.eye[1], (f32)-view.eye[2]));
+    camera->setTarget(core::vector3df((f32)view.target[0], (f32)view.target[1], (f32)-view.target[2]));
+    camera->setUpVector(core::vector3df((f32)a.up[0], (f32)a.up[1], (f32)-a.up[2]));
+    camera->updateAbsolutePosition();
+    smgr->drawAll(); // the camera computes its view matrix as it draws
+    engine.name = "Irrlicht D" + std::to_string(depth_bits) + " " + view.name;
+    std::printf("%s: ", engine.name.c_str());
+
+    // What the engine knows about its decal, from the camera's view matrix (left-handed: +z ahead).
+    double view_matrix[16];
+    for (int i = 0; i < 16; i++) view_matrix[i] = camera->getViewMatrix()[i];
+    float decal_corners[4][3];
+    corners(kDecal, -1.0, decal_corners);
+    DecalExtent ext = decal_extent(view_matrix, decal_corners, 1.0);
+    if (!zshift_decal_projection(*camera, params.WindowSize, depth_bits, subpixel_bits, ext.nearest,
+                                 ext.farthest, ext.slope, zshift_projection)) {
+      device->drop();
+      return 1;
+    }
+    std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
+    double n = camera->getNearValue(), r = n / projection[0], t = n / projection[5];
+    // zshift's gap is for OpenGL's window depth w(d); Irrlicht's is 1/2 + w(d)/2, so the same
+    // window difference takes twice the change of w: at d, w(d) - w(d - g) = dw solves to
+    // g = d x/(1 + x) with x proportional to dw, so Irrlicht's gap has twice OpenGL's x.
+    double g = bleed_gap(-r, r, -t, t, n, camera->getFarValue(), depth_bits, subpixel_bits, ext);
+    double x = 2.0 * g / (ext.farthest - g);
+    engine.bleed_gap = ext.farthest * x / (1.0 + x);
+    engine.occluder_gap = occluder_gap(view);
+    // The control: element 10 moved kControlScale times as far as zshift moves it.
+    over_projection = zshift_projection;
+    over_projection[10] = projection[10] + (f32)kControlScale * (zshift_projection[10] - projection[10]);
+    failed |= compare(engine, options.out_dir,
+                      "irrlicht_d" + std::to_string(depth_bits) + "_" + view.name + "_");
+  }
   device->drop();
-  return verdict;
+  return failed;
 }

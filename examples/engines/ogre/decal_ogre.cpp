@@ -63,19 +63,16 @@ static bool zshift_decal_projection(const Ogre::Camera &camera, const Ogre::View
 }
 // [/quickstart-engines-ogre]
 
-// A rectangle of one colour, unlit.
+// A rectangle (tiled when tile > 0) of one colour, unlit.
 static Ogre::ManualObject *rectangle(Ogre::SceneManager *sm, const char *name, const Rect &r,
-                                     const Ogre::ColourValue &colour) {
-  float c[4][3];
-  corners(r, 1.0, c);
+                                     double tile, const Ogre::ColourValue &colour) {
+  std::vector<float> xyz = triangles(r, tile, 1.0);
   Ogre::ManualObject *obj = sm->createManualObject(name);
   obj->begin("zshift/unlit", Ogre::RenderOperation::OT_TRIANGLE_LIST);
-  for (int i = 0; i < 4; i++) {
-    obj->position(c[i][0], c[i][1], c[i][2]);
+  for (size_t i = 0; i < xyz.size(); i += 3) {
+    obj->position(xyz[i], xyz[i + 1], xyz[i + 2]);
     obj->colour(colour);
   }
-  obj->triangle(0, 1, 2);
-  obj->triangle(0, 2, 3);
   obj->end();
   obj->setCastShadows(false);
   sm->getRootSceneNode()->createChildSceneNode()->attachObject(obj);
@@ -141,10 +138,13 @@ int main(int argc, char **argv) {
 
     Ogre::SceneManager *sm = root.createSceneManager();
     const Ogre::uint32 kBase = 1, kDecalMask = 2;
-    Ogre::ManualObject *ground = rectangle(sm, "ground", kGround, Ogre::ColourValue(0, 0, 1));
-    Ogre::ManualObject *occluder = rectangle(sm, "occluder", kOccluder, Ogre::ColourValue(1, 1, 0));
-    Ogre::ManualObject *decal = rectangle(sm, "decal", kDecal, Ogre::ColourValue(1, 0, 0));
+    const Ogre::ColourValue blue(0, 0, 1);
+    Ogre::ManualObject *ground = rectangle(sm, "ground", kGround, 0.0, blue);
+    Ogre::ManualObject *tiles = rectangle(sm, "tiles", kGround, kViews[1].ground_tile, blue);
+    Ogre::ManualObject *occluder = rectangle(sm, "occluder", kOccluder, 0.0, Ogre::ColourValue(1, 1, 0));
+    Ogre::ManualObject *decal = rectangle(sm, "decal", kDecal, 0.0, Ogre::ColourValue(1, 0, 0));
     ground->setVisibilityFlags(kBase);
+    tiles->setVisibilityFlags(kBase);
     occluder->setVisibilityFlags(kBase);
     decal->setVisibilityFlags(kDecalMask);
 
@@ -154,9 +154,6 @@ int main(int argc, char **argv) {
     camera->setNearClipDistance((Ogre::Real)kNear);
     camera->setFarClipDistance((Ogre::Real)kFar);
     Ogre::SceneNode *eye = sm->getRootSceneNode()->createChildSceneNode();
-    eye->setPosition((Ogre::Real)kEye[0], (Ogre::Real)kEye[1], (Ogre::Real)kEye[2]);
-    eye->lookAt(Ogre::Vector3((Ogre::Real)kTarget[0], (Ogre::Real)kTarget[1], (Ogre::Real)kTarget[2]),
-                Ogre::Node::TS_WORLD);
     eye->attachObject(camera);
     Ogre::Camera *decal_camera = sm->createCamera("decal");
     decal_camera->setFOVy(camera->getFOVy());
@@ -178,31 +175,9 @@ int main(int argc, char **argv) {
     base_vp->setOverlaysEnabled(false);
     decal_vp->setOverlaysEnabled(false);
 
-    // What the engine knows about its decal, from the camera's view matrix.
-    root.renderOneFrame();
-    Ogre::Affine3 v = camera->getViewMatrix();
-    double view[16];
-    for (int col = 0; col < 4; col++)
-      for (int row = 0; row < 4; row++) view[4 * col + row] = row < 3 ? v[row][col] : (col == 3);
-    float decal_corners[4][3];
-    corners(kDecal, 1.0, decal_corners);
-    DecalExtent ext = decal_extent(view, decal_corners, -1.0);
-    std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
-                ext.nearest, ext.farthest, ext.slope);
-
     const Ogre::Matrix4 projection = camera->getProjectionMatrix();
-    Ogre::Matrix4 zshift_projection;
-    if (!zshift_decal_projection(*camera, *base_vp, depth_bits, subpixel_bits, ext.nearest,
-                                 ext.farthest, ext.slope, zshift_projection))
-      return 1;
-    std::printf("element 10: camera %.9g, zshift %.9g\n", projection[2][2], zshift_projection[2][2]);
-    // The control: element 10 moved kControlScale times as far as zshift moves it.
-    Ogre::Matrix4 over_projection = zshift_projection;
-    over_projection[2][2] =
-        projection[2][2] + (Ogre::Real)kControlScale * (zshift_projection[2][2] - projection[2][2]);
-
+    Ogre::Matrix4 zshift_projection, over_projection;
     Engine engine;
-    engine.name = "Ogre D" + std::to_string(depth_bits);
     engine.depth_test = "GL_LEQUAL"; // Ogre's default depth function, CMPF_LESS_EQUAL
     engine.show_base = [&](bool on) { base_vp->setVisibilityMask(on ? kBase : 0); };
     engine.show_decal = [&](bool on) { decal_vp->setVisibilityMask(on ? kDecalMask : 0); };
@@ -211,7 +186,43 @@ int main(int argc, char **argv) {
           true, m == kNoOffset ? projection : m == kZshift ? zshift_projection : over_projection);
     };
     engine.shoot = [&](Picture &out, const std::string &png) { return shoot(root, window, out, png); };
-    return compare(engine, options.out_dir, "ogre_d" + std::to_string(depth_bits) + "_");
+
+    int failed = 0;
+    for (const View &view : kViews) {
+      ground->setVisible(view.ground_tile == 0.0);
+      tiles->setVisible(view.ground_tile != 0.0);
+      Axes a = axes(view);
+      auto vec = [](const double v[3]) { return Ogre::Vector3((Ogre::Real)v[0], (Ogre::Real)v[1], (Ogre::Real)v[2]); };
+      const double back[3] = {-a.forward[0], -a.forward[1], -a.forward[2]}; // Ogre cameras look down -z
+      eye->setPosition(vec(view.eye));
+      eye->setOrientation(Ogre::Quaternion(vec(a.right), vec(a.up), vec(back)));
+      engine.name = "Ogre D" + std::to_string(depth_bits) + " " + view.name;
+      std::printf("%s: ", engine.name.c_str());
+
+      // What the engine knows about its decal, from the camera's view matrix.
+      Ogre::Affine3 v = camera->getViewMatrix();
+      double view_matrix[16];
+      for (int col = 0; col < 4; col++)
+        for (int row = 0; row < 4; row++) view_matrix[4 * col + row] = row < 3 ? v[row][col] : (col == 3);
+      float decal_corners[4][3];
+      corners(kDecal, 1.0, decal_corners);
+      DecalExtent ext = decal_extent(view_matrix, decal_corners, -1.0);
+      if (!zshift_decal_projection(*camera, *base_vp, depth_bits, subpixel_bits, ext.nearest,
+                                   ext.farthest, ext.slope, zshift_projection))
+        return 1;
+      std::printf("element 10: camera %.9g, zshift %.9g\n", projection[2][2], zshift_projection[2][2]);
+      Ogre::RealRect x = camera->getFrustumExtents();
+      engine.bleed_gap = bleed_gap(x.left, x.right, x.bottom, x.top, camera->getNearClipDistance(),
+                                   camera->getFarClipDistance(), depth_bits, subpixel_bits, ext);
+      engine.occluder_gap = occluder_gap(view);
+      // The control: element 10 moved kControlScale times as far as zshift moves it.
+      over_projection = zshift_projection;
+      over_projection[2][2] =
+          projection[2][2] + (Ogre::Real)kControlScale * (zshift_projection[2][2] - projection[2][2]);
+      failed |= compare(engine, options.out_dir,
+                        "ogre_d" + std::to_string(depth_bits) + "_" + view.name + "_");
+    }
+    return failed;
   } catch (const Ogre::Exception &e) {
     std::fprintf(stderr, "FAIL: Ogre: %s\n", e.getFullDescription().c_str());
     return 1;

@@ -61,18 +61,16 @@ static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const
 }
 // [/quickstart-engines-osg]
 
-static osg::Geode *rectangle(const Rect &r, const osg::Vec4 &color) {
-  float c[4][3];
-  corners(r, 1.0, c);
+static osg::Geode *rectangle(const Rect &r, double tile, const osg::Vec4 &color) {
+  std::vector<float> xyz = triangles(r, tile, 1.0);
   osg::ref_ptr<osg::Vec3Array> v = new osg::Vec3Array;
-  const int order[6] = {0, 1, 2, 0, 2, 3};
-  for (int i : order) v->push_back(osg::Vec3(c[i][0], c[i][1], c[i][2]));
+  for (size_t i = 0; i < xyz.size(); i += 3) v->push_back(osg::Vec3(xyz[i], xyz[i + 1], xyz[i + 2]));
   osg::ref_ptr<osg::Vec4Array> colors = new osg::Vec4Array;
   colors->push_back(color);
   osg::ref_ptr<osg::Geometry> g = new osg::Geometry;
   g->setVertexArray(v.get());
   g->setColorArray(colors.get(), osg::Array::BIND_OVERALL);
-  g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, 6));
+  g->addPrimitiveSet(new osg::DrawArrays(GL_TRIANGLES, 0, (GLsizei)v->size()));
   g->setCullingActive(false);
   g->setUseDisplayList(false); // draw callbacks then run at draw time, inside the FBO
   osg::Geode *geode = new osg::Geode;
@@ -148,9 +146,6 @@ int main(int argc, char **argv) {
   camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
   // [/quickstart-engines-osg-near-far]
   camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
-  camera->setViewMatrixAsLookAt(osg::Vec3d(kEye[0], kEye[1], kEye[2]),
-                                osg::Vec3d(kTarget[0], kTarget[1], kTarget[2]),
-                                osg::Vec3d(0, 1, 0));
   // Render to a framebuffer object with exactly the depth format asked for (a window system
   // picks its own: Mesa's GLX on Xvfb gives 32 bits), and let OSG read the colour back.
   const GLenum depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16
@@ -165,10 +160,12 @@ int main(int argc, char **argv) {
 
   osg::ref_ptr<osg::Group> root = new osg::Group;
   root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
-  osg::ref_ptr<osg::Geode> ground = rectangle(kGround, osg::Vec4(0, 0, 1, 1));
-  osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, osg::Vec4(1, 1, 0, 1));
-  osg::ref_ptr<osg::Geode> decal = rectangle(kDecal, osg::Vec4(1, 0, 0, 1));
+  osg::ref_ptr<osg::Geode> ground = rectangle(kGround, 0.0, osg::Vec4(0, 0, 1, 1));
+  osg::ref_ptr<osg::Geode> tiles = rectangle(kGround, kViews[1].ground_tile, osg::Vec4(0, 0, 1, 1));
+  osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, 0.0, osg::Vec4(1, 1, 0, 1));
+  osg::ref_ptr<osg::Geode> decal = rectangle(kDecal, 0.0, osg::Vec4(1, 0, 0, 1));
   root->addChild(ground.get());
+  root->addChild(tiles.get());
   root->addChild(occluder.get());
   // [quickstart-engines-osg-graph]
   // The decal's subgraph under its own projection, drawn after the ground (render bin 1 follows
@@ -201,29 +198,14 @@ int main(int argc, char **argv) {
   }
   int subpixel_bits = options.subpixel_bits == kAskGL ? probe->subpixel_bits : options.subpixel_bits;
 
-  // What the engine knows about its decal, from the camera's view matrix.
-  float decal_corners[4][3];
-  corners(kDecal, 1.0, decal_corners);
   const osg::Matrixd projection = camera->getProjectionMatrix();
-  DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
-  std::printf("D%d: decal at eye distance %.3f to %.3f, plane slope %.3f\n", depth_bits,
-              ext.nearest, ext.farthest, ext.slope);
-
-  osg::Matrixd zshift_projection;
-  if (!zshift_decal_projection(projection, *vp, depth_bits, subpixel_bits, ext.nearest,
-                               ext.farthest, ext.slope, zshift_projection))
-    return 1;
-  std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
-              (float)zshift_projection(2, 2));
-  // The control: element 10 moved kControlScale times as far as zshift moves it.
-  osg::Matrixd over_projection = zshift_projection;
-  over_projection(2, 2) = projection(2, 2) + kControlScale * (zshift_projection(2, 2) - projection(2, 2));
-
+  osg::Matrixd zshift_projection, over_projection;
   Engine engine;
-  engine.name = "OSG D" + std::to_string(depth_bits);
   engine.depth_test = "GL_LESS";
+  const View *current = &kViews[0];
   engine.show_base = [&](bool on) {
-    ground->setNodeMask(on ? ~0u : 0u);
+    ground->setNodeMask(on && current->ground_tile == 0.0 ? ~0u : 0u);
+    tiles->setNodeMask(on && current->ground_tile != 0.0 ? ~0u : 0u);
     occluder->setNodeMask(on ? ~0u : 0u);
   };
   engine.show_decal = [&](bool on) { decal_node->setNodeMask(on ? ~0u : 0u); };
@@ -235,5 +217,34 @@ int main(int argc, char **argv) {
     else decal_node->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::DEPTH);
   };
   engine.shoot = [&](Picture &out, const std::string &png) { return shoot(viewer, *image, out, png); };
-  return compare(engine, options.out_dir, "osg_d" + std::to_string(depth_bits) + "_");
+
+  int failed = 0;
+  for (const View &view : kViews) {
+    current = &view;
+    Axes a = axes(view);
+    camera->setViewMatrixAsLookAt(osg::Vec3d(view.eye[0], view.eye[1], view.eye[2]),
+                                  osg::Vec3d(view.target[0], view.target[1], view.target[2]),
+                                  osg::Vec3d(a.up[0], a.up[1], a.up[2]));
+    engine.name = "OSG D" + std::to_string(depth_bits) + " " + view.name;
+    std::printf("%s: ", engine.name.c_str());
+    // What the engine knows about its decal, from the camera's view matrix.
+    float decal_corners[4][3];
+    corners(kDecal, 1.0, decal_corners);
+    DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
+    if (!zshift_decal_projection(projection, *vp, depth_bits, subpixel_bits, ext.nearest,
+                                 ext.farthest, ext.slope, zshift_projection))
+      return 1;
+    std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
+                (float)zshift_projection(2, 2));
+    double l, r, b, t, n, f;
+    projection.getFrustum(l, r, b, t, n, f);
+    engine.bleed_gap = bleed_gap(l, r, b, t, n, f, depth_bits, subpixel_bits, ext);
+    engine.occluder_gap = occluder_gap(view);
+    // The control: element 10 moved kControlScale times as far as zshift moves it.
+    over_projection = zshift_projection;
+    over_projection(2, 2) = projection(2, 2) + kControlScale * (zshift_projection(2, 2) - projection(2, 2));
+    failed |= compare(engine, options.out_dir,
+                      "osg_d" + std::to_string(depth_bits) + "_" + view.name + "_");
+  }
+  return failed;
 }
