@@ -4,11 +4,10 @@
 use std::panic::UnwindSafe;
 
 use super::{
-    checked, checked_array, clip_of, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-    ZSHIFT_ERR_NULL_POINTER,
+    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftStatus,
+    ZSHIFT_CLIP_NEG_ONE_TO_ONE,
 };
 use crate::error::Result;
-use crate::precision::DepthFormat;
 use crate::projection::Frustum;
 
 /// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
@@ -96,7 +95,7 @@ pub struct ZshiftRecommendation {
 
 impl ZshiftRecommendation {
     /// The C record of a recommendation: its offsets, then the error terms it was built from.
-    fn new(
+    pub(super) fn new(
         epsilon: f64,
         ndc_offset: f64,
         window_offset: f64,
@@ -145,7 +144,7 @@ fn checked_record(
 
 fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
     use crate::recommend::{Scene, Snapping};
-    let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
+    let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
         b if b >= 0 => Snapping::SubpixelBits(b as u32),
@@ -184,7 +183,7 @@ pub extern "C" fn zshift_recommend(
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_record(out, move || {
         let r = crate::recommend::recommend(&to_model(&s)?)?;
@@ -213,7 +212,7 @@ pub extern "C" fn zshift_recommend_matrix(
     out: *mut f32,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_array(out, move || {
         let model = to_model(&s)?;
@@ -247,11 +246,11 @@ pub extern "C" fn zshift_recommend_matrix(
 #[no_mangle]
 pub extern "C" fn zshift_recommend_clip(
     scene: *const ZshiftScene,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_record(out, move || {
         let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
@@ -283,11 +282,11 @@ pub extern "C" fn zshift_recommend_clip(
 #[no_mangle]
 pub extern "C" fn zshift_recommend_clip_matrix(
     scene: *const ZshiftScene,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_array(out, move || {
         Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
