@@ -162,29 +162,33 @@ inline double occluder_gap(const View &v) {
   return gap;
 }
 
-// zshift's bleed gap for the decal (ZshiftRecommendation::bleed_gap): occluders nearer than the
-// ground by at least this eye depth are never overdrawn. The scene is the one the engine's
-// integration function builds; NaN (with the reason printed) if zshift refuses it.
-inline double bleed_gap(double l, double r, double b, double t, double n, double f, int depth_bits,
-                        int subpixel_bits, const DecalExtent &e) {
-  ZshiftScene scene = {};
-  scene.l = l;
-  scene.r = r;
-  scene.b = b;
-  scene.t = t;
-  scene.n = n;
-  scene.f = f;
-  scene.viewport_width = kWidth;
-  scene.viewport_height = kHeight;
-  scene.depth_format = depth_bits == 16 ? 0x81A5 : depth_bits == 24 ? 0x81A6 : 0x81A7;
-  scene.decal_near = e.nearest;
-  scene.decal_far = e.farthest;
-  scene.slope = e.slope;
-  scene.subpixel_bits = subpixel_bits;
+// [quickstart-engines-decal]
+// What the engine knows about its decal, for zshift: the viewport, the depth buffer and the
+// rasterizer (glGetIntegerv(GL_DEPTH_BITS), glGetIntegerv(GL_SUBPIXEL_BITS), once), and the
+// decal's nearest and farthest eye distance and plane tilt (decal_extent, from the view matrix).
+inline ZshiftDecal describe_decal(int depth_bits, int subpixel_bits, const DecalExtent &e) {
+  ZshiftDecal decal = {};
+  decal.viewport_width = kWidth;
+  decal.viewport_height = kHeight;
+  decal.format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16
+                 : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
+                                    : ZSHIFT_FORMAT_UNORM32;
+  decal.subpixel_bits = subpixel_bits;
+  decal.decal_near = e.nearest;
+  decal.decal_far = e.farthest;
+  decal.slope = e.slope;  // |dz/dx| + |dz/dy| of its plane in eye space
+  decal.exact_depth = 0;  // its corners are not the ground's
+  return decal;
+}
+// [/quickstart-engines-decal]
+
+// zshift's bleed gap for the decal drawn over a base drawn with `m` (column-major, as the GPU
+// gets it): occluders nearer than the ground by at least this eye depth are never overdrawn
+// (ZshiftRecommendation::bleed_gap). NaN, with zshift's reason printed, if zshift refuses.
+inline double bleed_gap(const float m[16], const ZshiftDecal &decal) {
   ZshiftRecommendation rec;
-  ZshiftStatus s = zshift_recommend(&scene, &rec);
-  if (s != ZSHIFT_OK) {
-    std::fprintf(stderr, "zshift_recommend: %s\n", zshift_status_message(s));
+  if (zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &rec) != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_recommend_for_matrix: %s\n", zshift_last_error());
     return NAN;
   }
   return rec.bleed_gap;

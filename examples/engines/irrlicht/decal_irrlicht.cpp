@@ -26,46 +26,19 @@ using namespace irr;
 using namespace decal_scene;
 
 // [quickstart-engines-irrlicht]
-// zshift inside Irrlicht: the decal pass's projection. Irrlicht's OpenGL driver loads the
-// camera's Direct3D-style matrix as is (eye z forward, NDC depth f/(f-n) (1 - n/z) in [0, 1],
-// which glDepthRange maps to window depth [1/2, 1]): the window depth is 1/2 + w/2 for
-// OpenGL's w, so an NDC offset c on element 10 moves window depth by c/2, as zshift's
-// `ndc_offset` does for a glFrustum matrix, and the rounding terms zshift bounds are no larger.
-// The decal matrix is the camera's with element 10 lowered by zshift's `ndc_offset`, rounded
-// down so the offset is not lost to float rounding.
-static bool zshift_decal_projection(const scene::ICameraSceneNode &camera,
-                                    const core::dimension2du &viewport, int depth_bits,
-                                    int subpixel_bits, double decal_near, double decal_far,
-                                    double slope, core::matrix4 &decal_projection) {
-  const core::matrix4 &m = camera.getProjectionMatrix();
-  ZshiftScene scene = {};
-  scene.n = camera.getNearValue();
-  scene.f = camera.getFarValue();
-  scene.r = scene.n / m[0]; // a centred frustum: m[0] = 2n/(r-l), m[5] = 2n/(t-b)
-  scene.l = -scene.r;
-  scene.t = scene.n / m[5];
-  scene.b = -scene.t;
-  scene.viewport_width = viewport.Width;
-  scene.viewport_height = viewport.Height;
-  scene.depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16 // glGetIntegerv(GL_DEPTH_BITS)
-                       : depth_bits == 24 ? GL_DEPTH_COMPONENT24
-                                          : GL_DEPTH_COMPONENT32;
-  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
-  scene.decal_far = decal_far;
-  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
-  scene.exact_depth = 0;         // its corners are not the ground's
-  scene.subpixel_bits = subpixel_bits;
-  ZshiftRecommendation rec;
-  ZshiftStatus s = zshift_recommend(&scene, &rec);
-  if (s != ZSHIFT_OK) {
-    std::fprintf(stderr, "zshift_recommend: %s\n", zshift_status_message(s));
+// zshift inside Irrlicht: the decal pass's projection, from the camera's own. Irrlicht's OpenGL
+// driver loads the camera's Direct3D-style left-handed matrix as it is (w = +z, depth in
+// [0, 1]); under OpenGL's [-1, 1] clip that is a frustum whose near plane lies at nf/(2f - n),
+// and zshift reads it so from the matrix. Only element 10 changes.
+static bool zshift_decal_projection(const scene::ICameraSceneNode &camera, const ZshiftDecal &decal,
+                                    core::matrix4 &decal_projection) {
+  float out[16]; // column-major: irr::core::matrix4's memory order too
+  const float *m = camera.getProjectionMatrix().pointer();
+  if (zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out) != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_decal_matrix: %s\n", zshift_last_error());
     return false;
   }
-  double lowered = (double)m[10] - rec.ndc_offset;
-  float element = (float)lowered;
-  if ((double)element > lowered) element = std::nextafter(element, -INFINITY);
-  decal_projection = m;
-  decal_projection[10] = element;
+  decal_projection.setM(out);
   return true;
 }
 // [/quickstart-engines-irrlicht]
@@ -231,19 +204,13 @@ int main(int argc, char **argv) {
     float decal_corners[4][3];
     corners(kDecal, -1.0, decal_corners);
     DecalExtent ext = decal_extent(view_matrix, decal_corners, 1.0);
-    if (!zshift_decal_projection(*camera, params.WindowSize, depth_bits, subpixel_bits, ext.nearest,
-                                 ext.farthest, ext.slope, zshift_projection)) {
+    ZshiftDecal decal_info = describe_decal(depth_bits, subpixel_bits, ext);
+    if (!zshift_decal_projection(*camera, decal_info, zshift_projection)) {
       device->drop();
       return 1;
     }
     std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
-    double n = camera->getNearValue(), r = n / projection[0], t = n / projection[5];
-    // zshift's gap is for OpenGL's window depth w(d); Irrlicht's is 1/2 + w(d)/2, so the same
-    // window difference takes twice the change of w: at d, w(d) - w(d - g) = dw solves to
-    // g = d x/(1 + x) with x proportional to dw, so Irrlicht's gap has twice OpenGL's x.
-    double g = bleed_gap(-r, r, -t, t, n, camera->getFarValue(), depth_bits, subpixel_bits, ext);
-    double x = 2.0 * g / (ext.farthest - g);
-    engine.bleed_gap = ext.farthest * x / (1.0 + x);
+    engine.bleed_gap = bleed_gap(projection.pointer(), decal_info);
     engine.occluder_gap = occluder_gap(view);
     // The control: element 10 moved kControlScale times as far as zshift moves it.
     over_projection = zshift_projection;

@@ -25,40 +25,20 @@
 using namespace decal_scene;
 
 // [quickstart-engines-ogre]
-// zshift inside Ogre: the decal camera's projection. `camera` is the main camera (any
-// perspective frustum, OpenGL render system); the result moves the decal toward the camera by
-// just enough to beat the rasterizer's rounding, for the decal's eye distances and plane tilt,
-// the viewport and the depth buffer. Give it to a second camera at the same place:
+// zshift inside Ogre: the decal camera's projection, from the main camera's own (OpenGL render
+// system): only element 10 changes, by just enough to beat the rasterizer's rounding for
+// `decal`. Give it to a second camera at the same place:
 // decal_camera->setCustomProjectionMatrix(true, decal_projection).
-static bool zshift_decal_projection(const Ogre::Camera &camera, const Ogre::Viewport &vp,
-                                    int depth_bits, int subpixel_bits, double decal_near,
-                                    double decal_far, double slope,
+static bool zshift_decal_projection(const Ogre::Camera &camera, const ZshiftDecal &decal,
                                     Ogre::Matrix4 &decal_projection) {
-  Ogre::RealRect extents = camera.getFrustumExtents();
-  ZshiftScene scene = {};
-  scene.l = extents.left;
-  scene.r = extents.right;
-  scene.b = extents.bottom;
-  scene.t = extents.top;
-  scene.n = camera.getNearClipDistance();
-  scene.f = camera.getFarClipDistance();
-  scene.viewport_width = (uint32_t)vp.getActualWidth();
-  scene.viewport_height = (uint32_t)vp.getActualHeight();
-  scene.depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16 // glGetIntegerv(GL_DEPTH_BITS)
-                       : depth_bits == 24 ? GL_DEPTH_COMPONENT24
-                                          : GL_DEPTH_COMPONENT32;
-  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
-  scene.decal_far = decal_far;
-  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
-  scene.exact_depth = 0;         // its corners are not the ground's
-  scene.subpixel_bits = subpixel_bits;
-  float m[16]; // column-major; Ogre::Matrix4 is row-major: transpose
-  ZshiftStatus s = zshift_recommend_matrix(&scene, m);
-  if (s != ZSHIFT_OK) {
-    std::fprintf(stderr, "zshift_recommend_matrix: %s\n", zshift_status_message(s));
+  float m[16], out[16]; // column-major; Ogre::Matrix4 is row-major
+  const Ogre::Matrix4 &p = camera.getProjectionMatrix();
+  for (int i = 0; i < 16; i++) m[i] = p[i % 4][i / 4];
+  if (zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out) != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_decal_matrix: %s\n", zshift_last_error());
     return false;
   }
-  decal_projection = Ogre::Matrix4(m).transpose();
+  decal_projection = Ogre::Matrix4(out).transpose();
   return true;
 }
 // [/quickstart-engines-ogre]
@@ -207,13 +187,12 @@ int main(int argc, char **argv) {
       float decal_corners[4][3];
       corners(kDecal, 1.0, decal_corners);
       DecalExtent ext = decal_extent(view_matrix, decal_corners, -1.0);
-      if (!zshift_decal_projection(*camera, *base_vp, depth_bits, subpixel_bits, ext.nearest,
-                                   ext.farthest, ext.slope, zshift_projection))
-        return 1;
+      ZshiftDecal decal_info = describe_decal(depth_bits, subpixel_bits, ext);
+      if (!zshift_decal_projection(*camera, decal_info, zshift_projection)) return 1;
       std::printf("element 10: camera %.9g, zshift %.9g\n", projection[2][2], zshift_projection[2][2]);
-      Ogre::RealRect x = camera->getFrustumExtents();
-      engine.bleed_gap = bleed_gap(x.left, x.right, x.bottom, x.top, camera->getNearClipDistance(),
-                                   camera->getFarClipDistance(), depth_bits, subpixel_bits, ext);
+      float m[16];
+      for (int i = 0; i < 16; i++) m[i] = projection[i % 4][i / 4];
+      engine.bleed_gap = bleed_gap(m, decal_info);
       engine.occluder_gap = occluder_gap(view);
       // The control: element 10 moved kControlScale times as far as zshift moves it.
       over_projection = zshift_projection;

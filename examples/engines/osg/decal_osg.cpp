@@ -27,36 +27,19 @@
 using namespace decal_scene;
 
 // [quickstart-engines-osg]
-// zshift inside OpenSceneGraph: the decal subgraph's projection. `camera_projection` is the
-// camera's own (any glFrustum/gluPerspective-style matrix); the result moves the decal toward
-// the camera by just enough to beat the rasterizer's rounding, for the decal's eye distances
-// and plane tilt, the viewport and the depth buffer. Put the decal under
-// `osg::Projection(decal_projection)` and draw it after the surface it lies on.
-static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const osg::Viewport &vp,
-                                    int depth_bits, int subpixel_bits, double decal_near,
-                                    double decal_far, double slope, osg::Matrixd &decal_projection) {
-  ZshiftScene scene = {};
-  if (!camera_projection.getFrustum(scene.l, scene.r, scene.b, scene.t, scene.n, scene.f)) {
-    std::cerr << "zshift: the camera's projection is not a perspective frustum\n";
+// zshift inside OpenSceneGraph: the decal subgraph's projection, from the camera's own (the one
+// the ground is drawn with): only element 10 changes, by just enough to beat the rasterizer's
+// rounding for `decal`. Put the decal under osg::Projection(decal_projection), drawn after the
+// surface it lies on.
+static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const ZshiftDecal &decal,
+                                    osg::Matrixd &decal_projection) {
+  float m[16], out[16]; // column-major: osg::Matrix's memory order too
+  for (int i = 0; i < 16; i++) m[i] = (float)camera_projection.ptr()[i]; // what GL gets
+  if (zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out) != ZSHIFT_OK) {
+    std::cerr << "zshift_decal_matrix: " << zshift_last_error() << "\n";
     return false;
   }
-  scene.viewport_width = (uint32_t)vp.width();
-  scene.viewport_height = (uint32_t)vp.height();
-  scene.depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16 // glGetIntegerv(GL_DEPTH_BITS)
-                       : depth_bits == 24 ? GL_DEPTH_COMPONENT24
-                                          : GL_DEPTH_COMPONENT32;
-  scene.decal_near = decal_near; // nearest and farthest eye distance of the decal
-  scene.decal_far = decal_far;
-  scene.slope = slope;           // |dz/dx| + |dz/dy| of its plane in eye space
-  scene.exact_depth = 0;         // its corners are not the ground's
-  scene.subpixel_bits = subpixel_bits;
-  float m[16]; // column-major: the memory order of osg::Matrix too
-  ZshiftStatus s = zshift_recommend_matrix(&scene, m);
-  if (s != ZSHIFT_OK) {
-    std::cerr << "zshift_recommend_matrix: " << zshift_status_message(s) << "\n";
-    return false;
-  }
-  decal_projection.set(m);
+  decal_projection.set(out);
   return true;
 }
 // [/quickstart-engines-osg]
@@ -231,14 +214,13 @@ int main(int argc, char **argv) {
     float decal_corners[4][3];
     corners(kDecal, 1.0, decal_corners);
     DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
-    if (!zshift_decal_projection(projection, *vp, depth_bits, subpixel_bits, ext.nearest,
-                                 ext.farthest, ext.slope, zshift_projection))
-      return 1;
+    ZshiftDecal decal = describe_decal(depth_bits, subpixel_bits, ext);
+    if (!zshift_decal_projection(projection, decal, zshift_projection)) return 1;
     std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
                 (float)zshift_projection(2, 2));
-    double l, r, b, t, n, f;
-    projection.getFrustum(l, r, b, t, n, f);
-    engine.bleed_gap = bleed_gap(l, r, b, t, n, f, depth_bits, subpixel_bits, ext);
+    float m[16];
+    for (int i = 0; i < 16; i++) m[i] = (float)projection.ptr()[i];
+    engine.bleed_gap = bleed_gap(m, decal);
     engine.occluder_gap = occluder_gap(view);
     // The control: element 10 moved kControlScale times as far as zshift moves it.
     over_projection = zshift_projection;
