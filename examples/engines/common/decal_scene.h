@@ -1,9 +1,10 @@
 // The decal scene every engine example draws, and the check of its pixels.
 //
-// A large ground plane (blue) seen at a grazing angle from eye height, a decal (red) lying on it,
-// and a thin slab (yellow) floating a few centimetres above part of the decal. World space is
-// y-up and right-handed (OpenGL's); an engine with a left-handed world (Irrlicht) mirrors z.
-// The depth buffer has 24 bits, the depth test is the engine's default (GL_LESS or GL_LEQUAL).
+// A large ground plane (blue), a decal (red) lying on it, and a thin slab (yellow) floating a few
+// centimetres above part of the decal, seen from the views in kViews. World space is y-up and
+// right-handed (OpenGL's); an engine with a left-handed world (Irrlicht) mirrors z. The depth
+// buffer is the one asked for where the program chooses it (OSG's framebuffer object: 24 or 16
+// bits), else the window's; the depth test is the engine's default (GL_LESS or GL_LEQUAL).
 //
 // Each engine renders these frames per method (`compare` below) and reads each back with its
 // own screenshot call:
@@ -50,7 +51,6 @@ const View kViews[] = {
     // off to the side, looking across the decal, banked 20 degrees: the plane tilts in x and y
     {"banked-tiled", {-6.0, 2.0, 0.0}, {2.0, 0.0, -30.0}, 20.0, 20.0},
 };
-const int kViewCount = (int)(sizeof kViews / sizeof kViews[0]);
 
 // The camera's axes in world space: `forward` along the line of sight, `up` world up rolled by
 // the view's roll, `right` = forward x up.
