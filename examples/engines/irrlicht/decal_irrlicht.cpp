@@ -2,10 +2,11 @@
 //
 // The scene manager draws the ground and the occluder with the camera's own projection; the
 // decal pass sets zshift's decal matrix with IVideoDriver::setTransform(ETS_PROJECTION, ...)
-// and draws the decal. The program renders the scene (README, "Inside real engines") with no
-// offset and with zshift's matrix, reads every frame back with IVideoDriver::createScreenShot,
-// saves the pictures and exits nonzero unless the decal z-fights without an offset and loses
-// no pixel (and bleeds through no occluder) with zshift's.
+// and draws the decal. For each view of the scene (README, "Inside real engines") the program
+// renders with no offset and with zshift's matrix, reads every frame back with
+// IVideoDriver::createScreenShot, saves the pictures and exits nonzero unless the decal
+// z-fights without an offset and loses no pixel (and bleeds through no occluder beyond zshift's
+// bleed gap) with zshift's.
 //
 // Usage: decal_irrlicht [--subpixel-bits B] [OUTPUT_DIR]   (Irrlicht opens an X11 window: run
 // it under xvfb-run)

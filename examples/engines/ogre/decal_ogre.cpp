@@ -3,10 +3,11 @@
 // Two viewports share one render window: the first, cleared, shows the ground and the occluder
 // through the main camera; the second, not cleared and drawn after it, shows only the decal
 // through a camera at the same place whose custom projection matrix is zshift's decal matrix,
-// built from the main camera's. The program renders the scene (README, "Inside real engines")
-// with no offset and with zshift's matrix, reads every frame back with
+// built from the main camera's. For each view of the scene (README, "Inside real engines") the
+// program renders with no offset and with zshift's matrix, reads every frame back with
 // RenderTarget::copyContentsToMemory, saves the pictures and exits nonzero unless the decal
-// z-fights without an offset and loses no pixel (and bleeds through no occluder) with zshift's.
+// z-fights without an offset and loses no pixel (and bleeds through no occluder beyond
+// zshift's bleed gap) with zshift's.
 //
 // Usage: decal_ogre [--subpixel-bits B] [OUTPUT_DIR]   (Ogre's OpenGL render system opens an
 // X11 window: run it under xvfb-run)

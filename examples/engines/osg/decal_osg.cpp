@@ -2,12 +2,14 @@
 //
 // The ground and the occluder are drawn with the camera's own projection; the decal subgraph
 // sits under an osg::Projection node whose matrix is zshift's decal matrix, built from the
-// camera's projection. The program renders the scene (README, "Inside real engines") with no
-// offset and with zshift's matrix, reads every frame back with osgViewer's
-// ScreenCaptureHandler, saves the pictures and exits nonzero unless the decal z-fights without
-// an offset and loses no pixel (and bleeds through no occluder) with zshift's.
+// camera's projection. For each view of the scene (README, "Inside real engines") the program
+// renders with no offset and with zshift's matrix into a framebuffer object with the depth
+// format asked for, reads every frame back through the camera-attached osg::Image, saves the
+// pictures and exits nonzero unless the decal z-fights without an offset and loses no pixel
+// (and bleeds through no occluder beyond zshift's bleed gap) with zshift's.
 //
-// Usage: decal_osg [OUTPUT_DIR]   (needs an X display: run it under xvfb-run)
+// Usage: decal_osg [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]   (OSG opens an X11
+// window: run it under xvfb-run)
 #include <osg/Depth>
 #include <osg/Geode>
 #include <osg/Geometry>
