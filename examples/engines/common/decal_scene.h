@@ -11,7 +11,7 @@
 //   scene     base, occluder, then the decal (the picture a user sees)
 //   decal     the decal alone (where its pixels are: the reference footprint)
 //   occluder  base and occluder without the decal, once (where the occluder covers)
-// and, as a control, the scene with kControlScale times zshift's offset, which must bleed.
+// and, as a control, the scene with the decal lifted by twice the occluder's gap, which must bleed.
 // A decal pixel is *lost* when it lies in the decal's footprint, outside the occluder, and the
 // scene does not show it; it *bleeds* when the occluder covers it and the scene shows the decal.
 #ifndef ZSHIFT_ENGINES_DECAL_SCENE_H
@@ -162,17 +162,20 @@ inline double occluder_gap(const View &v) {
   return gap;
 }
 
+// The format of an unsigned normalized depth buffer of `bits` bits (16, 24 or 32).
+inline ZshiftFormat unorm_format(int bits) {
+  return bits == 16 ? ZSHIFT_FORMAT_UNORM16 : bits == 24 ? ZSHIFT_FORMAT_UNORM24 : ZSHIFT_FORMAT_UNORM32;
+}
+
 // [quickstart-engines-decal]
-// What the engine knows about its decal, for zshift: the viewport, the depth buffer and the
-// rasterizer (glGetIntegerv(GL_DEPTH_BITS), glGetIntegerv(GL_SUBPIXEL_BITS), once), and the
-// decal's nearest and farthest eye distance and plane tilt (decal_extent, from the view matrix).
-inline ZshiftDecal describe_decal(int depth_bits, int subpixel_bits, const DecalExtent &e) {
+// What the engine knows about its decal, for zshift: the viewport, the depth buffer's format and
+// the rasterizer's glGetIntegerv(GL_SUBPIXEL_BITS) (queried once), and the decal's nearest and
+// farthest eye distance and plane tilt (decal_extent, from the view matrix).
+inline ZshiftDecal describe_decal(ZshiftFormat format, int subpixel_bits, const DecalExtent &e) {
   ZshiftDecal decal = {};
   decal.viewport_width = kWidth;
   decal.viewport_height = kHeight;
-  decal.format = depth_bits == 16   ? ZSHIFT_FORMAT_UNORM16
-                 : depth_bits == 24 ? ZSHIFT_FORMAT_UNORM24
-                                    : ZSHIFT_FORMAT_UNORM32;
+  decal.format = format;  // e.g. ZSHIFT_FORMAT_UNORM24 for GL_DEPTH_COMPONENT24
   decal.subpixel_bits = subpixel_bits;
   decal.decal_near = e.nearest;
   decal.decal_far = e.farthest;
@@ -183,15 +186,23 @@ inline ZshiftDecal describe_decal(int depth_bits, int subpixel_bits, const Decal
 // [/quickstart-engines-decal]
 
 // zshift's bleed gap for the decal drawn over a base drawn with `m` (column-major, as the GPU
-// gets it): occluders nearer than the ground by at least this eye depth are never overdrawn
-// (ZshiftRecommendation::bleed_gap). NaN, with zshift's reason printed, if zshift refuses.
-inline double bleed_gap(const float m[16], const ZshiftDecal &decal) {
+// gets it) under `clip`: occluders nearer than the ground by at least this eye depth are never
+// overdrawn (ZshiftRecommendation::bleed_gap). NaN, with zshift's reason printed, if zshift
+// refuses.
+inline double bleed_gap(const float m[16], ZshiftClip clip, const ZshiftDecal &decal) {
   ZshiftRecommendation rec;
-  if (zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &rec) != ZSHIFT_OK) {
+  if (zshift_recommend_for_matrix(m, clip, &decal, &rec) != ZSHIFT_OK) {
     std::fprintf(stderr, "zshift_recommend_for_matrix: %s\n", zshift_last_error());
     return NAN;
   }
   return rec.bleed_gap;
+}
+
+// Prints the elements in which zshift's matrix differs from the engine's (one, 10 or 14).
+inline void print_changed(const float engine[16], const float zshift[16]) {
+  for (int i = 0; i < 16; i++)
+    if (engine[i] != zshift[i])
+      std::printf("element %d: camera %.9g, zshift %.9g\n", i, engine[i], zshift[i]);
 }
 
 // An RGBA8 picture, rows bottom-up as glReadPixels returns them.
@@ -243,13 +254,22 @@ inline void print_tally(const char *engine, const char *method, const Tally &t) 
               engine, method, t.footprint, t.lost, t.covered, t.bled, t.stray);
 }
 
-// How many times zshift's offset the control draws with: enough to push the decal through
-// the occluder, which proves the bleed check can fail in this scene.
-const double kControlScale = 100.0;
+// The control's matrix: the engine's `m` with the decal lifted toward the camera by twice the
+// occluder's gap at the decal's nearest point (zshift_offset_matrix; the lift grows with
+// distance, under every convention), so that it shows through the occluder: the bleed check
+// can fail in this scene. False, with zshift's reason printed, if zshift refuses.
+inline bool control_matrix(const float m[16], ZshiftClip clip, double gap, const DecalExtent &e,
+                           float out[16]) {
+  if (zshift_offset_matrix(m, clip, 2.0 * gap, e.nearest, out) != ZSHIFT_OK) {
+    std::fprintf(stderr, "zshift_offset_matrix: %s\n", zshift_last_error());
+    return false;
+  }
+  return true;
+}
 
 // The verdict: the pictures are sound, the scene z-fights without an offset, zshift's matrix
-// loses no decal pixel and lets none bleed through the occluder, and the control (`over`,
-// kControlScale times zshift's offset) does bleed. Prints why not.
+// loses no decal pixel and lets none bleed through the occluder, and the control (`over`, the
+// decal lifted by twice the occluder's gap) does bleed. Prints why not.
 // When the occluder lies within zshift's bleed gap (`occluder_gap` < `bleed_gap`: a depth buffer
 // too coarse to keep the occluder in front of a lifted decal), the contract allows bleeding and
 // neither bleed check applies; the counts are printed all the same.
@@ -284,18 +304,20 @@ inline int verdict(const char *engine, const Tally &none, const Tally &zshift, c
     failed = 1;
   }
   if (bleed_checked && over.bled == 0) {
-    std::fprintf(stderr, "FAIL %s: even %g times zshift's offset does not bleed through the "
-                 "occluder: the bleed check proves nothing\n", engine, kControlScale);
+    std::fprintf(stderr, "FAIL %s: even a decal lifted by twice the occluder's gap does not bleed "
+                 "through it: the bleed check proves nothing\n", engine);
     failed = 1;
   }
   if (!failed) std::printf("%s: ok\n", engine);
   return failed;
 }
 
-// The command line of every engine example: [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR].
+// The command line of every engine example:
+// [--depth 16|24|32 | --reversed] [--subpixel-bits B] [OUTPUT_DIR].
 const int kAskGL = -2; // subpixel_bits: what glGetIntegerv(GL_SUBPIXEL_BITS) reports
 struct Options {
   int depth_bits = kDepthBits; // for engines that let the program choose the depth buffer
+  bool reversed = false;       // reversed Z: [0, 1] clip depth, GL_GREATER, float depth buffer
   int subpixel_bits = kAskGL;  // -1 is ZSHIFT_SUBPIXEL_UNSNAPPED
   std::string out_dir;         // where the pictures go; none when empty
 };
@@ -306,9 +328,11 @@ inline bool parse_options(int argc, char **argv, Options &o) {
     std::string a = argv[i];
     if (a == "--depth" && i + 1 < argc) o.depth_bits = std::atoi(argv[++i]);
     else if (a == "--subpixel-bits" && i + 1 < argc) o.subpixel_bits = std::atoi(argv[++i]);
+    else if (a == "--reversed") o.reversed = true;
     else if (a.rfind("--", 0) != 0) o.out_dir = a;
     else {
-      std::fprintf(stderr, "usage: %s [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--depth 16|24|32 | --reversed] [--subpixel-bits B] [OUTPUT_DIR]\n",
+                   argv[0]);
       return false;
     }
   }
@@ -331,7 +355,7 @@ inline bool known_depth_bits(int bits) {
   return false;
 }
 
-// The decal's projection in a frame: the camera's own, zshift's, or the control.
+// The decal's projection in a frame: the camera's own, zshift's, or the control's.
 enum Method { kNoOffset, kZshift, kControl };
 
 // What `compare` needs from an engine: each a few lines of the engine's own API.
@@ -339,18 +363,19 @@ struct Engine {
   std::string name;                  // e.g. "OSG D24 grazing"
   double occluder_gap = 0.0;         // occluder_gap(view)
   double bleed_gap = 0.0;            // zshift's, for this view's decal
-  const char *depth_test;            // the engine's default: "GL_LESS" or "GL_LEQUAL"
+  const char *depth_test;            // the engine's: "GL_LESS", "GL_LEQUAL" or "GL_GREATER"
+  const char *ties_test = "";        // the same with ties to the decal, for decal_ties
   std::function<void(bool)> show_base;  // the ground and the occluder
   std::function<void(bool)> show_decal;
   std::function<void(Method)> decal_projection;
-  std::function<void(bool)> decal_lequal; // GL_LEQUAL for the decal; empty if already the default
+  std::function<void(bool)> decal_ties; // ties_test for the decal; empty if already the default
   std::function<bool(Picture &, const std::string &png)> shoot; // draw, read back, save if named
 };
 
 // Renders the frames, counts the pixels, prints the table and returns the verdict (0: passed).
 inline int compare(const Engine &e, const std::string &out_dir, const std::string &tag) {
   auto file = [&](const char *name) { return out_dir.empty() ? "" : out_dir + "/" + tag + name; };
-  Picture occluder, scene_none, scene_lequal, decal_none, scene_zshift, decal_zshift, scene_over,
+  Picture occluder, scene_none, scene_ties, decal_none, scene_zshift, decal_zshift, scene_over,
       decal_over;
   bool ok = true;
   e.show_base(true);
@@ -359,10 +384,10 @@ inline int compare(const Engine &e, const std::string &out_dir, const std::strin
   e.show_decal(true);
   e.decal_projection(kNoOffset);
   ok = ok && e.shoot(scene_none, file("none.png"));
-  if (e.decal_lequal) {
-    e.decal_lequal(true); // ties go to the decal: what is left is the rounding noise
-    ok = ok && e.shoot(scene_lequal, file("none_lequal.png"));
-    e.decal_lequal(false);
+  if (e.decal_ties) {
+    e.decal_ties(true); // ties go to the decal: what is left is the rounding noise
+    ok = ok && e.shoot(scene_ties, file("none_ties.png"));
+    e.decal_ties(false);
   }
   e.show_base(false);
   ok = ok && e.shoot(decal_none, "");
@@ -381,12 +406,12 @@ inline int compare(const Engine &e, const std::string &out_dir, const std::strin
   Tally zshift = tally(scene_zshift, decal_zshift, occluder);
   Tally over = tally(scene_over, decal_over, occluder);
   print_tally(engine, (std::string("no offset, ") + e.depth_test).c_str(), none);
-  if (e.decal_lequal) {
-    Tally lequal = tally(scene_lequal, decal_none, occluder);
-    print_tally(engine, "no offset, GL_LEQUAL", lequal);
+  if (e.decal_ties) {
+    Tally ties = tally(scene_ties, decal_none, occluder);
+    print_tally(engine, (std::string("no offset, ") + e.ties_test).c_str(), ties);
   }
   print_tally(engine, "zshift", zshift);
-  print_tally(engine, ("control: " + std::to_string((int)kControlScale) + "x zshift").c_str(), over);
+  print_tally(engine, "control: lifted 2x gap", over);
   return verdict(engine, none, zshift, over, e.occluder_gap, e.bleed_gap);
 }
 

@@ -127,6 +127,10 @@ struct Frame {
 int main(int argc, char **argv) {
   Options options;
   if (!parse_options(argc, argv, options)) return 1;
+  if (options.reversed) {
+    std::fprintf(stderr, "FAIL: --reversed: Irrlicht 1.8 has no reversed-Z depth setup\n");
+    return 1;
+  }
 
   SIrrlichtCreationParameters params;
   params.DriverType = video::EDT_OPENGL;
@@ -205,17 +209,21 @@ int main(int argc, char **argv) {
     float decal_corners[4][3];
     corners(kDecal, -1.0, decal_corners);
     DecalExtent ext = decal_extent(view_matrix, decal_corners, 1.0);
-    ZshiftDecal decal_info = describe_decal(depth_bits, subpixel_bits, ext);
+    ZshiftDecal decal_info = describe_decal(unorm_format(depth_bits), subpixel_bits, ext);
     if (!zshift_decal_projection(*camera, decal_info, zshift_projection)) {
       device->drop();
       return 1;
     }
-    std::printf("element 10: camera %.9g, zshift %.9g\n", projection[10], zshift_projection[10]);
-    engine.bleed_gap = bleed_gap(projection.pointer(), decal_info);
+    const float *m = projection.pointer(), *z = zshift_projection.pointer();
+    print_changed(m, z);
+    engine.bleed_gap = bleed_gap(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, decal_info);
     engine.occluder_gap = occluder_gap(view);
-    // The control: element 10 moved kControlScale times as far as zshift moves it.
-    over_projection = zshift_projection;
-    over_projection[10] = projection[10] + (f32)kControlScale * (zshift_projection[10] - projection[10]);
+    float over[16];
+    if (!control_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, engine.occluder_gap, ext, over)) {
+      device->drop();
+      return 1;
+    }
+    over_projection.setM(over);
     failed |= compare(engine, options.out_dir,
                       "irrlicht_d" + std::to_string(depth_bits) + "_" + view.name + "_");
   }

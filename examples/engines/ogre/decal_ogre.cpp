@@ -81,6 +81,11 @@ static bool shoot(Ogre::Root &root, Ogre::RenderWindow *window, Picture &out,
 int main(int argc, char **argv) {
   Options options;
   if (!parse_options(argc, argv, options)) return 1;
+  if (options.reversed) {
+    std::fprintf(stderr, "FAIL: --reversed: this example uses Ogre's OpenGL render system, which "
+                         "has no reversed-Z setup\n");
+    return 1;
+  }
 
   try {
     Ogre::LogManager *logs = new Ogre::LogManager;
@@ -188,17 +193,18 @@ int main(int argc, char **argv) {
       float decal_corners[4][3];
       corners(kDecal, 1.0, decal_corners);
       DecalExtent ext = decal_extent(view_matrix, decal_corners, -1.0);
-      ZshiftDecal decal_info = describe_decal(depth_bits, subpixel_bits, ext);
+      ZshiftDecal decal_info = describe_decal(unorm_format(depth_bits), subpixel_bits, ext);
       if (!zshift_decal_projection(*camera, decal_info, zshift_projection)) return 1;
-      std::printf("element 10: camera %.9g, zshift %.9g\n", projection[2][2], zshift_projection[2][2]);
-      float m[16];
-      for (int i = 0; i < 16; i++) m[i] = projection[i % 4][i / 4];
-      engine.bleed_gap = bleed_gap(m, decal_info);
+      float m[16], z[16], over[16];
+      for (int i = 0; i < 16; i++) {
+        m[i] = projection[i % 4][i / 4];
+        z[i] = zshift_projection[i % 4][i / 4];
+      }
+      print_changed(m, z);
+      engine.bleed_gap = bleed_gap(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, decal_info);
       engine.occluder_gap = occluder_gap(view);
-      // The control: element 10 moved kControlScale times as far as zshift moves it.
-      over_projection = zshift_projection;
-      over_projection[2][2] =
-          projection[2][2] + (Ogre::Real)kControlScale * (zshift_projection[2][2] - projection[2][2]);
+      if (!control_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, engine.occluder_gap, ext, over)) return 1;
+      over_projection = Ogre::Matrix4(over).transpose();
       failed |= compare(engine, options.out_dir,
                         "ogre_d" + std::to_string(depth_bits) + "_" + view.name + "_");
     }

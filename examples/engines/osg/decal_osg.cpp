@@ -8,8 +8,11 @@
 // pictures and exits nonzero unless the decal z-fights without an offset and loses no pixel
 // (and bleeds through no occluder beyond zshift's bleed gap) with zshift's.
 //
-// Usage: decal_osg [--depth 16|24|32] [--subpixel-bits B] [OUTPUT_DIR]   (OSG opens an X11
-// window: run it under xvfb-run)
+// Usage: decal_osg [--depth 16|24|32 | --reversed] [--subpixel-bits B] [OUTPUT_DIR]   (OSG opens
+// an X11 window: run it under xvfb-run). --reversed draws with reversed Z, as modern engines do:
+// glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE) (osg::ClipControl), an infinite far plane,
+// GL_GREATER, depth cleared to 0, a 32-bit float depth buffer.
+#include <osg/ClipControl>
 #include <osg/Depth>
 #include <osg/Geode>
 #include <osg/Geometry>
@@ -18,6 +21,8 @@
 #include <osgDB/WriteFile>
 #include <osgViewer/Viewer>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -30,14 +35,14 @@ using namespace decal_scene;
 
 // [quickstart-engines-osg]
 // zshift inside OpenSceneGraph: the decal subgraph's projection, from the camera's own (the one
-// the ground is drawn with): only element 10 changes, by just enough to beat the rasterizer's
-// rounding for `decal`. Put the decal under osg::Projection(decal_projection), drawn after the
-// surface it lies on.
-static bool zshift_decal_projection(const osg::Matrixd &camera_projection, const ZshiftDecal &decal,
-                                    osg::Matrixd &decal_projection) {
+// the ground is drawn with, for the depth convention `clip`): one element changes (10, or 14
+// under reversed Z), by just enough to beat the rasterizer's rounding for `decal`. Put the
+// decal under osg::Projection(decal_projection), drawn after the surface it lies on.
+static bool zshift_decal_projection(const osg::Matrixd &camera_projection, ZshiftClip clip,
+                                    const ZshiftDecal &decal, osg::Matrixd &decal_projection) {
   float m[16], out[16]; // column-major: osg::Matrix's memory order too
   for (int i = 0; i < 16; i++) m[i] = (float)camera_projection.ptr()[i]; // what GL gets
-  if (zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out) != ZSHIFT_OK) {
+  if (zshift_decal_matrix(m, clip, &decal, out) != ZSHIFT_OK) {
     std::cerr << "zshift_decal_matrix: " << zshift_last_error() << "\n";
     return false;
   }
@@ -97,7 +102,11 @@ struct DepthBits : osg::Drawable::DrawCallback {
 int main(int argc, char **argv) {
   Options options;
   if (!parse_options(argc, argv, options)) return 1;
-  const int depth_bits = options.depth_bits;
+  const bool reversed = options.reversed;
+  const int depth_bits = reversed ? 32 : options.depth_bits;
+  const ZshiftClip clip = reversed ? ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE : ZSHIFT_CLIP_NEG_ONE_TO_ONE;
+  const ZshiftFormat format = reversed ? ZSHIFT_FORMAT_FLOAT32 : unorm_format(depth_bits);
+  const std::string buffer = reversed ? "D32F reversed" : "D" + std::to_string(depth_bits);
 
   osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
   traits->readDISPLAY(); // the X display and screen from $DISPLAY
@@ -124,7 +133,15 @@ int main(int argc, char **argv) {
   osg::ref_ptr<osg::Viewport> vp = new osg::Viewport(0, 0, kWidth, kHeight);
   camera->setViewport(vp.get());
   camera->setClearColor(osg::Vec4(0, 0, 0, 1));
-  camera->setProjectionMatrixAsPerspective(kFovyDegrees, (double)kWidth / kHeight, kNear, kFar);
+  const double aspect = (double)kWidth / kHeight;
+  if (reversed) {
+    // Reversed Z with the far plane at infinity: NDC depth n/d, 1 at the near plane, 0 far away.
+    double y = 1.0 / std::tan(kFovyDegrees * M_PI / 360.0);
+    camera->setProjectionMatrix(osg::Matrixd(y / aspect, 0, 0, 0, 0, y, 0, 0, 0, 0, 0, -1, 0, 0, kNear, 0));
+    camera->setClearDepth(0.0);
+  } else {
+    camera->setProjectionMatrixAsPerspective(kFovyDegrees, aspect, kNear, kFar);
+  }
   // [quickstart-engines-osg-near-far]
   // By default OSG refits near and far to the scene's bounds every frame, so the projection it
   // draws with is not the one set here; the decal's is derived from it, so keep it fixed.
@@ -133,7 +150,8 @@ int main(int argc, char **argv) {
   camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
   // Render to a framebuffer object with exactly the depth format asked for (a window system
   // picks its own: Mesa's GLX on Xvfb gives 32 bits), and let OSG read the colour back.
-  const GLenum depth_format = depth_bits == 16   ? GL_DEPTH_COMPONENT16
+  const GLenum depth_format = reversed           ? GL_DEPTH_COMPONENT32F
+                              : depth_bits == 16 ? GL_DEPTH_COMPONENT16
                               : depth_bits == 24 ? GL_DEPTH_COMPONENT24
                                                  : GL_DEPTH_COMPONENT32;
   osg::ref_ptr<osg::Image> image = new osg::Image;
@@ -145,6 +163,11 @@ int main(int argc, char **argv) {
 
   osg::ref_ptr<osg::Group> root = new osg::Group;
   root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+  if (reversed) {
+    root->getOrCreateStateSet()->setAttributeAndModes(
+        new osg::ClipControl(osg::ClipControl::LOWER_LEFT, osg::ClipControl::ZERO_TO_ONE));
+    root->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::GREATER));
+  }
   osg::ref_ptr<osg::Geode> ground = rectangle(kGround, 0.0, osg::Vec4(0, 0, 1, 1));
   osg::ref_ptr<osg::Geode> tiles = rectangle(kGround, kViews[1].ground_tile, osg::Vec4(0, 0, 1, 1));
   osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, 0.0, osg::Vec4(1, 1, 0, 1));
@@ -176,7 +199,7 @@ int main(int argc, char **argv) {
   ground_drawable->setDrawCallback(nullptr);
   std::printf("OpenSceneGraph %s on %s; framebuffer object depth bits %d, subpixel bits %d\n",
               osgGetVersion(), probe->renderer.c_str(), probe->bits, probe->subpixel_bits);
-  if (probe->bits != depth_bits) {
+  if (probe->bits != depth_bits) { // GL_DEPTH_COMPONENT32F has 32 too
     std::fprintf(stderr, "FAIL: the framebuffer object has %d depth bits, not %d\n", probe->bits,
                  depth_bits);
     return 1;
@@ -186,7 +209,8 @@ int main(int argc, char **argv) {
   const osg::Matrixd projection = camera->getProjectionMatrix();
   osg::Matrixd zshift_projection, over_projection;
   Engine engine;
-  engine.depth_test = "GL_LESS";
+  engine.depth_test = reversed ? "GL_GREATER" : "GL_LESS";
+  engine.ties_test = reversed ? "GL_GEQUAL" : "GL_LEQUAL";
   const View *current = &kViews[0];
   engine.show_base = [&](bool on) {
     ground->setNodeMask(on && current->ground_tile == 0.0 ? ~0u : 0u);
@@ -197,8 +221,9 @@ int main(int argc, char **argv) {
   engine.decal_projection = [&](Method m) {
     decal_node->setMatrix(m == kNoOffset ? projection : m == kZshift ? zshift_projection : over_projection);
   };
-  engine.decal_lequal = [&](bool on) {
-    if (on) decal_node->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::LEQUAL));
+  engine.decal_ties = [&](bool on) {
+    osg::Depth::Function ties = reversed ? osg::Depth::GEQUAL : osg::Depth::LEQUAL;
+    if (on) decal_node->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(ties));
     else decal_node->getOrCreateStateSet()->removeAttribute(osg::StateAttribute::DEPTH);
   };
   engine.shoot = [&](Picture &out, const std::string &png) { return shoot(viewer, *image, out, png); };
@@ -210,25 +235,27 @@ int main(int argc, char **argv) {
     camera->setViewMatrixAsLookAt(osg::Vec3d(view.eye[0], view.eye[1], view.eye[2]),
                                   osg::Vec3d(view.target[0], view.target[1], view.target[2]),
                                   osg::Vec3d(a.up[0], a.up[1], a.up[2]));
-    engine.name = "OSG D" + std::to_string(depth_bits) + " " + view.name;
+    engine.name = "OSG " + buffer + " " + view.name;
     std::printf("%s: ", engine.name.c_str());
     // What the engine knows about its decal, from the camera's view matrix.
     float decal_corners[4][3];
     corners(kDecal, 1.0, decal_corners);
     DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
-    ZshiftDecal decal = describe_decal(depth_bits, subpixel_bits, ext);
-    if (!zshift_decal_projection(projection, decal, zshift_projection)) return 1;
-    std::printf("element 10: camera %.9g, zshift %.9g\n", (float)projection(2, 2),
-                (float)zshift_projection(2, 2));
-    float m[16];
-    for (int i = 0; i < 16; i++) m[i] = (float)projection.ptr()[i];
-    engine.bleed_gap = bleed_gap(m, decal);
+    ZshiftDecal decal = describe_decal(format, subpixel_bits, ext);
+    if (!zshift_decal_projection(projection, clip, decal, zshift_projection)) return 1;
+    float m[16], z[16], over[16];
+    for (int i = 0; i < 16; i++) {
+      m[i] = (float)projection.ptr()[i];
+      z[i] = (float)zshift_projection.ptr()[i];
+    }
+    print_changed(m, z);
+    engine.bleed_gap = bleed_gap(m, clip, decal);
     engine.occluder_gap = occluder_gap(view);
-    // The control: element 10 moved kControlScale times as far as zshift moves it.
-    over_projection = zshift_projection;
-    over_projection(2, 2) = projection(2, 2) + kControlScale * (zshift_projection(2, 2) - projection(2, 2));
-    failed |= compare(engine, options.out_dir,
-                      "osg_d" + std::to_string(depth_bits) + "_" + view.name + "_");
+    if (!control_matrix(m, clip, engine.occluder_gap, ext, over)) return 1;
+    over_projection.set(over);
+    std::string tag = buffer + "_" + view.name + "_";
+    std::replace(tag.begin(), tag.end(), ' ', '_');
+    failed |= compare(engine, options.out_dir, "osg_" + tag);
   }
   return failed;
 }
