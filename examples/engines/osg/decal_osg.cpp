@@ -135,10 +135,18 @@ int main(int argc, char **argv) {
   camera->setClearColor(osg::Vec4(0, 0, 0, 1));
   const double aspect = (double)kWidth / kHeight;
   if (reversed) {
-    // Reversed Z with the far plane at infinity: NDC depth n/d, 1 at the near plane, 0 far away.
+    // [quickstart-engines-osg-reversed]
+    // Reversed Z with the far plane at infinity: NDC depth n/d on a [0, 1] clip range, 1 at the
+    // near plane, 0 far away; nearer is greater; cleared to 0. The decal's matrix then comes from
+    // zshift_decal_projection(projection, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, decal, ...) with
+    // decal.format = ZSHIFT_FORMAT_FLOAT32 (GL_DEPTH_COMPONENT32F).
     double y = 1.0 / std::tan(kFovyDegrees * M_PI / 360.0);
     camera->setProjectionMatrix(osg::Matrixd(y / aspect, 0, 0, 0, 0, y, 0, 0, 0, 0, 0, -1, 0, 0, kNear, 0));
     camera->setClearDepth(0.0);
+    osg::StateSet *state = camera->getOrCreateStateSet();
+    state->setAttributeAndModes(new osg::ClipControl(osg::ClipControl::LOWER_LEFT, osg::ClipControl::ZERO_TO_ONE));
+    state->setAttributeAndModes(new osg::Depth(osg::Depth::GREATER));
+    // [/quickstart-engines-osg-reversed]
   } else {
     camera->setProjectionMatrixAsPerspective(kFovyDegrees, aspect, kNear, kFar);
   }
@@ -163,11 +171,6 @@ int main(int argc, char **argv) {
 
   osg::ref_ptr<osg::Group> root = new osg::Group;
   root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
-  if (reversed) {
-    root->getOrCreateStateSet()->setAttributeAndModes(
-        new osg::ClipControl(osg::ClipControl::LOWER_LEFT, osg::ClipControl::ZERO_TO_ONE));
-    root->getOrCreateStateSet()->setAttributeAndModes(new osg::Depth(osg::Depth::GREATER));
-  }
   osg::ref_ptr<osg::Geode> ground = rectangle(kGround, 0.0, osg::Vec4(0, 0, 1, 1));
   osg::ref_ptr<osg::Geode> tiles = rectangle(kGround, kViews[1].ground_tile, osg::Vec4(0, 0, 1, 1));
   osg::ref_ptr<osg::Geode> occluder = rectangle(kOccluder, 0.0, osg::Vec4(1, 1, 0, 1));
