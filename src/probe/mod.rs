@@ -1,10 +1,13 @@
 //! Measures a [`RasterizerProfile`] in the caller's own OpenGL context.
 //!
-//! [`probe`] draws a few dozen triangles into a framebuffer of its own (64×64 per depth format),
-//! reads the stored depth back with `glReadPixels` and compares it, pixel by pixel, with the exact
-//! depth of the plane the triangle lies in, computed in f64 from the very f32 clip coordinates the
-//! GPU received. It reaches GL only through the function loader the caller passes (as
-//! `glow::Context::from_loader_function_cstr` takes one): the library links no GL.
+//! [`probe`] draws about 250 triangles into a framebuffer of its own (512×512, in 64×64 tiles,
+//! one depth format at a time), reads the stored depth back with `glReadPixels` and compares it,
+//! pixel by pixel, with the exact depth of the plane each triangle lies in, computed in f64 from
+//! the very f32 values the GPU was given. It reaches GL only through the function loader the
+//! caller passes (as `glow::Context::from_loader_function_cstr` takes one): the library links
+//! no GL. The entry points are a table of plain function pointers checked for NULL when loaded
+//! (rather than glow, whose missing functions panic when called), so a missing one is an error
+//! that names it.
 //!
 //! # What it measures
 //! * **Snapping** ([`Snapping`]): a steep triangle (depth gradient ≈ 0.014 per pixel) whose
@@ -44,7 +47,7 @@
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
 //!   in f64 at twice the near distance, so that nothing is left to clip; each image is compared
-//!   with the plane of the coordinates it was given, on the pixels both cover. A clipper that
+//!   with its exact (f64) plane, on the pixels both cover. A clipper that
 //!   keeps the plane errs as little as the unclipped drawing (within twice its error plus 2
 //!   quanta: [`NearClip::PlanePreserving`]); one that computes the new vertices in f32 errs by
 //!   tens of quanta more ([`NearClip::ClippedF32`], the worst case the model must bound).
@@ -58,8 +61,9 @@
 //! them under `ARB_viewport_array`), the depth function, write mask and clear value, polygon
 //! offset factor, units and clamp, polygon mode, the enables it touches (depth test, polygon
 //! offset fill, cull face, polygon smooth, stencil, depth clamp, rasterizer discard, scissor
-//! per viewport, every clip distance, depth-bounds test, alpha test in compatibility), every `GL_PACK_*` parameter, `glClipControl`
-//! and, in a compatibility context, `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
+//! per viewport, every clip distance, depth-bounds test, alpha test in compatibility), every
+//! `GL_PACK_*` parameter, `glClipControl` and, in a compatibility context,
+//! `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
 //! it creates, also on error. Not restored because it never changes them: colour state (its
 //! framebuffer has no colour attachment), textures, samplers, stencil values, uniform state of
 //! other programs. Not handled: an active transform feedback, query or conditional render of
@@ -72,9 +76,10 @@
 //! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
 //!
 //! # Time
-//! 40–55 ms on Mesa llvmpipe on 2 shared cores (`examples/probe.rs` prints it), most of it
-//! llvmpipe compiling a shader variant per depth format; the profile records its own run time
-//! in [`RasterizerProfile::probe_seconds`].
+//! 40–60 ms on Mesa llvmpipe on 2 cores (up to 120 ms while other builds load them;
+//! `examples/probe.rs` prints it), most of it llvmpipe compiling a shader variant per depth
+//! format and polygon-offset state; the profile records its own run time in
+//! [`RasterizerProfile::probe_seconds`].
 
 mod gl;
 mod state;
