@@ -22,9 +22,12 @@ pub enum Snapping {
 pub enum NearClip {
     /// New vertices are computed in f32 where the edges cross the near plane, and the depth plane
     /// is set up from them: the worst case, and what Mesa's llvmpipe does. The probe reports it
-    /// when ground planes the rasterizer clips stray from the plane of their given vertices by
-    /// more than twice (plus 2 D24 quanta) what the same planes do when clipped in f64 first:
-    /// the model must add the clipping terms.
+    /// whenever ground planes crossing the near plane stray from their exact plane by more than
+    /// twice (plus 2 D24 quanta) what the same planes do when clipped in f64 before drawing —
+    /// whatever the cause (a float clipper, or, without clipping, the far-behind vertices' own
+    /// transform error): the model must add the clipping terms. On llvmpipe the clipper is the
+    /// cause: fed exact f32 clip coordinates (no transform), the clipped planes still erred by
+    /// 103 D24 quanta.
     ClippedF32,
     /// A primitive crossing the near plane keeps the depth of its plane to within the same
     /// per-pixel error as one that does not (homogeneous rasterization, a clipper working in
