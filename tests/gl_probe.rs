@@ -280,6 +280,34 @@ extern "system" fn failing_read_pixels(
     enable(0xFFFF);
 }
 
+/// Compatibility-profile state that would spoil the probe if it were left on: an alpha test
+/// that discards everything, and a depth scale and bias applied to every depth readback.
+const ODD_FIXED_FUNCTION_STATE: (bool, [f32; 2]) = (true, [0.5, 0.25]);
+const GL_ALPHA_TEST: u32 = 0x0BC0;
+const GL_NEVER: u32 = 0x0200;
+const GL_DEPTH_SCALE: u32 = 0x0D1E;
+const GL_DEPTH_BIAS: u32 = 0x0D1F;
+
+fn set_odd_fixed_function_state(gl: &Gl) {
+    // SAFETY: compatibility-profile entry points of the current context, by their C types.
+    unsafe {
+        let alpha_func: extern "system" fn(u32, f32) =
+            std::mem::transmute(gl.proc_address("glAlphaFunc"));
+        let transfer: extern "system" fn(u32, f32) =
+            std::mem::transmute(gl.proc_address("glPixelTransferf"));
+        gl.glow().enable(GL_ALPHA_TEST);
+        alpha_func(GL_NEVER, 0.0);
+        transfer(GL_DEPTH_SCALE, ODD_FIXED_FUNCTION_STATE.1[0]);
+        transfer(GL_DEPTH_BIAS, ODD_FIXED_FUNCTION_STATE.1[1]);
+    }
+}
+
+unsafe fn fixed_function_state(gl: &Gl) -> (bool, [f32; 2]) {
+    let g = gl.glow();
+    let transfer = [GL_DEPTH_SCALE, GL_DEPTH_BIAS].map(|p| g.get_parameter_f32(p));
+    (g.is_enabled(GL_ALPHA_TEST), transfer)
+}
+
 #[test]
 fn the_callers_state_is_restored() {
     for kind in [Profile::Core, Profile::Compatibility] {
@@ -287,14 +315,31 @@ fn the_callers_state_is_restored() {
         gl.clip_control(ClipDepth::ZeroToOne).unwrap();
         let g = gl.glow();
         // SAFETY: the context is current on this thread.
+        let clean = measured(&gl);
         let before = unsafe {
             set_odd_state(g);
+            if kind == Profile::Compatibility {
+                set_odd_fixed_function_state(&gl);
+            }
             assert_eq!(g.get_error(), glow::NO_ERROR);
             state(g)
         };
-        measured(&gl);
+        let odd = measured(&gl);
         let after = unsafe { state(g) };
         assert_eq!(before, after, "{kind:?}");
+        if kind == Profile::Compatibility {
+            assert_eq!(
+                unsafe { fixed_function_state(&gl) },
+                ODD_FIXED_FUNCTION_STATE
+            );
+        }
+        // The odd state changes nothing the probe measures.
+        assert_eq!(
+            (odd.snapping, odd.resolvable, odd.near_clip),
+            (clean.snapping, clean.resolvable, clean.near_clip),
+            "{kind:?}"
+        );
+        assert_eq!(odd.plane_error, clean.plane_error, "{kind:?}");
         assert_eq!(
             unsafe { g.get_error() },
             glow::NO_ERROR,
