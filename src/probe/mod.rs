@@ -173,7 +173,7 @@ pub unsafe fn probe_with_figures(
     }
     let (_, _, compatibility) = gl.settle()?;
     let saved = state::Saved::read(&gl, compatibility);
-    gl.failed(); // queries of state this context lacks only mean "absent"
+    gl.check("reading the caller's GL state raised a GL error")?;
     saved.prepare(&gl);
     let mut objects = Objects::default();
     let result = measure(&gl, &mut objects);

@@ -80,13 +80,12 @@ impl Saved {
                 on: (gl.IsEnabled)(cap) != 0,
             });
         }
-        // GL_DEPTH_BOUNDS_TEST_EXT exists only with its extension: an unknown enum raises
-        // GL_INVALID_ENUM, which is drained here and means "not there".
-        let bounds = (gl.IsEnabled)(DEPTH_BOUNDS_TEST_EXT) != 0;
-        if !gl.failed() {
+        // GL_DEPTH_BOUNDS_TEST_EXT exists only with its extension (asked first, so that no
+        // GL_INVALID_ENUM reaches the engine's debug callback).
+        if gl.has_extension(b"GL_EXT_depth_bounds_test") {
             capabilities.push(Capability {
                 cap: DEPTH_BOUNDS_TEST_EXT,
-                on: bounds,
+                on: (gl.IsEnabled)(DEPTH_BOUNDS_TEST_EXT) != 0,
             });
         }
         let mut polygon_offset = [0.0f32; 3];
