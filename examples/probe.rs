@@ -35,7 +35,7 @@ fn main() {
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(
             "{name:<6}  {:<10.4}  {:<20.4}  {:<19.3}  {}",
-            p.resolvable[i], p.plane_error[i], figures.interpolation[i], figures.plane_pixels[i]
+            p.resolvable[i], p.plane_error[i], figures.error_ulps[i], figures.plane_pixels[i]
         );
     }
     println!(

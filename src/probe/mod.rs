@@ -145,7 +145,7 @@ pub struct Figures {
     pub reversed_pixels: usize,
     /// Per format, the worst `(|stored − exact| − q)⁺ / (2⁻²⁴·(1 + M))` (q = 0 for D32F) under
     /// `[−1, 1]`; [`RasterizerProfile::error_ulps`] is the largest.
-    pub interpolation: [f64; 4],
+    pub error_ulps: [f64; 4],
     /// D32F's worst plane error in units of the f32 spacing at each pixel's own depth (not at
     /// the primitive's largest), under `[−1, 1]` and under reversed Z: what a primitive spanning
     /// several binades does to its smallest depths.
@@ -260,7 +260,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         snapping_residual: (f64::NAN, 0, f64::NAN),
         float_resolvable: [f64::NAN; 2],
         reversed_pixels: 0,
-        interpolation: [f64::NAN; 4],
+        error_ulps: [f64::NAN; 4],
         float_local_plane_error: [f64::NAN; 2],
     };
     for (slot, internal, format) in Format::ALL {
@@ -278,10 +278,10 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         let errors = plane_error(gl, o, format, false)?;
         profile.plane_error[slot] = errors.worst;
         figures.plane_pixels[slot] = errors.pixels;
-        figures.interpolation[slot] = errors.interpolation;
+        figures.error_ulps[slot] = errors.error_ulps;
         if format == Format::Float {
             figures.float_local_plane_error[0] = errors.local;
-            profile.error_ulps = figures.interpolation.iter().copied().fold(0.0, f64::max);
+            profile.error_ulps = figures.error_ulps.iter().copied().fold(0.0, f64::max);
             if let Some(reversed) = reversed_plane_error(gl, o)? {
                 profile.plane_error_reversed = reversed.worst;
                 figures.reversed_pixels = reversed.pixels;
@@ -817,7 +817,7 @@ struct PlaneErrors {
     /// The worst error in units of the spacing at each pixel's own depth.
     local: f64,
     /// The worst `(|stored − exact| − conversion)⁺ / (2⁻²⁴·(1 + M))` ([`Plane::magnitude`]).
-    interpolation: f64,
+    error_ulps: f64,
 }
 
 /// The plane errors of every scene of `format` under one mapping (module docs).
@@ -826,7 +826,7 @@ unsafe fn plane_error(gl: &Gl, o: &Objects, format: Format, reversed: bool) -> R
         worst: 0.0,
         pixels: 0,
         local: 0.0,
-        interpolation: 0.0,
+        error_ulps: 0.0,
     };
     let scenes = plane_scenes(reversed);
     let mut stored_tiles = Vec::new();
@@ -863,7 +863,7 @@ unsafe fn plane_error(gl: &Gl, o: &Objects, format: Format, reversed: bool) -> R
                     Format::Unorm(_) => format.quantum(exact),
                 };
                 let scale = F32_UNIT_ROUNDOFF * (1.0 + magnitude(px, py));
-                e.interpolation = e.interpolation.max((error - conversion).max(0.0) / scale);
+                e.error_ulps = e.error_ulps.max((error - conversion).max(0.0) / scale);
             }
         }
     }
