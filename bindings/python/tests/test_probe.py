@@ -30,7 +30,8 @@ def _egl():
 
 
 def make_context():
-    """A 3.3 core context current on this thread; returns EGL (for eglGetProcAddress)."""
+    """A 3.3 core context current on this thread; returns EGL (for eglGetProcAddress), the
+    display and the context."""
     egl = _egl()
     display = egl.eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, None, (ctypes.c_ssize_t * 1)(EGL_NONE))
     if not display or not egl.eglInitialize(display, None, None) or not egl.eglBindAPI(EGL_OPENGL_API):
@@ -41,13 +42,13 @@ def make_context():
     context = egl.eglCreateContext(display, None, None, attributes)
     if not context or not egl.eglMakeCurrent(display, None, None, context):
         raise AssertionError("no OpenGL 3.3 core context (EGL error 0x%x)" % egl.eglGetError())
-    return egl
+    return egl, display, context
 
 
 class ProbeTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.egl = make_context()
+        cls.egl, cls.display, cls.context = make_context()
 
     def get_proc_address(self, name):
         return self.egl.eglGetProcAddress(name.encode("ascii"))
@@ -70,6 +71,15 @@ class ProbeTest(unittest.TestCase):
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.probe(without_read_pixels)
         self.assertEqual(caught.exception.status, zshift.Status.GL)
+
+    def test_no_current_context_is_a_gl_error(self):
+        self.egl.eglMakeCurrent(self.display, None, None, None)
+        try:
+            with self.assertRaises(zshift.ZshiftError) as caught:
+                zshift.probe(self.get_proc_address)
+            self.assertEqual(caught.exception.status, zshift.Status.GL)
+        finally:
+            self.assertTrue(self.egl.eglMakeCurrent(self.display, None, None, self.context))
 
     def test_worst_case(self):
         p = zshift.profile_worst_case()
