@@ -5,7 +5,8 @@
 //! difference `r` is 1×, 2× or 4× a format's quantum depending on the GPU). A
 //! [`RasterizerProfile`] holds those facts. [`RasterizerProfile::worst_case`] (the `Default`)
 //! assumes the worst of each and is what the recommendation uses unless told otherwise; a
-//! measured profile comes from the probe, which draws in the caller's own GL context.
+//! measured profile comes from [`crate::probe::probe`], which draws in the caller's own GL
+//! context (C: `zshift_probe`, `ZshiftProfile`).
 
 /// Whether the rasterizer snaps vertex positions before setting up the depth plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
