@@ -127,6 +127,11 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             figures.plane_pixels.iter().all(|&n| n > 20_000),
             "{figures:?}"
         );
+        // The probe's error_ulps, measured within 512 pixels of the origin, still bounds a steep
+        // plane 2000 pixels away, where plane_error alone would not.
+        let (ratio, worst) = far_strip_error(&mut gl);
+        println!("{kind:?}: far strip {worst:.1} units of 2^-24, {ratio:.3} u(1+M)");
+        assert!(ratio <= p.error_ulps, "{ratio} > {}", p.error_ulps);
         // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
         assert_eq!(p.near_clip, NearClip::ClippedF32);
         assert!(figures.near_clip_error > 10.0, "{figures:?}");
@@ -182,6 +187,50 @@ fn wine_style_units(gl: &mut Gl, format: DepthFormat) -> f64 {
         }
     }
     high as f64
+}
+
+/// The per-pixel bound `error_ulps·u·(1 + M)` the probe measured within 512 pixels of the
+/// window origin, tried 2000 pixels away: a steep strip (depth 0.06 to 0.94 over 88 pixels) at
+/// the right end of a 2048-pixel-wide D32F target, drawn with w = 1 so that its exact depth is
+/// an affine function of x known in closed form. Returns the worst `|stored − exact| / (u·(1 + M))`
+/// and the worst error in units of 2⁻²⁴.
+fn far_strip_error(gl: &mut Gl) -> (f64, f64) {
+    const WIDTH: usize = 2048;
+    gl.set_target(WIDTH as u32, 8, DepthFormat::D32F).unwrap();
+    let identity: [f32; 16] = [
+        1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.,
+    ];
+    // Dyadic corners: z is exactly affine in x on both triangles of the quad.
+    let (x0, x1, z0, z1) = (0.90625f32, 0.99218750f32, -0.875f32, 0.875f32);
+    let quad = Quad {
+        corners: [[x0, -1.5, z0], [x1, -1.5, z1], [x1, 1.5, z1], [x0, 1.5, z0]],
+    };
+    let always = DrawState {
+        depth_func: glow::ALWAYS,
+        ..DrawState::default()
+    };
+    gl.clear([0.0; 4], 1.0).unwrap();
+    gl.draw_quad(&quad, &identity, [1.0; 4], &always).unwrap();
+    let depth = gl.read_depth().unwrap();
+    let slope = (z1 - z0) as f64 / (x1 - x0) as f64;
+    let window = |xw: f64| {
+        let xn = 2.0 * xw / WIDTH as f64 - 1.0;
+        0.5 * (z0 as f64 + (xn - x0 as f64) * slope) + 0.5
+    };
+    let (w0, gx) = (window(0.0), window(1.0) - window(0.0));
+    let u = 2f64.powi(-24);
+    let (mut ratio, mut worst) = (0.0f64, 0.0f64);
+    // pixel centres at least a pixel inside the strip
+    let first = ((x0 as f64 + 1.0) * WIDTH as f64 / 2.0).ceil() as usize + 1;
+    let last = ((x1 as f64 + 1.0) * WIDTH as f64 / 2.0).floor() as usize - 2;
+    for x in first..=last {
+        let xw = x as f64 + 0.5;
+        let error = (depth[4 * WIDTH + x] as f64 - window(xw)).abs();
+        let magnitude = w0.abs() + gx.abs() * xw;
+        ratio = ratio.max(error / (u * (1.0 + magnitude)));
+        worst = worst.max(error / u);
+    }
+    (ratio, worst)
 }
 
 /// Odd values for everything the probe touches, set through glow.
