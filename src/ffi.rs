@@ -843,8 +843,8 @@ fn checked_record(
     checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
 }
 
-fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
-    use crate::recommend::{Scene, Snapping};
+fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
+    use crate::recommend::{Base, DepthTest, RasterizerProfile, Scene, Snapping};
     let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
@@ -862,7 +862,16 @@ fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
         depth_range: [s.decal_near, s.decal_far],
         slope: s.slope,
         exact_depth: s.exact_depth != 0,
-        snapping,
+        depth_test: if clip == ClipDepth::ReversedZeroToOne {
+            DepthTest::Greater
+        } else {
+            DepthTest::Less
+        },
+        base: Base::InsideFrustum,
+        profile: RasterizerProfile {
+            snapping,
+            ..RasterizerProfile::worst_case()
+        },
     })
 }
 
@@ -887,7 +896,7 @@ pub extern "C" fn zshift_recommend(
         return ZSHIFT_ERR_NULL_POINTER;
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend(&to_model(&s)?)?;
+        let r = crate::recommend::recommend(&to_model(&s, ClipDepth::NegOneToOne)?)?;
         Ok(ZshiftRecommendation::new(
             r.epsilon,
             r.ndc_offset,
@@ -916,7 +925,7 @@ pub extern "C" fn zshift_recommend_matrix(
         return ZSHIFT_ERR_NULL_POINTER;
     };
     checked_array(out, move || {
-        let model = to_model(&s)?;
+        let model = to_model(&s, ClipDepth::NegOneToOne)?;
         let r = crate::recommend::recommend(&model)?;
         crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
     })
@@ -956,7 +965,7 @@ pub extern "C" fn zshift_recommend_clip(
         return ZSHIFT_ERR_NULL_POINTER;
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
+        let r = crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?;
         let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
             0.5
         } else {
@@ -992,6 +1001,9 @@ pub extern "C" fn zshift_recommend_clip_matrix(
         return ZSHIFT_ERR_NULL_POINTER;
     };
     checked_array(out, move || {
-        Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
+        Ok(
+            crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?
+                .matrix,
+        )
     })
 }

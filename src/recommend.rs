@@ -111,10 +111,19 @@
 
 use crate::domain::{domain, finite, representable};
 use crate::error::Result;
-use crate::projection::Frustum;
+use crate::precision::DepthMapping;
+use crate::projection::{ClipDepth, Frustum};
 
 /// The unit roundoff of f32: half an ulp of 1.
 const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// Clip stages a rasterizer-made vertex can pass: one per plane of the view volume (Mesa's
+/// clipper, with no guard band on llvmpipe, clips against all six in turn).
+const CLIP_STAGES: f64 = 6.0;
+
+/// The inward margin of [`clip_to_frustum`], relative: far above f32 rounding (2⁻²⁴), far below
+/// half a pixel of any viewport up to 2¹⁵ pixels wide.
+const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
@@ -122,50 +131,160 @@ pub use crate::precision::DepthFormat;
 /// Whether the rasterizer snaps vertex positions before depth setup (see [`crate::profile`]).
 pub use crate::profile::Snapping;
 
+/// The per-device facts the model takes (see [`crate::profile`]).
+pub use crate::profile::{NearClip, RasterizerProfile};
+
+/// The depth test of the decal pass (`glDepthFunc`). The strict tests need the decal's stored
+/// depth a quantum past the base's; the `…Equal` tests let a tie pass, so the decal needs one
+/// quantum less offset and an occluder one quantum more separation (see "The depth test").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DepthTest {
+    /// `GL_LESS` (`[−1, 1]` and `[0, 1]` clip depth).
+    #[default]
+    Less,
+    /// `GL_LEQUAL` (`[−1, 1]` and `[0, 1]` clip depth).
+    LessEqual,
+    /// `GL_GREATER` (reversed Z).
+    Greater,
+    /// `GL_GEQUAL` (reversed Z).
+    GreaterEqual,
+}
+
+impl DepthTest {
+    /// The test for a `glDepthFunc` enum value (`GL_LESS` 0x0201, `GL_LEQUAL` 0x0203,
+    /// `GL_GREATER` 0x0204, `GL_GEQUAL` 0x0206).
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::Domain`] for any other value (`GL_EQUAL`, `GL_ALWAYS`, …: no offset
+    /// makes a decal win under them).
+    pub fn from_gl(func: u32) -> Result<Self> {
+        match func {
+            0x0201 => Ok(Self::Less),
+            0x0203 => Ok(Self::LessEqual),
+            0x0204 => Ok(Self::Greater),
+            0x0206 => Ok(Self::GreaterEqual),
+            _ => Err(domain(
+                "the depth test must be GL_LESS, GL_LEQUAL, GL_GREATER or GL_GEQUAL",
+            )),
+        }
+    }
+
+    /// The `glDepthFunc` enum value.
+    pub fn gl_enum(self) -> u32 {
+        match self {
+            Self::Less => 0x0201,
+            Self::LessEqual => 0x0203,
+            Self::Greater => 0x0204,
+            Self::GreaterEqual => 0x0206,
+        }
+    }
+
+    /// `GL_LESS` or `GL_GREATER`: a tie fails.
+    pub fn is_strict(self) -> bool {
+        matches!(self, Self::Less | Self::Greater)
+    }
+
+    /// `GL_GREATER` or `GL_GEQUAL`: the reversed-Z tests.
+    pub fn is_reversed(self) -> bool {
+        matches!(self, Self::Greater | Self::GreaterEqual)
+    }
+}
+
+/// What the engine knows about the base (the surface under the decal).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Base {
+    /// Every vertex of the base lies inside the view frustum, so the rasterizer clips nothing
+    /// (a base cut to the frustum by [`clip_to_frustum`], or one that fits the screen): the
+    /// base's error is bounded like the decal's.
+    #[default]
+    InsideFrustum,
+    /// The base may reach outside the view frustum (a ground plane running behind the camera,
+    /// a wall wider than the screen): the rasterizer clips it in f32, which adds the term `C`.
+    /// `reach` is the largest `|x|`, `|y|` or `|z|` of any of its eye-space vertices.
+    Clipped {
+        /// The largest eye-space coordinate magnitude of a base vertex (> 0).
+        reach: f64,
+    },
+}
+
 /// What a scene knows about one decal and the surface under it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scene {
-    /// The `glFrustum` the base is drawn with (OpenGL conventions, NDC depth `[−1, 1]`).
+    /// The `glFrustum` the base is drawn with (right-handed eye space looking down −z).
     pub frustum: Frustum,
     /// Viewport width and height in pixels (`glViewport`).
     pub viewport: [u32; 2],
     /// The depth attachment's format.
     pub format: DepthFormat,
-    /// The decal's nearest and farthest eye distance, `n ≤ d₁ ≤ d₂ ≤ f` (equal for a point
-    /// estimate). `d₁` also stands for the distance at which the decal's plane crosses the view
-    /// axis in the slope term: exact for a decal centred on the axis, conservative when the
+    /// The decal's nearest and farthest eye distance (`−z`), `n ≤ d₁ ≤ d₂ ≤ f` (equal for a
+    /// point estimate). `d₁` also stands for the distance at which the decal's plane crosses the
+    /// view axis in the slope terms: exact for a decal centred on the axis, conservative when the
     /// plane's axis crossing is farther than the decal's nearest point.
     pub depth_range: [f64; 2],
     /// Eye-space tilt of the plane: `|∂z/∂x| + |∂z/∂y|` (0 facing the camera, 3 ≈ 72°).
     pub slope: f64,
     /// Every corner of base and decal has the same f32 eye-space z (a camera-facing plane whose
     /// vertices reach the vertex shader unrotated): the terms `V` and `I` vanish. Requires
-    /// `slope == 0`.
+    /// `slope == 0` and [`Base::InsideFrustum`].
     pub exact_depth: bool,
-    /// How the rasterizer positions vertices before depth setup.
-    pub snapping: Snapping,
+    /// The decal pass's depth test; it must match the clip convention (`Less`/`LessEqual`
+    /// for `[−1, 1]` and `[0, 1]`, `Greater`/`GreaterEqual` for reversed Z).
+    pub depth_test: DepthTest,
+    /// What is known of the base's extent.
+    pub base: Base,
+    /// What the rasterizer does ([`RasterizerProfile::worst_case`] unless measured).
+    pub profile: RasterizerProfile,
 }
 
-/// The worst-case error of one quad's computed window depth, term by term (window-depth units),
+/// The error of the two quads' computed window depths, term by term (window-depth units),
 /// and the depth quantum. See the module docs for each.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ErrorTerms {
     /// `q`: the smallest difference the stored format keeps.
     pub quantum: f64,
-    /// `T`: f32 rounding in the vertex transform and viewport mapping.
+    /// `T`: f32 rounding in the vertex transform and viewport mapping (worst case, per quad).
     pub transform: f64,
-    /// `V`: f32 rounding of the decal's eye-space coordinates.
+    /// `V`: f32 rounding of the eye-space coordinates (worst case, per quad).
     pub vertex: f64,
-    /// `I`: f32 rounding in the rasterizer's depth-plane evaluation.
+    /// `I`: f32 rounding in the rasterizer's depth-plane evaluation (worst case, per quad).
     pub interpolation: f64,
-    /// `S`: sub-pixel snapping of a sloped plane.
+    /// `S`: sub-pixel snapping of a sloped plane (per quad; 0 unsnapped).
     pub snap: f64,
+    /// `E`, the per-quad plane error the offset uses: `T + V + I`, or the profile's measured
+    /// `plane_error·q` where that is smaller.
+    pub plane: f64,
+    /// `C`: the base's f32 clipping and far-vertex term (0 for [`Base::InsideFrustum`]).
+    pub clip: f64,
+    /// Whether the depth test is strict (`GL_LESS`/`GL_GREATER`): the offset then needs `q`.
+    pub strict: bool,
 }
 
 impl ErrorTerms {
-    /// The right-hand side of (R1): `q + 2(T + V + I + S)`, in window depth.
+    /// The errors of base and decal together: `2(E + S) + C`.
+    pub fn budget(&self) -> f64 {
+        2.0 * (self.plane + self.snap) + self.clip
+    }
+
+    /// The window offset (R1): `q + 2(E + S) + C` under a strict test, `2(E + S) + C` under
+    /// `GL_LEQUAL`/`GL_GEQUAL`.
     pub fn window_offset(&self) -> f64 {
-        self.quantum + 2.0 * (self.transform + self.vertex + self.interpolation + self.snap)
+        self.strict_quantum() + self.budget()
+    }
+
+    /// The window-depth separation an occluder needs in front of the base (R2): the offset,
+    /// the errors of decal and occluder `2(E + S)`, and under `GL_LEQUAL`/`GL_GEQUAL` one
+    /// quantum more (a tie passes).
+    pub fn gap_window(&self, offset: f64) -> f64 {
+        let tie = if self.strict { 0.0 } else { self.quantum };
+        offset + 2.0 * (self.plane + self.snap) + tie
+    }
+
+    fn strict_quantum(&self) -> f64 {
+        if self.strict {
+            self.quantum
+        } else {
+            0.0
+        }
     }
 }
 
@@ -181,8 +300,8 @@ pub struct Recommendation {
     /// The eye-space shift δ (toward the camera) at `Pz = −d₂` that gives the same ε through
     /// eq. 4.1.7, for `zshift_load_offset_matrix(…, delta, pz = −d₂)`.
     pub delta_at_far: f64,
-    /// Occluders nearer than the base by at least this eye-space distance along the line of
-    /// sight are never overdrawn by the decal.
+    /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
+    /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
     /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, with `r` = the quantum.
     pub polygon_offset: [f64; 2],
@@ -193,15 +312,18 @@ pub struct Recommendation {
 /// The smallest offset that model (R1) guarantees ends z-fighting for `scene`, with its bleed gap.
 ///
 /// Convention: OpenGL, NDC depth `[−1, 1]`, the decal drawn with element 10 scaled by `1 + ε`
-/// (seed 000 eq. 4.1.3), the base with the plain matrix, depth test `GL_LESS` or `GL_LEQUAL`.
+/// (seed 000 eq. 4.1.3), the base with the plain matrix, depth test `scene.depth_test`
+/// (`GL_LESS` or `GL_LEQUAL`).
 ///
 /// # Errors
-/// [`crate::ErrorKind::NotFinite`] for NaN or infinite depths or slope;
+/// [`crate::ErrorKind::NotFinite`] for NaN or infinite depths, slope or reach;
 /// [`crate::ErrorKind::Domain`] for a zero viewport, `depth_range` outside `[n, f]` or
-/// decreasing, a negative slope, `exact_depth` with a nonzero slope, or bits outside 1..=32;
-/// [`crate::ErrorKind::Overflow`] if a result overflows.
+/// decreasing, a negative slope, `exact_depth` with a nonzero slope or a clipped base, a
+/// reversed-Z depth test, bits outside 0..=32, or a base reach too large for f32 clipping to be
+/// bounded (clip it with [`clip_to_frustum`]); [`crate::ErrorKind::Overflow`] if a result
+/// overflows.
 pub fn recommend(scene: &Scene) -> Result<Recommendation> {
-    check(scene)?;
+    check(scene, ClipDepth::NegOneToOne)?;
     let terms = error_terms(scene)?;
     let window_offset = terms.window_offset();
     let planes = scene.frustum.planes();
@@ -209,12 +331,8 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let epsilon = representable(-2.0 * window_offset / m10, "epsilon overflows")?;
     let d2 = scene.depth_range[1];
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
-    let bleed_gap = gap_for_window_difference(scene, 2.0 * window_offset - terms.quantum, d2);
-    let units = (terms.window_offset() - 2.0 * terms.snap) / terms.quantum;
-    let factor = match scene.snapping {
-        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
-        Snapping::Unsnapped => 0.0,
-    };
+    let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
+    let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     Ok(Recommendation {
@@ -223,7 +341,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
         window_offset: fits(window_offset)?,
         delta_at_far: fits(delta_at_far)?,
         bleed_gap: fits(bleed_gap)?,
-        polygon_offset: [fits(factor)?, fits(units)?],
+        polygon_offset: [fits(slope_factor(scene))?, fits(units)?],
         terms,
     })
 }
@@ -233,28 +351,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
 /// # Errors
 /// As [`recommend`].
 pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
-    check(scene)?;
-    let u = F32_UNIT_ROUNDOFF;
-    let planes = scene.frustum.planes();
-    let (n, big_f) = (planes.near(), planes.far_over_span());
-    let [d1, d2] = scene.depth_range;
-    let (w1, w2) = (window(scene, d1)?, window(scene, d2)?);
-    let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
-    let transform = u * (planes.sum_over_span() / 2.0 + 1.5 * ndc_max + w2);
-    let (vertex, interpolation) = if scene.exact_depth {
-        (0.0, 0.0)
-    } else {
-        let e = half_extent_tangent(&scene.frustum)?;
-        let vertex = u * big_f * (n / d1) * (1.0 + scene.slope * e);
-        (vertex, u * (3.0 * w2 + 3.0 * (w2 - w1)))
-    };
-    Ok(ErrorTerms {
-        quantum: quantum(scene.format, w2)?,
-        transform,
-        vertex,
-        interpolation,
-        snap: snap(scene)?,
-    })
+    clip_error_terms(scene, ClipDepth::NegOneToOne)
 }
 
 /// The window-depth gradient per pixel `(gₓ, g_y)` of a plane of eye-space slope `s` that
@@ -273,8 +370,16 @@ pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
     Ok([gx, gy])
 }
 
+/// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
+fn slope_factor(scene: &Scene) -> f64 {
+    match scene.profile.snapping {
+        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::Unsnapped => 0.0,
+    }
+}
+
 fn snap(scene: &Scene) -> Result<f64> {
-    match scene.snapping {
+    match scene.profile.snapping {
         Snapping::Unsnapped => Ok(0.0),
         Snapping::SubpixelBits(b) => {
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
@@ -283,10 +388,24 @@ fn snap(scene: &Scene) -> Result<f64> {
     }
 }
 
-/// `q` for a format at window depth `w` (the largest the decal reaches): one step of a UNORM
-/// buffer, or the f32 spacing at `w` for `GL_DEPTH_COMPONENT32F`.
+/// `q` for a format at window depth `w`: one step of a UNORM buffer, or the f32 spacing at `w`
+/// for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
+}
+
+/// The profile's measured per-pixel plane error for `format`, in window depth at spacing `q`;
+/// `None` unless the profile is measured and has a finite, non-negative figure for the format.
+fn measured_plane_error(scene: &Scene, q: f64) -> Option<f64> {
+    let p = scene.profile;
+    let i = match scene.format {
+        DepthFormat::Unorm16 => 0,
+        DepthFormat::Unorm24 => 1,
+        DepthFormat::Unorm32 => 2,
+        DepthFormat::Float32 => 3,
+    };
+    let e = p.plane_error[i];
+    (p.measured && e.is_finite() && e >= 0.0).then(|| e * q)
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
@@ -297,13 +416,52 @@ fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     Ok(ex.max(ey))
 }
 
-/// Walker's window depth (seed 001) at a distance `check` has put inside `[n, f]`.
-fn window(scene: &Scene, d: f64) -> Result<f64> {
-    let planes = scene.frustum.planes();
-    crate::precision::window_depth(planes.near(), planes.far(), d)
+/// The term `C` of a base the rasterizer clips (module docs, "The base"): every rasterizer-made
+/// vertex carries clip-space errors `|e_c| ≤ γ·A_c` (`γ = (6 + 5k)·u`, `k` clip stages, `A_c` the
+/// largest `|c|` a base vertex can have), and the depth error at a pixel at eye depth `d ≥ d₁` is
+/// at most `max |L(e)|/(d − γ·R)` in NDC, `L` the plane's homogeneous equation normalised to
+/// `z_c`'s coefficient 1.
+fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f64> {
+    let Base::Clipped { reach } = scene.base else {
+        return Ok(0.0);
+    };
+    let m = crate::projection::projection_f64(&scene.frustum, clip)?;
+    let (m0, m5, m8, m9, m10, m14) = (
+        m[0].abs(),
+        m[5].abs(),
+        m[8].abs(),
+        m[9].abs(),
+        m[10].abs(),
+        m[14].abs(),
+    );
+    let (s, d1) = (scene.slope, scene.depth_range[0]);
+    let gamma = (6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF;
+    // The plane z = −d_a + sₓx + s_y·y (|sₓ| + |s_y| = s, d_a ≥ d₁) in clip coordinates:
+    // L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c with g_X = m14·sₓ/(d_a·m0),
+    // g_Y = m14·s_y/(d_a·m5), Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5).
+    let g_x = m14 * s / (d1 * m0);
+    let g_y = m14 * s / (d1 * m5);
+    let z0 = m10 + m14 / d1 * (1.0 + s * (m8 / m0).max(m9 / m5));
+    let (a_x, a_y, a_z, a_w) = (
+        (m0 + m8) * reach,
+        (m5 + m9) * reach,
+        m10 * reach + m14,
+        reach,
+    );
+    let l = a_z + g_x * a_x + g_y * a_y + z0 * a_w;
+    let w_low = d1 - gamma * reach;
+    if !(w_low > 0.5 * d1) {
+        return Err(domain(
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ));
+    }
+    representable(
+        mapping.window_per_ndc() * gamma * l / w_low,
+        "the clipping term overflows f64",
+    )
 }
 
-/// δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
+/// The δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
 /// `K = 2fn/(f+n)`.
 fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
     let planes = scene.frustum.planes();
@@ -317,8 +475,8 @@ fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
     representable(-epsilon * pz * (pz / denominator), "delta overflows")
 }
 
-/// The eye-space distance `G` in front of distance `d` whose window depth is lower by `dw`:
-/// `F·n·(1/(d−G) − 1/d) = dw`, so `G = d·x/(1 + x)` with `x = dw·d/(F·n)`.
+/// The eye depth `G` in front of depth `d` (both `−z`, at the same pixel) whose window depth is
+/// lower by `dw`: `F·n·(1/(d−G) − 1/d) = dw`, so `G = d·x/(1 + x)` with `x = dw·d/(F·n)`.
 fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     let planes = scene.frustum.planes();
     let x = dw * d / (planes.far_over_span() * planes.near());
@@ -329,7 +487,7 @@ fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     d * (x / (1.0 + x))
 }
 
-fn check(scene: &Scene) -> Result<()> {
+fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
     let planes = scene.frustum.planes();
     let [d1, d2] = scene.depth_range;
     planes.check_distance(d1)?;
@@ -351,20 +509,109 @@ fn check(scene: &Scene) -> Result<()> {
             "exact_depth needs a plane facing the camera (slope 0)",
         ));
     }
-    if let Snapping::SubpixelBits(b) = scene.snapping {
+    if let Base::Clipped { reach } = scene.base {
+        finite(reach, "the base reach is NaN or infinite")?;
+        if reach <= 0.0 {
+            return Err(domain(
+                "the base reach (largest |x|, |y|, |z| of a base vertex) must be > 0",
+            ));
+        }
+        if scene.exact_depth {
+            return Err(domain(
+                "exact_depth needs a base the rasterizer does not clip (Base::InsideFrustum)",
+            ));
+        }
+    }
+    if let Snapping::SubpixelBits(b) = scene.profile.snapping {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
         }
+    }
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    if scene.depth_test.is_reversed() != reversed {
+        return Err(domain(if reversed {
+            "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
+        } else {
+            "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
+        }));
     }
     Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
-// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// Cutting a base to the view frustum in f64, so the rasterizer clips nothing.
 // ---------------------------------------------------------------------------------------------
 
-use crate::precision::DepthMapping;
-use crate::projection::ClipDepth;
+/// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
+/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the far one to
+/// `f·(1 − 2⁻¹⁶)`, the side planes inward by 2⁻¹⁶ of the frustum's width), in f64: drawn
+/// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
+/// with [`Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
+/// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
+/// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
+///
+/// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
+/// one plane at a time; a convex polygon stays convex (draw it as a fan).
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate.
+pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    for v in polygon {
+        for &c in v {
+            finite(c, "a polygon vertex coordinate is NaN or infinite")?;
+        }
+    }
+    let m = frustum.to_cols_array_f64()?;
+    let planes = frustum.planes();
+    let (n, f) = (planes.near(), planes.far());
+    // Side planes x/(−z) ∈ [l/n, r/n]: l/n = (m8 − 1)/m0, r/n = (m8 + 1)/m0 (likewise y).
+    let shrink = |lo: f64, hi: f64| {
+        let margin = FRUSTUM_MARGIN * (hi - lo);
+        (lo + margin, hi - margin)
+    };
+    let (xl, xr) = shrink((m[8] - 1.0) / m[0], (m[8] + 1.0) / m[0]);
+    let (yb, yt) = shrink((m[9] - 1.0) / m[5], (m[9] + 1.0) / m[5]);
+    // Each plane as a signed distance, positive inside.
+    let mut sides: Vec<Box<dyn Fn(&[f64; 3]) -> f64>> = vec![
+        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
+        Box::new(move |p| p[0] - xl * -p[2]),
+        Box::new(move |p| xr * -p[2] - p[0]),
+        Box::new(move |p| p[1] - yb * -p[2]),
+        Box::new(move |p| yt * -p[2] - p[1]),
+    ];
+    if f.is_finite() {
+        sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
+    }
+    let mut poly = polygon.to_vec();
+    for side in &sides {
+        poly = cut(&poly, side.as_ref());
+        if poly.is_empty() {
+            break;
+        }
+    }
+    Ok(poly)
+}
+
+/// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
+fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for (i, a) in poly.iter().enumerate() {
+        let b = &poly[(i + 1) % poly.len()];
+        let (da, db) = (side(a), side(b));
+        if da >= 0.0 {
+            out.push(*a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            out.push([0, 1, 2].map(|k| a[k] + t * (b[k] - a[k])));
+        }
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// ---------------------------------------------------------------------------------------------
 
 /// The recommended offset for a [`Scene`] drawn under a clip-depth convention, in the form that
 /// convention needs, with the decal's matrix.
@@ -393,8 +640,8 @@ pub struct ClipRecommendation {
     pub window_offset: f64,
     /// The eye-space shift toward the camera at `d₂` that the offset amounts to there.
     pub delta_at_far: f64,
-    /// Occluders nearer than the base by at least this eye-space distance along the line of
-    /// sight are never overdrawn by the decal.
+    /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
+    /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
     /// The decal's projection matrix (f32, column-major), offset rounded outward; draw the base
     /// with [`crate::projection::projection`] of the same frustum and convention.
@@ -407,17 +654,18 @@ pub struct ClipRecommendation {
 /// The smallest offset that model (R1) guarantees ends z-fighting for `scene` drawn under
 /// `clip` (see "Other clip conventions" in the module docs), with its matrix and bleed gap.
 ///
-/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS`
-/// and gives exactly [`recommend`]'s offset; `ZeroToOne` is
-/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` (Direct3D/Vulkan clip space),
-/// offset through element 10; `ReversedZeroToOne` adds `glDepthFunc(GL_GREATER)` and
-/// `glClearDepth(0)`, offset through element 14 (relative, works where `m10 = 0`). `f` may be
-/// `+∞` in every convention.
+/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS` or
+/// `GL_LEQUAL` and gives exactly [`recommend`]'s offset; `ZeroToOne` is
+/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` or `GL_LEQUAL`
+/// (Direct3D/Vulkan clip space), offset through element 10; `ReversedZeroToOne` adds
+/// `glDepthFunc(GL_GREATER or GL_GEQUAL)` and `glClearDepth(0)`, offset through element 14
+/// (relative, works where `m10 = 0`). `f` may be `+∞` in every convention; `scene.depth_test`
+/// must match the convention.
 ///
 /// # Errors
 /// As [`recommend`]; [`crate::ErrorKind::Overflow`] if an element of the matrix leaves f32.
 pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
-    check(scene)?;
+    check(scene, clip)?;
     let frustum = &scene.frustum;
     let m = crate::projection::projection_f64(frustum, clip)?;
     if clip == ClipDepth::NegOneToOne {
@@ -437,7 +685,6 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     }
     let mapping = mapping_of(scene, clip)?;
     let terms = clip_error_terms(scene, clip)?;
-    let budget = 2.0 * (terms.transform + terms.vertex + terms.interpolation + terms.snap);
     let [d1, d2] = scene.depth_range;
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     let (ndc_offset, relative_epsilon, window_offset, matrix) = if clip == ClipDepth::ZeroToOne {
@@ -446,7 +693,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         let c = -dw / mapping.window_per_ndc();
         (c, 0.0, dw, crate::clip_offset::ndc_offset_matrix(&m, c)?)
     } else {
-        let eps = reversed_epsilon(scene, &mapping, budget)?;
+        let eps = reversed_epsilon(scene, &mapping, &terms)?;
         let b = scale(scene);
         let matrix = crate::clip_offset::relative_offset_matrix(&m, eps)?;
         (0.0, eps, fits(eps * (b / d2))?, matrix)
@@ -463,7 +710,11 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
     let mut bleed_gap = 0.0f64;
     for d in [d1, d2] {
-        let g = match mapping.shift_of_window_change(toward(offset_at(d) + budget), d) {
+        let at_d = ErrorTerms {
+            quantum: quantum(scene.format, mapping.window_depth(d)?)?,
+            ..terms
+        };
+        let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
             Ok(g) => g.min(d),
             // Past the eye: no occluder in front of the base is safe from the decal.
             Err(_) => d,
@@ -473,12 +724,8 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
         (relative_epsilon, [0.0, 0.0])
     } else {
-        let factor = match scene.snapping {
-            Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
-            Snapping::Unsnapped => 0.0,
-        };
         let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
-        (-ndc_offset / m[10], [factor, fits(units)?])
+        (-ndc_offset / m[10], [slope_factor(scene), fits(units)?])
     };
     Ok(ClipRecommendation {
         clip,
@@ -494,43 +741,53 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     })
 }
 
-/// The model's terms for `scene` under `clip` (see "Other clip conventions" in the module
-/// docs); `NegOneToOne` gives exactly [`error_terms`].
+/// The model's terms for `scene` under `clip` (see the module docs); `NegOneToOne` gives
+/// exactly [`error_terms`].
 ///
 /// # Errors
 /// As [`recommend`].
 pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
-    if clip == ClipDepth::NegOneToOne {
-        return error_terms(scene);
-    }
-    check(scene)?;
+    check(scene, clip)?;
     let u = F32_UNIT_ROUNDOFF;
     let mapping = mapping_of(scene, clip)?;
     let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
     let [d1, d2] = scene.depth_range;
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
-    let w_max = w1.max(w2);
-    // NDC = window depth here: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
-    // the division by w = d; the sum, reciprocal and product round relative to |ndc| ≤ w_max;
-    // the viewport map z·1 + 0 is exact but counted (one rounding relative to w_max).
-    let transform = u * (m10.abs() + 4.0 * w_max);
+    let (w_min, w_max) = (w1.min(w2), w1.max(w2));
+    let transform = if clip == ClipDepth::NegOneToOne {
+        // m10·z and + m14 round relative to |m10|·d and |clip_z| ≤ d (halved by the viewport
+        // map), the reciprocal and product relative to |ndc|, ½·ndc + ½ relative to w.
+        let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
+        u * (m10.abs() / 2.0 + 1.5 * ndc_max + w_max)
+    } else {
+        // NDC = window depth: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
+        // the division by w = d; the sum, reciprocal and product round relative to
+        // |ndc| ≤ w_max; the viewport map z·1 + 0 is exact but counted.
+        u * (m10.abs() + 4.0 * w_max)
+    };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
     } else {
         let e = half_extent_tangent(&scene.frustum)?;
-        let nearest = d1.min(d2);
-        let vertex = u * (scale(scene) / nearest) * (1.0 + scene.slope * e);
-        (vertex, u * (3.0 * w_max + 3.0 * (w1 - w2).abs()))
+        let vertex = u * (scale(scene) / d1) * (1.0 + scene.slope * e);
+        (vertex, u * (3.0 * w_max + 3.0 * (w_max - w_min)))
     };
-    // The spacing at the decal's smallest window depth: its farthest point under either
-    // convention (reversed Z stores n/d-like values that shrink with distance).
-    let w_min = w1.min(w2);
+    // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
+    // its smallest. A measured error (in quanta) is converted at the coarsest spacing.
+    let far_w = if mapping.is_reversed() { w_min } else { w_max };
+    let q = quantum(scene.format, far_w)?;
+    let bound = transform + vertex + interpolation;
+    let coarsest = quantum(scene.format, w_max)?;
+    let plane = measured_plane_error(scene, coarsest).map_or(bound, |e| e.min(bound));
     Ok(ErrorTerms {
-        quantum: quantum(scene.format, w_min)?,
+        quantum: q,
         transform,
         vertex,
         interpolation,
         snap: snap(scene)?,
+        plane,
+        clip: clip_term(scene, clip, &mapping)?,
+        strict: scene.depth_test.is_strict(),
     })
 }
 
@@ -547,16 +804,18 @@ fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
 }
 
 /// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
-/// reach `q(w(d)) + budget` at every `d` of the decal. The budget part is largest at `d₂`; the
-/// quantum part `q(w)·d/b` peaks, within each binade of float depth, where `w` is smallest, so
-/// at `d₂` or where `w(d)` is a power of two. Element 14 rounded to f32 (`p ≥ b·(1 − u)`)
-/// carries `ε·p`, hence the final `1/(1 − u)`.
-fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Result<f64> {
+/// reach `q(w(d)) + budget` (strict test) or `budget` at every `d` of the decal. The budget
+/// part is largest at `d₂`; the quantum part `q(w)·d/b` peaks, within each binade of float
+/// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
+/// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
+fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
     let b = scale(scene);
     let [d1, d2] = scene.depth_range;
+    let budget = terms.budget();
+    let strict = if terms.strict { 1.0 } else { 0.0 };
     let need = |d: f64| -> Result<f64> {
         let q = quantum(scene.format, mapping.window_depth(d)?)?;
-        Ok((q + budget) * (d / b))
+        Ok((strict * q + budget) * (d / b))
     };
     let mut eps = need(d1)?.max(need(d2)?);
     let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
@@ -564,7 +823,7 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Resul
         let mut p = 2f64.powi(w_lo.log2().floor() as i32 + 1);
         while p <= w_hi {
             let d = mapping.distance_at_window(p)?;
-            eps = eps.max((p * 2f64.powi(-23) + budget) * (d / b));
+            eps = eps.max((strict * p * 2f64.powi(-23) + budget) * (d / b));
             p *= 2.0;
         }
     }
@@ -580,6 +839,10 @@ mod tests {
     use crate::ErrorKind;
 
     fn scene(format: DepthFormat, slope: f64, snapping: Snapping) -> Scene {
+        let profile = RasterizerProfile {
+            snapping,
+            ..RasterizerProfile::worst_case()
+        };
         let e = 0.577_350_269_189_625_7;
         Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
@@ -588,7 +851,9 @@ mod tests {
             depth_range: [80.0, 120.0],
             slope,
             exact_depth: false,
-            snapping,
+            depth_test: DepthTest::Less,
+            base: Base::InsideFrustum,
+            profile,
         }
     }
 
@@ -696,6 +961,7 @@ mod tests {
         let s = Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
             depth_range: [6.0, 10.0],
+            depth_test: DepthTest::Greater,
             ..scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped)
         };
         let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
@@ -727,6 +993,7 @@ mod tests {
         let s = Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
             depth_range: [50.0, 60.0],
+            depth_test: DepthTest::Greater,
             ..scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped)
         };
         let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
@@ -785,7 +1052,10 @@ mod tests {
         );
         assert_eq!(
             kind(Scene {
-                snapping: Snapping::SubpixelBits(40),
+                profile: RasterizerProfile {
+                    snapping: Snapping::SubpixelBits(40),
+                    ..good.profile
+                },
                 ..good
             }),
             ErrorKind::Domain

@@ -79,6 +79,11 @@ impl Case {
         Scene {
             frustum: self.frustum(),
             depth_range: [d1, d2],
+            depth_test: if self.reversed() {
+                zshift::recommend::DepthTest::Greater
+            } else {
+                zshift::recommend::DepthTest::Less
+            },
             ..gl_common::scene_of(&s, gl_common::snapping_of(gl))
         }
     }
