@@ -326,6 +326,11 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     check(scene, ClipDepth::NegOneToOne)?;
     let terms = error_terms(scene)?;
     let window_offset = terms.window_offset();
+    check_in_range(
+        &mapping_of(scene, ClipDepth::NegOneToOne)?,
+        scene.depth_range[0],
+        window_offset,
+    )?;
     let planes = scene.frustum.planes();
     let m10 = planes.sum_over_span();
     let epsilon = representable(-2.0 * window_offset / m10, "epsilon overflows")?;
@@ -382,8 +387,10 @@ fn snap(scene: &Scene) -> Result<f64> {
     match scene.profile.snapping {
         Snapping::Unsnapped => Ok(0.0),
         Snapping::SubpixelBits(b) => {
+            // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
-            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy))
+            let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
+            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy) * tilt)
         }
     }
 }
@@ -394,18 +401,21 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
 }
 
-/// The profile's measured per-pixel plane error for `format`, in window depth at spacing `q`;
-/// `None` unless the profile is measured and has a finite, non-negative figure for the format.
-fn measured_plane_error(scene: &Scene, q: f64) -> Option<f64> {
+/// The profile's measured per-pixel plane error for the scene's format, in window depth: the
+/// figure times the UNORM quantum, or for D32F times 2⁻²⁴ (the f32 spacing on `[½, 1)`: the
+/// error of computed float depth is mostly absolute, `u·|m10|` from the transform, so it is not
+/// a multiple of the spacing at small depths). `None` unless the profile is measured and has a
+/// finite, non-negative figure for the format.
+fn measured_plane_error(scene: &Scene) -> Option<f64> {
     let p = scene.profile;
-    let i = match scene.format {
-        DepthFormat::Unorm16 => 0,
-        DepthFormat::Unorm24 => 1,
-        DepthFormat::Unorm32 => 2,
-        DepthFormat::Float32 => 3,
+    let (i, unit) = match scene.format {
+        DepthFormat::Unorm16 => (0, 1.0 / 65_535.0),
+        DepthFormat::Unorm24 => (1, 1.0 / 16_777_215.0),
+        DepthFormat::Unorm32 => (2, 1.0 / 4_294_967_295.0),
+        DepthFormat::Float32 => (3, F32_UNIT_ROUNDOFF),
     };
     let e = p.plane_error[i];
-    (p.measured && e.is_finite() && e >= 0.0).then(|| e * q)
+    (p.measured && e.is_finite() && e >= 0.0).then(|| e * unit)
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
@@ -439,9 +449,12 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     // The plane z = −d_a + sₓx + s_y·y (|sₓ| + |s_y| = s, d_a ≥ d₁) in clip coordinates:
     // L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c with g_X = m14·sₓ/(d_a·m0),
     // g_Y = m14·s_y/(d_a·m5), Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5).
-    let g_x = m14 * s / (d1 * m0);
-    let g_y = m14 * s / (d1 * m5);
-    let z0 = m10 + m14 / d1 * (1.0 + s * (m8 / m0).max(m9 / m5));
+    // A visible point at depth d on the ray (kₓ, k_y) (|k| ≤ e) has d = d_a/(1 + sₓkₓ + s_y·k_y),
+    // so |1/d_a| ≤ (1 + s·e)/d₁ wherever the axis crossing d_a lies.
+    let inv_da = (1.0 + s * half_extent_tangent(&scene.frustum)?) / d1;
+    let g_x = m14 * s * inv_da / m0;
+    let g_y = m14 * s * inv_da / m5;
+    let z0 = m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5));
     let (a_x, a_y, a_z, a_w) = (
         (m0 + m8) * reach,
         (m5 + m9) * reach,
@@ -459,6 +472,26 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         mapping.window_per_ndc() * gamma * l / w_low,
         "the clipping term overflows f64",
     )
+}
+
+/// Refuses an offset that would move the decal's nearest point out of the depth range (past
+/// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
+/// which happens when the clipping term `C` of a large clipped base dwarfs the decal's depth.
+fn check_in_range(mapping: &DepthMapping, d1: f64, offset_at_d1: f64) -> Result<()> {
+    let w1 = mapping.window_depth(d1)?;
+    let moved = if mapping.is_reversed() {
+        w1 + offset_at_d1
+    } else {
+        w1 - offset_at_d1
+    };
+    if (0.0..=1.0).contains(&moved) {
+        Ok(())
+    } else {
+        Err(crate::error::Error::new(
+            crate::ErrorKind::Unresolvable,
+            "the offset this scene needs moves the decal past the near plane (the f32 clipping term of a large clipped base): cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ))
+    }
 }
 
 /// The δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
@@ -706,6 +739,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             window_offset
         }
     };
+    check_in_range(&mapping, d1, offset_at(d1))?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
     let mut bleed_gap = 0.0f64;
@@ -773,12 +807,11 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         (vertex, u * (3.0 * w_max + 3.0 * (w_max - w_min)))
     };
     // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
-    // its smallest. A measured error (in quanta) is converted at the coarsest spacing.
+    // its smallest.
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    let coarsest = quantum(scene.format, w_max)?;
-    let plane = measured_plane_error(scene, coarsest).map_or(bound, |e| e.min(bound));
+    let plane = measured_plane_error(scene).map_or(bound, |e| e.min(bound));
     Ok(ErrorTerms {
         quantum: q,
         transform,
@@ -905,7 +938,10 @@ mod tests {
         assert_eq!(unsnapped.snap, 0.0);
         let s1 = error_terms(&scene(DepthFormat::Float32, 1.0, Snapping::SubpixelBits(8))).unwrap();
         let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
-        assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
+        // S grows with the slope and with the axis-crossing bound (1 + s·e)/d₁.
+        let e = 0.577_350_269_189_625_7;
+        let want = 3.0 * (1.0 + 3.0 * e) / (1.0 + e);
+        assert!((s3.snap / s1.snap - want).abs() < 1e-12);
         assert!(s3.vertex > s1.vertex);
     }
 
