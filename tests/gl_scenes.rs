@@ -160,12 +160,13 @@ impl Case {
             ClipDepth::ReversedZeroToOne => "rev-Z",
         };
         let shape = if self.slope() == 0.0 { "facing" } else { "sloped" };
+        let test = if self.test.is_strict() { "<" } else { "<=" };
         let base = match self.base_kind {
             BaseKind::Fitted => "fitted",
             BaseKind::Ground => "clipped",
             BaseKind::Split => "split",
         };
-        format!("{conv:<6} {:<4} {shape:<6} {base:<7}", self.format.name())
+        format!("{conv:<6} {:<4} {test:<2} {shape:<6} {base:<7}", self.format.name())
     }
 
     fn label(&self) -> String {
@@ -783,16 +784,24 @@ fn the_recommendation_holds_on_every_scene() {
     );
 }
 
-/// Per class: scenes, the largest and median recommended ÷ smallest working offset with each
-/// profile (f32 steps of the offset element; the smallest working offset counted as at least
-/// one step).
+/// Per class (`<` strict test, `<=` the `…EQUAL` one): scenes, those that need no offset at all
+/// (no ratio), and over the rest the largest and median recommended ÷ smallest working offset
+/// with each profile (f32 steps of the offset element).
 fn print_classes(rows: &[Row]) {
     let mut classes: Vec<String> = rows.iter().map(|r| r.case.class()).collect();
     classes.sort();
     classes.dedup();
-    println!("class                        | scenes | default rec/min: max  median | measured rec/min: max  median | worst (measured)");
+    println!("class                           | scenes  no-offset | default rec/min: max  median | measured rec/min: max  median | worst (measured)");
     for class in classes {
-        let of: Vec<&Row> = rows.iter().filter(|r| r.case.class() == class).collect();
+        let all = rows.iter().filter(|r| r.case.class() == class).count();
+        let of: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.case.class() == class && r.k_min > 0)
+            .collect();
+        if of.is_empty() {
+            println!("{class} | {all:>6} {all:>10} |");
+            continue;
+        }
         let stats = |f: &dyn Fn(&Row) -> f64| {
             let mut v: Vec<f64> = of.iter().map(|r| f(r)).collect();
             v.sort_by(f64::total_cmp);
@@ -806,8 +815,8 @@ fn print_classes(rows: &[Row]) {
             .map(|r| r.case.label())
             .unwrap_or_default();
         println!(
-            "{class} | {:>6} | {dmax:>19.1} {dmed:>7.1} | {mmax:>20.1} {mmed:>7.1} | {worst}",
-            of.len()
+            "{class} | {all:>6} {:>10} | {dmax:>19.1} {dmed:>7.1} | {mmax:>20.1} {mmed:>7.1} | {worst}",
+            all - of.len()
         );
     }
 }
