@@ -1,4 +1,4 @@
-//! The checked-in C header must be exactly what cbindgen makes of `src/ffi.rs` today.
+//! The checked-in C header must be exactly what cbindgen makes of `src/ffi/` today.
 //! Regenerate with `ZSHIFT_BLESS=1 cargo test --test header`.
 
 use std::path::Path;

@@ -1,4 +1,4 @@
-//! The FFI layer's unsafe code (`src/ffi.rs`: unaligned scalar and struct stores, byte copies of
+//! The FFI layer's unsafe code (`src/ffi/`: unaligned scalar and struct stores, byte copies of
 //! matrices and arrays, the unaligned read of a `ZshiftScene`, static C strings) exercised so
 //! that Miri can check it: `scripts/miri` runs this file under `cargo +nightly miri test --test
 //! miri_ffi`. It also runs in the ordinary `cargo test`.

@@ -8,7 +8,7 @@
  * sanitizer report (the build makes every report fatal).
  *
  * Misaligned float and double pointers are what a C caller gets from a packed struct or a byte
- * buffer; the header promises they work (src/ffi.rs stores with write_unaligned / byte copies).
+ * buffer; the header promises they work (src/ffi/ stores with write_unaligned / byte copies).
  * Forming one is implementation-defined territory in ISO C but well defined on every ABI zshift
  * targets; this driver never dereferences one itself (it reads the bytes back with memcpy).
  *

@@ -1,0 +1,94 @@
+//! Projection builders: glFrustum, gluPerspective, every clip convention, tweaked infinite.
+
+use super::{checked_array, clip_of, ZshiftStatus};
+use crate::projection::Frustum;
+
+/// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
+///
+/// Convention: right-handed eye space, NDC depth [-1, 1], the matrix `glFrustum(l, r, b, t, n, f)`
+/// builds. Each element is the f32 nearest the exact value (within 1 ulp). `f` may be
+/// `+INFINITY`: then element 10 is -1 and element 14 is -2n. Seed 000, eq. 4.1.1.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN or an
+/// infinity other than f = +INFINITY; ZSHIFT_ERR_DOMAIN if l == r, b == t, n <= 0 or f <= n;
+/// ZSHIFT_ERR_OVERFLOW if an element does not fit in a float. `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_frustum(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || Frustum::new(l, r, b, t, n, f)?.to_cols_array())
+}
+
+/// Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
+///
+/// Convention: right-handed, NDC depth [-1, 1]; fovy in degrees; `f` may be +INFINITY. The
+/// frustum is t = n tan(fovy/2), r = t aspect, centred; each element the nearest float.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE (NaN or infinity other than f);
+/// ZSHIFT_ERR_DOMAIN unless 0 < fovy < 180, aspect > 0, 0 < n < f. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_perspective(
+    fovy: f64,
+    aspect: f64,
+    n: f64,
+    f: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || {
+        crate::projection::perspective_frustum(fovy, aspect, n, f)?.to_cols_array()
+    })
+}
+
+/// Writes the glFrustum(l, r, b, t, n, f) matrix with the depth row of `clip` (a ZSHIFT_CLIP_*):
+/// m10, m14 = -(f+n)/(f-n), -2fn/(f-n) for [-1, 1]; -f/(f-n), -fn/(f-n) for [0, 1];
+/// n/(f-n), fn/(f-n) reversed; with f = +INFINITY: -1, -2n; -1, -n; 0, n.
+///
+/// Errors: as `zshift_frustum`; ZSHIFT_ERR_DOMAIN for an unknown `clip`. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_projection(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: i32,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || {
+        crate::projection::projection(&Frustum::new(l, r, b, t, n, f)?, clip_of(clip)?)
+    })
+}
+
+/// The smallest tweak epsilon for `zshift_tweaked_infinite` that keeps far geometry inside the
+/// clip volume in float arithmetic: 2^-22 (Lengyel, GDC 2007).
+pub const ZSHIFT_MIN_INFINITE_TWEAK: f64 = 2.384185791015625e-7;
+
+/// Writes the tweaked infinite projection (Lengyel, GDC 2007; GLM tweakedInfinitePerspective):
+/// the glFrustum(l, r, b, t, n, -) x/y rows, m10 = tweak - 1, m14 = (tweak - 2) n, NDC [-1, 1].
+/// With tweak >= ZSHIFT_MIN_INFINITE_TWEAK geometry at any distance stays inside the clip volume
+/// in float arithmetic (the plain infinite projection puts it on the far plane, where GL_LESS
+/// against a cleared 1.0 rejects it).
+///
+/// Errors: as `zshift_frustum` (with f = +INFINITY); ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
+/// unless 0 <= tweak < 1. `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_tweaked_infinite(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    tweak: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || {
+        crate::projection::tweaked_infinite(&Frustum::new(l, r, b, t, n, f64::INFINITY)?, tweak)
+    })
+}

@@ -1,0 +1,295 @@
+//! The recommended offset for a real rasterizer (src/recommend.rs): the scene and record structs
+//! and the zshift_recommend* entry points.
+
+use std::panic::UnwindSafe;
+
+use super::{
+    checked, checked_array, clip_of, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+    ZSHIFT_ERR_NULL_POINTER,
+};
+use crate::error::Result;
+use crate::precision::DepthFormat;
+use crate::projection::Frustum;
+
+/// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
+/// vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
+pub const ZSHIFT_SUBPIXEL_UNSNAPPED: i32 = -1;
+
+/// What a scene knows about one decal and the surface under it, for `zshift_recommend`.
+///
+/// Convention: OpenGL right-handed eye space, NDC depth [-1, 1]; the base is drawn with
+/// `glFrustum(l, r, b, t, n, f)` (or `zshift_frustum`), the decal with element 10 scaled by
+/// 1 + epsilon (seed 000, eq. 4.1.3), depth test GL_LESS or GL_LEQUAL.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftScene {
+    /// `glFrustum` left extent on the near plane of the base's projection.
+    pub l: f64,
+    /// `glFrustum` right extent.
+    pub r: f64,
+    /// `glFrustum` bottom extent.
+    pub b: f64,
+    /// `glFrustum` top extent.
+    pub t: f64,
+    /// Near plane distance (> 0).
+    pub n: f64,
+    /// Far plane distance (> n; may be +INFINITY).
+    pub f: f64,
+    /// `glViewport` width in pixels (nonzero).
+    pub viewport_width: u32,
+    /// `glViewport` height in pixels (nonzero).
+    pub viewport_height: u32,
+    /// The depth attachment's GL internal format: GL_DEPTH_COMPONENT16 (0x81A5),
+    /// GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7) or
+    /// GL_DEPTH_COMPONENT32F (0x8CAC).
+    pub depth_format: u32,
+    /// The decal's nearest eye distance (positive, n <= decal_near <= decal_far). It also
+    /// stands for where the decal's plane crosses the view axis (exact for a decal centred on
+    /// it), which sets the slope term.
+    pub decal_near: f64,
+    /// The decal's farthest eye distance (decal_far <= f).
+    pub decal_far: f64,
+    /// Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
+    pub slope: f64,
+    /// Nonzero when every corner of base and decal has the same float eye-space z (a plane
+    /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+    pub exact_depth: u32,
+    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+    pub subpixel_bits: i32,
+}
+
+/// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
+/// error terms it was built from (window-depth units; see the README, "Verified on a
+/// rasterizer").
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftRecommendation {
+    /// epsilon for element 10 (negative: toward the camera); use with the matrix from
+    /// `zshift_recommend_matrix`.
+    pub epsilon: f64,
+    /// The NDC depth offset -epsilon * m10 (= 2 * window_offset).
+    pub ndc_offset: f64,
+    /// The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+    pub window_offset: f64,
+    /// The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
+    /// (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
+    pub delta_at_far: f64,
+    /// Occluders nearer than the base by at least this eye-space distance (along the line of
+    /// sight) are never overdrawn by the decal.
+    pub bleed_gap: f64,
+    /// The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
+    /// 0 when unsnapped.
+    pub polygon_offset_factor: f64,
+    /// The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+    pub polygon_offset_units: f64,
+    /// Term q: the smallest difference the stored format keeps (window depth).
+    pub quantum: f64,
+    /// Term T: f32 rounding of the vertex transform and viewport mapping, per vertex.
+    pub transform: f64,
+    /// Term V: f32 rounding of the decal's eye-space coordinates.
+    pub vertex: f64,
+    /// Term I: f32 rounding of the rasterizer's depth-plane evaluation.
+    pub interpolation: f64,
+    /// Term S: sub-pixel snapping of a sloped plane before depth setup.
+    pub snap: f64,
+}
+
+impl ZshiftRecommendation {
+    /// The C record of a recommendation: its offsets, then the error terms it was built from.
+    fn new(
+        epsilon: f64,
+        ndc_offset: f64,
+        window_offset: f64,
+        delta_at_far: f64,
+        bleed_gap: f64,
+        polygon_offset: [f64; 2],
+        terms: &crate::recommend::ErrorTerms,
+    ) -> Self {
+        Self {
+            epsilon,
+            ndc_offset,
+            window_offset,
+            delta_at_far,
+            bleed_gap,
+            polygon_offset_factor: polygon_offset[0],
+            polygon_offset_units: polygon_offset[1],
+            quantum: terms.quantum,
+            transform: terms.transform,
+            vertex: terms.vertex,
+            interpolation: terms.interpolation,
+            snap: terms.snap,
+        }
+    }
+}
+
+/// Reads a scene the caller passed by pointer (NULL refused, no alignment needed) and converts
+/// it to the Rust model's input.
+fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
+    if scene.is_null() {
+        return None;
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftScene; read_unaligned needs no
+    // alignment and the struct is plain data.
+    Some(unsafe { scene.read_unaligned() })
+}
+
+/// [`checked`] for a `ZshiftRecommendation` output, written with `write_unaligned`.
+fn checked_record(
+    out: *mut ZshiftRecommendation,
+    compute: impl FnOnce() -> Result<ZshiftRecommendation> + UnwindSafe,
+) -> ZshiftStatus {
+    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
+    // write_unaligned needs no alignment.
+    checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
+}
+
+fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
+    use crate::recommend::{Scene, Snapping};
+    let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
+    let snapping = match s.subpixel_bits {
+        ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
+        b if b >= 0 => Snapping::SubpixelBits(b as u32),
+        _ => {
+            return Err(crate::domain::domain(
+                "subpixel_bits must be >= 0 or ZSHIFT_SUBPIXEL_UNSNAPPED",
+            ))
+        }
+    };
+    Ok(Scene {
+        frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
+        viewport: [s.viewport_width, s.viewport_height],
+        format,
+        depth_range: [s.decal_near, s.decal_far],
+        slope: s.slope,
+        exact_depth: s.exact_depth != 0,
+        snapping,
+    })
+}
+
+/// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+/// base on a real rasterizer, by an error model whose every term is a worst-case bound: the
+/// depth quantum, f32 rounding of the vertex transform, of the vertex coordinates and of the
+/// depth interpolation, and sub-pixel snapping of sloped planes (seed 004); seed 000's eq.
+/// 4.1.3/4.1.7 with seed 002's quantum. Also the bleed-through gap and the glPolygonOffset
+/// equivalent. Verified on Mesa llvmpipe with D16, D24 and D32F (tests/gl_recommend.rs).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
+/// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
+/// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
+/// negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
+/// ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend(
+    scene: *const ZshiftScene,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_record(out, move || {
+        let r = crate::recommend::recommend(&to_model(&s)?)?;
+        Ok(ZshiftRecommendation::new(
+            r.epsilon,
+            r.ndc_offset,
+            r.window_offset,
+            r.delta_at_far,
+            r.bleed_gap,
+            r.polygon_offset,
+            &r.terms,
+        ))
+    })
+}
+
+/// Writes the decal's projection matrix for the recommended offset: the `glFrustum` matrix of
+/// `scene` with element 10 scaled by 1 + epsilon of `zshift_recommend`, rounded away from the
+/// plain element (the offset is never lost to float rounding). Column-major, 16 floats, for
+/// glLoadMatrixf or glUniformMatrix4fv(.., GL_FALSE, ..).
+///
+/// Errors: as `zshift_recommend`; ZSHIFT_ERR_OVERFLOW if element 10 leaves float. `out` is
+/// untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_matrix(
+    scene: *const ZshiftScene,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_array(out, move || {
+        let model = to_model(&s)?;
+        let r = crate::recommend::recommend(&model)?;
+        crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
+    })
+}
+
+/// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar
+/// base when both are drawn under clip convention `clip` (a ZSHIFT_CLIP_*): the model of
+/// `zshift_recommend` with each term taken through that convention's depth mapping (README,
+/// "Verified on a rasterizer"). Verified on Mesa llvmpipe (tests/gl_recommend_clip.rs).
+///
+/// - ZSHIFT_CLIP_NEG_ONE_TO_ONE: exactly `zshift_recommend`.
+/// - ZSHIFT_CLIP_ZERO_TO_ONE (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_LESS): a
+///   constant NDC offset through element 10; `epsilon` is Lengyel's element-10 epsilon
+///   (m10 * (1 + epsilon), negative), `ndc_offset` = `window_offset` its magnitude.
+/// - ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (same glClipControl, GL_GREATER, glClearDepth(0)): a
+///   relative offset through element 14 (m14 * (1 + epsilon), every point moved from d to
+///   d / (1 + epsilon); it works where m10 = 0, f = +INFINITY); `epsilon` is that relative
+///   epsilon (positive); `ndc_offset` and `window_offset` are the offset at decal_far, the
+///   smallest over the decal; `polygon_offset_factor` and `polygon_offset_units` are 0 (no
+///   constant glPolygonOffset matches a relative offset).
+///
+/// In every case `delta_at_far` is the eye-space shift toward the camera the offset amounts to
+/// at decal_far, `bleed_gap` the documented bleed-through gap, and `quantum` the format's
+/// spacing at the decal's farthest point. `zshift_recommend_clip_matrix` gives the matrix.
+///
+/// Errors: as `zshift_recommend`; ZSHIFT_ERR_DOMAIN for an unknown `clip`; ZSHIFT_ERR_OVERFLOW
+/// if a result or matrix element overflows. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_clip(
+    scene: *const ZshiftScene,
+    clip: i32,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_record(out, move || {
+        let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
+        let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
+            0.5
+        } else {
+            1.0
+        };
+        Ok(ZshiftRecommendation::new(
+            r.epsilon,
+            r.window_offset / per_ndc,
+            r.window_offset,
+            r.delta_at_far,
+            r.bleed_gap,
+            r.polygon_offset,
+            &r.terms,
+        ))
+    })
+}
+
+/// Writes the decal's projection matrix for `zshift_recommend_clip`'s offset under `clip` (a
+/// ZSHIFT_CLIP_*): `zshift_projection`'s matrix of the scene's frustum with element 10 lowered
+/// by the NDC offset (NEG_ONE_TO_ONE, ZERO_TO_ONE) or element 14 scaled by 1 + epsilon
+/// (REVERSED_ZERO_TO_ONE), rounded away from the plain element so the offset is never lost to
+/// float rounding. Column-major, 16 floats; draw the base with the plain matrix of the same
+/// convention.
+///
+/// Errors: as `zshift_recommend_clip`. `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_clip_matrix(
+    scene: *const ZshiftScene,
+    clip: i32,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(s) = scene_from_c(scene) else {
+        return ZSHIFT_ERR_NULL_POINTER;
+    };
+    checked_array(out, move || {
+        Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
+    })
+}
