@@ -58,6 +58,9 @@ const VALID_SCENE: ZshiftScene = ZshiftScene {
     slope: 0.5,
     exact_depth: 0,
     subpixel_bits: 8,
+    depth_func: 0,
+    base_reach: 0.0,
+    plane_error: 0.0,
 };
 
 impl Inputs {
@@ -614,6 +617,9 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         slope,
         exact_depth: (slope == 0.0 && src.one_in(2)) as u32,
         subpixel_bits: src.below(14) as i32 - 1,
+        depth_func: 0,
+        base_reach: 0.0,
+        plane_error: 0.0,
     };
     i
 }
