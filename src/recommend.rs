@@ -587,7 +587,8 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
 /// one plane at a time; a convex polygon stays convex (draw it as a fan).
 ///
 /// # Errors
-/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate.
+/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
+/// [`crate::ErrorKind::Overflow`] if a cut vertex overflows f64 (coordinates near `f64::MAX`).
 pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
     for v in polygon {
         for &c in v {
@@ -597,20 +598,18 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
     let m = frustum.to_cols_array_f64()?;
     let planes = frustum.planes();
     let (n, f) = (planes.near(), planes.far());
-    // Side planes x/(−z) ∈ [l/n, r/n]: l/n = (m8 − 1)/m0, r/n = (m8 + 1)/m0 (likewise y).
-    let shrink = |lo: f64, hi: f64| {
-        let margin = FRUSTUM_MARGIN * (hi - lo);
-        (lo + margin, hi - margin)
-    };
-    let (xl, xr) = shrink((m[8] - 1.0) / m[0], (m[8] + 1.0) / m[0]);
-    let (yb, yt) = shrink((m[9] - 1.0) / m[5], (m[9] + 1.0) / m[5]);
+    // The side planes in clip space, −w ≤ x_c ≤ w with x_c = m0·x + m8·z and w = −z (no
+    // division: a subnormal n cannot overflow them), each moved inward by the margin.
+    let keep = 1.0 - 2.0 * FRUSTUM_MARGIN;
+    let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
+    let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
     // Each plane as a signed distance, positive inside.
     let mut sides: Vec<Box<dyn Fn(&[f64; 3]) -> f64>> = vec![
         Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
-        Box::new(move |p| p[0] - xl * -p[2]),
-        Box::new(move |p| xr * -p[2] - p[0]),
-        Box::new(move |p| p[1] - yb * -p[2]),
-        Box::new(move |p| yt * -p[2] - p[1]),
+        Box::new(move |p| x_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - x_c(p)),
+        Box::new(move |p| y_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - y_c(p)),
     ];
     if f.is_finite() {
         sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
@@ -621,6 +620,12 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
         if poly.is_empty() {
             break;
         }
+    }
+    if poly.iter().flatten().any(|c| !c.is_finite()) {
+        return Err(crate::error::Error::new(
+            crate::ErrorKind::Overflow,
+            "the polygon's coordinates are too large to cut in f64",
+        ));
     }
     Ok(poly)
 }

@@ -159,14 +159,21 @@ impl Case {
             ClipDepth::ZeroToOne => "[0,1]",
             ClipDepth::ReversedZeroToOne => "rev-Z",
         };
-        let shape = if self.slope() == 0.0 { "facing" } else { "sloped" };
+        let shape = if self.slope() == 0.0 {
+            "facing"
+        } else {
+            "sloped"
+        };
         let test = if self.test.is_strict() { "<" } else { "<=" };
         let base = match self.base_kind {
             BaseKind::Fitted => "fitted",
             BaseKind::Ground => "clipped",
             BaseKind::Split => "split",
         };
-        format!("{conv:<6} {:<4} {test:<2} {shape:<6} {base:<7}", self.format.name())
+        format!(
+            "{conv:<6} {:<4} {test:<2} {shape:<6} {base:<7}",
+            self.format.name()
+        )
     }
 
     fn label(&self) -> String {
@@ -319,7 +326,11 @@ fn build(
         // A slightly irregular quad: corners not on a grid the base shares.
         let k = cam.ray(cx + hs * x * (1.0 + 0.07 * i as f64), cy + hs * y * 0.83);
         let d = plane.depth_on_ray(k)?;
-        let far_limit = if cam.f.is_finite() { 0.95 * cam.f } else { 1e12 };
+        let far_limit = if cam.f.is_finite() {
+            0.95 * cam.f
+        } else {
+            1e12
+        };
         if d < 1.05 * cam.n || d > far_limit {
             return None;
         }
@@ -396,8 +407,19 @@ fn grid(every: usize) -> Vec<Case> {
                     // The view axis (x = y = 0) is left of and below the screen.
                     _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
                 };
-                let f = if ratio.is_finite() { n * ratio } else { f64::INFINITY };
-                let cam = Cam { l, r, b, t: tt, n, f };
+                let f = if ratio.is_finite() {
+                    n * ratio
+                } else {
+                    f64::INFINITY
+                };
+                let cam = Cam {
+                    l,
+                    r,
+                    b,
+                    t: tt,
+                    n,
+                    f,
+                };
                 for kind in kinds {
                     for slope in [0.0, 0.3, 1.0, 3.0, 10.0] {
                         for base_kind in [BaseKind::Fitted, BaseKind::Ground, BaseKind::Split] {
@@ -418,7 +440,11 @@ fn grid(every: usize) -> Vec<Case> {
                                 } else {
                                     (slope * a.cos(), slope * a.sin())
                                 };
-                                let sy = if slope > 0.0 && rng.next() < 0.7 { -sy.abs() } else { sy };
+                                let sy = if slope > 0.0 && rng.next() < 0.7 {
+                                    -sy.abs()
+                                } else {
+                                    sy
+                                };
                                 let span = if ratio.is_finite() { ratio } else { 1e4 };
                                 for _attempt in 0..8 {
                                     let p = 0.15 + 0.8 * rng.next();
@@ -615,7 +641,11 @@ impl<'a> Bench<'a> {
         let i = self.element();
         let bits = m[i].to_bits();
         // Element 14 (> 0) grows under reversed Z; element 10 (< 0) moves toward 0 otherwise.
-        m[i] = f32::from_bits(if self.case.reversed() { bits + k } else { bits - k });
+        m[i] = f32::from_bits(if self.case.reversed() {
+            bits + k
+        } else {
+            bits - k
+        });
         m
     }
 
@@ -674,7 +704,10 @@ fn outcome(bench: &mut Bench, rec: ClipRecommendation) -> Result<Outcome, String
 fn measure(gl: &mut Gl, case: Case) -> Result<Option<Row>, String> {
     let label = case.label();
     let rec = |p: RasterizerProfile| recommend_clip(&case.scene(p), case.clip);
-    let (rd, rm) = match (rec(RasterizerProfile::worst_case()), rec(measured_llvmpipe())) {
+    let (rd, rm) = match (
+        rec(RasterizerProfile::worst_case()),
+        rec(measured_llvmpipe()),
+    ) {
         (Ok(a), Ok(b)) => (a, b),
         (a, b) => {
             // Refused (an offset no f32 element can carry, or an unbounded clip term): say so.
@@ -720,8 +753,8 @@ fn ratio(o: &Outcome, k_min: u32) -> f64 {
 /// Every scene: 0 lost, 0 bled with both profiles; prints the ratios per class.
 #[test]
 fn the_recommendation_holds_on_every_scene() {
-    let mut gl =
-        Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
     let cases = grid(every());
     let total = cases.len();
     let mut rows = Vec::new();
@@ -845,7 +878,11 @@ fn plane_error_survey(gl: &mut Gl) -> Result<[f64; 4], String> {
                     let aspect = f64::from(size.0) / f64::from(size.1);
                     let n = 0.1;
                     let t = n * 0.5774;
-                    let f = if ratio.is_finite() { n * ratio } else { f64::INFINITY };
+                    let f = if ratio.is_finite() {
+                        n * ratio
+                    } else {
+                        f64::INFINITY
+                    };
                     let cam = Cam {
                         l: -t * aspect,
                         r: t * aspect,
@@ -880,7 +917,12 @@ fn plane_error_survey(gl: &mut Gl) -> Result<[f64; 4], String> {
     let q = |m: i32| 1.0 / (2f64.powi(m) - 1.0);
     println!("largest error over the f32 spacing at the exact depth: {worst_rel:.1}");
     assert!(worst_rel > 0.0, "the survey saw no error: it cannot fail");
-    Ok([worst / q(16), worst / q(24), worst / q(32), worst / 2f64.powi(-24)])
+    Ok([
+        worst / q(16),
+        worst / q(24),
+        worst / q(32),
+        worst / 2f64.powi(-24),
+    ])
 }
 
 /// Draws the case's base (fitted, inside the frustum) into D32F and returns the largest
@@ -920,8 +962,8 @@ fn plane_error(gl: &mut Gl, case: &Case) -> Result<(f64, f64), String> {
 /// sees a nonzero error.
 #[test]
 fn the_measured_plane_error_holds() {
-    let mut gl =
-        Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
     let survey = plane_error_survey(&mut gl).unwrap_or_else(|e| panic!("GL: {e}"));
     println!("plane error survey (D16, D24, D32 quanta; D32F spacing): {survey:?}");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
@@ -961,8 +1003,14 @@ fn clip_to_frustum_cuts_inside_and_on_the_plane() {
     for p in &cut {
         let d = -p[2];
         assert!(d > cam.n && d < cam.f, "{p:?} outside [n, f]");
-        assert!(p[0] / d > cam.l / cam.n && p[0] / d < cam.r / cam.n, "{p:?} outside x");
-        assert!(p[1] / d > cam.b / cam.n && p[1] / d < cam.t / cam.n, "{p:?} outside y");
+        assert!(
+            p[0] / d > cam.l / cam.n && p[0] / d < cam.r / cam.n,
+            "{p:?} outside x"
+        );
+        assert!(
+            p[1] / d > cam.b / cam.n && p[1] / d < cam.t / cam.n,
+            "{p:?} outside y"
+        );
         assert!((p[2] - plane.z(p[0], p[1])).abs() <= 1e-9 * p[2].abs().max(1.0));
     }
     let inside: Vec<[f64; 3]> = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]

@@ -4,8 +4,8 @@
 use std::panic::UnwindSafe;
 
 use super::{
-    checked, checked_array, clip_of, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-    ZSHIFT_ERR_DOMAIN, ZSHIFT_ERR_NULL_POINTER,
+    checked, checked_array, clip_of, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
+    ZSHIFT_ERR_NULL_POINTER,
 };
 use crate::error::Result;
 use crate::precision::DepthFormat;
@@ -349,7 +349,10 @@ pub extern "C" fn zshift_recommend_clip_matrix(
         return ZSHIFT_ERR_NULL_POINTER;
     };
     checked_array(out, move || {
-        Ok(crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?.matrix)
+        Ok(
+            crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?
+                .matrix,
+        )
     })
 }
 

@@ -286,6 +286,36 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_recommend_matrix(scene) -> [F32; 16]),
     writes!(zshift_recommend_clip(scene, clip) -> [F64; RECOMMENDATION]),
     writes!(zshift_recommend_clip_matrix(scene, clip) -> [F32; 16]),
+    Entry {
+        name: "zshift_clip_to_frustum",
+        kind: Kind::Writes {
+            elem: Elem::F64,
+            len: 30,
+            // A ground quad z = -10 - y/2 running behind the camera, cut to at most 10 vertices.
+            call: |i: &Inputs, out: *mut u8| {
+                let quad = [
+                    -1e3, -1e3, 490.0, 1e3, -1e3, 490.0, 1e3, 1e3, -510.0, -1e3, 1e3, -510.0,
+                ];
+                let mut count = 0u32;
+                let (p, n) = (quad.as_ptr(), 4);
+                ffi::zshift_clip_to_frustum(
+                    i.l,
+                    i.r,
+                    i.b,
+                    i.t,
+                    i.n,
+                    i.f,
+                    p,
+                    n,
+                    out.cast(),
+                    10,
+                    &mut count,
+                )
+                .0
+            },
+            inf_ok: &[],
+        },
+    },
 ];
 
 /// The entry named `name`.
