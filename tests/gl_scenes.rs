@@ -1021,3 +1021,190 @@ fn clip_to_frustum_cuts_inside_and_on_the_plane() {
     let behind: Vec<[f64; 3]> = inside.iter().map(|p| [p[0], p[1], 5.0]).collect();
     assert!(clip_to_frustum(&cam.frustum(), &behind).unwrap().is_empty());
 }
+
+/// A scene from explicit geometry: the decal is the plane under the eye-space rectangle
+/// `[x0, x1] × [y0, y1]`; the base is the plane under `±reach` (as drawn: raw, or cut by
+/// `clip_to_frustum`).
+#[allow(clippy::too_many_arguments)]
+fn explicit(
+    cam: Cam,
+    size: (u32, u32),
+    (clip, format): (ClipDepth, DepthFormat),
+    test: DepthTest,
+    plane: Plane,
+    [x0, x1, y0, y1]: [f64; 4],
+    reach: f64,
+    base_kind: BaseKind,
+) -> Case {
+    let on = |x: f64, y: f64| [x, y, plane.z(x, y)];
+    let ground = vec![
+        on(-reach, -reach),
+        on(reach, -reach),
+        on(reach, reach),
+        on(-reach, reach),
+    ];
+    let base = match base_kind {
+        BaseKind::Split => clip_to_frustum(&cam.frustum(), &ground).expect("clip_to_frustum"),
+        BaseKind::Ground => ground,
+        BaseKind::Fitted => fitted_base(&cam, &plane, 0.9 * cam.f),
+    };
+    Case {
+        cam,
+        size,
+        clip,
+        format,
+        test,
+        plane,
+        base_kind,
+        decal: [on(x0, y0), on(x1, y0), on(x1, y1), on(x0, y1)],
+        base,
+        frustum_kind: "explicit",
+    }
+}
+
+/// The GL_LEQUAL bleed of the issue: D16, 320×180, glFrustum(±0.1, ±0.05625, 0.1, 100), a
+/// facing plane at d = 0.5. At the GL_LESS gap an occluder stores the decal's value and
+/// GL_LEQUAL lets the decal through; at the GL_LEQUAL gap (one quantum wider) none bleeds.
+#[test]
+fn lequal_needs_one_more_quantum_of_gap() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let cam = Cam {
+        l: -0.1,
+        r: 0.1,
+        b: -0.05625,
+        t: 0.05625,
+        n: 0.1,
+        f: 100.0,
+    };
+    let plane = Plane {
+        sx: 0.0,
+        sy: 0.0,
+        da: 0.5,
+    };
+    let kind = (ClipDepth::NegOneToOne, DepthFormat::D16);
+    let rect = [-0.2, 0.2, -0.1, 0.1];
+    let case = explicit(
+        cam,
+        (320, 180),
+        kind,
+        DepthTest::LessEqual,
+        plane,
+        rect,
+        0.0,
+        BaseKind::Fitted,
+    );
+    let less = Case {
+        test: DepthTest::Less,
+        ..case.clone()
+    };
+    let profile = RasterizerProfile::worst_case();
+    let rec_lequal = recommend_clip(&case.scene(profile), case.clip).unwrap();
+    let rec_less = recommend_clip(&less.scene(profile), less.clip).unwrap();
+    let q = rec_less.terms.quantum;
+    assert!(
+        (rec_less.window_offset - rec_lequal.window_offset - q).abs() <= 1e-9 * q,
+        "GL_LEQUAL needs exactly one quantum less offset"
+    );
+    let mut bench = Bench::new(&mut gl, &case).unwrap();
+    let at_lequal_gap = bench
+        .bleed(&rec_lequal.matrix, rec_lequal.bleed_gap)
+        .unwrap();
+    // The gap GL_LESS needs for the same offset: one quantum narrower in window depth.
+    let w = |d: f64| cam.window(d, ClipDepth::NegOneToOne);
+    let d = 0.5;
+    let target =
+        w(d) - (rec_lequal.window_offset + 2.0 * (rec_lequal.terms.plane + rec_lequal.terms.snap));
+    let (mut lo, mut hi) = (0.0, d - cam.n);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if w(d - mid) > target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let less_gap = hi;
+    let at_less_gap = bench.bleed(&rec_lequal.matrix, less_gap).unwrap();
+    println!(
+        "LEQUAL: gap {:.4e} bled {}/{}; the GL_LESS gap {less_gap:.4e} bled {}/{}",
+        rec_lequal.bleed_gap, at_lequal_gap.hit, at_lequal_gap.of, at_less_gap.hit, at_less_gap.of
+    );
+    assert!(at_lequal_gap.of > 0);
+    assert_eq!(at_lequal_gap.hit, 0, "bled through at the GL_LEQUAL gap");
+    assert!(
+        at_less_gap.hit > 0,
+        "the GL_LESS gap should let the decal through under GL_LEQUAL (the check can fail)"
+    );
+}
+
+/// The near-clipped ground of the issue: glFrustum(±0.1, ±0.05625, 0.1, 1000), 256×144, base
+/// corners at x, y = ±1000 on z = −10 − 0.5y, decals 8–13 units away, `[−1, 1]` D24 and `[0, 1]`
+/// D32F. Drawn raw (the rasterizer clips it in f32) with `Base::Clipped`, and cut by
+/// `clip_to_frustum` with `Base::InsideFrustum`: no pixel lost either way, and the cut base's
+/// offset is far smaller.
+#[test]
+fn the_issues_near_clipped_ground_holds() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let cam = Cam {
+        l: -0.1,
+        r: 0.1,
+        b: -0.05625,
+        t: 0.05625,
+        n: 0.1,
+        f: 1000.0,
+    };
+    let plane = Plane {
+        sx: 0.0,
+        sy: -0.5,
+        da: 10.0,
+    };
+    // Decal rows 8 to 13 units away: y from −4 to 6 on z = −10 − 0.5y, below the view axis.
+    let rect = [-0.6, 0.5, -4.0, 6.0];
+    for kind in [
+        (ClipDepth::NegOneToOne, DepthFormat::D24),
+        (ClipDepth::ZeroToOne, DepthFormat::D32F),
+    ] {
+        let mut steps = Vec::new();
+        for base_kind in [BaseKind::Ground, BaseKind::Split] {
+            let case = explicit(
+                cam,
+                (256, 144),
+                kind,
+                DepthTest::Less,
+                plane,
+                rect,
+                1000.0,
+                base_kind,
+            );
+            let row = measure(&mut gl, case.clone())
+                .unwrap()
+                .unwrap_or_else(|| panic!("{}: refused or empty", case.label()));
+            for (name, o) in [("default", &row.default), ("measured", &row.measured)] {
+                println!(
+                    "{} [{name}]: lost {}/{}, bled {}/{}, {} steps, smallest working {}",
+                    case.label(),
+                    o.lost.hit,
+                    o.lost.of,
+                    o.bled.hit,
+                    o.bled.of,
+                    o.steps,
+                    row.k_min
+                );
+                assert_eq!(o.lost.hit, 0, "{} [{name}]: pixels lost", case.label());
+                assert_eq!(o.bled.hit, 0, "{} [{name}]: pixels bled", case.label());
+            }
+            assert!(
+                row.none.hit > 0,
+                "{}: no z-fighting without offset",
+                case.label()
+            );
+            steps.push(row.measured.steps);
+        }
+        assert!(
+            steps[1] * 10 < steps[0],
+            "cutting the base should shrink the offset ({steps:?})"
+        );
+    }
+}
