@@ -337,6 +337,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let d2 = scene.depth_range[1];
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
     let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
+    check_useful(&terms, bleed_gap, d2)?;
     let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
@@ -472,6 +473,19 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         mapping.window_per_ndc() * gamma * l / w_low,
         "the clipping term overflows f64",
     )
+}
+
+/// Refuses the answer for a clipped base whose term `C` makes it useless: a bleed gap past half
+/// the decal's distance (the decal would be drawn over everything in the nearer half of the
+/// way to the eye). Cutting the base to the frustum removes `C`.
+fn check_useful(terms: &ErrorTerms, bleed_gap: f64, d2: f64) -> Result<()> {
+    if terms.clip > 0.0 && bleed_gap > 0.5 * d2 {
+        return Err(crate::error::Error::new(
+            crate::ErrorKind::Unresolvable,
+            "the f32 clipping term of this clipped base makes the bleed gap exceed half the decal's distance: cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
@@ -760,6 +774,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         };
         bleed_gap = bleed_gap.max(g);
     }
+    check_useful(&terms, bleed_gap, d2)?;
     let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
         (relative_epsilon, [0.0, 0.0])
     } else {
@@ -1043,6 +1058,99 @@ mod tests {
         let dw = 1.0 / (60.0 - c.bleed_gap) - 1.0 / 60.0;
         let want = c.relative_epsilon / 60.0 + budget;
         assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
+    }
+
+    /// Under GL_LEQUAL a tie passes: the offset is one quantum smaller and the gap's window
+    /// separation one quantum larger than under GL_LESS, for the same terms. The gap is an eye
+    /// depth (−z) at the same pixel: Walker's window depth through `precision::window_depth`.
+    #[test]
+    fn or_equal_tests_trade_a_quantum_of_offset_for_a_quantum_of_gap() {
+        let less = scene(DepthFormat::Unorm16, 1.0, Snapping::Unsnapped);
+        let lequal = Scene {
+            depth_test: DepthTest::LessEqual,
+            ..less
+        };
+        let (a, b) = (recommend(&less).unwrap(), recommend(&lequal).unwrap());
+        let q = a.terms.quantum;
+        assert!((a.window_offset - b.window_offset - q).abs() <= 1e-12 * q);
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+        let sep = |r: &Recommendation| w(120.0) - w(120.0 - r.bleed_gap);
+        let budget = 2.0 * (a.terms.plane + a.terms.snap);
+        assert!((sep(&a) - (a.window_offset + budget)).abs() <= 1e-9 * sep(&a));
+        assert!((sep(&b) - (b.window_offset + budget + q)).abs() <= 1e-9 * sep(&b));
+    }
+
+    /// A base the rasterizer clips adds the term C, which grows with its reach; one inside the
+    /// frustum adds nothing. A reach so large that the offset would push the decal past the
+    /// near plane is refused as unresolvable, never answered.
+    #[test]
+    fn the_clip_term_grows_with_the_base_and_is_refused_when_useless() {
+        let inside = scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped);
+        let clipped = |reach| Scene {
+            base: Base::Clipped { reach },
+            ..inside
+        };
+        assert_eq!(error_terms(&inside).unwrap().clip, 0.0);
+        let (c1, c2) = (
+            error_terms(&clipped(1e3)).unwrap().clip,
+            error_terms(&clipped(1e4)).unwrap().clip,
+        );
+        assert!(c1 > 0.0 && c2 > 9.0 * c1, "{c1} {c2}");
+        assert!(recommend(&clipped(1e3)).unwrap().window_offset > c1);
+        assert_eq!(
+            recommend(&clipped(1e7)).unwrap_err().kind(),
+            ErrorKind::Unresolvable
+        );
+    }
+
+    /// A measured plane error replaces T + V + I where it is smaller, never where it is larger;
+    /// an unmeasured profile (or NaN) keeps the bound.
+    #[test]
+    fn a_measured_plane_error_is_used_only_below_the_bound() {
+        let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
+        let with = |e: f64, measured: bool| Scene {
+            profile: RasterizerProfile {
+                plane_error: [e; 4],
+                measured,
+                ..worst.profile
+            },
+            ..worst
+        };
+        let t = error_terms(&worst).unwrap();
+        let bound = t.transform + t.vertex + t.interpolation;
+        assert_eq!(t.plane, bound);
+        let q = 1.0 / 16_777_215.0;
+        assert_eq!(error_terms(&with(0.5, true)).unwrap().plane, 0.5 * q);
+        assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
+        assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
+        assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
+    }
+
+    /// The depth test must match the convention; `DepthTest` round-trips GL enums.
+    #[test]
+    fn depth_tests_match_their_convention() {
+        let s = scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped);
+        let reversed = Scene {
+            depth_test: DepthTest::GreaterEqual,
+            ..s
+        };
+        assert_eq!(recommend(&reversed).unwrap_err().kind(), ErrorKind::Domain);
+        assert_eq!(
+            recommend_clip(&s, ClipDepth::ReversedZeroToOne)
+                .unwrap_err()
+                .kind(),
+            ErrorKind::Domain
+        );
+        assert!(recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).is_ok());
+        for t in [
+            DepthTest::Less,
+            DepthTest::LessEqual,
+            DepthTest::Greater,
+            DepthTest::GreaterEqual,
+        ] {
+            assert_eq!(DepthTest::from_gl(t.gl_enum()).unwrap(), t);
+        }
+        assert!(DepthTest::from_gl(0x0202).is_err()); // GL_EQUAL
     }
 
     #[test]

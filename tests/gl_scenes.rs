@@ -710,8 +710,10 @@ fn measure(gl: &mut Gl, case: Case) -> Result<Option<Row>, String> {
     ) {
         (Ok(a), Ok(b)) => (a, b),
         (a, b) => {
-            // Refused (an offset no f32 element can carry, or an unbounded clip term): say so.
-            println!("{label}: refused: {:?} / {:?}", a.err(), b.err());
+            // Refused (the clipping term of a clipped base made the offset useless): say so.
+            if std::env::var_os("ZSHIFT_SCENES_VERBOSE").is_some() {
+                println!("{label}: refused: {:?} / {:?}", a.err(), b.err());
+            }
             return Ok(None);
         }
     };
@@ -758,10 +760,12 @@ fn the_recommendation_holds_on_every_scene() {
     let cases = grid(every());
     let total = cases.len();
     let mut rows = Vec::new();
-    let mut refused = 0;
+    let (mut refused, mut refused_clipped) = (0, 0);
     for c in cases {
+        let clipped = c.base_kind == BaseKind::Ground;
         match measure(&mut gl, c).unwrap_or_else(|e| panic!("GL: {e}")) {
             Some(r) => rows.push(r),
+            None if clipped => refused_clipped += 1,
             None => refused += 1,
         }
     }
@@ -791,9 +795,8 @@ fn the_recommendation_holds_on_every_scene() {
     }
     print_classes(&rows);
     println!(
-        "{} scenes ({} sampled, {refused} refused or empty), {} failures",
+        "{} scenes ({total} sampled; refused or empty: {refused_clipped} with a rasterizer-clipped base, {refused} others), {} failures",
         rows.len(),
-        total,
         failures.len()
     );
     for f in failures.iter().take(40) {
@@ -811,9 +814,16 @@ fn the_recommendation_holds_on_every_scene() {
         "most scenes must z-fight with no offset ({fought} of {})",
         rows.len()
     );
+    // Only a base the rasterizer clips may be refused (its clipping term made the offset
+    // useless, and the status says to cut it); every other scene gets an answer.
+    assert_eq!(
+        refused, 0,
+        "scenes without a clipped base were refused or empty"
+    );
     assert!(
-        refused * 10 < total,
-        "too many scenes refused or empty ({refused} of {total})"
+        refused_clipped * 2 < total / 3,
+        "most clipped bases should still get an answer ({refused_clipped} of about {})",
+        total / 3
     );
 }
 
