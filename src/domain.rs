@@ -25,13 +25,19 @@ impl Planes {
     pub fn new(near: f64, far: f64) -> Result<Self> {
         finite(near, "the near plane distance n is NaN or infinite")?;
         if far.is_nan() || far == f64::NEG_INFINITY {
-            return Err(not_finite("the far plane distance f is NaN or -infinity"));
+            return Err(
+                not_finite("the far plane distance f is NaN or -infinity").with_value("f", far)
+            );
         }
         if near <= 0.0 {
-            return Err(domain("the near plane distance n must be greater than 0"));
+            return Err(
+                domain("the near plane distance n must be greater than 0").with_value("n", near)
+            );
         }
         if far <= near {
-            return Err(domain("the far plane distance f must be greater than n"));
+            return Err(
+                domain("the far plane distance f must be greater than n").with_value("f", far)
+            );
         }
         Ok(Self { near, far })
     }
@@ -78,7 +84,7 @@ impl Planes {
     pub fn check_eye_z(&self, pz: f64) -> Result<()> {
         finite(pz, "the eye-space depth Pz is NaN or infinite")?;
         if pz > -self.near || pz < -self.far {
-            return Err(domain("the eye-space depth Pz must lie in [-f, -n]"));
+            return Err(domain("the eye-space depth Pz must lie in [-f, -n]").with_value("Pz", pz));
         }
         Ok(())
     }
@@ -90,7 +96,7 @@ impl Planes {
     pub fn check_distance(&self, d: f64) -> Result<()> {
         finite(d, "the eye distance d is NaN or infinite")?;
         if d < self.near || d > self.far {
-            return Err(domain("the eye distance d must lie in [n, f]"));
+            return Err(domain("the eye distance d must lie in [n, f]").with_value("d", d));
         }
         Ok(())
     }
@@ -118,7 +124,9 @@ fn halved_if_huge(a: f64, b: f64) -> (f64, f64) {
 /// [`ErrorKind::Domain`] unless `1 ≤ bits ≤ 32`.
 pub fn depth_steps(bits: u32) -> Result<f64> {
     if !(1..=32).contains(&bits) {
-        return Err(domain("the depth buffer bits m must lie in 1..=32"));
+        return Err(
+            domain("the depth buffer bits m must lie in 1..=32").with_integer("bits", bits as i64)
+        );
     }
     Ok(((1u64 << bits) - 1) as f64)
 }
@@ -130,9 +138,10 @@ pub(crate) fn check_tweak(tweak: f64) -> Result<f64> {
         "the infinite-projection tweak epsilon is NaN or infinite",
     )?;
     if !(0.0..1.0).contains(&tweak) {
-        return Err(domain(
-            "the infinite-projection tweak epsilon must lie in [0, 1)",
-        ));
+        return Err(
+            domain("the infinite-projection tweak epsilon must lie in [0, 1)")
+                .with_value("tweak", tweak),
+        );
     }
     Ok(tweak)
 }
@@ -141,7 +150,7 @@ pub(crate) fn finite(x: f64, detail: &'static str) -> Result<f64> {
     if x.is_finite() {
         Ok(x)
     } else {
-        Err(not_finite(detail))
+        Err(not_finite(detail).with_value("", x))
     }
 }
 

@@ -17,16 +17,52 @@ pub enum ErrorKind {
     Overflow,
 }
 
-/// A failed computation: its [`ErrorKind`] and a sentence naming the offending input.
+/// The value of the input an [`Error`] names, kept so the message can quote it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+enum Value {
+    /// A real number, by its bits (so `Error` stays `Eq` and `Hash`).
+    Real(u64),
+    /// An integer count or code.
+    Integer(i64),
+    /// A GL enum or other code best read in hexadecimal.
+    Code(u32),
+}
+
+/// A failed computation: its [`ErrorKind`], a sentence naming the offending input and the rule
+/// it broke, and (where known) the input's name and value.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct Error {
     kind: ErrorKind,
     detail: &'static str,
+    input: Option<(&'static str, Value)>,
 }
 
 impl Error {
     pub(crate) const fn new(kind: ErrorKind, detail: &'static str) -> Self {
-        Self { kind, detail }
+        Self {
+            kind,
+            detail,
+            input: None,
+        }
+    }
+
+    /// This error, quoting the real input `name` (as the caller spells it; empty when the
+    /// detail already names it) and its value.
+    pub(crate) const fn with_value(mut self, name: &'static str, value: f64) -> Self {
+        self.input = Some((name, Value::Real(value.to_bits())));
+        self
+    }
+
+    /// This error, quoting the integer input `name` and its value.
+    pub(crate) const fn with_integer(mut self, name: &'static str, value: i64) -> Self {
+        self.input = Some((name, Value::Integer(value)));
+        self
+    }
+
+    /// This error, quoting the input `name`, a code such as a GL enum, in hexadecimal.
+    pub(crate) const fn with_code(mut self, name: &'static str, value: u32) -> Self {
+        self.input = Some((name, Value::Code(value)));
+        self
     }
 
     /// The class of failure.
@@ -34,15 +70,37 @@ impl Error {
         self.kind
     }
 
-    /// A sentence that names the input at fault and the rule it broke.
+    /// A sentence that names the input at fault and the rule it broke (without its value: the
+    /// [`Display`](fmt::Display) form adds it, as in `"... (n = -1)"`).
     pub const fn detail(&self) -> &'static str {
         self.detail
+    }
+
+    /// The name of the input at fault and its value, where the check that failed knew them.
+    pub fn input(&self) -> Option<(&'static str, f64)> {
+        self.input.map(|(name, value)| {
+            let x = match value {
+                Value::Real(bits) => f64::from_bits(bits),
+                Value::Integer(i) => i as f64,
+                Value::Code(c) => f64::from(c),
+            };
+            (name, x)
+        })
     }
 }
 
 impl fmt::Display for Error {
+    /// The detail, then the input and its value: `the near plane distance n must be greater
+    /// than 0 (n = -1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.detail)
+        f.write_str(self.detail)?;
+        match self.input {
+            None => Ok(()),
+            Some(("", Value::Real(bits))) => write!(f, " (got {})", f64::from_bits(bits)),
+            Some((name, Value::Real(bits))) => write!(f, " ({name} = {})", f64::from_bits(bits)),
+            Some((name, Value::Integer(i))) => write!(f, " ({name} = {i})"),
+            Some((name, Value::Code(c))) => write!(f, " ({name} = 0x{c:04X})"),
+        }
     }
 }
 

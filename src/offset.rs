@@ -169,8 +169,9 @@ fn shifted_depth(planes: &Planes, delta: f64, pz: f64) -> Result<f64> {
     let shifted = pz + delta;
     if shifted >= 0.0 {
         return Err(crate::domain::domain(
-            "Pz + delta must stay in front of the eye (< 0)",
-        ));
+            "the shifted depth Pz + delta must stay in front of the eye (< 0)",
+        )
+        .with_value("Pz + delta", shifted));
     }
     Ok(shifted)
 }

@@ -743,7 +743,16 @@ mod c_abi {
         }
         let before = m;
         assert_eq!(
-            zshift_projection(-1.0, 1.0, -0.5, 0.5, 0.1, 100.0, 3, m.as_mut_ptr()),
+            zshift_projection(
+                -1.0,
+                1.0,
+                -0.5,
+                0.5,
+                0.1,
+                100.0,
+                ZshiftClip { value: 3 },
+                m.as_mut_ptr()
+            ),
             ZSHIFT_ERR_DOMAIN
         );
         assert_eq!(
@@ -817,14 +826,21 @@ mod c_abi {
         let m_rev = DepthMapping::projection(0.1, 100.0, ClipDepth::ReversedZeroToOne).unwrap();
         assert_eq!(x, m_rev.depth_step(3.0, DepthFormat::Float32).unwrap());
         assert_eq!(
-            zshift_depth_step(0.1, 100.0, 0, 9, 3.0, &mut x),
+            zshift_depth_step(
+                0.1,
+                100.0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+                ZshiftFormat { value: 9 },
+                3.0,
+                &mut x
+            ),
             ZSHIFT_ERR_DOMAIN
         );
         assert_eq!(
             zshift_depth_step(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
                 300.0,
                 &mut x
@@ -850,17 +866,31 @@ mod c_abi {
         assert_eq!(zshift_median_ndc_offset(10.0, 0.1, -5.0, &mut x), ZSHIFT_OK);
         assert_eq!(x, median_ndc_offset(10.0, 0.1, -5.0).unwrap());
         assert_eq!(
-            zshift_window_depth_clip(0.1, 100.0, 2, 0.1, &mut x),
+            zshift_window_depth_clip(0.1, 100.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, 0.1, &mut x),
             ZSHIFT_OK
         );
         assert_eq!(x, 1.0);
         assert_eq!(
-            zshift_min_ndc_offset(0.1, 100.0, 0, ZSHIFT_FORMAT_UNORM16, 1.0, &mut x),
+            zshift_min_ndc_offset(
+                0.1,
+                100.0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+                ZSHIFT_FORMAT_UNORM16,
+                1.0,
+                &mut x
+            ),
             ZSHIFT_OK
         );
         assert!(rel_err(x, &(int(2) / int(65535))) < 1e-15);
         assert_eq!(
-            zshift_min_relative_epsilon(0.1, 100.0, 2, fmt, 1.0, &mut x),
+            zshift_min_relative_epsilon(
+                0.1,
+                100.0,
+                ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+                fmt,
+                1.0,
+                &mut x
+            ),
             ZSHIFT_OK
         );
         assert_eq!(
@@ -874,7 +904,7 @@ mod c_abi {
             zshift_bias_of_shift(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
                 ZSHIFT_BIAS_VULKAN,
                 0.01,
@@ -892,7 +922,7 @@ mod c_abi {
             zshift_shift_of_bias(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
                 ZSHIFT_BIAS_VULKAN,
                 bias,
@@ -906,9 +936,9 @@ mod c_abi {
             zshift_bias_of_shift(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
-                7,
+                ZshiftBiasApi { value: 7 },
                 0.01,
                 -5.0,
                 &mut x
@@ -928,7 +958,7 @@ mod c_abi {
         let st = zshift_range_offset(
             0.1,
             100.0,
-            0,
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
             zshift::ffi::ZSHIFT_FORMAT_UNORM24,
             ZSHIFT_OFFSET_NDC,
             1.0,
@@ -943,9 +973,9 @@ mod c_abi {
             zshift_range_offset(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
-                5,
+                ZshiftOffsetKind { value: 5 },
                 1.0,
                 50.0,
                 2.0,
@@ -957,9 +987,9 @@ mod c_abi {
             zshift_range_offset(
                 0.1,
                 100.0,
-                0,
+                ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                 zshift::ffi::ZSHIFT_FORMAT_UNORM24,
-                0,
+                ZSHIFT_OFFSET_NDC,
                 1.0,
                 50.0,
                 2.0,
@@ -1002,7 +1032,7 @@ fn min_epsilon_per_convention_has_its_own_quantum() {
         zshift::ffi::zshift_min_epsilon_clip(
             0.1,
             f64::INFINITY,
-            2,
+            zshift::ffi::ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
             zshift::ffi::ZSHIFT_FORMAT_FLOAT32,
             3.0,
             &mut x
@@ -1014,7 +1044,7 @@ fn min_epsilon_per_convention_has_its_own_quantum() {
         zshift::ffi::zshift_min_epsilon_clip(
             0.1,
             100.0,
-            1,
+            zshift::ffi::ZSHIFT_CLIP_ZERO_TO_ONE,
             zshift::ffi::ZSHIFT_FORMAT_UNORM24,
             3.0,
             &mut x

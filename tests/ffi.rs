@@ -182,3 +182,45 @@ fn every_status_has_a_distinct_message_and_unknown_codes_are_safe() {
         .unwrap();
     assert_eq!(version, env!("CARGO_PKG_VERSION"));
 }
+
+/// `zshift_last_error`: the detail of the last failed call on this thread, naming the input and
+/// its value; "" after a success; each thread has its own.
+#[test]
+fn last_error_names_the_input_and_is_per_thread() {
+    fn last() -> String {
+        // SAFETY: never NULL, NUL-terminated, valid until the next zshift call on this thread.
+        unsafe { CStr::from_ptr(zshift_last_error()) }
+            .to_str()
+            .unwrap()
+            .to_owned()
+    }
+    let mut m = [0.0f32; 16];
+    assert_eq!(
+        zshift_frustum(-1.0, 1.0, -1.0, 1.0, 0.0, 10.0, m.as_mut_ptr()),
+        ZSHIFT_ERR_DOMAIN
+    );
+    assert_eq!(
+        last(),
+        "the near plane distance n must be greater than 0 (n = 0)"
+    );
+    let other = std::thread::spawn(|| {
+        let mut x = 0.0;
+        let before = last();
+        let st = zshift_window_depth_clip(1.0, 10.0, ZshiftClip { value: 5 }, 2.0, &mut x);
+        (before, st, last())
+    })
+    .join()
+    .unwrap();
+    assert_eq!(other.0, "", "a new thread starts with no error");
+    assert_eq!(other.1, ZSHIFT_ERR_DOMAIN);
+    assert!(other.2.ends_with("(clip = 5)"), "{}", other.2);
+    assert!(
+        last().ends_with("(n = 0)"),
+        "another thread's error leaked here"
+    );
+    assert_eq!(
+        zshift_frustum(-1.0, 1.0, -1.0, 1.0, 1.0, 10.0, m.as_mut_ptr()),
+        ZSHIFT_OK
+    );
+    assert_eq!(last(), "", "a success clears the detail");
+}

@@ -193,7 +193,7 @@ fn c_entry_points_match_the_rust_recommendation() {
         slope: 1.0,
         exact_depth: 0,
         subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
-        depth_func: 0,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
         plane_error: 0.0,
     };

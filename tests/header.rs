@@ -26,3 +26,34 @@ fn checked_in_header_matches_cbindgen() {
         "include/zshift.h differs from what cbindgen generates; run `ZSHIFT_BLESS=1 cargo test --test header` and commit"
     );
 }
+
+/// The argument constants are written in the header by hand (cbindgen would spell them as C99
+/// compound literals): each must be there once, with its type and the Rust value.
+#[test]
+fn hand_written_argument_constants_match_the_rust_ones() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let header = std::fs::read_to_string(root.join("include/zshift.h")).expect("read header");
+    for &(ty, name, value) in zshift::ffi::HEADER_CONSTANTS {
+        let want = if value > 9 {
+            format!("static const {ty} {name} = {{ 0x{value:04X} }};")
+        } else {
+            format!("static const {ty} {name} = {{ {value} }};")
+        };
+        assert_eq!(
+            header.matches(&want).count(),
+            1,
+            "include/zshift.h must declare `{want}` once (edit cbindgen.toml's after_includes)"
+        );
+        assert_eq!(
+            header.matches(&format!(" {name} =")).count(),
+            1,
+            "{name} is declared more than once"
+        );
+    }
+    let declared = header.matches("static const Zshift").count();
+    assert_eq!(
+        declared,
+        zshift::ffi::HEADER_CONSTANTS.len(),
+        "the header declares argument constants that src/ffi/kinds.rs does not list"
+    );
+}

@@ -38,7 +38,8 @@ use num_rational::BigRational;
 use num_traits::Signed;
 use zshift::ffi::{
     zshift_min_epsilon, zshift_range_offset, zshift_recommend, zshift_window_depth,
-    ZshiftRecommendation, ZshiftScene, ZSHIFT_ERR_OVERFLOW, ZSHIFT_FORMAT_UNORM16,
+    ZshiftRecommendation, ZshiftScene, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_OVERFLOW,
+    ZSHIFT_FORMAT_UNORM16, ZSHIFT_OFFSET_RELATIVE,
 };
 
 fn q(x: f64) -> BigRational {
@@ -84,7 +85,13 @@ fn range_offset_that_overflows_is_an_error() {
     let mut out = [7.0f64; 3];
     // kind RELATIVE, UNORM16, n = 1e-6, f = 1e6: one step at d = 100 is ε ≈ r·d/b ≈ 1.5e3, so
     // f64::MAX steps overflow (the shift d·ε/(1 + ε) then gave ∞/∞ = NaN).
-    let (n, f, clip, format, kind) = (1e-6, 1e6, 0, ZSHIFT_FORMAT_UNORM16, 1);
+    let (n, f, clip, format, kind) = (
+        1e-6,
+        1e6,
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        ZSHIFT_FORMAT_UNORM16,
+        ZSHIFT_OFFSET_RELATIVE,
+    );
     let status = zshift_range_offset(
         n,
         f,
@@ -120,7 +127,7 @@ fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
         slope: 0.0,
         exact_depth: 3,
         subpixel_bits: -1,
-        depth_func: 0,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
         plane_error: 0.0,
     };
@@ -158,7 +165,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             slope: 0.0028721339874085983,
             exact_depth: 0,
             subpixel_bits: -1,
-            depth_func: 0,
+            depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
             base_reach: 0.0,
             plane_error: 0.0,
         },
@@ -177,7 +184,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             slope: 4.771128792552485,
             exact_depth: 0,
             subpixel_bits: -1,
-            depth_func: 0,
+            depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
             base_reach: 0.0,
             plane_error: 0.0,
         },

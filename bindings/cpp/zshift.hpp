@@ -52,11 +52,18 @@ constexpr ZshiftStatus to_c(Status status) noexcept { return static_cast<ZshiftS
 /// The library's sentence for a status (never null; unknown codes get "unknown zshift status").
 inline const char *message(Status status) noexcept { return zshift_status_message(to_c(status)); }
 
-/// A zshift call failed. `status()` says how; `what()` is the library's message for it.
+/// A zshift call failed. `status()` says how; `what()` says which input, its value and why (the
+/// library's zshift_last_error() detail, such as "the near plane distance n must be greater than
+/// 0 (n = -1)"), or the status's message where there is no detail.
 class Error : public std::runtime_error {
  public:
-  explicit Error(ZshiftStatus status)
-      : std::runtime_error(zshift_status_message(status)), status_(static_cast<Status>(status)) {}
+  /// An error for `status`, with the detail the failing call left on this thread.
+  explicit Error(ZshiftStatus status) : Error(status, zshift_last_error()) {}
+
+  /// An error for `status` with the given detail (the status's message if it is empty).
+  Error(ZshiftStatus status, const char *detail)
+      : std::runtime_error(detail != nullptr && detail[0] != '\0' ? detail : zshift_status_message(status)),
+        status_(static_cast<Status>(status)) {}
 
   /// How the call failed (never Status::ok).
   Status status() const noexcept { return status_; }
@@ -164,7 +171,7 @@ constexpr Scene make_scene(double l, double r, double b, double t, double n, dou
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
-               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, 0u, 0.0, 0.0};
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, 0.0};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
@@ -190,33 +197,51 @@ inline Matrix recommend_matrix(const Scene &scene) {
 /// NDC depth convention (ZSHIFT_CLIP_*): OpenGL's [-1, 1]; [0, 1] (glClipControl ZERO_TO_ONE,
 /// Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; for float depth).
 enum class Clip : std::int32_t {
-  neg_one_to_one = ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-  zero_to_one = ZSHIFT_CLIP_ZERO_TO_ONE,
-  reversed_zero_to_one = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+  neg_one_to_one = 0,        // ZSHIFT_CLIP_NEG_ONE_TO_ONE
+  zero_to_one = 1,           // ZSHIFT_CLIP_ZERO_TO_ONE
+  reversed_zero_to_one = 2,  // ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE
 };
 
 /// Depth attachment format (ZSHIFT_FORMAT_*): 16-, 24-, 32-bit unsigned normalized, 32-bit float.
-enum class Format : std::int32_t {
-  unorm16 = ZSHIFT_FORMAT_UNORM16,
-  unorm24 = ZSHIFT_FORMAT_UNORM24,
-  unorm32 = ZSHIFT_FORMAT_UNORM32,
-  float32 = ZSHIFT_FORMAT_FLOAT32,
+enum class Format : std::uint32_t {
+  unorm16 = 0x81A5,  // GL_DEPTH_COMPONENT16
+  unorm24 = 0x81A6,  // GL_DEPTH_COMPONENT24
+  unorm32 = 0x81A7,  // GL_DEPTH_COMPONENT32
+  float32 = 0x8CAC,  // GL_DEPTH_COMPONENT32F
+};
+
+/// The depth test of a pass (ZSHIFT_DEPTH_TEST_*), by its GL enum.
+enum class DepthTest : std::uint32_t {
+  less = 0x0201,     // GL_LESS
+  lequal = 0x0203,   // GL_LEQUAL
+  greater = 0x0204,  // GL_GREATER
+  gequal = 0x0206,   // GL_GEQUAL
 };
 
 /// Whose constant depth bias (ZSHIFT_BIAS_*): glPolygonOffset units, Direct3D DepthBias, Vulkan
 /// depthBiasConstantFactor.
 enum class BiasApi : std::int32_t {
-  opengl = ZSHIFT_BIAS_OPENGL,
-  direct3d = ZSHIFT_BIAS_DIRECT3D,
-  vulkan = ZSHIFT_BIAS_VULKAN,
+  opengl = 0,    // ZSHIFT_BIAS_OPENGL
+  direct3d = 1,  // ZSHIFT_BIAS_DIRECT3D
+  vulkan = 2,    // ZSHIFT_BIAS_VULKAN
 };
 
 /// What range_offset() returns (ZSHIFT_OFFSET_*): a signed NDC offset for element 10, or a
 /// relative epsilon for element 14 (reversed Z with float depth).
 enum class OffsetKind : std::int32_t {
-  ndc = ZSHIFT_OFFSET_NDC,
-  relative = ZSHIFT_OFFSET_RELATIVE,
+  ndc = 0,       // ZSHIFT_OFFSET_NDC
+  relative = 1,  // ZSHIFT_OFFSET_RELATIVE
 };
+
+namespace detail {
+// The C argument types of the scoped enums (the C constants are `static const` structs, so the
+// enums above restate their values; tests/cpp checks that they agree).
+inline ZshiftClip to_c(Clip v) noexcept { ZshiftClip c; c.value = static_cast<std::int32_t>(v); return c; }
+inline ZshiftFormat to_c(Format v) noexcept { ZshiftFormat c; c.value = static_cast<std::uint32_t>(v); return c; }
+inline ZshiftDepthTest to_c(DepthTest v) noexcept { ZshiftDepthTest c; c.value = static_cast<std::uint32_t>(v); return c; }
+inline ZshiftBiasApi to_c(BiasApi v) noexcept { ZshiftBiasApi c; c.value = static_cast<std::int32_t>(v); return c; }
+inline ZshiftOffsetKind to_c(OffsetKind v) noexcept { ZshiftOffsetKind c; c.value = static_cast<std::int32_t>(v); return c; }
+}  // namespace detail
 
 /// The smallest tweak for tweaked_infinite() that keeps far geometry inside the clip volume in
 /// float arithmetic: 2^-22 (Lengyel, GDC 2007).
@@ -232,7 +257,7 @@ inline Matrix perspective(double fovy, double aspect, double n, double f) {
 /// Throws Error: as frustum(); Status::domain for an unknown clip.
 inline Matrix projection(double l, double r, double b, double t, double n, double f, Clip clip) {
   return detail::matrix([&](float *out) {
-    return zshift_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), out);
+    return zshift_projection(l, r, b, t, n, f, detail::to_c(clip), out);
   });
 }
 
@@ -243,7 +268,7 @@ inline Matrix projection(double l, double r, double b, double t, double n, doubl
 inline Matrix offset_projection(double l, double r, double b, double t, double n, double f, Clip clip,
                                 double delta, double pz) {
   return detail::matrix([&](float *out) {
-    return zshift_offset_projection(l, r, b, t, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+    return zshift_offset_projection(l, r, b, t, n, f, detail::to_c(clip), delta, pz, out);
   });
 }
 
@@ -251,7 +276,7 @@ inline Matrix offset_projection(double l, double r, double b, double t, double n
 inline Matrix offset_perspective(double fovy, double aspect, double n, double f, Clip clip, double delta,
                                  double pz) {
   return detail::matrix([&](float *out) {
-    return zshift_offset_perspective(fovy, aspect, n, f, static_cast<std::int32_t>(clip), delta, pz, out);
+    return zshift_offset_perspective(fovy, aspect, n, f, detail::to_c(clip), delta, pz, out);
   });
 }
 
@@ -280,14 +305,14 @@ inline double median_ndc_offset(double median, double delta, double pz) {
 /// n(f - d)/((f - n)d)). Throws Error: Status::not_finite, Status::domain.
 inline double window_depth_clip(double n, double f, Clip clip, double d) {
   return detail::scalar(
-      [&](double *out) { return zshift_window_depth_clip(n, f, static_cast<std::int32_t>(clip), d, out); });
+      [&](double *out) { return zshift_window_depth_clip(n, f, detail::to_c(clip), d, out); });
 }
 
 /// The exact depth step at eye distance d under `clip` and `format` (Walker's eq. 3 for every
 /// convention). Throws Error: Status::not_finite, Status::domain.
 inline double depth_step(double n, double f, Clip clip, Format format, double d) {
   return detail::scalar([&](double *out) {
-    return zshift_depth_step(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+    return zshift_depth_step(n, f, detail::to_c(clip), detail::to_c(format), d, out);
   });
 }
 
@@ -295,7 +320,7 @@ inline double depth_step(double n, double f, Clip clip, Format format, double d)
 /// Throws Error: Status::not_finite, Status::domain.
 inline double median_depth_step(double median, Format format, double d) {
   return detail::scalar([&](double *out) {
-    return zshift_median_depth_step(median, static_cast<std::int32_t>(format), d, out);
+    return zshift_median_depth_step(median, detail::to_c(format), d, out);
   });
 }
 
@@ -303,7 +328,7 @@ inline double median_depth_step(double median, Format format, double d) {
 /// quantum 2/(2^m - 1) for UNORM under [-1, 1]). Throws Error: as depth_step().
 inline double min_ndc_offset(double n, double f, Clip clip, Format format, double d) {
   return detail::scalar([&](double *out) {
-    return zshift_min_ndc_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d, out);
+    return zshift_min_ndc_offset(n, f, detail::to_c(clip), detail::to_c(format), d, out);
   });
 }
 
@@ -312,7 +337,7 @@ inline double min_ndc_offset(double n, double f, Clip clip, Format format, doubl
 /// depth_step(); Status::unresolvable for reversed Z with f = +infinity.
 inline double min_epsilon_clip(double n, double f, Clip clip, Format format, double d) {
   return detail::scalar([&](double *out) {
-    return zshift_min_epsilon_clip(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+    return zshift_min_epsilon_clip(n, f, detail::to_c(clip), detail::to_c(format), d,
                                    out);
   });
 }
@@ -321,7 +346,7 @@ inline double min_epsilon_clip(double n, double f, Clip clip, Format format, dou
 /// at d. Throws Error: as depth_step().
 inline double min_relative_epsilon(double n, double f, Clip clip, Format format, double d) {
   return detail::scalar([&](double *out) {
-    return zshift_min_relative_epsilon(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format), d,
+    return zshift_min_relative_epsilon(n, f, detail::to_c(clip), detail::to_c(format), d,
                                        out);
   });
 }
@@ -330,8 +355,8 @@ inline double min_relative_epsilon(double n, double f, Clip clip, Format format,
 /// delta (negative under [-1, 1] and [0, 1]). Throws Error: Status::not_finite, Status::domain.
 inline double bias_of_shift(double n, double f, Clip clip, Format format, BiasApi api, double delta, double pz) {
   return detail::scalar([&](double *out) {
-    return zshift_bias_of_shift(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
-                                static_cast<std::int32_t>(api), delta, pz, out);
+    return zshift_bias_of_shift(n, f, detail::to_c(clip), detail::to_c(format),
+                                detail::to_c(api), delta, pz, out);
   });
 }
 
@@ -339,8 +364,8 @@ inline double bias_of_shift(double n, double f, Clip clip, Format format, BiasAp
 /// bias_of_shift()). Throws Error: as bias_of_shift(); Status::unresolvable.
 inline double shift_of_bias(double n, double f, Clip clip, Format format, BiasApi api, double bias, double pz) {
   return detail::scalar([&](double *out) {
-    return zshift_shift_of_bias(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
-                                static_cast<std::int32_t>(api), bias, pz, out);
+    return zshift_shift_of_bias(n, f, detail::to_c(clip), detail::to_c(format),
+                                detail::to_c(api), bias, pz, out);
   });
 }
 
@@ -364,8 +389,8 @@ struct RangeOffset {
 inline RangeOffset range_offset(double n, double f, Clip clip, Format format, OffsetKind kind, double lo,
                                 double hi, double steps) {
   std::array<double, 3> out{};
-  detail::check(zshift_range_offset(n, f, static_cast<std::int32_t>(clip), static_cast<std::int32_t>(format),
-                                    static_cast<std::int32_t>(kind), lo, hi, steps, out.data()));
+  detail::check(zshift_range_offset(n, f, detail::to_c(clip), detail::to_c(format),
+                                    detail::to_c(kind), lo, hi, steps, out.data()));
   return {out[0], out[1], out[2]};
 }
 
@@ -377,7 +402,7 @@ inline RangeOffset range_offset(double n, double f, Clip clip, Format format, Of
 /// Status::domain for an unknown clip.
 inline Recommendation recommend_clip(const Scene &scene, Clip clip) {
   Recommendation out{};
-  detail::check(zshift_recommend_clip(&scene, static_cast<std::int32_t>(clip), &out));
+  detail::check(zshift_recommend_clip(&scene, detail::to_c(clip), &out));
   return out;
 }
 
@@ -386,8 +411,97 @@ inline Recommendation recommend_clip(const Scene &scene, Clip clip) {
 /// Throws Error: as recommend_clip().
 inline Matrix recommend_clip_matrix(const Scene &scene, Clip clip) {
   return detail::matrix(
-      [&](float *out) { return zshift_recommend_clip_matrix(&scene, static_cast<std::int32_t>(clip), out); });
+      [&](float *out) { return zshift_recommend_clip_matrix(&scene, detail::to_c(clip), out); });
 }
+
+// ---- The front door: the engine's own matrix in, the decal's matrix out ----
+
+/// What the engine knows about a decal besides its matrix (the C `ZshiftDecal`). Fill every
+/// field; make_decal() names them in order.
+using Decal = ZshiftDecal;
+
+/// A Decal: viewport, depth format, GL_SUBPIXEL_BITS (or subpixel_unsnapped), the decal's
+/// nearest and farthest eye distance, its plane's slope |dz/dx| + |dz/dy|, and whether every
+/// corner of base and decal has the same float eye z.
+inline Decal make_decal(std::uint32_t viewport_width, std::uint32_t viewport_height, Format format,
+                        std::int32_t subpixel_bits, double decal_near, double decal_far, double slope,
+                        bool exact_depth = false) noexcept {
+  Decal d{};
+  d.viewport_width = viewport_width;
+  d.viewport_height = viewport_height;
+  d.format = detail::to_c(format);
+  d.subpixel_bits = subpixel_bits;
+  d.decal_near = decal_near;
+  d.decal_far = decal_far;
+  d.slope = slope;
+  d.exact_depth = exact_depth ? 1u : 0u;
+  return d;
+}
+
+/// The decal's matrix: the engine's own projection `m` (16 floats, column-major, e.g.
+/// glm::value_ptr(P)) with the recommended offset for `decal` in its own offset element, every
+/// other element bit-identical (zshift_decal_matrix). Throws Error (what() names the element or
+/// field): a matrix that is not a perspective or orthographic projection, a convention mismatch
+/// (a reversed-Z matrix with Clip::neg_one_to_one), a bad decal.
+inline Matrix decal_matrix(const float *m, Clip clip, const Decal &decal) {
+  return detail::matrix([&](float *out) { return zshift_decal_matrix(m, detail::to_c(clip), &decal, out); });
+}
+/// decal_matrix() of a Matrix.
+inline Matrix decal_matrix(const Matrix &m, Clip clip, const Decal &decal) {
+  return decal_matrix(m.data(), clip, decal);
+}
+
+/// The recommendation behind decal_matrix() (zshift_recommend_for_matrix). Throws Error: as
+/// decal_matrix().
+inline Recommendation recommend_for_matrix(const float *m, Clip clip, const Decal &decal) {
+  Recommendation out{};
+  detail::check(zshift_recommend_for_matrix(m, detail::to_c(clip), &decal, &out));
+  return out;
+}
+
+/// The engine's own projection `m` with geometry at eye distance `d` moved toward the camera by
+/// `delta` (zshift_offset_matrix): element 10 (perspective [-1, 1], [0, 1]), 14 (perspective
+/// reversed, relative; orthographic, constant), rounded outward; every other element
+/// bit-identical. Throws Error: as decal_matrix(); d <= 0 or d - delta <= 0 (perspective).
+inline Matrix offset_matrix(const float *m, Clip clip, double delta, double d) {
+  return detail::matrix([&](float *out) { return zshift_offset_matrix(m, detail::to_c(clip), delta, d, out); });
+}
+/// offset_matrix() of a Matrix.
+inline Matrix offset_matrix(const Matrix &m, Clip clip, double delta, double d) {
+  return offset_matrix(m.data(), clip, delta, d);
+}
+
+/// The engine's own projection `m` with NDC depth moved toward the camera by `ndc`
+/// (zshift_offset_matrix_ndc). Throws Error: as decal_matrix().
+inline Matrix offset_matrix_ndc(const float *m, Clip clip, double ndc) {
+  return detail::matrix([&](float *out) { return zshift_offset_matrix_ndc(m, detail::to_c(clip), ndc, out); });
+}
+/// offset_matrix_ndc() of a Matrix.
+inline Matrix offset_matrix_ndc(const Matrix &m, Clip clip, double ndc) {
+  return offset_matrix_ndc(m.data(), clip, ndc);
+}
+
+/// glOrtho(l, r, b, t, n, f) with the depth row of `clip` (zshift_ortho).
+inline Matrix ortho(double l, double r, double b, double t, double n, double f, Clip clip) {
+  return detail::matrix([&](float *out) { return zshift_ortho(l, r, b, t, n, f, detail::to_c(clip), out); });
+}
+
+/// ortho() with every point moved toward the camera by `delta` (element 14, rounded outward).
+inline Matrix offset_ortho(double l, double r, double b, double t, double n, double f, Clip clip, double delta) {
+  return detail::matrix(
+      [&](float *out) { return zshift_offset_ortho(l, r, b, t, n, f, detail::to_c(clip), delta, out); });
+}
+
+/// The exact depth step of an orthographic projection at eye distance d: r * (f - n).
+inline double ortho_depth_step(double n, double f, Clip clip, Format format, double d) {
+  return detail::scalar([&](double *out) {
+    return zshift_ortho_depth_step(n, f, detail::to_c(clip), detail::to_c(format), d, out);
+  });
+}
+
+/// The detail of the last failed zshift call on this thread ("" after a success): which
+/// input, its value and why. zshift::Error::what() already carries it.
+inline std::string last_error() { return zshift_last_error(); }
 
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }

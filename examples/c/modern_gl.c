@@ -5,7 +5,9 @@
  *
  * Every GL function comes from eglGetProcAddress, so this program links EGL and zshift only. */
 #include <GL/glcorearb.h>
+#include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "headless.h"
 #include "scene.h"
@@ -148,6 +150,103 @@ static int draw(const struct renderer *gl, float quad[6][3], float red, float bl
   return glGetError() == GL_NO_ERROR ? 0 : 1;
 }
 
+/* The projection as glm::perspective(fovy, aspect, n, f) builds it in float (right-handed,
+ * NDC depth [-1, 1]), column-major: an engine's own matrix. */
+static void glm_style_perspective(float fovy, float aspect, float n, float f, float m[16]) {
+  const float tan_half = (float)tan(fovy / 2.0f);
+  int i;
+  for (i = 0; i < 16; i++) m[i] = 0.0f;
+  m[0] = 1.0f / (aspect * tan_half);
+  m[5] = 1.0f / tan_half;
+  m[10] = -(f + n) / (f - n);
+  m[11] = -1.0f;
+  m[14] = -(2.0f * f * n) / (f - n);
+}
+
+/* The projection as glm::ortho(l, r, b, t, n, f) builds it (glOrtho), column-major. */
+static void glm_style_ortho(float l, float r, float b, float t, float n, float f, float m[16]) {
+  int i;
+  for (i = 0; i < 16; i++) m[i] = 0.0f;
+  m[0] = 2.0f / (r - l);
+  m[5] = 2.0f / (t - b);
+  m[10] = -2.0f / (f - n);
+  m[12] = -(r + l) / (r - l);
+  m[13] = -(t + b) / (t - b);
+  m[14] = -(f + n) / (f - n);
+  m[15] = 1.0f;
+}
+
+/* [quickstart-c-front-door] */
+/* The base is drawn with the engine's own projection `proj` (16 floats, column-major, from GLM
+ * or the engine's code), the decal with the same matrix carrying zshift's recommended offset in
+ * one element: the engine never restates its frustum. Perspective or orthographic alike. */
+static int decal_projection(const float proj[16], ZshiftFormat format, int subpixel_bits,
+                            double decal_near, double decal_far, float decal[16]) {
+  ZshiftDecal d;
+  ZshiftStatus s;
+  memset(&d, 0, sizeof d);
+  d.viewport_width = SCENE_SIZE; /* glViewport */
+  d.viewport_height = SCENE_SIZE;
+  d.format = format;               /* the depth attachment, e.g. ZSHIFT_FORMAT_UNORM24 */
+  d.subpixel_bits = subpixel_bits; /* glGetIntegerv(GL_SUBPIXEL_BITS) */
+  d.decal_near = decal_near;       /* the decal's nearest and farthest eye distance */
+  d.decal_far = decal_far;
+  d.slope = 0.0;     /* |dz/dx| + |dz/dy| of its plane in eye space: facing the camera */
+  d.exact_depth = 1; /* base and decal corners share one float z */
+  s = zshift_decal_matrix(proj, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &d, decal);
+  if (s != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error()); /* names the input, its value, why */
+    return 1;
+  }
+  return 0;
+}
+/* [/quickstart-c-front-door] */
+
+/* Renders one case with the base drawn through `base` and the decal through `decal`. */
+static int render_matrices(const struct renderer *gl, const struct scene_case *c, const float base[16],
+                           const float decal[16], struct scene_tally *tally) {
+  static unsigned char pixels[SCENE_SIZE * SCENE_SIZE * 4];
+  float base_quad[6][3], decal_quad[6][3];
+  double d = scene_distance(c);
+  scene_quad(SCENE_BASE_HALF, d, base_quad);
+  scene_quad(SCENE_DECAL_HALF, d, decal_quad);
+  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glUniformMatrix4fv(gl->projection, 1, GL_FALSE, base);
+  if (draw(gl, base_quad, 0.0f, 1.0f) != 0) return 1;
+  glUniformMatrix4fv(gl->projection, 1, GL_FALSE, decal);
+  if (draw(gl, decal_quad, 1.0f, 0.0f) != 0 || headless_read_rgba(pixels) != 0) return 1;
+  *tally = scene_check(pixels);
+  return 0;
+}
+
+/* The front door on one case: the engine's GLM-style perspective (90°, square) and an
+ * orthographic box that shows the scene's quads at the same place, each decal drawn with
+ * zshift_decal_matrix of the engine's matrix. */
+static int run_engine_matrices(const struct renderer *gl, const struct scene_case *c, int bits) {
+  const double d = scene_distance(c);
+  const float n = (float)c->n, f = (float)c->f, h = (float)d;
+  const ZshiftFormat format = c->depth_bits == 16 ? ZSHIFT_FORMAT_UNORM16 : ZSHIFT_FORMAT_UNORM24;
+  float engine[2][16], decal[16];
+  const char *names[2] = {"glm::perspective", "glm::ortho"};
+  int k, failures = 0;
+  glm_style_perspective(3.14159265f / 2.0f, 1.0f, n, f, engine[0]);
+  glm_style_ortho(-h, h, -h, h, n, f, engine[1]);
+  for (k = 0; k < 2; k++) {
+    struct scene_tally none, chosen;
+    if (decal_projection(engine[k], format, bits, d, d, decal) != 0 ||
+        render_matrices(gl, c, engine[k], engine[k], &none) != 0 ||
+        render_matrices(gl, c, engine[k], decal, &chosen) != 0)
+      return 1;
+    printf("  engine's own %-16s lost of %d: none %4d  zshift_decal_matrix %4d\n", names[k],
+           chosen.decal_total, none.decal_lost, chosen.decal_lost);
+    failures += scene_verdict(none.wrong + chosen.wrong, &none, &chosen, 0.0);
+  }
+  return failures;
+}
+
 /* Renders one case with the decal shifted by `delta` (0: no offset) and tallies its pixels. */
 static int render(const struct renderer *gl, const struct scene_case *c, double delta,
                   struct scene_tally *tally) {
@@ -209,7 +308,8 @@ static int run_case(const struct renderer *gl, const struct scene_case *c) {
          "zshift recommended (%.3g steps) %4d\n",
          c->depth_bits, c->n, c->f, d, step, chosen.decal_total, none.decal_lost, one.decal_lost,
          recommended / step, chosen.decal_lost);
-  return scene_verdict(none.wrong + one.wrong + chosen.wrong, &none, &chosen, recommended / step);
+  return scene_verdict(none.wrong + one.wrong + chosen.wrong, &none, &chosen, recommended / step) +
+         run_engine_matrices(gl, c, subpixel_bits());
 }
 
 int main(void) {

@@ -1,6 +1,6 @@
 //! Projection builders: glFrustum, gluPerspective, every clip convention, tweaked infinite.
 
-use super::{checked_array, clip_of, ZshiftStatus};
+use super::{checked_array, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
@@ -58,7 +58,7 @@ pub extern "C" fn zshift_projection(
     t: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
     checked_array(out, || {
@@ -90,5 +90,30 @@ pub extern "C" fn zshift_tweaked_infinite(
 ) -> ZshiftStatus {
     checked_array(out, || {
         crate::projection::tweaked_infinite(&Frustum::new(l, r, b, t, n, f64::INFINITY)?, tweak)
+    })
+}
+
+/// Writes the glOrtho(l, r, b, t, n, f) matrix with the depth row of `clip` (column-major, 16
+/// floats): m0 = 2/(r-l), m5 = 2/(t-b), m12 = -(r+l)/(r-l), m13 = -(t+b)/(t-b), m15 = 1, and
+/// m10, m14 = -2/(f-n), -(f+n)/(f-n) for [-1, 1] (glOrtho's own); -1/(f-n), -n/(f-n) for [0, 1];
+/// 1/(f-n), f/(f-n) reversed. Depth is linear in eye distance; n may be 0 or negative.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER; ZSHIFT_ERR_NOT_FINITE for NaN or an infinity;
+/// ZSHIFT_ERR_DOMAIN if l == r, b == t, f <= n, or `clip` is unknown; ZSHIFT_ERR_OVERFLOW.
+/// `out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_ortho(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: ZshiftClip,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || {
+        let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
+        crate::orthographic::ortho(&o, clip_of(clip)?)
     })
 }

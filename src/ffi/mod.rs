@@ -25,16 +25,30 @@ use std::panic::{catch_unwind, UnwindSafe};
 
 use crate::error::{ErrorKind, Result};
 
-mod builders;
+// The header follows this order (cbindgen reads the modules as declared): the front door, the
+// recommendation, the seed-compatible LoadOffsetMatrix family and the offset projections, the
+// builders, precision, polygon offset, planning. Blank lines keep rustfmt from sorting them.
 mod kinds;
-mod offset;
-mod plan;
-mod polygon_offset;
-mod precision;
+mod last_error;
+
+mod matrix_in;
+
 mod recommend;
+
+mod offset;
+
+mod builders;
+
+mod precision;
+
+mod polygon_offset;
+
+mod plan;
 
 pub use builders::*;
 pub use kinds::*;
+pub use last_error::zshift_last_error;
+pub use matrix_in::*;
 pub use offset::*;
 pub use plan::*;
 pub use polygon_offset::*;
@@ -85,24 +99,42 @@ impl From<ErrorKind> for ZshiftStatus {
     }
 }
 
-/// The one checked entry pattern: refuse a NULL output, compute behind a panic boundary, and
-/// `store` only on success.
+/// The one checked entry pattern: refuse a NULL output, compute behind a panic boundary,
+/// `store` only on success, and record the outcome's detail for `zshift_last_error` (cleared
+/// on success, the error's sentence and input value on failure).
 fn checked<T, P>(
     out: *mut P,
     compute: impl FnOnce() -> Result<T> + UnwindSafe,
     store: impl FnOnce(*mut P, T),
 ) -> ZshiftStatus {
     if out.is_null() {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("out");
     }
     match catch_unwind(compute) {
         Ok(Ok(value)) => {
             store(out, value);
+            last_error::clear();
             ZSHIFT_OK
         }
-        Ok(Err(e)) => e.kind().into(),
-        Err(_) => ZSHIFT_ERR_INTERNAL,
+        Ok(Err(e)) => {
+            last_error::set(&e.to_string());
+            e.kind().into()
+        }
+        Err(panic) => {
+            last_error::set(&format!(
+                "internal error: a panic was caught at the ABI boundary ({}); please report it",
+                last_error::panic_text(&panic)
+            ));
+            ZSHIFT_ERR_INTERNAL
+        }
     }
+}
+
+/// ZSHIFT_ERR_NULL_POINTER for the pointer argument `name`, with its detail recorded: for
+/// entry points that read an input through a pointer before [`checked`] runs.
+fn null_pointer(name: &str) -> ZshiftStatus {
+    last_error::set(&format!("the pointer argument `{name}` is NULL"));
+    ZSHIFT_ERR_NULL_POINTER
 }
 
 /// [`checked`] for an output of `N` plain values (`float[16]`, `double[N]`): written with one

@@ -1,7 +1,7 @@
 //! Offset matrices: the seed-compatible LoadOffsetMatrix, epsilon, and the offset projection of
 //! every convention; Kooima's median offset.
 
-use super::{checked_array, checked_scalar, clip_of, ZshiftStatus};
+use super::{checked_array, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -68,7 +68,7 @@ pub extern "C" fn zshift_offset_projection(
     t: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     delta: f64,
     pz: f64,
     out: *mut f32,
@@ -88,7 +88,7 @@ pub extern "C" fn zshift_offset_perspective(
     aspect: f64,
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     delta: f64,
     pz: f64,
     out: *mut f32,
@@ -136,4 +136,28 @@ pub extern "C" fn zshift_median_ndc_offset(
     out: *mut f64,
 ) -> ZshiftStatus {
     checked_scalar(out, || crate::median::ndc_offset(median, delta, pz))
+}
+
+/// Writes `zshift_ortho`'s matrix with every point moved toward the camera by `delta` eye units
+/// (negative: away): element 14 moved by m10*delta (the same shift at every distance), rounded
+/// outward; the other elements bit-identical to `zshift_ortho`'s.
+///
+/// Errors: as `zshift_ortho`; ZSHIFT_ERR_NOT_FINITE if `delta` is NaN or infinite. `out`
+/// untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_ortho(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: ZshiftClip,
+    delta: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    checked_array(out, || {
+        let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
+        crate::orthographic::offset_ortho(&o, clip_of(clip)?, delta)
+    })
 }

@@ -1,6 +1,9 @@
 //! Scene planning: tight near/far planes and one offset for a depth range.
 
-use super::{checked_array, clip_of, format_of, kind_of, ZshiftStatus};
+use super::{
+    checked_array, clip_of, format_of, kind_of, ZshiftClip, ZshiftFormat, ZshiftOffsetKind,
+    ZshiftStatus,
+};
 use crate::precision::DepthMapping;
 
 /// Writes the tightest planes for a scene between eye distances `nearest` and `farthest`:
@@ -31,9 +34,9 @@ pub extern "C" fn zshift_tight_planes(nearest: f64, farthest: f64, out: *mut f64
 pub extern "C" fn zshift_range_offset(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
-    kind: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
+    kind: ZshiftOffsetKind,
     lo: f64,
     hi: f64,
     steps: f64,

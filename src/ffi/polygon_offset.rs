@@ -1,6 +1,9 @@
 //! Polygon-offset equivalence: eye-space shift <-> glPolygonOffset / D3D / Vulkan bias.
 
-use super::{api_of, checked_scalar, clip_of, format_of, ZshiftStatus};
+use super::{
+    api_of, checked_scalar, clip_of, format_of, ZshiftBiasApi, ZshiftClip, ZshiftFormat,
+    ZshiftStatus,
+};
 use crate::precision::DepthMapping;
 
 /// Writes the constant depth bias of `api` (a ZSHIFT_BIAS_*: glPolygonOffset units, Direct3D
@@ -14,9 +17,9 @@ use crate::precision::DepthMapping;
 pub extern "C" fn zshift_bias_of_shift(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
-    api: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
+    api: ZshiftBiasApi,
     delta: f64,
     pz: f64,
     out: *mut f64,
@@ -36,9 +39,9 @@ pub extern "C" fn zshift_bias_of_shift(
 pub extern "C" fn zshift_shift_of_bias(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
-    api: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
+    api: ZshiftBiasApi,
     bias: f64,
     pz: f64,
     out: *mut f64,

@@ -1,6 +1,6 @@
 //! Depth precision: window depth, the depth step, the minimum offsets (Walker, Lengyel).
 
-use super::{checked_scalar, clip_of, format_of, ZshiftStatus};
+use super::{checked_scalar, clip_of, format_of, ZshiftClip, ZshiftFormat, ZshiftStatus};
 use crate::precision::DepthMapping;
 
 /// Writes the smallest |epsilon| that moves depth by one step of a `bits`-bit depth buffer:
@@ -86,7 +86,7 @@ pub extern "C" fn zshift_depth_resolution(
 pub extern "C" fn zshift_window_depth_clip(
     n: f64,
     f: f64,
-    clip: i32,
+    clip: ZshiftClip,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -106,8 +106,8 @@ pub extern "C" fn zshift_window_depth_clip(
 pub extern "C" fn zshift_depth_step(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -124,7 +124,7 @@ pub extern "C" fn zshift_depth_step(
 #[no_mangle]
 pub extern "C" fn zshift_median_depth_step(
     median: f64,
-    format: i32,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -141,8 +141,8 @@ pub extern "C" fn zshift_median_depth_step(
 pub extern "C" fn zshift_min_ndc_offset(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -163,8 +163,8 @@ pub extern "C" fn zshift_min_ndc_offset(
 pub extern "C" fn zshift_min_epsilon_clip(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
@@ -181,12 +181,34 @@ pub extern "C" fn zshift_min_epsilon_clip(
 pub extern "C" fn zshift_min_relative_epsilon(
     n: f64,
     f: f64,
-    clip: i32,
-    format: i32,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
     d: f64,
     out: *mut f64,
 ) -> ZshiftStatus {
     checked_scalar(out, || {
         DepthMapping::projection(n, f, clip_of(clip)?)?.min_relative_epsilon(d, format_of(format)?)
+    })
+}
+
+/// Writes the exact depth step of an orthographic projection (`zshift_ortho`) at eye distance
+/// `d`: the shift that moves the stored window depth by the format's spacing r at w(d), which
+/// is r*(f - n) (window depth is linear in d: (d - n)/(f - n), reversed (f - d)/(f - n)). For
+/// UNORM formats the same at every distance; for FLOAT32, r = 2^(e-23) at the stored depth.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (f <= n, d outside
+/// [n, f], unknown clip or format). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_ortho_depth_step(
+    n: f64,
+    f: f64,
+    clip: ZshiftClip,
+    format: ZshiftFormat,
+    d: f64,
+    out: *mut f64,
+) -> ZshiftStatus {
+    checked_scalar(out, || {
+        let o = crate::orthographic::Ortho::new(-1.0, 1.0, -1.0, 1.0, n, f)?;
+        o.depth_step(clip_of(clip)?, format_of(format)?, d)
     })
 }

@@ -4,8 +4,8 @@
 use std::panic::UnwindSafe;
 
 use super::{
-    checked, checked_array, clip_of, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
-    ZSHIFT_ERR_NULL_POINTER,
+    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
+    ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
 };
 use crate::error::Result;
 use crate::precision::DepthFormat;
@@ -56,11 +56,11 @@ pub struct ZshiftScene {
     pub exact_depth: u32,
     /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
     pub subpixel_bits: i32,
-    /// The decal pass's glDepthFunc: GL_LESS (0x0201) or GL_LEQUAL (0x0203), under reversed Z
-    /// GL_GREATER (0x0204) or GL_GEQUAL (0x0206). 0: the convention's strict test (GL_LESS,
-    /// GL_GREATER under reversed Z). The `...EQUAL` tests need one quantum less offset and
+    /// The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+    /// reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
+    /// struct): the convention's strict test (GL_LESS, GL_GREATER under reversed Z). The `...EQUAL` tests need one quantum less offset and
     /// report a bleed gap one quantum wider (a tie passes).
-    pub depth_func: u32,
+    pub depth_func: ZshiftDepthTest,
     /// 0: every vertex of the base lies inside the view frustum, so the rasterizer clips
     /// nothing (a base cut by `zshift_clip_to_frustum`, or one that fits the screen). > 0: the
     /// base may cross the near plane or the screen's edges and is clipped by the rasterizer in
@@ -119,7 +119,7 @@ pub struct ZshiftRecommendation {
 
 impl ZshiftRecommendation {
     /// The C record of a recommendation: its offsets, then the error terms it was built from.
-    fn new(
+    pub(super) fn new(
         epsilon: f64,
         ndc_offset: f64,
         window_offset: f64,
@@ -170,7 +170,7 @@ fn checked_record(
 
 fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
     use crate::recommend::{Base, DepthTest, RasterizerProfile, Scene, Snapping};
-    let format = DepthFormat::from_gl_internal_format(s.depth_format)?;
+    let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
         b if b >= 0 => Snapping::SubpixelBits(b as u32),
@@ -180,10 +180,10 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
             ))
         }
     };
-    let depth_test = match s.depth_func {
+    let depth_test = match s.depth_func.value {
         0 if clip == ClipDepth::ReversedZeroToOne => DepthTest::Greater,
         0 => DepthTest::Less,
-        func => DepthTest::from_gl(func)?,
+        func => DepthTest::from_gl(func).map_err(|e| e.with_code("depth_func", func))?,
     };
     let base = if s.base_reach == 0.0 {
         Base::InsideFrustum
@@ -199,9 +199,10 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
     if s.plane_error != 0.0 {
         crate::domain::finite(s.plane_error, "plane_error is NaN or infinite")?;
         if s.plane_error < 0.0 {
-            return Err(crate::domain::domain(
-                "plane_error must be >= 0 (0: not measured)",
-            ));
+            return Err(
+                crate::domain::domain("plane_error must be >= 0 (0: not measured)")
+                    .with_value("plane_error", s.plane_error),
+            );
         }
         let index = match format {
             DepthFormat::Unorm16 => 0,
@@ -243,7 +244,7 @@ pub extern "C" fn zshift_recommend(
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_record(out, move || {
         let r = crate::recommend::recommend(&to_model(&s, ClipDepth::NegOneToOne)?)?;
@@ -272,7 +273,7 @@ pub extern "C" fn zshift_recommend_matrix(
     out: *mut f32,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_array(out, move || {
         let model = to_model(&s, ClipDepth::NegOneToOne)?;
@@ -306,11 +307,11 @@ pub extern "C" fn zshift_recommend_matrix(
 #[no_mangle]
 pub extern "C" fn zshift_recommend_clip(
     scene: *const ZshiftScene,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_record(out, move || {
         let r = crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?;
@@ -342,11 +343,11 @@ pub extern "C" fn zshift_recommend_clip(
 #[no_mangle]
 pub extern "C" fn zshift_recommend_clip_matrix(
     scene: *const ZshiftScene,
-    clip: i32,
+    clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
     let Some(s) = scene_from_c(scene) else {
-        return ZSHIFT_ERR_NULL_POINTER;
+        return null_pointer("scene");
     };
     checked_array(out, move || {
         Ok(
@@ -384,12 +385,16 @@ pub extern "C" fn zshift_clip_to_frustum(
     capacity: u32,
     out_count: *mut u32,
 ) -> ZshiftStatus {
-    if (polygon.is_null() && count > 0) || out.is_null() {
-        return ZSHIFT_ERR_NULL_POINTER;
+    if polygon.is_null() && count > 0 {
+        return null_pointer("polygon");
+    }
+    if out.is_null() {
+        return null_pointer("out");
     }
     let input: Vec<[f64; 3]> = if count == 0 {
         Vec::new()
     } else if count > 65_536 {
+        super::last_error::set("count must be at most 65536 vertices");
         return ZSHIFT_ERR_DOMAIN;
     } else {
         // SAFETY: not NULL; the caller promises `count` readable vertices of three doubles;

@@ -10,7 +10,10 @@
 
 use std::ffi::{c_char, CStr};
 
-use zshift::ffi::{self, ZshiftRecommendation, ZshiftScene};
+use zshift::ffi::{
+    self, ZshiftBiasApi, ZshiftClip, ZshiftDecal, ZshiftFormat, ZshiftOffsetKind,
+    ZshiftRecommendation, ZshiftScene,
+};
 
 /// The named inputs the exported functions take. Each function reads the fields it needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -36,12 +39,53 @@ pub struct Inputs {
     pub steps: f64,
     pub bits: u32,
     pub status: i32,
-    pub clip: i32,
-    pub format: i32,
-    pub api: i32,
-    pub kind: i32,
+    pub clip: ZshiftClip,
+    pub format: ZshiftFormat,
+    pub api: ZshiftBiasApi,
+    pub kind: ZshiftOffsetKind,
     pub scene: ZshiftScene,
+    /// The engine's own projection for the matrix-in entry points.
+    pub matrix: Matrix,
+    /// What the engine knows about a decal, for the matrix-in recommendation.
+    pub decal: ZshiftDecal,
+    /// An NDC offset toward the camera.
+    pub ndc: f64,
 }
+
+/// A column-major float[16], passed by pointer.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Matrix(pub [f32; 16]);
+
+/// `glFrustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000)` as f32 (what VALID_SCENE describes).
+const VALID_MATRIX: Matrix = Matrix([
+    1.0,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    1.333_333_3,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    -1.000_2,
+    -1.0,
+    0.0,
+    0.0,
+    -0.200_02,
+    0.0,
+]);
+
+const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    viewport_width: 1920,
+    viewport_height: 1080,
+    format: ZshiftFormat { value: 0x81A6 },
+    subpixel_bits: 8,
+    decal_near: 49.0,
+    decal_far: 51.0,
+    slope: 0.5,
+    exact_depth: 0,
+};
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
     l: -0.1,
@@ -58,7 +102,7 @@ const VALID_SCENE: ZshiftScene = ZshiftScene {
     slope: 0.5,
     exact_depth: 0,
     subpixel_bits: 8,
-    depth_func: 0,
+    depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
     base_reach: 0.0,
     plane_error: 0.0,
 };
@@ -88,11 +132,14 @@ impl Inputs {
         steps: 1.0,
         bits: 24,
         status: 0,
-        clip: 0,
-        format: 0x81A6, // ZSHIFT_FORMAT_UNORM24 = GL_DEPTH_COMPONENT24
-        api: 0,
-        kind: 0,
+        clip: ZshiftClip { value: 0 },
+        format: ZshiftFormat { value: 0x81A6 }, // ZSHIFT_FORMAT_UNORM24 = GL_DEPTH_COMPONENT24
+        api: ZshiftBiasApi { value: 0 },
+        kind: ZshiftOffsetKind { value: 0 },
         scene: VALID_SCENE,
+        matrix: VALID_MATRIX,
+        decal: VALID_DECAL,
+        ndc: 1e-5,
     };
 
     /// Every f64 input, the scene's included, for code that sets them by index.
@@ -127,6 +174,10 @@ impl Inputs {
             &mut s.decal_near,
             &mut s.decal_far,
             &mut s.slope,
+            &mut self.ndc,
+            &mut self.decal.decal_near,
+            &mut self.decal.decal_far,
+            &mut self.decal.slope,
         ]
     }
 
@@ -136,10 +187,10 @@ impl Inputs {
         vec![
             IntField::U(&mut self.bits),
             IntField::I(&mut self.status),
-            IntField::I(&mut self.clip),
-            IntField::I(&mut self.format),
-            IntField::I(&mut self.api),
-            IntField::I(&mut self.kind),
+            IntField::I(&mut self.clip.value),
+            IntField::U(&mut self.format.value),
+            IntField::I(&mut self.api.value),
+            IntField::I(&mut self.kind.value),
             IntField::U(&mut s.viewport_width),
             IntField::U(&mut s.viewport_height),
             IntField::U(&mut s.depth_format),
@@ -173,7 +224,29 @@ pub trait Arg {
 macro_rules! by_value {
     ($($t:ty),*) => { $(impl Arg for $t { type C = $t; fn arg(&self) -> $t { *self } })* };
 }
-by_value!(f64, u32, i32);
+by_value!(
+    f64,
+    u32,
+    i32,
+    ZshiftClip,
+    ZshiftFormat,
+    ZshiftBiasApi,
+    ZshiftOffsetKind
+);
+
+impl Arg for Matrix {
+    type C = *const f32;
+    fn arg(&self) -> *const f32 {
+        self.0.as_ptr()
+    }
+}
+
+impl Arg for ZshiftDecal {
+    type C = *const ZshiftDecal;
+    fn arg(&self) -> *const ZshiftDecal {
+        self
+    }
+}
 
 impl Arg for ZshiftScene {
     type C = *const ZshiftScene;
@@ -265,6 +338,7 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_depth_resolution(n, f, bits, d) -> [F64; 1]),
     text!(zshift_status_message(status)),
     text!(zshift_version()),
+    text!(zshift_last_error()),
     writes!(zshift_perspective(fovy, aspect, n, f) -> [F32; 16]),
     writes!(zshift_projection(l, r, b, t, n, f, clip) -> [F32; 16]),
     writes!(zshift_offset_projection(l, r, b, t, n, f, clip, delta, pz) -> [F32; 16]),
@@ -286,6 +360,13 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_recommend_matrix(scene) -> [F32; 16]),
     writes!(zshift_recommend_clip(scene, clip) -> [F64; RECOMMENDATION]),
     writes!(zshift_recommend_clip_matrix(scene, clip) -> [F32; 16]),
+    writes!(zshift_offset_matrix(matrix, clip, delta, d) -> [F32; 16]),
+    writes!(zshift_offset_matrix_ndc(matrix, clip, ndc) -> [F32; 16]),
+    writes!(zshift_decal_matrix(matrix, clip, decal) -> [F32; 16]),
+    writes!(zshift_recommend_for_matrix(matrix, clip, decal) -> [F64; RECOMMENDATION]),
+    writes!(zshift_ortho(l, r, b, t, n, f, clip) -> [F32; 16]),
+    writes!(zshift_offset_ortho(l, r, b, t, n, f, clip, delta) -> [F32; 16]),
+    writes!(zshift_ortho_depth_step(n, f, clip, format, d) -> [F64; 1]),
     Entry {
         name: "zshift_clip_to_frustum",
         kind: Kind::Writes {
@@ -455,8 +536,9 @@ fn check_text(name: &str, p: *const c_char) -> Vec<u8> {
         text.to_str().is_ok(),
         "{name} returned text that is not UTF-8"
     );
+    // zshift_last_error is "" after a successful call; every other text is a fixed sentence.
     assert!(
-        !text.to_bytes().is_empty(),
+        !text.to_bytes().is_empty() || name == "zshift_last_error",
         "{name} returned an empty string"
     );
     text.to_bytes().to_vec()
@@ -626,11 +708,22 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         },
         bits: 1 + src.below(32) as u32,
         status: src.below(9) as i32 - 1,
-        clip: src.below(3) as i32,
-        format: [0x81A5, 0x81A6, 0x81A7, 0x8CAC][src.below(4) as usize],
-        api: src.below(3) as i32,
-        kind: src.below(2) as i32,
+        clip: ZshiftClip {
+            value: src.below(3) as i32,
+        },
+        format: ZshiftFormat {
+            value: [0x81A5, 0x81A6, 0x81A7, 0x8CAC][src.below(4) as usize],
+        },
+        api: ZshiftBiasApi {
+            value: src.below(3) as i32,
+        },
+        kind: ZshiftOffsetKind {
+            value: src.below(2) as i32,
+        },
         scene: VALID_SCENE,
+        matrix: VALID_MATRIX,
+        decal: VALID_DECAL,
+        ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
         l: i.l,
@@ -647,7 +740,7 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         slope,
         exact_depth: (slope == 0.0 && src.one_in(2)) as u32,
         subpixel_bits: src.below(14) as i32 - 1,
-        depth_func: 0,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
         plane_error: 0.0,
     };

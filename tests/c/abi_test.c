@@ -27,12 +27,16 @@ static int checks, failures;
     }                                                      \
   } while (0)
 
-/* A status must be exactly `expected`; names both in words on failure. */
+/* A status must be exactly `expected`; names both in words on failure. Every failing call must
+ * leave a detail in zshift_last_error(), every successful one an empty string. */
 #define CHECK_STATUS(call, expected)                                                        \
   do {                                                                                      \
     ZshiftStatus got_ = (call);                                                             \
-    CHECK(got_ == (expected), "%s returned %d (%s), expected %d (%s)", #call, (int)got_,   \
-          zshift_status_message(got_), (int)(expected), zshift_status_message(expected)); \
+    const char *detail_ = zshift_last_error();                                              \
+    CHECK(got_ == (expected), "%s returned %d (%s: %s), expected %d (%s)", #call, (int)got_, \
+          zshift_status_message(got_), detail_, (int)(expected), zshift_status_message(expected)); \
+    CHECK(detail_ != NULL && (got_ == ZSHIFT_OK ? detail_[0] == '\0' : strlen(detail_) > 10), \
+          "%s: zshift_last_error() is \"%s\" after status %d", #call, detail_ ? detail_ : "(null)", (int)got_); \
   } while (0)
 
 /* ---- output left untouched on error: fill with a pattern, call, compare ---- */
@@ -67,6 +71,29 @@ static int untouched(const void *out, size_t size) {
 /* ---- references: the seed formulas in long double ---- */
 
 static long double steps(unsigned bits) { return ldexpl(1.0L, (int)bits) - 1.0L; }
+
+/* Argument values that are not one of the header's constants (each is ZSHIFT_ERR_DOMAIN): a
+ * caller can only make them by filling the struct by hand. */
+static ZshiftClip clip_value(int32_t v) {
+  ZshiftClip c;
+  c.value = v;
+  return c;
+}
+static ZshiftFormat format_value(uint32_t v) {
+  ZshiftFormat f;
+  f.value = v;
+  return f;
+}
+static ZshiftBiasApi api_value(int32_t v) {
+  ZshiftBiasApi a;
+  a.value = v;
+  return a;
+}
+static ZshiftOffsetKind kind_value(int32_t v) {
+  ZshiftOffsetKind k;
+  k.value = v;
+  return k;
+}
 
 /* glFrustum's matrix (seed 000, eq. 4.1.1), column-major. */
 static void reference_frustum(long double l, long double r, long double b, long double t,
@@ -284,8 +311,8 @@ static void check_matrix_within_one_ulp(const float *got, const long double want
 }
 
 static void test_projections(void) {
-  static const int32_t clips[] = {ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_CLIP_ZERO_TO_ONE,
-                                  ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE};
+  const ZshiftClip clips[] = {ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_CLIP_ZERO_TO_ONE,
+                              ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE};
   const long double n = 0.5L, f = 200.0L;
   long double want[16];
   float out[16], plain[16], shifted[16], gl[16];
@@ -306,10 +333,10 @@ static void test_projections(void) {
   /* The depth row of each clip convention, as the header states it. */
   for (c = 0; c < 3; c++) {
     reference_frustum(-1, 1, -0.75L, 0.75L, n, f, want);
-    if (clips[c] == ZSHIFT_CLIP_ZERO_TO_ONE) {
+    if (clips[c].value == ZSHIFT_CLIP_ZERO_TO_ONE.value) {
       want[10] = -f / (f - n);
       want[14] = -f * n / (f - n);
-    } else if (clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE) {
+    } else if (clips[c].value == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE.value) {
       want[10] = n / (f - n);
       want[14] = f * n / (f - n);
     }
@@ -319,9 +346,9 @@ static void test_projections(void) {
     CHECK_STATUS(zshift_offset_projection(-1, 1, -0.75, 0.75, 0.5, 200.0, clips[c], 0.5, -50.0, shifted),
                  ZSHIFT_OK);
     for (i = 0; i < 16; i++) {
-      int moving = clips[c] == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE ? 14 : 10;
+      int moving = clips[c].value == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE.value ? 14 : 10;
       CHECK(i == moving ? shifted[i] != out[i] : shifted[i] == out[i],
-            "zshift_offset_projection clip %d element %d (moving element %d)", (int)clips[c], i, moving);
+            "zshift_offset_projection clip %d element %d (moving element %d)", (int)clips[c].value, i, moving);
     }
   }
   /* Under [-1, 1] the offset matrix is Lengyel's: element 10 moves up by at least |m10 * epsilon|. */
@@ -333,12 +360,12 @@ static void test_projections(void) {
             fabsl(-(f + n) / (f - n) * reference_epsilon(n, f, 0.5L, -50.0L)) * (1.0L - 1e-12L),
         "zshift_offset_projection moved element 10 by %g", (double)(shifted[10] - plain[10]));
   CHECK_STATUS(zshift_projection(-1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_projection, -1, 1, -1, 1, 1, 100, 3);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_projection, -1, 1, -1, NAN, 1, 100, 0);
-  CHECK_STATUS(zshift_offset_projection(-1, 1, -1, 1, 1, 100, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, NAN, -50);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 0, 0.5, -0.5);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, 7, 0.5, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_projection, -1, 1, -1, 1, 1, 100, clip_value(3));
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_projection, -1, 1, -1, NAN, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE);
+  CHECK_STATUS(zshift_offset_projection(-1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_projection, -1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NAN, -50);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -0.5);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_projection, -1, 1, -1, 1, 1, 100, clip_value(7), 0.5, -50);
 
   /* zshift_offset_perspective is zshift_offset_projection on gluPerspective's frustum. */
   CHECK_STATUS(zshift_perspective(60.0, 1.5, 0.5, 200.0, gl), ZSHIFT_OK);
@@ -347,9 +374,9 @@ static void test_projections(void) {
   for (i = 0; i < 16; i++)
     if (i != 10) CHECK(out[i] == gl[i], "zshift_offset_perspective element %d differs from zshift_perspective's", i);
   CHECK(out[10] > gl[10], "zshift_offset_perspective did not move element 10 toward the camera");
-  CHECK_STATUS(zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_perspective, 0.0, 1.5, 0.5, 200.0, 0, 0.5, -50.0);
-  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_perspective, 60.0, NAN, 0.5, 200.0, 0, 0.5, -50.0);
+  CHECK_STATUS(zshift_offset_perspective(60, 1.5, 0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_DOMAIN, zshift_offset_perspective, 0.0, 1.5, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0);
+  CHECK_MATRIX_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_offset_perspective, 60.0, NAN, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50.0);
 
   /* Tweaked infinite projection: m10 = tweak - 1, m14 = (tweak - 2) n. */
   CHECK_STATUS(zshift_tweaked_infinite(-1, 1, -1, 1, 0.5, ZSHIFT_MIN_INFINITE_TWEAK, plain), ZSHIFT_OK);
@@ -382,19 +409,19 @@ static void test_clip_precision(void) {
   CHECK(out == walker, "window_depth_clip [0, 1] %.17g vs window_depth %.17g", out, walker);
   CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, 37.0, &out), ZSHIFT_OK);
   CHECK(relative_error(out, n * (f - d) / ((f - n) * d)) < 1e-15, "reversed window depth %.17g", out);
-  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, 0, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 5, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, 0, 300.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth_clip, 0.5, 200.0, 0, NAN);
+  CHECK_STATUS(zshift_window_depth_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, clip_value(5), 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_window_depth_clip, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_window_depth_clip, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NAN);
 
   /* Depth step: Walker's eq. 3 for UNORM under [-1, 1] (zshift_depth_resolution). */
   CHECK_STATUS(zshift_depth_resolution(0.5, 200.0, 24, 37.0, &reference), ZSHIFT_OK);
   CHECK_STATUS(zshift_depth_step(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
                ZSHIFT_OK);
   CHECK(relative_error(out, reference) < 1e-15, "depth_step %.17g vs depth_resolution %.17g", out, reference);
-  CHECK_STATUS(zshift_depth_step(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_step, 0.5, 200.0, 0, 9, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0);
+  CHECK_STATUS(zshift_depth_step(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_depth_step, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, format_value(9), 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_depth_step, NAN, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0);
 
   /* Kooima's median projection (seed 003): window depth d/(d + median). */
   {
@@ -428,12 +455,12 @@ static void test_clip_precision(void) {
   CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, &out),
                ZSHIFT_OK);
   CHECK(relative_error(out, 1.0L / steps(24) * d / (f * n / (f - n))) < 1e-14, "min_relative_epsilon %.17g", out);
-  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 300.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon_clip, 0.5, 200.0, 0, 4, 37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, NAN);
+  CHECK_STATUS(zshift_min_ndc_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_epsilon_clip(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_min_relative_epsilon(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_ndc_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, 300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_min_epsilon_clip, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, format_value(4), 37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_min_relative_epsilon, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, NAN);
 }
 
 static void test_bias_and_planning(void) {
@@ -451,11 +478,11 @@ static void test_bias_and_planning(void) {
                                     ZSHIFT_BIAS_VULKAN, 0.25, -37.0, &bias),
                ZSHIFT_OK);
   CHECK(bias > 0, "bias_of_shift reversed is %g, expected positive", bias);
-  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 3, 0.25, -37.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 0.25, -300.0);
-  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, NAN, -37.0);
+  CHECK_STATUS(zshift_bias_of_shift(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL, 0.25, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shift_of_bias(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL, -1.0, -37.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, api_value(3), 0.25, -37.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_DOMAIN, zshift_bias_of_shift, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL, 0.25, -300.0);
+  CHECK_SCALAR_ERROR(ZSHIFT_ERR_NOT_FINITE, zshift_shift_of_bias, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL, NAN, -37.0);
 
   /* Tight planes enclose the scene. */
   CHECK_STATUS(zshift_tight_planes(2.0, 500.0, planes), ZSHIFT_OK);
@@ -480,13 +507,13 @@ static void test_bias_and_planning(void) {
           "range_offset %g shifts %.17g at 10 and %.17g at 100 (2 steps: %.17Lg, %.17Lg)", range[0], range[1],
           range[2], at_lo, at_hi);
   }
-  CHECK_STATUS(zshift_range_offset(0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 100.0, 10.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, 0.5);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 9, 10.0, 100.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, 100.0, NAN);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, NAN, 100.0, 2.0);
-  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, 0, ZSHIFT_FORMAT_UNORM24, 0, 10.0, INFINITY, 2.0);
+  CHECK_STATUS(zshift_range_offset(0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 10.0, 100.0, 2.0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 100.0, 10.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 10.0, 100.0, 0.5);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_DOMAIN, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, kind_value(9), 10.0, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 10.0, 100.0, NAN);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, NAN, 100.0, 2.0);
+  CHECK_ARRAY_ERROR(ZSHIFT_ERR_NOT_FINITE, 3, zshift_range_offset, 0.5, 200.0, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 10.0, INFINITY, 2.0);
 }
 
 /* ---- the recommendation (zshift_recommend, zshift_recommend_matrix) ---- */
@@ -688,13 +715,13 @@ static void test_recommend_clip(void) {
         "reversed: element 10 %g, element 14 scaled by 1 + %Lg for epsilon %g", a[10], ratio, r.epsilon);
 
   /* Errors: NULL, an unknown convention; outputs untouched. */
-  CHECK_STATUS(zshift_recommend_clip(NULL, 0, &out), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_recommend_clip(&s, 0, NULL), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_recommend_clip_matrix(&s, 0, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_recommend_clip(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_recommend_clip(&s, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL), ZSHIFT_ERR_NULL_POINTER);
   memset(&out, PATTERN, sizeof out);
   memset(b, PATTERN, sizeof b);
-  CHECK_STATUS(zshift_recommend_clip(&s, 3, &out), ZSHIFT_ERR_DOMAIN);
-  CHECK_STATUS(zshift_recommend_clip_matrix(&s, -1, b), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_recommend_clip(&s, clip_value(3), &out), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_recommend_clip_matrix(&s, clip_value(-1), b), ZSHIFT_ERR_DOMAIN);
   rev.slope = NAN;
   CHECK_STATUS(zshift_recommend_clip(&rev, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, &out), ZSHIFT_ERR_NOT_FINITE);
   CHECK(untouched(&out, sizeof out) && untouched(b, sizeof b), "recommend_clip wrote its output on error");
@@ -730,7 +757,55 @@ static void test_versions(void) {
   CHECK(ZSHIFT_ABI_VERSION == 1, "ZSHIFT_ABI_VERSION is %d; this test was written for 1", ZSHIFT_ABI_VERSION);
 }
 
+/* The detail of an error names the input, its value and the rule; it is per thread, replaced by
+ * each call, and empty after a success. */
+static void expect_detail(const char *what, const char *needle) {
+  const char *detail = zshift_last_error();
+  CHECK(strstr(detail, needle) != NULL, "%s: zshift_last_error() \"%s\" does not contain \"%s\"", what, detail,
+        needle);
+}
+
+static void test_last_error(void) {
+  float m[16];
+  double x;
+  ZshiftScene scene;
+  ZshiftRecommendation rec;
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, -1, 100, m), ZSHIFT_ERR_DOMAIN);
+  expect_detail("n = -1", "near plane distance n must be greater than 0 (n = -1)");
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 1, 100, m), ZSHIFT_OK);
+  CHECK(zshift_last_error()[0] == '\0', "a success did not clear the detail");
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 1, 0.5, m), ZSHIFT_ERR_DOMAIN);
+  expect_detail("f = 0.5", "(f = 0.5)");
+  CHECK_STATUS(zshift_frustum(-1, 1, -1, 1, 1, 100, NULL), ZSHIFT_ERR_NULL_POINTER);
+  expect_detail("NULL out", "`out` is NULL");
+  /* zshift_status_message does not touch the detail. */
+  (void)zshift_status_message(ZSHIFT_ERR_DOMAIN);
+  expect_detail("after zshift_status_message", "`out` is NULL");
+  CHECK_STATUS(zshift_epsilon(1, 100, NAN, -50, &x), ZSHIFT_ERR_NOT_FINITE);
+  expect_detail("delta NaN", "delta is NaN or infinite (got NaN)");
+  CHECK_STATUS(zshift_epsilon(1, 100, 1, -500, &x), ZSHIFT_ERR_DOMAIN);
+  expect_detail("pz = -500", "(Pz = -500)");
+  CHECK_STATUS(zshift_min_epsilon(1, 100, 33, &x), ZSHIFT_ERR_DOMAIN);
+  expect_detail("bits = 33", "(bits = 33)");
+  CHECK_STATUS(zshift_projection(-1, 1, -1, 1, 1, 100, clip_value(7), m), ZSHIFT_ERR_DOMAIN);
+  expect_detail("clip 7", "(clip = 7)");
+  CHECK_STATUS(zshift_depth_step(1, 100, ZSHIFT_CLIP_ZERO_TO_ONE, format_value(0x1902), 50, &x), ZSHIFT_ERR_DOMAIN);
+  expect_detail("format GL_DEPTH_COMPONENT", "(format = 0x1902)");
+  CHECK_STATUS(zshift_bias_of_shift(1, 100, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_UNORM24, api_value(9), 0.1, -50, &x),
+               ZSHIFT_ERR_DOMAIN);
+  expect_detail("api 9", "(api = 9)");
+  CHECK_STATUS(zshift_range_offset(1, 100, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_UNORM24, kind_value(4), 2, 50, 1, &x),
+               ZSHIFT_ERR_DOMAIN);
+  expect_detail("kind 4", "(kind = 4)");
+  CHECK_STATUS(zshift_recommend(NULL, &rec), ZSHIFT_ERR_NULL_POINTER);
+  expect_detail("NULL scene", "`scene` is NULL");
+  memset(&scene, 0, sizeof scene);
+  CHECK_STATUS(zshift_recommend(&scene, &rec), ZSHIFT_ERR_DOMAIN);
+  CHECK(strlen(zshift_last_error()) > 10, "an all-zero scene is refused with a detail");
+}
+
 int main(void) {
+  test_last_error();
   test_frustum();
   test_load_offset_matrix();
   test_epsilon();

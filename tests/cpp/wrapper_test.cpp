@@ -41,8 +41,9 @@ static void check_throws(const char *what, zshift::Status expected, Call call) {
   } catch (const zshift::Error &e) {
     CHECK(e.status() == expected, "%s threw status %d, expected %d", what, static_cast<int>(e.status()),
           static_cast<int>(expected));
-    CHECK(std::strcmp(e.what(), zshift_status_message(zshift::to_c(expected))) == 0,
-          "%s threw \"%s\", not the status message", what, e.what());
+    // what() is the library's detail (input, value, rule), never just the status sentence.
+    CHECK(std::strlen(e.what()) > 10 && std::strcmp(e.what(), zshift_status_message(zshift::to_c(expected))) != 0,
+          "%s threw \"%s\", not the detail", what, e.what());
   }
 }
 
@@ -147,8 +148,14 @@ static void test_recommend() {
 static void test_conventions() {
   using zshift::Clip;
   using zshift::Format;
-  constexpr auto reversed = static_cast<std::int32_t>(Clip::reversed_zero_to_one);
-  static_assert(reversed == ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, "Clip mirrors the header");
+  const ZshiftClip reversed = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE;
+  CHECK(zshift::detail::to_c(Clip::reversed_zero_to_one).value == reversed.value, "Clip mirrors the header");
+  CHECK(zshift::detail::to_c(Format::float32).value == ZSHIFT_FORMAT_FLOAT32.value &&
+            zshift::detail::to_c(Format::unorm16).value == ZSHIFT_FORMAT_UNORM16.value &&
+            zshift::detail::to_c(zshift::DepthTest::greater).value == ZSHIFT_DEPTH_TEST_GREATER.value &&
+            zshift::detail::to_c(zshift::BiasApi::vulkan).value == ZSHIFT_BIAS_VULKAN.value &&
+            zshift::detail::to_c(zshift::OffsetKind::relative).value == ZSHIFT_OFFSET_RELATIVE.value,
+        "the scoped enums mirror the header's constants");
   float c[16];
   double v;
   double planes[2], range[3];
@@ -162,7 +169,7 @@ static void test_conventions() {
   CHECK(std::memcmp(zshift::offset_projection(-1, 1, -1, 1, 0.5, 200, Clip::reversed_zero_to_one, 0.5, -50).data(), c,
                     sizeof c) == 0,
         "offset_projection");
-  zshift_offset_perspective(60, 1.5, 0.5, 200, 0, 0.5, -50, c);
+  zshift_offset_perspective(60, 1.5, 0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.5, -50, c);
   CHECK(std::memcmp(zshift::offset_perspective(60, 1.5, 0.5, 200, Clip::neg_one_to_one, 0.5, -50).data(), c,
                     sizeof c) == 0,
         "offset_perspective");
@@ -177,27 +184,27 @@ static void test_conventions() {
   CHECK(zshift::median_ndc_offset(10, 0.5, -37) == v, "median_ndc_offset");
   zshift_window_depth_clip(0.5, 200, reversed, 37, &v);
   CHECK(zshift::window_depth_clip(0.5, 200, Clip::reversed_zero_to_one, 37) == v, "window_depth_clip");
-  zshift_depth_step(0.5, 200, 1, ZSHIFT_FORMAT_FLOAT32, 37, &v);
+  zshift_depth_step(0.5, 200, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_FLOAT32, 37, &v);
   CHECK(zshift::depth_step(0.5, 200, Clip::zero_to_one, Format::float32, 37) == v, "depth_step");
   zshift_median_depth_step(10, ZSHIFT_FORMAT_UNORM24, 37, &v);
   CHECK(zshift::median_depth_step(10, Format::unorm24, 37) == v, "median_depth_step");
-  zshift_min_ndc_offset(0.5, 200, 0, ZSHIFT_FORMAT_UNORM16, 37, &v);
+  zshift_min_ndc_offset(0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM16, 37, &v);
   CHECK(zshift::min_ndc_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm16, 37) == v, "min_ndc_offset");
-  zshift_min_epsilon_clip(0.5, 200, 1, ZSHIFT_FORMAT_UNORM24, 37, &v);
+  zshift_min_epsilon_clip(0.5, 200, ZSHIFT_CLIP_ZERO_TO_ONE, ZSHIFT_FORMAT_UNORM24, 37, &v);
   CHECK(zshift::min_epsilon_clip(0.5, 200, Clip::zero_to_one, Format::unorm24, 37) == v, "min_epsilon_clip");
   zshift_min_relative_epsilon(0.5, 200, reversed, ZSHIFT_FORMAT_FLOAT32, 37, &v);
   CHECK(zshift::min_relative_epsilon(0.5, 200, Clip::reversed_zero_to_one, Format::float32, 37) == v,
         "min_relative_epsilon");
-  zshift_bias_of_shift(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 2, 0.25, -37, &v);
+  zshift_bias_of_shift(0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_VULKAN, 0.25, -37, &v);
   CHECK(zshift::bias_of_shift(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::vulkan, 0.25, -37) == v,
         "bias_of_shift");
-  zshift_shift_of_bias(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 0, -3.0, -37, &v);
+  zshift_shift_of_bias(0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_BIAS_OPENGL, -3.0, -37, &v);
   CHECK(zshift::shift_of_bias(0.5, 200, Clip::neg_one_to_one, Format::unorm24, zshift::BiasApi::opengl, -3.0, -37) == v,
         "shift_of_bias");
   zshift_tight_planes(2, 500, planes);
   std::array<double, 2> tight = zshift::tight_planes(2, 500);
   CHECK(tight[0] == planes[0] && tight[1] == planes[1], "tight_planes");
-  zshift_range_offset(0.5, 200, 0, ZSHIFT_FORMAT_UNORM24, 0, 10, 100, 2, range);
+  zshift_range_offset(0.5, 200, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_FORMAT_UNORM24, ZSHIFT_OFFSET_NDC, 10, 100, 2, range);
   zshift::RangeOffset ro = zshift::range_offset(0.5, 200, Clip::neg_one_to_one, Format::unorm24,
                                                 zshift::OffsetKind::ndc, 10, 100, 2);
   CHECK(ro.offset == range[0] && ro.shift_at_lo == range[1] && ro.shift_at_hi == range[2], "range_offset");
@@ -220,6 +227,13 @@ static void test_conventions() {
 static void test_messages() {
   CHECK(std::string(zshift::message(zshift::Status::ok)) == zshift_status_message(ZSHIFT_OK), "message(ok)");
   CHECK(zshift::Error(ZSHIFT_ERR_INTERNAL).status() == zshift::Status::internal, "Error keeps its status");
+  try {
+    zshift::frustum(-1, 1, -1, 1, -1, 100);
+    CHECK(false, "frustum(n = -1) did not throw");
+  } catch (const zshift::Error &e) {
+    CHECK(std::string(e.what()) == "the near plane distance n must be greater than 0 (n = -1)",
+          "frustum(n = -1) threw \"%s\"", e.what());
+  }
   CHECK(zshift::version() == zshift_version() && !zshift::version().empty(), "version()");
 }
 
@@ -227,7 +241,7 @@ static void test_messages() {
 // Z with an infinite far plane keeps element 10 at 0 and offsets element 14.
 static void test_recommend_clip() {
   using zshift::Clip;
-  constexpr auto reversed = static_cast<std::int32_t>(Clip::reversed_zero_to_one);
+  const ZshiftClip reversed = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE;
   zshift::Scene s = floor_decal;
   s.f = std::numeric_limits<double>::infinity();
   s.depth_format = 0x8CAC;  // GL_DEPTH_COMPONENT32F

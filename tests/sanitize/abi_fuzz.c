@@ -27,7 +27,11 @@ struct inputs {
     double l, r, b, t, n, f, delta, pz, d, fovy, aspect, tweak, median, bias, nearest, farthest,
         lo, hi, steps;
     uint32_t bits;
-    int32_t status, clip, format, api, kind;
+    int32_t status;
+    ZshiftClip clip;
+    ZshiftFormat format;
+    ZshiftBiasApi api;
+    ZshiftOffsetKind kind;
     ZshiftScene scene;
 };
 
@@ -212,7 +216,7 @@ static const struct inputs VALID = {
     .l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0, .delta = 0.01,
     .pz = -50.0, .d = 50.0, .fovy = 60.0, .aspect = 4.0 / 3.0, .tweak = 1e-6, .median = 10.0,
     .bias = -2.0, .nearest = 0.5, .farthest = 800.0, .lo = 10.0, .hi = 100.0, .steps = 1.0,
-    .bits = 24, .status = 0, .clip = 0, .format = ZSHIFT_FORMAT_UNORM24, .api = 0, .kind = 0,
+    .bits = 24, .status = 0, .clip = {0}, .format = {0x81A6 /* UNORM24 */}, .api = {0}, .kind = {0},
     .scene = {.l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0,
               .viewport_width = 1920, .viewport_height = 1080, .depth_format = 0x81A6,
               .decal_near = 49.0, .decal_far = 51.0, .slope = 0.5, .exact_depth = 0,
@@ -231,8 +235,8 @@ enum { NFIELDS = 28 };
 
 /* Every integer input, by index, through a uint32_t view (int32_t fields take the same bits). */
 static uint32_t *int_field(struct inputs *in, int k) {
-    uint32_t *fields[] = {&in->bits, (uint32_t *)&in->status, (uint32_t *)&in->clip,
-                          (uint32_t *)&in->format, (uint32_t *)&in->api, (uint32_t *)&in->kind,
+    uint32_t *fields[] = {&in->bits, (uint32_t *)&in->status, (uint32_t *)&in->clip.value,
+                          &in->format.value, (uint32_t *)&in->api.value, (uint32_t *)&in->kind.value,
                           &in->scene.viewport_width, &in->scene.viewport_height,
                           &in->scene.depth_format, &in->scene.exact_depth,
                           (uint32_t *)&in->scene.subpixel_bits};
@@ -314,8 +318,8 @@ int main(int argc, char **argv) {
         in.bits = 1 + (uint32_t)(next_u64() % 32);
         in.status = (int32_t)(next_u64() % 9) - 1;
         const uint32_t formats[] = {0x81A5, 0x81A6, 0x81A7, 0x8CAC};
-        in.clip = (int32_t)(next_u64() % 3), in.format = (int32_t)formats[next_u64() % 4];
-        in.api = (int32_t)(next_u64() % 3), in.kind = (int32_t)(next_u64() % 2);
+        in.clip.value = (int32_t)(next_u64() % 3), in.format.value = formats[next_u64() % 4];
+        in.api.value = (int32_t)(next_u64() % 3), in.kind.value = (int32_t)(next_u64() % 2);
         in.scene = (ZshiftScene){.l = in.l, .r = in.r, .b = in.b, .t = in.t, .n = in.n, .f = in.f,
                                  .viewport_width = 1 + (uint32_t)(next_u64() % 4096),
                                  .viewport_height = 1 + (uint32_t)(next_u64() % 4096),

@@ -24,11 +24,12 @@ class QuickStart(unittest.TestCase):
             try:
                 zshift.load_offset_matrix(*frustum, 300.0, -250.0)  # delta, pz: pz + delta > 0 is behind the eye
             except zshift.ZshiftError as error:
-                print(error.status.name, "-", error)  # DOMAIN - an input was outside the function's domain
+                print(error.status.name, "-", error)  # DOMAIN - the shifted depth Pz + delta must stay ... (Pz + delta = 50)
             # [/quickstart-python]
         self.assertGreater(decal[10], base[10], "the decal moved toward the camera")
         self.assertEqual([decal[i] for i in range(16) if i != 10], [base[i] for i in range(16) if i != 10])
-        self.assertEqual(printed.getvalue(), "DOMAIN - an input was outside the function's domain\n")
+        self.assertEqual(printed.getvalue(),
+                         "DOMAIN - the shifted depth Pz + delta must stay in front of the eye (< 0) (Pz + delta = 50)\n")
 
 
 if __name__ == "__main__":

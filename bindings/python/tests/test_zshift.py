@@ -11,6 +11,7 @@ import struct
 import subprocess
 import sys
 import unittest
+from fractions import Fraction
 from fractions import Fraction as Q
 from pathlib import Path
 from unittest import mock
@@ -164,9 +165,29 @@ class Errors(unittest.TestCase):
         with self.assertRaises(zshift.ZshiftError) as caught:
             fn(*args)
         self.assertEqual(caught.exception.status, status)
-        self.assertEqual(str(caught.exception), zshift.status_message(status))
-        self.assertEqual(caught.exception.message, zshift.status_message(status))
+        # The message is the library's detail (which input, its value, why), not the status's
+        # sentence, and it is what zshift.last_error() says.
+        self.assertNotEqual(str(caught.exception), zshift.status_message(status))
+        self.assertGreater(len(caught.exception.message), 10)
         self.assertIsInstance(caught.exception, ValueError)
+
+    def test_detail_names_the_input_and_its_value(self):
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.frustum(-1, 1, -1, 1, -1, 100)
+        self.assertEqual(str(caught.exception), "the near plane distance n must be greater than 0 (n = -1)")
+        self.assertEqual(zshift.last_error(), str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.depth_step(1, 100, zshift.Clip.ZERO_TO_ONE, 0x1902, 50)
+        self.assertIn("(format = 0x1902)", str(caught.exception))
+        zshift.frustum(-1, 1, -1, 1, 1, 100)
+        self.assertEqual(zshift.last_error(), "")
+
+    def test_arguments_of_another_kind_are_refused(self):
+        # A Format where a Clip goes (the C header makes this a compile error).
+        with self.assertRaises(TypeError):
+            zshift.depth_step(1, 100, zshift.Format.UNORM24, zshift.Clip.ZERO_TO_ONE, 50)
+        with self.assertRaises(TypeError):
+            zshift.projection(-1, 1, -1, 1, 1, 100, zshift.Format.FLOAT32)
 
     def test_domain(self):
         self.assert_raises_status(zshift.Status.DOMAIN, zshift.frustum, 1, 1, -1, 1, 1, 100)
@@ -292,8 +313,10 @@ class Recommend(unittest.TestCase):
         for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
                                  ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
             body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
-            fields = re.findall(r"^\s*(double|uint32_t|int32_t) (\w+);", body, re.M)
-            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int"}
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest) (\w+);", body, re.M)
+            # ZshiftDepthTest is a struct of one uint32_t: the same layout.
+            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int",
+                            "ZshiftDepthTest": "c_uint"}
             self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
             for (c_type, name), (_, field_type) in zip(fields, cls._fields_):
                 self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")
@@ -311,9 +334,10 @@ class Conventions(unittest.TestCase):
     def test_enums_match_the_header(self):
         header = (ROOT / "include" / "zshift.h").read_text()
         for prefix, enum_cls in (("CLIP", zshift.Clip), ("FORMAT", zshift.Format), ("BIAS", zshift.BiasApi),
-                                 ("OFFSET", zshift.OffsetKind)):
-            defined = dict(re.findall(r"#define ZSHIFT_" + prefix + r"_(\w+) (\d+)", header))
-            self.assertEqual({k: int(v) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
+                                 ("OFFSET", zshift.OffsetKind), ("DEPTH_TEST", zshift.DepthTest)):
+            defined = dict(re.findall(r"static const Zshift\w+ ZSHIFT_" + prefix + r"_(\w+) = \{ (0x[0-9A-F]+|\d+) \};",
+                                      header))
+            self.assertEqual({k: int(v, 0) for k, v in defined.items()}, {m.name: m.value for m in enum_cls}, prefix)
         tweak = re.search(r"#define ZSHIFT_MIN_INFINITE_TWEAK (\S+)", header).group(1)
         self.assertEqual(zshift.MIN_INFINITE_TWEAK, float(tweak))
 
@@ -421,3 +445,89 @@ class Library(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class FrontDoor(unittest.TestCase):
+    """The engine's own matrix in, the decal's matrix out: only the offset element changes, by at
+    least the offset asked (exact, with fractions) and at most one float32 ulp more."""
+
+    @staticmethod
+    def f32(x):
+        return struct.unpack("f", struct.pack("f", x))[0]
+
+    def perspective(self, fovy, aspect, n, f, zero_to_one=False, reversed_z=False):
+        # GLM's perspectiveRH_NO / perspectiveRH_ZO, column-major, rounded to float32.
+        h = 1.0 / math.tan(fovy / 2.0)
+        if reversed_z:
+            n, f = f, n
+        m = [0.0] * 16
+        m[0], m[5], m[11] = h / aspect, h, -1.0
+        if zero_to_one:
+            m[10], m[14] = f / (n - f), -(f * n) / (f - n)
+        else:
+            m[10], m[14] = -(f + n) / (f - n), -(2.0 * f * n) / (f - n)
+        return [self.f32(x) for x in m]
+
+    def ortho(self, l, r, b, t, n, f):
+        m = [0.0] * 16
+        m[0], m[5], m[10], m[15] = 2.0 / (r - l), 2.0 / (t - b), -2.0 / (f - n), 1.0
+        m[12], m[13], m[14] = -(r + l) / (r - l), -(t + b) / (t - b), -(f + n) / (f - n)
+        return [self.f32(x) for x in m]
+
+    def ulp(self, x):
+        a = abs(x)
+        bits = struct.unpack("I", struct.pack("f", a))[0]
+        return Fraction(struct.unpack("f", struct.pack("I", bits + 1))[0]) - Fraction(a)
+
+    def check(self, m, out, element, seen, want, what):
+        for i in range(16):
+            if i != element:
+                self.assertEqual(struct.pack("f", m[i]), struct.pack("f", out[i]), f"{what}: element {i}")
+        self.assertTrue((seen > 0) == (want > 0) and abs(seen) >= abs(want), f"{what}: {seen} < {want}")
+        self.assertLessEqual(abs(seen) - abs(want), self.ulp(out[element]), what)
+
+    def test_offset_matrix_changes_one_element_by_the_offset(self):
+        cases = [
+            ("GL [-1, 1]", self.perspective(1.0, 1.5, 0.1, 1000.0), zshift.Clip.NEG_ONE_TO_ONE, False),
+            ("[0, 1]", self.perspective(1.0, 1.5, 0.1, 1000.0, zero_to_one=True), zshift.Clip.ZERO_TO_ONE, False),
+            ("reversed", self.perspective(1.0, 1.5, 0.1, 1000.0, True, True), zshift.Clip.REVERSED_ZERO_TO_ONE, False),
+            ("glOrtho", self.ortho(-20.0, 20.0, -10.0, 10.0, 1.0, 500.0), zshift.Clip.NEG_ONE_TO_ONE, True),
+        ]
+        for name, m, clip, is_ortho in cases:
+            for delta, d in ((0.01, 50.0), (2.5, 400.0)):
+                what = f"{name} delta {delta} at {d}"
+                out = list(zshift.offset_matrix(m, clip, delta, d))
+                m10, m14, fd, fdelta = Fraction(m[10]), Fraction(m[14]), Fraction(d), Fraction(delta)
+                if is_ortho:
+                    self.check(m, out, 14, Fraction(out[14]) - m14, m10 * fdelta, what)
+                elif clip == zshift.Clip.REVERSED_ZERO_TO_ONE:
+                    self.check(m, out, 14, Fraction(out[14]) - m14, m14 * fdelta / (fd - fdelta), what)
+                else:
+                    seen = (Fraction(out[10]) - m10) * Fraction(m[11])
+                    self.check(m, out, 10, seen, m14 * fdelta / (fd * (fd - fdelta)), what)
+
+    def test_decal_matrix_and_its_record(self):
+        m = self.perspective(1.0, 16 / 9, 0.1, 1000.0)
+        decal = zshift.decal_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24, (40.0, 60.0),
+                                    slope=1.0, subpixel_bits=8)
+        self.assertEqual([i for i in range(16) if decal[i] != m[i]], [10])
+        rec = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24,
+                                          (40.0, 60.0), slope=1.0, subpixel_bits=8)
+        self.assertGreater(rec.window_offset, 0.0)
+        o = zshift.ortho(-20.0, 20.0, -10.0, 10.0, 1.0, 500.0)
+        decal = zshift.decal_matrix(o, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24, (40.0, 60.0))
+        self.assertEqual([i for i in range(16) if decal[i] != o[i]], [14])
+
+    def test_mismatch_and_bad_matrices_are_refused_with_a_reason(self):
+        reversed_m = self.perspective(1.0, 1.5, 0.1, 1000.0, True, True)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.offset_matrix(reversed_m, zshift.Clip.NEG_ONE_TO_ONE, 0.01, 50.0)
+        self.assertIn("reversed-Z", str(caught.exception))
+        with self.assertRaises(TypeError):
+            zshift.offset_matrix(reversed_m[:12], zshift.Clip.REVERSED_ZERO_TO_ONE, 0.01, 50.0)
+        with self.assertRaises(TypeError):
+            zshift.offset_matrix(reversed_m, zshift.Format.UNORM24, 0.01, 50.0)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.decal_matrix(reversed_m, zshift.Clip.REVERSED_ZERO_TO_ONE, (0, 720), zshift.Format.FLOAT32,
+                                (40.0, 60.0))
+        self.assertIn("viewport", str(caught.exception))

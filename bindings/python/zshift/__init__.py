@@ -32,12 +32,14 @@ __all__ = [
     "epsilon", "min_epsilon", "min_delta_toward", "max_delta_away", "window_depth",
     "depth_resolution", "recommend", "recommend_matrix", "Recommendation", "SUBPIXEL_UNSNAPPED",
     "GL_DEPTH_COMPONENT16", "GL_DEPTH_COMPONENT24", "GL_DEPTH_COMPONENT32", "GL_DEPTH_COMPONENT32F",
-    "Clip", "Format", "BiasApi", "OffsetKind", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
+    "Clip", "Format", "DepthTest", "BiasApi", "OffsetKind", "last_error", "MIN_INFINITE_TWEAK", "RangeOffset", "perspective", "projection",
     "offset_projection", "offset_perspective", "tweaked_infinite", "offset_tweaked_infinite",
     "median_ndc_offset", "window_depth_clip", "depth_step", "median_depth_step", "min_ndc_offset",
     "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
     "range_offset", "recommend_clip", "recommend_clip_matrix",
     "status_message", "version", "library_path",
+    "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
+    "ortho_depth_step",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
@@ -68,15 +70,17 @@ class Status(enum.IntEnum):
 
 class ZshiftError(ValueError):
     """A zshift call failed. ``status`` says how (a :class:`Status`, or the raw code if unknown);
-    ``message`` (also ``str(error)``) is the library's sentence for it."""
+    ``message`` (also ``str(error)``) says which input, its value and why: the library's
+    ``zshift_last_error()`` detail, such as ``"the near plane distance n must be greater than 0
+    (n = -1)"``, or the status's sentence where there is none."""
 
-    def __init__(self, status):
+    def __init__(self, status, detail=""):
         try:
             status = Status(status)
         except ValueError:
             pass
         self.status = status
-        self.message = status_message(status)
+        self.message = detail or status_message(status)
         super().__init__(self.message)
 
 
@@ -100,20 +104,33 @@ def status_message(status):
     return _lib().zshift_status_message(int(status)).decode("utf-8")
 
 
+def last_error():
+    """The detail of the last failed zshift call on this thread (``""`` after a success); the
+    same text a :class:`ZshiftError` carries."""
+    return _last_error()
+
+
 def version():
     """The library's version string, such as ``"0.1.0"``."""
     return _lib().zshift_version().decode("utf-8")
 
 
+def _last_error():
+    lib = _lib()
+    fn = lib.zshift_last_error
+    fn.argtypes, fn.restype = [], ctypes.c_char_p
+    return fn().decode("utf-8", "replace")
+
+
 def _check(status):
     if status != Status.OK:
-        raise ZshiftError(status)
+        raise ZshiftError(status, _last_error())
 
 
 def _bits(bits):
     # ctypes would wrap an out-of-range int into uint32 silently (2**32 + 24 -> 24).
     if not isinstance(bits, int) or not 0 <= bits < 2**32:
-        raise ZshiftError(Status.DOMAIN)
+        raise ZshiftError(Status.DOMAIN, f"the depth buffer bits must be an integer in 1..=32 (bits = {bits!r})")
     return bits
 
 
@@ -219,7 +236,7 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
     ):
         # ctypes would wrap out-of-range integers silently.
         if not isinstance(value, int) or not low <= value < high:
-            raise ZshiftError(Status.DOMAIN)
+            raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
     return _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
                                 1 if exact_depth else 0, subpixel_bits)
 
@@ -302,11 +319,25 @@ MIN_INFINITE_TWEAK = 2.0**-22
 RangeOffset = collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
 
 
-def _enum(value):
+class DepthTest(enum.IntEnum):
+    """The depth test of a pass (``ZSHIFT_DEPTH_TEST_*``), by its GL enum."""
+
+    LESS = 0x0201
+    LEQUAL = 0x0203
+    GREATER = 0x0204
+    GEQUAL = 0x0206
+
+
+def _enum(value, kind):
+    # One enum per kind of argument, as the C header has one type per kind: a member of another
+    # enum (a Format passed as a Clip) is a TypeError, never a silently different call. A plain
+    # int is passed as is (the library refuses an unknown value).
+    if isinstance(value, enum.Enum) and not isinstance(value, kind):
+        raise TypeError(f"expected a zshift.{kind.__name__}, got {value!r}")
     # An int32 for the C call; ctypes would wrap a larger int silently.
-    if not isinstance(value, int) or not -(2**31) <= value < 2**31:
-        raise ZshiftError(Status.DOMAIN)
-    return int(value)
+    if not isinstance(value, int) or not -(2**31) <= value < 2**32:
+        raise ZshiftError(Status.DOMAIN, f"{kind.__name__} value {value!r} is not a 32-bit integer")
+    return int(value) if value < 2**31 else int(value) - 2**32
 
 
 def perspective(fovy, aspect, n, f):
@@ -319,7 +350,7 @@ def perspective(fovy, aspect, n, f):
 def projection(l, r, b, t, n, f, clip):
     """glFrustum's x/y rows with the depth row of ``clip`` (a :class:`Clip`).
     Raises :class:`ZshiftError`: as :func:`frustum`; ``DOMAIN`` for an unknown clip."""
-    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip), out))
+    return _matrix(lambda out: _lib().zshift_projection(l, r, b, t, n, f, _enum(clip, Clip), out))
 
 
 def offset_projection(l, r, b, t, n, f, clip, delta, pz):
@@ -327,12 +358,12 @@ def offset_projection(l, r, b, t, n, f, clip, delta, pz):
     NDC offset through element 10 ([-1, 1], [0, 1]; seed 000 eq. 4.1.3-4.1.7 generalised) or
     element 14 scaled (reversed), rounded outward. Raises :class:`ZshiftError`: as
     :func:`projection`; ``DOMAIN`` if pz is outside [-f, -n] or the shifted point leaves [n, f]."""
-    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip), delta, pz, out))
+    return _matrix(lambda out: _lib().zshift_offset_projection(l, r, b, t, n, f, _enum(clip, Clip), delta, pz, out))
 
 
 def offset_perspective(fovy, aspect, n, f, clip, delta, pz):
     """:func:`offset_projection` for gluPerspective parameters. Errors as both."""
-    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip), delta, pz, out))
+    return _matrix(lambda out: _lib().zshift_offset_perspective(fovy, aspect, n, f, _enum(clip, Clip), delta, pz, out))
 
 
 def tweaked_infinite(l, r, b, t, n, tweak):
@@ -359,53 +390,53 @@ def median_ndc_offset(median, delta, pz):
 def window_depth_clip(n, f, clip, d):
     """The window depth at eye distance ``d`` under ``clip`` (Walker's f(d), seed 001; reversed
     n(f - d)/((f - n)d)). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip), d, out))
+    return _scalar(lambda out: _lib().zshift_window_depth_clip(n, f, _enum(clip, Clip), d, out))
 
 
 def depth_step(n, f, clip, format, d):
     """The exact depth step at eye distance ``d`` under ``clip`` and ``format`` (a :class:`Format`;
     Walker's eq. 3 for every convention). Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_depth_step(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def median_depth_step(median, format, d):
     """The depth step at eye distance ``d`` (>= 0) under Kooima's median projection (seed 003).
     Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_median_depth_step(median, _enum(format, Format), d, out))
 
 
 def min_ndc_offset(n, f, clip, format, d):
     """The smallest constant NDC offset (a magnitude) that changes the stored depth at ``d``
     (seed 002's 2/(2^m - 1) for UNORM under [-1, 1]). Raises :class:`ZshiftError`: as
     :func:`depth_step`."""
-    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_ndc_offset(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def min_epsilon_clip(n, f, clip, format, d):
     """The smallest |epsilon| for element 10's scaling that changes the stored depth at ``d``
     (eq. 4.1.8 as corrected by seed 002 under [-1, 1]). Raises :class:`ZshiftError`: as
     :func:`depth_step`; ``UNRESOLVABLE`` for reversed Z with ``f = math.inf``."""
-    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_epsilon_clip(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def min_relative_epsilon(n, f, clip, format, d):
     """The smallest relative epsilon (element 14 scaled by 1 + epsilon) that changes the stored
     depth at ``d``. Raises :class:`ZshiftError`: as :func:`depth_step`."""
-    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip), _enum(format), d, out))
+    return _scalar(lambda out: _lib().zshift_min_relative_epsilon(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
 
 
 def bias_of_shift(n, f, clip, format, api, delta, pz):
     """The constant depth bias of ``api`` (a :class:`BiasApi`) equivalent to moving geometry at
     ``pz`` toward the camera by ``delta`` (negative under [-1, 1] and [0, 1]).
     Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``."""
-    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip), _enum(format), _enum(api), delta, pz, out))
+    return _scalar(lambda out: _lib().zshift_bias_of_shift(n, f, _enum(clip, Clip), _enum(format, Format), _enum(api, BiasApi), delta, pz, out))
 
 
 def shift_of_bias(n, f, clip, format, api, bias, pz):
     """The eye-space shift toward the camera that a constant ``bias`` of ``api`` makes at ``pz``
     (the inverse of :func:`bias_of_shift`). Raises :class:`ZshiftError`: as
     :func:`bias_of_shift`; ``UNRESOLVABLE``."""
-    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip), _enum(format), _enum(api), bias, pz, out))
+    return _scalar(lambda out: _lib().zshift_shift_of_bias(n, f, _enum(clip, Clip), _enum(format, Format), _enum(api, BiasApi), bias, pz, out))
 
 
 def tight_planes(nearest, farthest):
@@ -422,7 +453,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
     distance in [lo, hi], as a :data:`RangeOffset`; multiply ``offset`` by k for the k-th stacked
     decal layer. Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``, ``UNRESOLVABLE``."""
     out = (ctypes.c_double * 3)()
-    _check(_lib().zshift_range_offset(n, f, _enum(clip), _enum(format), _enum(kind), lo, hi, steps, out))
+    _check(_lib().zshift_range_offset(n, f, _enum(clip, Clip), _enum(format, Format), _enum(kind, OffsetKind), lo, hi, steps, out))
     return RangeOffset(*out)
 
 
@@ -443,7 +474,7 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
     out = _library.ZshiftRecommendation()
-    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip), ctypes.byref(out)))
+    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip, Clip), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
@@ -453,4 +484,131 @@ def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, s
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
-    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip), out))
+    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
+
+
+# ---- The front door: the engine's own matrix in, the decal's matrix out ----
+
+
+class _Decal(ctypes.Structure):
+    """The C ``ZshiftDecal`` (include/zshift.h), field for field."""
+
+    _fields_ = [
+        ("viewport_width", ctypes.c_uint32), ("viewport_height", ctypes.c_uint32),
+        ("format", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
+        ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
+        ("exact_depth", ctypes.c_uint32),
+    ]
+
+
+_FLOAT16 = ctypes.c_float * 16
+
+
+def _front_door():
+    """The library, with the front door's signatures declared (the argument types are structs of
+    one 32-bit integer, passed as that integer)."""
+    lib = _lib()
+    if not getattr(lib, "_zshift_front_door", False):
+        d, i32, status = ctypes.c_double, ctypes.c_int32, ctypes.c_int32
+        matrix, float_out = ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float)
+        decal, record = ctypes.POINTER(_Decal), ctypes.POINTER(_library.ZshiftRecommendation)
+        for name, argtypes in {
+            "zshift_offset_matrix": [matrix, i32, d, d, float_out],
+            "zshift_offset_matrix_ndc": [matrix, i32, d, float_out],
+            "zshift_decal_matrix": [matrix, i32, decal, float_out],
+            "zshift_recommend_for_matrix": [matrix, i32, decal, record],
+            "zshift_ortho": [d] * 6 + [i32, float_out],
+            "zshift_offset_ortho": [d] * 6 + [i32, d, float_out],
+            "zshift_ortho_depth_step": [d, d, i32, i32, d, ctypes.POINTER(ctypes.c_double)],
+        }.items():
+            fn = getattr(lib, name)
+            fn.argtypes, fn.restype = argtypes, status
+        lib._zshift_front_door = True
+    return lib
+
+
+def _engine_matrix(m):
+    # 16 floats, column-major. A 4x4 array is refused rather than guessed: numpy's C order would
+    # read a column-major matrix transposed (flatten with order="F", or pass the GL-ready array).
+    shape = getattr(m, "shape", None)
+    if shape is not None and tuple(shape) != (16,):
+        raise TypeError(f"the matrix must be 16 floats in column-major order, not an array of shape {tuple(shape)}")
+    values = list(m)
+    if len(values) != 16:
+        raise TypeError(f"the matrix must be 16 floats in column-major order, not {len(values)} values")
+    return _FLOAT16(*values)
+
+
+def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+    width, height = viewport
+    near, far = decal_depths
+    fmt = _enum(depth_format, Format)
+    for name, value, low, high in (
+        ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
+        ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
+    ):
+        if not isinstance(value, int) or not low <= value < high:
+            raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
+    return _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0)
+
+
+def offset_matrix(m, clip, delta, d):
+    """The engine's own projection ``m`` (16 floats, column-major: what glUniformMatrix4fv takes,
+    from any engine, perspective or orthographic) with geometry at eye distance ``d`` moved toward
+    the camera by ``delta`` (``zshift_offset_matrix``). Only the offset element changes (10, or 14
+    for reversed-Z perspective and for orthographic), rounded outward; the other 15 are
+    bit-identical. ``clip`` is the :class:`Clip` ``m`` was built for: a reversed-Z matrix passed as
+    ``Clip.NEG_ONE_TO_ONE`` is an error, not a wrong matrix.
+
+    Raises :class:`ZshiftError` naming the element or input (``DOMAIN``: not a projection, a
+    convention mismatch, ``d <= 0`` or ``d - delta <= 0``; ``NOT_FINITE``; ``OVERFLOW``);
+    ``TypeError`` for a matrix that is not 16 values.
+    """
+    mat = _engine_matrix(m)
+    return _matrix(lambda out: _front_door().zshift_offset_matrix(mat, _enum(clip, Clip), delta, d, out))
+
+
+def offset_matrix_ndc(m, clip, ndc):
+    """:func:`offset_matrix` for an NDC offset toward the camera (``zshift_offset_matrix_ndc``);
+    under ``Clip.NEG_ONE_TO_ONE`` an NDC offset is twice the window-depth offset."""
+    mat = _engine_matrix(m)
+    return _matrix(lambda out: _front_door().zshift_offset_matrix_ndc(mat, _enum(clip, Clip), ndc, out))
+
+
+def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                 subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The decal's matrix for the engine's own projection ``m``: the recommended offset
+    (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
+    ``m``'s own offset element, every other element bit-identical. The engine never restates its
+    frustum. Arguments as :func:`recommend`, with ``depth_format`` a :class:`Format` (or its GL
+    enum). Raises :class:`ZshiftError` naming the element or field."""
+    mat = _engine_matrix(m)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), out))
+
+
+def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
+                         subpixel_bits=SUBPIXEL_UNSNAPPED):
+    """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
+    mat = _engine_matrix(m)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    out = _library.ZshiftRecommendation()
+    _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+def ortho(l, r, b, t, n, f, clip=Clip.NEG_ONE_TO_ONE):
+    """``glOrtho(l, r, b, t, n, f)`` with the depth row of ``clip`` (``zshift_ortho``)."""
+    return _matrix(lambda out: _front_door().zshift_ortho(l, r, b, t, n, f, _enum(clip, Clip), out))
+
+
+def offset_ortho(l, r, b, t, n, f, clip, delta):
+    """:func:`ortho` with every point moved toward the camera by ``delta`` (element 14, rounded
+    outward; ``zshift_offset_ortho``)."""
+    return _matrix(lambda out: _front_door().zshift_offset_ortho(l, r, b, t, n, f, _enum(clip, Clip), delta, out))
+
+
+def ortho_depth_step(n, f, clip, format, d):
+    """The exact depth step of an orthographic projection at eye distance ``d``: ``r*(f - n)``
+    (``zshift_ortho_depth_step``; the same at every distance for UNORM formats)."""
+    return _scalar(lambda out: _front_door().zshift_ortho_depth_step(n, f, _enum(clip, Clip), _enum(format, Format), d, out))

@@ -1,0 +1,245 @@
+//! The front door: the engine's own projection matrix in, the decal's matrix out
+//! (src/matrix_in.rs), and the recommendation for it.
+
+use super::{
+    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftFormat,
+    ZshiftRecommendation, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_SUBPIXEL_UNSNAPPED,
+};
+use crate::domain::{domain, finite};
+use crate::error::Result;
+use crate::matrix_in::Decal;
+use crate::recommend::Snapping;
+
+/// Reads the caller's 16 floats (NULL refused, no alignment needed).
+fn matrix_from_c(m: *const f32) -> Option<[f32; 16]> {
+    if m.is_null() {
+        return None;
+    }
+    // SAFETY: not NULL; the caller promises 16 readable floats; read_unaligned needs no
+    // alignment and copies them before anything is computed (so `out` may overlap `m`).
+    Some(unsafe { m.cast::<[f32; 16]>().read_unaligned() })
+}
+
+/// Writes the engine's projection `m` (16 floats, column-major, as glUniformMatrix4fv(..,
+/// GL_FALSE, ..) takes it) with geometry at eye distance `d` moved toward the camera by `delta`
+/// (eye units; negative: away), changing only the element that carries the offset. The call
+/// most engines need: pass the matrix the base is drawn with, draw the decal with `out`.
+///
+/// `m` may come from GLM, glam, glFrustum, gluPerspective, glOrtho or the engine's own code:
+/// perspective (finite, infinite, tweaked infinite, reversed; right-handed w = -z or
+/// left-handed w = +z) or orthographic. `clip` says which depth convention it was built for;
+/// a matrix whose depth runs the other way (a reversed-Z matrix passed with
+/// ZSHIFT_CLIP_NEG_ONE_TO_ONE) is an error. Perspective under [-1, 1] and [0, 1]: element 10
+/// moves by the constant NDC offset m14*delta/(d*(d - delta)) (seed 000, eq. 4.1.3-4.1.7 on the
+/// engine's own elements). Perspective reversed: element 14 is scaled by 1 + delta/(d - delta)
+/// (every point moved by the same fraction of its distance; works where m10 = 0). Orthographic:
+/// element 14 moves by m10*delta, the same eye shift at every distance. The element is rounded
+/// away from its value, so the offset the GPU sees is never less than asked and at most one
+/// float ulp of the element more; the other 15 elements are bit-identical to `m`. `out` may be
+/// `m` itself.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `m` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for a NaN or
+/// infinite element, `delta` or `d`; ZSHIFT_ERR_DOMAIN for a matrix that is neither (an oblique
+/// near plane, m[2] or m[6] != 0; a transposed matrix; m[11] not +-1), a convention mismatch, an
+/// unknown `clip`, or (perspective) d <= 0 or d - delta <= 0; ZSHIFT_ERR_OVERFLOW if the element
+/// leaves float. zshift_last_error() names the element or input. `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_matrix(
+    m: *const f32,
+    clip: ZshiftClip,
+    delta: f64,
+    d: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    checked_array(out, move || {
+        crate::matrix_in::offset_shift(&m, clip_of(clip)?, delta, d)
+    })
+}
+
+/// Writes the engine's projection `m` with the NDC depth of every point moved toward the camera
+/// by `ndc` (negative: away): element 10 of a perspective matrix (m10 + s*c, s = m[11], c the
+/// signed change), element 14 of an orthographic one, rounded outward; the other elements
+/// bit-identical. Under ZSHIFT_CLIP_NEG_ONE_TO_ONE an NDC offset is twice the window-depth
+/// offset; under [0, 1] and reversed they are equal. For a UNORM buffer of m bits the smallest
+/// offset that changes the stored depth is 2/(2^m - 1) NDC under [-1, 1] (seed 002).
+///
+/// Errors: as `zshift_offset_matrix` (NaN or infinite `ndc` is ZSHIFT_ERR_NOT_FINITE). `out` is
+/// untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_offset_matrix_ndc(
+    m: *const f32,
+    clip: ZshiftClip,
+    ndc: f64,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    checked_array(out, move || {
+        crate::matrix_in::offset_ndc(&m, clip_of(clip)?, ndc)
+    })
+}
+
+/// What an engine knows about a decal besides its projection matrix, for
+/// `zshift_recommend_for_matrix`. Fill every field: an all-zero ZshiftDecal is refused
+/// (viewport 0), and subpixel_bits = 0 is the most conservative value, not a default.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftDecal {
+    /// `glViewport` width in pixels (nonzero).
+    pub viewport_width: u32,
+    /// `glViewport` height in pixels (nonzero).
+    pub viewport_height: u32,
+    /// The depth attachment's format (ZSHIFT_FORMAT_*).
+    pub format: ZshiftFormat,
+    /// GL_SUBPIXEL_BITS of the rasterizer (0..=32; 0 means positions snapped to whole pixels,
+    /// the most conservative), or ZSHIFT_SUBPIXEL_UNSNAPPED (-1) for a rasterizer that sets
+    /// depth up from unsnapped positions (Mesa llvmpipe).
+    pub subpixel_bits: i32,
+    /// The decal's nearest eye distance (positive, within the matrix's [n, f]).
+    pub decal_near: f64,
+    /// The decal's farthest eye distance (decal_far >= decal_near).
+    pub decal_far: f64,
+    /// Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
+    pub slope: f64,
+    /// Nonzero when every corner of base and decal has the same float eye-space z (requires
+    /// slope == 0).
+    pub exact_depth: u32,
+}
+
+fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
+    if d.viewport_width == 0 || d.viewport_height == 0 {
+        return Err(domain(
+            "ZshiftDecal.viewport_width and viewport_height must be nonzero (an all-zero ZshiftDecal is refused)",
+        )
+        .with_integer(
+            if d.viewport_width == 0 {
+                "viewport_width"
+            } else {
+                "viewport_height"
+            },
+            0,
+        ));
+    }
+    let snapping =
+        match d.subpixel_bits {
+            ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
+            b @ 0..=32 => Snapping::SubpixelBits(b as u32),
+            b => return Err(domain(
+                "ZshiftDecal.subpixel_bits must lie in 0..=32 or be ZSHIFT_SUBPIXEL_UNSNAPPED (-1)",
+            )
+            .with_integer("subpixel_bits", i64::from(b))),
+        };
+    for (name, x) in [
+        ("decal_near", d.decal_near),
+        ("decal_far", d.decal_far),
+        ("slope", d.slope),
+    ] {
+        finite(x, "a ZshiftDecal field is NaN or infinite").map_err(|e| e.with_value(name, x))?;
+    }
+    Ok(Decal {
+        viewport: [d.viewport_width, d.viewport_height],
+        format: format_named(d.format.value, "format")?,
+        depth_range: [d.decal_near, d.decal_far],
+        slope: d.slope,
+        exact_depth: d.exact_depth != 0,
+        snapping,
+    })
+}
+
+/// The recommendation for a decal drawn with the engine's own perspective matrix, and the
+/// decal's matrix: what both entry points below compute.
+fn recommend_for(
+    m: [f32; 16],
+    clip: ZshiftClip,
+    decal: ZshiftDecal,
+) -> Result<([f32; 16], ZshiftRecommendation)> {
+    let r = crate::matrix_in::recommend(&m, clip_of(clip)?, &decal_from_c(&decal)?)?;
+    let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
+        0.5
+    } else {
+        1.0
+    };
+    let record = ZshiftRecommendation::new(
+        r.epsilon,
+        r.window_offset / per_ndc,
+        r.window_offset,
+        r.delta_at_far,
+        r.bleed_gap,
+        r.polygon_offset,
+        &r.terms,
+    );
+    Ok((r.matrix, record))
+}
+
+/// Reads the caller's decal (NULL refused, no alignment needed).
+fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
+    if decal.is_null() {
+        return None;
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftDecal; read_unaligned copies it.
+    Some(unsafe { decal.read_unaligned() })
+}
+
+/// Writes the decal's projection matrix: the engine's own perspective projection `m` (the one
+/// its base is drawn with) with the smallest offset that ends z-fighting for `decal` on a real
+/// rasterizer (`zshift_recommend_clip`'s model: depth quantum, f32 rounding of transform,
+/// vertices and interpolation, sub-pixel snapping of sloped planes). The front door: one call,
+/// and the engine never restates its frustum, which is read from `m` (any perspective matrix
+/// `zshift_offset_matrix` accepts; a tweaked infinite one with a tweak up to 2^-10 is treated
+/// as infinite). The offset is applied to `m`'s own element (10, a constant NDC offset, under
+/// [-1, 1] and [0, 1]; 14, relative, under reversed Z), rounded outward; the other 15 elements
+/// are bit-identical to `m`. `zshift_recommend_for_matrix` gives the numbers behind it.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decal` or `out` is NULL; as `zshift_offset_matrix`
+/// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for an orthographic
+/// matrix, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
+/// -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
+/// exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+/// zshift_last_error() names the field. `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_decal_matrix(
+    m: *const f32,
+    clip: ZshiftClip,
+    decal: *const ZshiftDecal,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    let Some(decal) = decal_from_ptr(decal) else {
+        return null_pointer("decal");
+    };
+    checked_array(out, move || Ok(recommend_for(m, clip, decal)?.0))
+}
+
+/// Writes the recommendation behind `zshift_decal_matrix`: the offset in every form (epsilon,
+/// NDC and window offsets, the eye shift at decal_far, the bleed-through gap, the
+/// glPolygonOffset equivalent) and the error terms it was built from, as `zshift_recommend_clip`
+/// writes them for the frustum read from `m`.
+///
+/// Errors: as `zshift_decal_matrix`. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_for_matrix(
+    m: *const f32,
+    clip: ZshiftClip,
+    decal: *const ZshiftDecal,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    let Some(decal) = decal_from_ptr(decal) else {
+        return null_pointer("decal");
+    };
+    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
+    // write_unaligned needs no alignment.
+    checked(
+        out,
+        move || Ok(recommend_for(m, clip, decal)?.1),
+        |out, record| unsafe { out.write_unaligned(record) },
+    )
+}

@@ -1,0 +1,337 @@
+//! Orthographic projections (`glOrtho`): builders for every clip convention, the constant depth
+//! offset through element 14, and the exact depth step, which is the same at every distance.
+//!
+//! Depth under `glOrtho(l, r, b, t, n, f)` is linear in the eye distance `d` (`z = −d`):
+//! `z_ndc = m10·z + m14`. Window depth (`glDepthRange(0, 1)`) is `(d − n)/(f − n)` under
+//! `[−1, 1]` and `[0, 1]`, `(f − d)/(f − n)` reversed. So a constant NDC offset is the same eye
+//! shift everywhere, and a UNORM depth step is `q·(f − n)` at every distance (for float depth,
+//! `2^(e−23)·(f − n)` with `e` the exponent of the stored depth). Unlike a perspective frustum,
+//! `n` may be 0 or negative (the near plane behind the eye); `f > n`.
+
+use crate::domain::{domain, finite};
+use crate::double_double::DoubleDouble;
+use crate::error::Result;
+use crate::offset::rounded_outward;
+use crate::precision::DepthFormat;
+use crate::projection::{to_f32, ClipDepth};
+
+/// The six parameters of `glOrtho`, validated: finite, `l ≠ r`, `b ≠ t`, `n < f`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ortho {
+    left: f64,
+    right: f64,
+    bottom: f64,
+    top: f64,
+    near: f64,
+    far: f64,
+}
+
+impl Ortho {
+    /// Checks the parameters as `glOrtho` would (it raises `GL_INVALID_VALUE` for `l = r`,
+    /// `b = t`, `n = f`), and more strictly (`n < f`, all finite).
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::NotFinite`] for NaN or an infinity; [`crate::ErrorKind::Domain`] if
+    /// `l = r`, `b = t` or `f ≤ n`.
+    pub fn new(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Self> {
+        for (name, x) in [("l", l), ("r", r), ("b", b), ("t", t), ("n", n), ("f", f)] {
+            finite(x, "a glOrtho parameter is NaN or infinite")
+                .map_err(|e| e.with_value(name, x))?;
+        }
+        if l == r {
+            return Err(domain("the orthographic box has zero width: l = r").with_value("l", l));
+        }
+        if b == t {
+            return Err(domain("the orthographic box has zero height: b = t").with_value("b", b));
+        }
+        if f <= n {
+            return Err(
+                domain("the orthographic far plane f must be greater than n").with_value("f", f),
+            );
+        }
+        Ok(Self {
+            left: l,
+            right: r,
+            bottom: b,
+            top: t,
+            near: n,
+            far: f,
+        })
+    }
+
+    /// The near plane distance `n` (may be 0 or negative).
+    pub fn near(&self) -> f64 {
+        self.near
+    }
+
+    /// The far plane distance `f`.
+    pub fn far(&self) -> f64 {
+        self.far
+    }
+
+    /// The window depth in `[0, 1]` at eye distance `d` under `clip` (`glDepthRange(0, 1)`):
+    /// `(d − n)/(f − n)`, or `(f − d)/(f − n)` reversed.
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::NotFinite`] for NaN or ±∞; [`crate::ErrorKind::Domain`] unless
+    /// `n ≤ d ≤ f`.
+    pub fn window_depth(&self, clip: ClipDepth, d: f64) -> Result<f64> {
+        self.check_distance(d)?;
+        let span = self.far - self.near;
+        Ok(if clip == ClipDepth::ReversedZeroToOne {
+            (self.far - d) / span
+        } else {
+            (d - self.near) / span
+        })
+    }
+
+    /// The exact depth step at eye distance `d`: the shift toward the camera that moves the
+    /// stored window depth by the format's spacing `r` at `w(d)` (`1/(2^m − 1)` for UNORM,
+    /// `2^(e−23)` for FLOAT32): `r·(f − n)`, the same at every distance for UNORM.
+    ///
+    /// # Errors
+    /// As [`Self::window_depth`].
+    pub fn depth_step(&self, clip: ClipDepth, format: DepthFormat, d: f64) -> Result<f64> {
+        let w = self.window_depth(clip, d)?;
+        Ok(format.spacing_at(w)? * (self.far - self.near))
+    }
+
+    fn check_distance(&self, d: f64) -> Result<()> {
+        finite(d, "the eye distance d is NaN or infinite").map_err(|e| e.with_value("d", d))?;
+        if d < self.near || d > self.far {
+            return Err(domain("the eye distance d must lie in [n, f]").with_value("d", d));
+        }
+        Ok(())
+    }
+}
+
+/// The depth row `(m10, m14)` of `glOrtho` under a convention:
+///
+/// | convention | m10 | m14 |
+/// |---|---|---|
+/// | `NegOneToOne` (`glOrtho`) | `−2/(f−n)` | `−(f+n)/(f−n)` |
+/// | `ZeroToOne` | `−1/(f−n)` | `−n/(f−n)` |
+/// | `ReversedZeroToOne` | `1/(f−n)` | `f/(f−n)` |
+pub fn depth_row(ortho: &Ortho, clip: ClipDepth) -> (f64, f64) {
+    let (n, f) = (ortho.near, ortho.far);
+    let span = f - n;
+    match clip {
+        ClipDepth::NegOneToOne => (-2.0 / span, -(f + n) / span),
+        ClipDepth::ZeroToOne => (-1.0 / span, -n / span),
+        ClipDepth::ReversedZeroToOne => (1.0 / span, f / span),
+    }
+}
+
+/// The `glOrtho` matrix with the depth row of `clip`, in f64, column-major:
+/// `m0 = 2/(r−l)`, `m5 = 2/(t−b)`, `m12 = −(r+l)/(r−l)`, `m13 = −(t+b)/(t−b)`, `m15 = 1`.
+pub fn ortho_f64(ortho: &Ortho, clip: ClipDepth) -> [f64; 16] {
+    let (width, height) = (ortho.right - ortho.left, ortho.top - ortho.bottom);
+    let mut m = [0.0; 16];
+    m[0] = 2.0 / width;
+    m[5] = 2.0 / height;
+    m[12] = -(ortho.right + ortho.left) / width;
+    m[13] = -(ortho.top + ortho.bottom) / height;
+    m[15] = 1.0;
+    (m[10], m[14]) = depth_row(ortho, clip);
+    m
+}
+
+/// [`ortho_f64`] rounded to f32, each element the nearest f32.
+///
+/// # Errors
+/// [`crate::ErrorKind::Overflow`] if an element leaves f32.
+pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
+    to_f32(&ortho_f64(ortho, clip))
+}
+
+/// The orthographic matrix of `clip` with every point moved toward the camera by `delta` (eye
+/// units; negative: away): element 14 moved by the constant NDC offset `m10·δ`, computed from
+/// the f32 element 10 and rounded outward, so the eye shift the GPU sees is at least `δ`.
+/// Every other element equals [`ortho`]'s.
+///
+/// # Errors
+/// As [`ortho`]; [`crate::ErrorKind::NotFinite`] if `delta` is NaN or infinite.
+pub fn offset_ortho(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]> {
+    finite(delta, "the eye-space shift delta is NaN or infinite")
+        .map_err(|e| e.with_value("delta", delta))?;
+    let mut m = ortho(o, clip)?;
+    m[14] = rounded_outward(m[14], DoubleDouble::product(f64::from(m[10]), delta))?;
+    Ok(m)
+}
+
+// ---------------------------------------------------------------------------------------------
+// The recommended offset for orthographic depth: `crate::recommend`'s model (R1),
+// `Δw ≥ q + 2(T + V + I + S)`, with each term taken through the linear window depth
+// `w(d) = w₀ ± d/(f − n)` (`|dw/dd| = 1/(f − n)` =: g at every distance).
+// ---------------------------------------------------------------------------------------------
+
+use crate::recommend::{ClipRecommendation, ErrorTerms, Snapping};
+
+/// The unit roundoff of f32.
+const U: f64 = 1.0 / 16_777_216.0;
+
+/// What an engine knows about a decal over an orthographic base.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scene {
+    /// The `glOrtho` box the base is drawn with.
+    pub ortho: Ortho,
+    /// Viewport width and height in pixels.
+    pub viewport: [u32; 2],
+    /// The depth attachment's format.
+    pub format: DepthFormat,
+    /// The decal's nearest and farthest eye distance (`n ≤ d₁ ≤ d₂ ≤ f`).
+    pub depth_range: [f64; 2],
+    /// Eye-space tilt of the plane, `|∂z/∂x| + |∂z/∂y|`.
+    pub slope: f64,
+    /// Every corner of base and decal has the same f32 eye-space z (requires `slope == 0`).
+    pub exact_depth: bool,
+    /// How the rasterizer positions vertices before depth setup.
+    pub snapping: Snapping,
+}
+
+/// The model's terms for an orthographic `scene` under `clip` (window-depth units):
+///
+/// * `q`: the format's spacing at the decal's largest window depth.
+/// * `T`: `clip_z = m10·z + m14` (two roundings, relative to `|m10|·d₂` and `|ndc|`), `w = 1`
+///   exactly, the viewport mapping (one rounding relative to `w`):
+///   `T = u·(k·(|m10|·d_max + |ndc|_max) + w_max)`, `k` = ½ under `[−1, 1]`, 1 otherwise.
+/// * `V`: rounding the decal's eye z (`u·d₂`) and, on a plane of slope `s`, its x or y
+///   (`s·u·X`, `X` the box's largest half-extent), through `g`: `V = u·g·(d₂ + s·X)`; 0 with
+///   `exact_depth`.
+/// * `I`: `u·(3·w_max + 3·(w_max − w_min))`, as in the perspective model; 0 with `exact_depth`.
+/// * `S`: `2^-(b+1)·(gₓ + g_y)` with `gₓ = s·g·(r − l)/W`, `g_y = s·g·(t − b)/H` per pixel; 0
+///   unsnapped.
+///
+/// # Errors
+/// As [`check`].
+pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
+    check(scene)?;
+    let o = &scene.ortho;
+    let [d1, d2] = scene.depth_range;
+    let (w1, w2) = (o.window_depth(clip, d1)?, o.window_depth(clip, d2)?);
+    let (w_min, w_max) = (w1.min(w2), w1.max(w2));
+    let span = o.far - o.near;
+    let g = 1.0 / span;
+    let (m10, _) = depth_row(o, clip);
+    let k = if clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let ndc_of = |w: f64| if k == 0.5 { 2.0 * w - 1.0 } else { w };
+    let ndc_max = ndc_of(w1).abs().max(ndc_of(w2).abs());
+    let d_max = d1.abs().max(d2.abs());
+    let half_extent = [o.left, o.right, o.bottom, o.top]
+        .into_iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()));
+    let s = scene.slope;
+    let (vertex, interpolation) = if scene.exact_depth {
+        (0.0, 0.0)
+    } else {
+        (
+            U * g * (d_max + s * half_extent),
+            U * (3.0 * w_max + 3.0 * (w_max - w_min)),
+        )
+    };
+    let snap = match scene.snapping {
+        Snapping::Unsnapped => 0.0,
+        Snapping::SubpixelBits(b) => {
+            let [width, height] = scene.viewport.map(f64::from);
+            let gx = s * g * (o.right - o.left).abs() / width;
+            let gy = s * g * (o.top - o.bottom).abs() / height;
+            2f64.powi(-(b as i32) - 1) * (gx + gy)
+        }
+    };
+    let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max);
+    Ok(ErrorTerms {
+        quantum: scene.format.spacing_at(w_max)?,
+        transform,
+        vertex,
+        interpolation,
+        snap,
+        plane: transform + vertex + interpolation,
+        clip: 0.0,
+        strict: true,
+    })
+}
+
+/// The smallest constant offset that model (R1) guarantees ends z-fighting for a decal over an
+/// orthographic base under `clip`, and the decal's matrix ([`offset_ortho`] of the eye shift
+/// `Δw·(f − n)`, which moves window depth by `Δw` everywhere). `ndc_offset` is the signed NDC
+/// change (negative toward the camera, positive reversed), `epsilon` and `relative_epsilon`
+/// are 0 (no element-10 or relative form), `delta_at_far` the eye shift (the same at every
+/// distance), `bleed_gap` the eye distance of `2Δw − q`, `polygon_offset` the
+/// `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum.
+///
+/// # Errors
+/// As [`check`]; [`crate::ErrorKind::Overflow`] if the matrix leaves f32.
+pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
+    let terms = error_terms(scene, clip)?;
+    let window_offset = terms.window_offset();
+    let o = &scene.ortho;
+    let span = o.far - o.near;
+    let per_ndc = if clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let toward = if clip == ClipDepth::ReversedZeroToOne {
+        1.0
+    } else {
+        -1.0
+    };
+    let delta = window_offset * span;
+    let factor = match scene.snapping {
+        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::Unsnapped => 0.0,
+    };
+    Ok(ClipRecommendation {
+        clip,
+        ndc_offset: toward * window_offset / per_ndc,
+        relative_epsilon: 0.0,
+        epsilon: 0.0,
+        polygon_offset: [factor, (window_offset - 2.0 * terms.snap) / terms.quantum],
+        window_offset,
+        delta_at_far: delta,
+        bleed_gap: (2.0 * window_offset - terms.quantum) * span,
+        matrix: offset_ortho(o, clip, delta)?,
+        terms,
+    })
+}
+
+/// The scene's rules: the decal's range inside `[n, f]` and increasing, a nonzero viewport, a
+/// finite non-negative slope, `exact_depth` only facing the camera, at most 32 sub-pixel bits.
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] and [`crate::ErrorKind::Domain`], naming the input.
+pub fn check(scene: &Scene) -> Result<()> {
+    let [d1, d2] = scene.depth_range;
+    scene.ortho.check_distance(d1)?;
+    scene.ortho.check_distance(d2)?;
+    if d1 > d2 {
+        return Err(domain("the decal's nearest distance exceeds its farthest")
+            .with_value("decal_near", d1));
+    }
+    if scene.viewport.contains(&0) {
+        return Err(domain("the viewport must have a nonzero width and height"));
+    }
+    finite(scene.slope, "the plane slope is NaN or infinite")
+        .map_err(|e| e.with_value("slope", scene.slope))?;
+    if scene.slope < 0.0 {
+        return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0")
+            .with_value("slope", scene.slope));
+    }
+    if scene.exact_depth && scene.slope != 0.0 {
+        return Err(
+            domain("exact_depth needs a plane facing the camera (slope 0)")
+                .with_value("slope", scene.slope),
+        );
+    }
+    if let Snapping::SubpixelBits(b) = scene.snapping {
+        if b > 32 {
+            return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32")
+                .with_integer("subpixel_bits", i64::from(b)));
+        }
+    }
+    Ok(())
+}
