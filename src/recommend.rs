@@ -125,9 +125,13 @@
 //! by its `plane_error` — the largest `|computed − exact|` window depth of a plane the probe
 //! drew, in quanta (`1/(2^m − 1)`) for the UNORM formats and in units of 2⁻²⁴ for D32F (float
 //! depth's error is mostly absolute, `u·|m10|` from the transform, so it is no multiple of the
-//! spacing at small depths) — wherever that is smaller than the bound. The worst-case bound stays
-//! the ceiling, so a measured figure can only tighten the offset where it is below the
-//! rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
+//! spacing at small depths) — plus the two parts of the bound that depend on the scene's own
+//! geometry rather than on the rasterizer: `V` (which grows as the decal nears the near plane
+//! and with the slope) and the interpolation across the decal's depth span,
+//! `3u·(w(d₂) − w(d₁))`: `E = min(T + V + I, plane_error + V + 3u·(w(d₂) − w(d₁)))`. (A
+//! figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154 pixels at
+//! 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
+//! the offset where it is below the rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
 //! plane with shared f32 z (every rounding step is monotone in element 10, so the decal's computed
 //! depth never exceeds the base's), not in size: the rounding of two different products is
 //! independent, and (R1) keeps `2E`.
@@ -900,7 +904,12 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    let plane = measured_plane_error(scene).map_or(bound, |e| e.min(bound));
+    // A measured figure stands for what every plane has on this rasterizer (the transform and
+    // the plane's evaluation at a depth); the scene's own geometry adds its vertex rounding V
+    // (which grows toward the near plane and with the slope) and the interpolation across its
+    // depth span, which no probe plane can stand for.
+    let geometry = vertex + 3.0 * u * (w_max - w_min);
+    let plane = measured_plane_error(scene).map_or(bound, |e| (e + geometry).min(bound));
     Ok(ErrorTerms {
         quantum: q,
         transform,
@@ -1172,10 +1181,11 @@ mod tests {
         );
     }
 
-    /// A measured plane error replaces T + V + I where it is smaller, never where it is larger;
-    /// an unmeasured profile (or NaN) keeps the bound.
+    /// A measured plane error (plus the scene's own V and depth span) replaces T + V + I where it
+    /// is smaller, never where it is larger; an unmeasured profile (or NaN) keeps the bound.
     #[test]
     fn a_measured_plane_error_is_used_only_below_the_bound() {
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
         let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
         let with = |e: f64, measured: bool| Scene {
             profile: RasterizerProfile {
@@ -1189,7 +1199,11 @@ mod tests {
         let bound = t.transform + t.vertex + t.interpolation;
         assert_eq!(t.plane, bound);
         let q = 1.0 / 16_777_215.0;
-        assert_eq!(error_terms(&with(0.5, true)).unwrap().plane, 0.5 * q);
+        let geometry = t.vertex + 3.0 * F32_UNIT_ROUNDOFF * (w(120.0) - w(80.0));
+        assert_eq!(
+            error_terms(&with(0.5, true)).unwrap().plane,
+            0.5 * q + geometry
+        );
         assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
         assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
         assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
