@@ -892,12 +892,22 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         // |ndc| ≤ w_max; the viewport map z·1 + 0 is exact but counted.
         u * (m10.abs() + 4.0 * w_max)
     };
+    // G: how far the plane's window depth runs across the viewport, |gₓ|·W + |g_y|·H (with the
+    // axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative to
+    // the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
+    // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
+    let extrapolated = {
+        let [gx, gy] = window_gradient(scene, d1)?;
+        let [width, height] = scene.viewport.map(f64::from);
+        (gx * width + gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+    };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
     } else {
         let e = half_extent_tangent(&scene.frustum)?;
         let vertex = u * (scale(scene) / d1) * (1.0 + scene.slope * e);
-        (vertex, u * (3.0 * w_max + 3.0 * (w_max - w_min)))
+        let span = (w_max - w_min).max(extrapolated);
+        (vertex, u * (3.0 * w_max + 6.0 * span))
     };
     // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
     // its smallest.
@@ -908,7 +918,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // the plane's evaluation at a depth); the scene's own geometry adds its vertex rounding V
     // (which grows toward the near plane and with the slope) and the interpolation across its
     // depth span, which no probe plane can stand for.
-    let geometry = vertex + 3.0 * u * (w_max - w_min);
+    let geometry = vertex + 6.0 * u * (w_max - w_min).max(extrapolated);
     let plane = measured_plane_error(scene).map_or(bound, |e| (e + geometry).min(bound));
     Ok(ErrorTerms {
         quantum: q,
@@ -1199,11 +1209,9 @@ mod tests {
         let bound = t.transform + t.vertex + t.interpolation;
         assert_eq!(t.plane, bound);
         let q = 1.0 / 16_777_215.0;
-        let geometry = t.vertex + 3.0 * F32_UNIT_ROUNDOFF * (w(120.0) - w(80.0));
-        assert_eq!(
-            error_terms(&with(0.5, true)).unwrap().plane,
-            0.5 * q + geometry
-        );
+        let geometry = t.interpolation - 3.0 * F32_UNIT_ROUNDOFF * w(120.0) + t.vertex;
+        let measured = error_terms(&with(0.5, true)).unwrap().plane;
+        assert!((measured - (0.5 * q + geometry)).abs() <= 1e-12 * measured);
         assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
         assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
         assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
