@@ -896,10 +896,13 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative to
     // the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
     // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
+    // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·W + |g_y|·H is at most the
+    // larger of the two with the whole slope.
     let extrapolated = {
         let [gx, gy] = window_gradient(scene, d1)?;
         let [width, height] = scene.viewport.map(f64::from);
-        (gx * width + gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+        (gx * width).max(gy * height)
+            * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
     };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
