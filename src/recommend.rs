@@ -37,11 +37,17 @@
 //!     `u·d`, rounding x or y moves a point of a plane of slope `s` by `s·u·|x|`, `|x| ≤ e·d`
 //!     inside the frustum. Through `dw/dd = b/d²`: `V = u·(b/d₁)·(1 + s·e)`. Zero when every
 //!     corner of base and decal has the same f32 z ([`Scene::exact_depth`]).
-//!   * `I`, **f32 interpolation**: the rasterizer evaluates the plane `w₀ + ∂w/∂x·Δx + ∂w/∂y·Δy`
-//!     in f32 (three roundings of values at most `w(d₂)`), from gradients set up with a relative
-//!     error of about `3u`, applied across at most the decal's window-depth span:
-//!     `I = u·(3·w(d₂) + 3·(w(d₂) − w(d₁)))`. Zero with [`Scene::exact_depth`]: a constant plane
-//!     has exactly zero gradients, and `w₀ + 0` is exact.
+//!   * `I`, **f32 interpolation**: the rasterizer sets the plane up and evaluates it in f32,
+//!     relative to the framebuffer origin (llvmpipe's `a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀`, then
+//!     `a0 + ∂z/∂x·x + ∂z/∂y·y` per pixel: its own source warns that `a0` can get large), so the
+//!     roundings are relative to the depth extrapolated across the viewport,
+//!     `G = max(|gₓ|·W, |g_y|·H)·(1 + s·e)` (`g` the window gradient per pixel of a plane
+//!     crossing the axis at `d₁`, `1 + s·e` the bound on its real crossing, see `S`), not only to
+//!     the depth at the pixel; with gradients set up to a relative `3u`:
+//!     `I = u·(3·w(d₂) + 6·max(w(d₂) − w(d₁), G))`. A steep plane near the near plane showed 36
+//!     quanta (2⁻²⁴) of error on llvmpipe where the depth span alone bounds 3. Zero with
+//!     [`Scene::exact_depth`]: a constant plane has exactly zero gradients, and `w₀ + 0` is
+//!     exact.
 //! * `S`, **sub-pixel snapping**: a rasterizer that snaps window x, y to `2^-b` pixel
 //!   (`GL_SUBPIXEL_BITS` = b) *before* setting up the depth plane moves each vertex by up to
 //!   `2^-(b+1)` pixel per axis, so the plane's depth moves by up to
@@ -127,10 +133,11 @@
 //! depth's error is mostly absolute, `u·|m10|` from the transform, so it is no multiple of the
 //! spacing at small depths) — plus the two parts of the bound that depend on the scene's own
 //! geometry rather than on the rasterizer: `V` (which grows as the decal nears the near plane
-//! and with the slope) and the interpolation across the decal's depth span,
-//! `3u·(w(d₂) − w(d₁))`: `E = min(T + V + I, plane_error + V + 3u·(w(d₂) − w(d₁)))`. (A
-//! figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154 pixels at
-//! 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
+//! and with the slope) and the interpolation's span and extrapolation,
+//! `6u·max(w(d₂) − w(d₁), G)`: `E = min(T + V + I, plane_error + V + 6u·max(…))`. The figure is
+//! measured on well-conditioned planes (3n or more away, slope ≤ 1), where those terms are
+//! small. (A figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154
+//! pixels at 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
 //! the offset where it is below the rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
 //! plane with shared f32 z (every rounding step is monotone in element 10, so the decal's computed
 //! depth never exceeds the base's), not in size: the rounding of two different products is
