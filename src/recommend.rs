@@ -496,7 +496,7 @@ fn measured_plane_error(scene: &Scene) -> Option<f64> {
         DepthFormat::Float32 => (3, F32_UNIT_ROUNDOFF),
     };
     let e = p.plane_error[i];
-    (p.measured && e.is_finite() && e >= 0.0).then(|| e * unit)
+    (p.measured && e.is_finite() && e >= 0.0).then_some(e * unit)
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
@@ -544,7 +544,7 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     );
     let l = a_z + g_x * a_x + g_y * a_y + z0 * a_w;
     let w_low = d1 - gamma * reach;
-    if !(w_low > 0.5 * d1) {
+    if w_low.is_nan() || w_low <= 0.5 * d1 {
         return Err(domain(
             "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum with clip_to_frustum and pass Base::InsideFrustum",
         ));
@@ -698,7 +698,7 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
     let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
     let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
     // Each plane as a signed distance, positive inside.
-    let mut sides: Vec<Box<dyn Fn(&[f64; 3]) -> f64>> = vec![
+    let mut sides: Vec<Side> = vec![
         Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
         Box::new(move |p| x_c(p) - keep * p[2]),
         Box::new(move |p| -keep * p[2] - x_c(p)),
@@ -723,6 +723,9 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
     }
     Ok(poly)
 }
+
+/// A frustum plane as a signed distance, positive inside.
+type Side = Box<dyn Fn(&[f64; 3]) -> f64>;
 
 /// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
 fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
@@ -908,8 +911,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let extrapolated = {
         let [gx, gy] = window_gradient(scene, d1)?;
         let [width, height] = scene.viewport.map(f64::from);
-        (gx * width).max(gy * height)
-            * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+        (gx * width).max(gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
     };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)

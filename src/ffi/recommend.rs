@@ -391,18 +391,11 @@ pub extern "C" fn zshift_clip_to_frustum(
     if out.is_null() {
         return null_pointer("out");
     }
-    let input: Vec<[f64; 3]> = if count == 0 {
-        Vec::new()
-    } else if count > 65_536 {
+    if count > 65_536 {
         super::last_error::set("count must be at most 65536 vertices");
         return ZSHIFT_ERR_DOMAIN;
-    } else {
-        // SAFETY: not NULL; the caller promises `count` readable vertices of three doubles;
-        // read_unaligned needs no alignment.
-        (0..count as usize)
-            .map(|i| [0, 1, 2].map(|k| unsafe { polygon.add(3 * i + k).read_unaligned() }))
-            .collect()
-    };
+    }
+    let input = polygon_from_c(polygon, count as usize);
     checked(
         out_count,
         move || {
@@ -415,16 +408,31 @@ pub extern "C" fn zshift_clip_to_frustum(
             }
             Ok(cut)
         },
-        |out_count, cut| {
-            for (i, v) in cut.iter().enumerate() {
-                for (k, c) in v.iter().enumerate() {
-                    // SAFETY: the caller promises `capacity` writable vertices, and
-                    // cut.len() <= capacity.
-                    unsafe { out.add(3 * i + k).write_unaligned(*c) };
-                }
-            }
-            // SAFETY: `checked` has refused NULL.
-            unsafe { out_count.write_unaligned(cut.len() as u32) };
-        },
+        |out_count, cut| store_vertices(out, out_count, &cut),
     )
+}
+
+/// Reads `count` vertices of three doubles (`count > 0` needs a non-NULL `polygon`, checked by
+/// the caller; no alignment needed).
+fn polygon_from_c(polygon: *const f64, count: usize) -> Vec<[f64; 3]> {
+    (0..count)
+        .map(|i| {
+            // SAFETY: the caller promises `count` readable vertices; read_unaligned needs no
+            // alignment.
+            [0, 1, 2].map(|k| unsafe { polygon.add(3 * i + k).read_unaligned() })
+        })
+        .collect()
+}
+
+/// Writes the cut polygon and its vertex count (both pointers checked non-NULL by the caller,
+/// `cut.len()` within the caller's capacity).
+fn store_vertices(out: *mut f64, out_count: *mut u32, cut: &[[f64; 3]]) {
+    for (i, v) in cut.iter().enumerate() {
+        for (k, c) in v.iter().enumerate() {
+            // SAFETY: the caller promises `capacity` writable vertices, and cut.len() <= capacity.
+            unsafe { out.add(3 * i + k).write_unaligned(*c) };
+        }
+    }
+    // SAFETY: `checked` has refused NULL.
+    unsafe { out_count.write_unaligned(cut.len() as u32) };
 }
