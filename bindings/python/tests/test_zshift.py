@@ -496,7 +496,7 @@ class FrontDoor(unittest.TestCase):
         for name, m, clip, is_ortho in cases:
             for delta, d in ((0.01, 50.0), (2.5, 400.0)):
                 what = f"{name} delta {delta} at {d}"
-                out = list(zshift.offset_matrix(m, clip, delta, d))
+                out = [float(x) for x in zshift.offset_matrix(m, clip, delta, d)]
                 m10, m14, fd, fdelta = Fraction(m[10]), Fraction(m[14]), Fraction(d), Fraction(delta)
                 if is_ortho:
                     self.check(m, out, 14, Fraction(out[14]) - m14, m10 * fdelta, what)

@@ -1,8 +1,9 @@
 """zshift for Python: depth offsets through the projection matrix, and exact depth precision.
 
 A thin ctypes layer over zshift's C ABI (``include/zshift.h``); no compiled extension. The library
-is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then ``target/release``,
-then ``target/debug``, then the system path) on the first call.
+is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then the copy ``pip install``
+put inside this package, then ``target/release``, then ``target/debug``, then the system path) on
+the first call.
 
 Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
 [-1, 1], window depth [0, 1]; ``n``, ``f``, ``d`` are positive distances (``f`` may be
