@@ -15,7 +15,9 @@
 //!
 //! CI runs a deterministic sample of the grid (`ZSHIFT_SCENES` unset: one scene in 12, about a
 //! minute on two cores); `ZSHIFT_SCENES=full` runs every scene of the grid, `ZSHIFT_SCENES=N`
-//! one in N. `cargo test --release --test gl_scenes -- --nocapture` prints the table.
+//! one in N. `cargo test --release --test gl_scenes -- --nocapture` prints the table;
+//! `ZSHIFT_SCENES_VERBOSE=1` also names every refused scene and the survey's worst planes,
+//! `ZSHIFT_SCENES_TERMS=1` every scene's error terms.
 
 use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::{
@@ -732,6 +734,13 @@ fn measure(gl: &mut Gl, case: Case) -> Result<Option<Row>, String> {
         u32::MAX
     };
     drop(bench);
+    if std::env::var_os("ZSHIFT_SCENES_TERMS").is_some() {
+        let t = measured.rec.terms;
+        println!(
+            "terms {label}: steps {} min {k_min} | q {:.2e} T {:.2e} V {:.2e} I {:.2e} E {:.2e} C {:.2e}",
+            measured.steps, t.quantum, t.transform, t.vertex, t.interpolation, t.plane, t.clip
+        );
+    }
     Ok(Some(Row {
         case,
         default,
