@@ -489,14 +489,24 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
 /// finite, non-negative figure for the format.
 fn measured_plane_error(scene: &Scene) -> Option<f64> {
     let p = scene.profile;
-    let (i, unit) = match scene.format {
-        DepthFormat::Unorm16 => (0, 1.0 / 65_535.0),
-        DepthFormat::Unorm24 => (1, 1.0 / 16_777_215.0),
-        DepthFormat::Unorm32 => (2, 1.0 / 4_294_967_295.0),
-        DepthFormat::Float32 => (3, F32_UNIT_ROUNDOFF),
+    let unit = match scene.format {
+        DepthFormat::Unorm16 => 1.0 / 65_535.0,
+        DepthFormat::Unorm24 => 1.0 / 16_777_215.0,
+        DepthFormat::Unorm32 => 1.0 / 4_294_967_295.0,
+        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
     };
-    let e = p.plane_error[i];
+    let e = p.plane_error[profile_index(scene.format)];
     (p.measured && e.is_finite() && e >= 0.0).then_some(e * unit)
+}
+
+/// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
+pub(crate) fn profile_index(format: DepthFormat) -> usize {
+    match format {
+        DepthFormat::Unorm16 => 0,
+        DepthFormat::Unorm24 => 1,
+        DepthFormat::Unorm32 => 2,
+        DepthFormat::Float32 => 3,
+    }
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.

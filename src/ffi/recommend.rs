@@ -8,7 +8,6 @@ use super::{
     ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
 };
 use crate::error::Result;
-use crate::precision::DepthFormat;
 use crate::projection::{ClipDepth, Frustum};
 
 /// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
@@ -204,13 +203,7 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
                     .with_value("plane_error", s.plane_error),
             );
         }
-        let index = match format {
-            DepthFormat::Unorm16 => 0,
-            DepthFormat::Unorm24 => 1,
-            DepthFormat::Unorm32 => 2,
-            DepthFormat::Float32 => 3,
-        };
-        profile.plane_error[index] = s.plane_error;
+        profile.plane_error[crate::recommend::profile_index(format)] = s.plane_error;
         profile.measured = true;
     }
     Ok(Scene {
