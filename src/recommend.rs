@@ -122,7 +122,7 @@
 //! quarter pixel up to 16384 pixels), draw the result as a fan, and pass
 //! [`Base::InsideFrustum`]: the rasterizer then clips nothing, every vertex's errors are
 //! relative to its own coordinates, and the base's error is the decal's `E` (on the same floor:
-//! 9 steps where 2 work).
+//! 10 steps where 2 work).
 //!
 //! # A measured profile
 //! [`Scene::profile`] is a [`RasterizerProfile`]; the default, [`RasterizerProfile::worst_case`],
