@@ -152,7 +152,8 @@ typedef struct {
    */
   double ndc_offset;
   /*
-   The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+   The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
+   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
    */
   double window_offset;
   /*
@@ -161,8 +162,8 @@ typedef struct {
    */
   double delta_at_far;
   /*
-   Occluders nearer than the base by at least this eye-space distance (along the line of
-   sight) are never overdrawn by the decal.
+   Occluders whose eye depth (-z) at the same pixel is smaller than the base's by at least
+   this are never overdrawn by the decal.
    */
   double bleed_gap;
   /*
@@ -194,6 +195,16 @@ typedef struct {
    Term S: sub-pixel snapping of a sloped plane before depth setup.
    */
   double snap;
+  /*
+   Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
+   or the measured plane_error where that is smaller.
+   */
+  double plane;
+  /*
+   Term C: the rasterizer's float clipping of a base that reaches outside the frustum
+   (0 when base_reach is 0).
+   */
+  double clip;
 } ZshiftRecommendation;
 
 /*
@@ -265,6 +276,28 @@ typedef struct {
    GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
    */
   int32_t subpixel_bits;
+  /*
+   The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+   reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
+   struct): the convention's strict test (GL_LESS, GL_GREATER under reversed Z). The `...EQUAL` tests need one quantum less offset and
+   report a bleed gap one quantum wider (a tie passes).
+   */
+  ZshiftDepthTest depth_func;
+  /*
+   0: every vertex of the base lies inside the view frustum, so the rasterizer clips
+   nothing (a base cut by `zshift_clip_to_frustum`, or one that fits the screen). > 0: the
+   base may cross the near plane or the screen's edges and is clipped by the rasterizer in
+   float; the value is the largest |x|, |y| or |z| of its eye-space vertices, and the
+   offset gains the clipping term C (README, "Verified on a rasterizer": it is large; cut
+   the base instead where you can).
+   */
+  double base_reach;
+  /*
+   The rasterizer's measured per-pixel plane error for this depth format, from the probe:
+   in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
+   GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
+   */
+  double plane_error;
 } ZshiftScene;
 
 /*
@@ -719,6 +752,33 @@ ZshiftStatus zshift_recommend_clip(const ZshiftScene *scene,
  Errors: as `zshift_recommend_clip`. `out` is untouched on error.
  */
 ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip clip, float *out);
+
+/*
+ Cuts a convex base polygon to the view frustum of `glFrustum(l, r, b, t, n, f)` in double,
+ slightly inside (near plane at n * (1 + 2^-16), far at f * (1 - 2^-16), sides inward by
+ 2^-16 of the frustum's width: less than a quarter pixel up to 16384 pixels), so that the
+ rasterizer clips nothing of it: draw the result as a triangle fan and pass base_reach = 0.
+ A base the rasterizer clips in float (a ground plane running behind the camera) carries the
+ large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
+ (x, y, z, in order around the polygon); `out` receives up to `capacity` vertices (count + 6
+ always suffices) and `*out_count` how many were written (0 when nothing is inside).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `polygon` (with count > 0), `out` or `out_count` is NULL;
+ ZSHIFT_ERR_NOT_FINITE for a NaN or infinite coordinate or frustum parameter (except
+ f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, count > 65536, or a result with more
+ than `capacity` vertices. `out` and `*out_count` are untouched on error.
+ */
+ZshiftStatus zshift_clip_to_frustum(double l,
+                                    double r,
+                                    double b,
+                                    double t,
+                                    double n,
+                                    double f,
+                                    const double *polygon,
+                                    uint32_t count,
+                                    double *out,
+                                    uint32_t capacity,
+                                    uint32_t *out_count);
 
 /*
  Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,

@@ -165,13 +165,15 @@ using Recommendation = ZshiftRecommendation;
 /// `subpixel_bits` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
 inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
 
-/// A Scene from its fields, in declaration order; usable in constant expressions.
+/// A Scene from its fields, in declaration order; usable in constant expressions. depth_func,
+/// base_reach and plane_error take their documented defaults (0: the convention's strict test,
+/// a base inside the frustum, no measured plane error); set them on the result.
 constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
                            std::uint32_t viewport_width, std::uint32_t viewport_height,
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
-               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits};
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, 0.0};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
