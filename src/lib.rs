@@ -18,13 +18,14 @@
 //! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
 //! | [`precision`] | window depth and the exact depth step at a distance; per clip convention and depth format (`DepthMapping`, `DepthFormat`) | 001 |
 //! | [`profile`] | what a rasterizer does that the offset model needs (snapping, polygon-offset `r`, clipping): plain data | |
+//! | [`probe`] | measures a `RasterizerProfile` in the caller's GL context, through its function loader | |
 //! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
 //! | [`clip_offset`] | offsets for every convention: constant NDC (element 10) or relative (element 14) | 000 eq. 4.1.3–4.1.7 |
 //! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |
 //! | [`polygon_offset`] | eye-space δ ↔ `glPolygonOffset` units, D3D `DepthBias`, Vulkan `depthBiasConstantFactor` | 004 |
 //! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
-//! | [`matrix_in`] | the engine's own float[16] in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
+//! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
 //! | [`orthographic`] | `glOrtho` for every clip convention, its constant offset through element 14, its (constant) depth step | |
 //! | [`rounding`] | how matrices reach f32: the nearest f32 of the exact element (proven fast test, exact fallback), offsets outward | |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
@@ -43,6 +44,7 @@ pub mod orthographic;
 pub mod plan;
 pub mod polygon_offset;
 pub mod precision;
+pub mod probe;
 pub mod profile;
 pub mod projection;
 pub mod recommend;

@@ -280,7 +280,12 @@ pub fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendati
         depth_range: [nearest, farthest],
         slope: scene.slope.abs(),
         exact_depth: false,
-        snapping,
+        depth_test: zshift::recommend::DepthTest::Less,
+        base: zshift::recommend::Base::InsideFrustum,
+        profile: zshift::recommend::RasterizerProfile {
+            snapping,
+            ..Default::default()
+        },
     };
     let rec =
         zshift::recommend::recommend(&model).map_err(|e| format!("zshift::recommend: {e}"))?;

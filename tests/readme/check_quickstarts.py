@@ -22,6 +22,10 @@ SOURCES = [
     "tests/packaging/run.sh",  # bash tests/packaging/run.sh
     "tests/packaging/CMakeLists.txt",  # bash tests/packaging/run.sh
     "tests/packaging/pip.sh",  # bash tests/packaging/pip.sh
+    "examples/engines/common/decal_scene.h",  # make -C examples/engines check
+    "examples/engines/osg/decal_osg.cpp",  # make -C examples/engines check
+    "examples/engines/irrlicht/decal_irrlicht.cpp",  # make -C examples/engines check
+    "examples/engines/ogre/decal_ogre.cpp",  # make -C examples/engines check
 ]
 
 START = re.compile(r"\[quickstart-([a-z0-9-]+)\]")

@@ -100,6 +100,7 @@ class ZshiftScene(ctypes.Structure):
         ("depth_format", ctypes.c_uint32),
         ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
         ("exact_depth", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
+        ("depth_func", ctypes.c_uint32), ("base_reach", ctypes.c_double), ("plane_error", ctypes.c_double),
     ]
 
 
@@ -109,7 +110,7 @@ class ZshiftRecommendation(ctypes.Structure):
     _fields_ = [(name, ctypes.c_double) for name in (
         "epsilon", "ndc_offset", "window_offset", "delta_at_far", "bleed_gap",
         "polygon_offset_factor", "polygon_offset_units",
-        "quantum", "transform", "vertex", "interpolation", "snap",
+        "quantum", "transform", "vertex", "interpolation", "snap", "plane", "clip",
     )]
 
 
