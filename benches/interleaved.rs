@@ -106,7 +106,12 @@ fn main() {
                         depth_range: [v(-pz), -pz],
                         slope: v(1.0),
                         exact_depth: false,
-                        snapping: zshift::recommend::Snapping::SubpixelBits(8),
+                        depth_test: zshift::recommend::DepthTest::Less,
+                        base: zshift::recommend::Base::InsideFrustum,
+                        profile: zshift::recommend::RasterizerProfile {
+                            snapping: zshift::recommend::Snapping::SubpixelBits(8),
+                            ..Default::default()
+                        },
                     };
                     let rec = zshift::recommend::recommend(&scene).expect("valid scene");
                     zshift::epsilon_matrix(&frustum, rec.epsilon)
