@@ -348,39 +348,69 @@ pub(crate) fn nearest_of_ratio(x: Ratio<'_>) -> f32 {
     if c.is_nan() {
         c = 0.0;
     }
+    // Step to a neighbour while `x` lies beyond a midpoint (at a midpoint, toward the even f32).
+    // A few steps at most from a good estimate; after that, bisect (an estimate that left the
+    // normal range can be far off, and stepping one f32 at a time would take forever).
+    let mut steps = 0;
     loop {
-        if c != f32::INFINITY {
-            let up = c.next_up();
-            let m = 0.5 * (extended(c) + extended(up));
-            match x.compare(m) {
-                Ordering::Greater => {
-                    c = up;
-                    continue;
-                }
-                Ordering::Equal if c.to_bits() & 1 == 1 => {
-                    c = up;
-                    continue;
-                }
-                _ => {}
+        let next = if c == f32::INFINITY {
+            None
+        } else {
+            beyond(&x, c, c.next_up(), Ordering::Greater)
+        };
+        let next = next.or_else(|| {
+            if c == f32::NEG_INFINITY {
+                None
+            } else {
+                beyond(&x, c, c.next_down(), Ordering::Less)
             }
+        });
+        match next {
+            None => return c,
+            Some(n) if steps < 4 => c = n,
+            Some(_) => c = bisected(&x),
         }
-        if c != f32::NEG_INFINITY {
-            let down = c.next_down();
-            let m = 0.5 * (extended(c) + extended(down));
-            match x.compare(m) {
-                Ordering::Less => {
-                    c = down;
-                    continue;
-                }
-                Ordering::Equal if c.to_bits() & 1 == 1 => {
-                    c = down;
-                    continue;
-                }
-                _ => {}
-            }
-        }
-        return c;
+        steps += 1;
     }
+}
+
+/// `neighbour` when `x` lies beyond the midpoint of `c` and `neighbour` (on the side `side`), or
+/// on it with `c` odd (ties to even); `None` when `c` is at least as near.
+fn beyond(x: &Ratio<'_>, c: f32, neighbour: f32, side: Ordering) -> Option<f32> {
+    let m = 0.5 * (extended(c) + extended(neighbour));
+    let o = x.compare(m);
+    (o == side || (o == Ordering::Equal && c.to_bits() & 1 == 1)).then_some(neighbour)
+}
+
+/// An f32 within one of the nearest to `x`, by bisection over all f32 in order (32 exact
+/// comparisons): the largest whose midpoint with the f32 below does not exceed `x`.
+fn bisected(x: &Ratio<'_>) -> f32 {
+    // f32 in order as integers: −∞ … −0 = +0 … +∞.
+    let key = |v: f32| {
+        let bits = v.to_bits() as i32;
+        if bits < 0 {
+            -(bits & 0x7fff_ffff)
+        } else {
+            bits
+        }
+    };
+    let value = |k: i32| {
+        if k < 0 {
+            f32::from_bits((-k) as u32 | 0x8000_0000)
+        } else {
+            f32::from_bits(k as u32)
+        }
+    };
+    let (mut lo, mut hi) = (key(f32::NEG_INFINITY), key(f32::INFINITY));
+    while lo < hi {
+        let k = lo + (hi - lo + 1) / 2;
+        let m = 0.5 * (extended(value(k - 1)) + extended(value(k)));
+        match x.compare(m) {
+            Ordering::Less => hi = k - 1,
+            _ => lo = k,
+        }
+    }
+    value(lo)
 }
 
 #[cfg(test)]
@@ -493,5 +523,14 @@ mod tests {
             scale: 1.0,
         };
         assert_eq!(nearest_of_ratio(r), 2.0 * 2f32.powi(-149)); // 1.5 ulp: tie to even, 2
+        // A useless estimate (the f64 sum overflows to ∞, a billion f32 away) ends at once, by
+        // bisection.
+        let huge = [f64::MAX, f64::MAX, -f64::MAX];
+        let r = Ratio {
+            num: &huge,
+            den: &[2f64.powi(1000)],
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), (f64::MAX / 2f64.powi(1000)) as f32);
     }
 }

@@ -877,3 +877,43 @@ fn c_entry_points_write_the_rust_matrices() {
         zshift_load_offset_matrix(-1.0, 1.0, -1.0, 1.0, 0.1, 10.0, 1.0, -0.5, out.as_mut_ptr());
     assert_eq!((status, out), (ZSHIFT_ERR_DOMAIN, [7.0; 16]));
 }
+
+/// Extreme magnitudes (1e-300 to 1e300, subnormal f32 results, overflow) take the exact path,
+/// end at once, and round to the nearest f32 or refuse with an overflow.
+#[test]
+fn extreme_frustums_round_exactly_or_overflow() {
+    let scales = [1e-300, 1e-200, 1e-45, 1e-40, 1e-20, 1.0, 1e20, 1e38, 1e39, 1e200, 1e300];
+    let rng = Rng::new(4711);
+    let mut built = 0;
+    for &sn in &scales {
+        for &sx in &scales {
+            for clip in CLIPS {
+                let n = sn * (1.0 + rng.next());
+                let f = if rng.next() < 0.3 { f64::INFINITY } else { n * (1.0 + 1e3 * rng.next()) };
+                let r = sx * (1.0 + rng.next());
+                let l = -r * rng.next();
+                let Ok(frustum) = Frustum::new(l, r, -r, r * 0.5, n, f) else {
+                    continue;
+                };
+                let row = exact_row(n, f, clip);
+                match projection(&frustum, clip) {
+                    Ok(m) => {
+                        assert_nearest(&m, &frustum, row, "extreme");
+                        built += 1;
+                    }
+                    Err(e) => {
+                        assert_eq!(e.kind(), zshift::ErrorKind::Overflow, "{frustum:?}");
+                        let (_, _, _, _, n, _) = frustum.parameters();
+                        let mut exact: Vec<Q> = exact_xy(l, r, -r, r * 0.5, n).map(|x| x.1).into();
+                        exact.extend([row.0, row.1]);
+                        assert!(
+                            exact.iter().any(|x| nearest_f32(x).is_infinite()),
+                            "refused without an element beyond f32: {frustum:?} {clip:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    assert!(built > 100, "only {built} extreme matrices were in range");
+}
