@@ -367,10 +367,16 @@ pub(crate) fn nearest_of_ratio(x: Ratio<'_>) -> f32 {
         });
         match next {
             None => return c,
-            Some(n) if steps < 4 => c = n,
-            Some(_) => c = bisected(&x),
+            Some(n) if steps < 4 => {
+                c = n;
+                steps += 1;
+            }
+            // Bisection lands on the nearest f32 or, at a tie, beside it: one step remains.
+            Some(_) => {
+                c = bisected(&x);
+                steps = 0;
+            }
         }
-        steps += 1;
     }
 }
 
@@ -387,19 +393,16 @@ fn beyond(x: &Ratio<'_>, c: f32, neighbour: f32, side: Ordering) -> Option<f32> 
 fn bisected(x: &Ratio<'_>) -> f32 {
     // f32 in order as integers: −∞ … −0 = +0 … +∞.
     let key = |v: f32| {
-        let bits = v.to_bits() as i32;
-        if bits < 0 {
-            -(bits & 0x7fff_ffff)
+        let magnitude = i64::from(v.to_bits() & 0x7fff_ffff);
+        if v.is_sign_negative() {
+            -magnitude
         } else {
-            bits
+            magnitude
         }
     };
-    let value = |k: i32| {
-        if k < 0 {
-            f32::from_bits((-k) as u32 | 0x8000_0000)
-        } else {
-            f32::from_bits(k as u32)
-        }
+    let value = |k: i64| {
+        let magnitude = k.unsigned_abs() as u32;
+        f32::from_bits(if k < 0 { magnitude | 0x8000_0000 } else { magnitude })
     };
     let (mut lo, mut hi) = (key(f32::NEG_INFINITY), key(f32::INFINITY));
     while lo < hi {
