@@ -91,7 +91,12 @@ fn cpu_builders(c: &mut Criterion) {
                 depth_range: [black_box(-k.pz), -k.pz],
                 slope: black_box(1.0),
                 exact_depth: false,
-                snapping: zshift::recommend::Snapping::SubpixelBits(8),
+                depth_test: zshift::recommend::DepthTest::Less,
+                base: zshift::recommend::Base::InsideFrustum,
+                profile: zshift::recommend::RasterizerProfile {
+                    snapping: zshift::recommend::Snapping::SubpixelBits(8),
+                    ..Default::default()
+                },
             };
             let rec = zshift::recommend::recommend(&scene).unwrap();
             zshift::epsilon_matrix(&frustum, rec.epsilon).unwrap()

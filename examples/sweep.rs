@@ -6,7 +6,10 @@
 //! shared pixels where the decal bleeds past an occluder G/4 and G in front of the base.
 //!
 //! `cargo run --release --example sweep [size]` (default 256 × 256). Exits with an error if the
-//! recommendation loses a pixel anywhere.
+//! recommendation loses a pixel anywhere. The scenes engines draw (bases clipped by the
+//! rasterizer or cut by `clip_to_frustum`, odd viewports, off-centre frusta, `GL_LEQUAL`, every
+//! convention, the worst-case and a measured profile) are in `tests/gl_scenes.rs`
+//! (`ZSHIFT_SCENES=full` for the whole grid).
 
 #[path = "../tests/gl_common/mod.rs"]
 mod common;

@@ -135,6 +135,19 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 #define ZSHIFT_MIN_INFINITE_TWEAK 2.384185791015625e-7
 
 /*
+ `near_clip` value: a primitive crossing the near plane is clipped with new vertices computed
+ in float, and its depth plane set up from them (the worst case; Mesa llvmpipe).
+ */
+#define ZSHIFT_NEAR_CLIP_CLIPPED_F32 1
+
+/*
+ `near_clip` value: a primitive crossing the near plane keeps its plane's depth to within the
+ per-pixel error of one that does not (measured: ground planes clipped by the rasterizer err
+ at most twice, plus 2 D24 quanta, what they do when clipped in double before drawing).
+ */
+#define ZSHIFT_NEAR_CLIP_PLANE_PRESERVING 2
+
+/*
  The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 
  A plain 32-bit integer, so any value a caller passes to `zshift_status_message` is valid.
@@ -200,7 +213,8 @@ typedef struct {
    */
   double ndc_offset;
   /*
-   The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+   The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
+   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
    */
   double window_offset;
   /*
@@ -209,8 +223,8 @@ typedef struct {
    */
   double delta_at_far;
   /*
-   Occluders nearer than the base by at least this eye-space distance (along the line of
-   sight) are never overdrawn by the decal.
+   Occluders whose eye depth (-z) at the same pixel is smaller than the base's by at least
+   this are never overdrawn by the decal.
    */
   double bleed_gap;
   /*
@@ -242,6 +256,16 @@ typedef struct {
    Term S: sub-pixel snapping of a sloped plane before depth setup.
    */
   double snap;
+  /*
+   Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
+   or the measured plane_error where that is smaller.
+   */
+  double plane;
+  /*
+   Term C: the rasterizer's float clipping of a base that reaches outside the frustum
+   (0 when base_reach is 0).
+   */
+  double clip;
 } ZshiftRecommendation;
 
 /*
@@ -313,7 +337,109 @@ typedef struct {
    GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
    */
   int32_t subpixel_bits;
+  /*
+   The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+   reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
+   struct): the convention's strict test (GL_LESS, GL_GREATER under reversed Z). The `...EQUAL` tests need one quantum less offset and
+   report a bleed gap one quantum wider (a tie passes).
+   */
+  ZshiftDepthTest depth_func;
+  /*
+   0: every vertex of the base lies inside the view frustum, so the rasterizer clips
+   nothing (a base cut by `zshift_clip_to_frustum`, or one that fits the screen). > 0: the
+   base may cross the near plane or the screen's edges and is clipped by the rasterizer in
+   float; the value is the largest |x|, |y| or |z| of its eye-space vertices, and the
+   offset gains the clipping term C (README, "Verified on a rasterizer": it is large; cut
+   the base instead where you can).
+   */
+  double base_reach;
+  /*
+   The rasterizer's measured per-pixel plane error for this depth format, from the probe:
+   in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
+   GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
+   */
+  double plane_error;
 } ZshiftScene;
+
+/*
+ What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
+ or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
+ recommendation.
+
+ Arrays indexed by depth format are in the order D16, D24, D32, D32F
+ (GL_DEPTH_COMPONENT16, 24, 32, 32F).
+
+ A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
+ with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
+ */
+typedef struct {
+  /*
+   Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
+   */
+  uint32_t measured;
+  /*
+   How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
+   plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
+   positions are snapped to (2^-b pixel) first. The worst case is 8.
+   */
+  int32_t subpixel_bits;
+  /*
+   glPolygonOffset's minimum resolvable difference r per format, in units of the format's
+   quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
+   primitive's largest depth). Finite and > 0. The worst case is 4.
+   */
+  double resolvable[4];
+  /*
+   The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
+   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+   vertices times an f32 projection in the vertex shader), against the plane through the
+   vertices times the matrix in double: covers the f32 transform, division by w, viewport
+   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
+   */
+  double plane_error[4];
+  /*
+   plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
+   */
+  double plane_error_reversed;
+  /*
+   How the per-pixel error grows with a steep plane's window position: every measured pixel
+   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
+   D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+   window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+   where not measured. NAN or finite >= 0.
+   */
+  double error_ulps;
+  /*
+   How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
+   ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
+   */
+  int32_t near_clip;
+  /*
+   Seconds `zshift_probe` took (0 for the worst case). Informational.
+   */
+  double probe_seconds;
+} ZshiftProfile;
+
+/*
+ A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
+ function pointer, cast to its real type by the caller, or NULL.
+ */
+typedef void (*ZshiftGlProc)(void);
+
+/*
+ A GL function loader: returns the GL entry point `name` (a NUL-terminated string such as
+ "glReadPixels") of the context current on this thread, or NULL. `user` is passed through
+ unchanged. eglGetProcAddress and glfwGetProcAddress return this type already (wrap them to
+ add the `user` argument); wrap SDL_GL_GetProcAddress or wglGetProcAddress likewise.
+ */
+typedef ZshiftGlProc (*ZshiftGlLoader)(const char *name, void *user);
+
+typedef uint32_t Enum;
+
+typedef int32_t Int;
 
 /*
  Success: the output was written.
@@ -350,6 +476,173 @@ typedef struct {
  A bug inside zshift was caught at the ABI boundary; please report it.
  */
 #define ZSHIFT_ERR_INTERNAL 6
+
+/*
+ The current OpenGL context could not do what `zshift_probe` needs: the loader returned NULL
+ for an entry point, no context (or one older than 3.2) is current, a GL error was pending,
+ a depth format was refused, or a GL call failed.
+ */
+#define ZSHIFT_ERR_GL 7
+
+#define NO_ERROR 0
+
+#define TRIANGLES 4
+
+#define FRONT 1028
+
+#define BACK 1029
+
+#define FRONT_AND_BACK 1032
+
+#define CULL_FACE 2884
+
+#define POLYGON_SMOOTH 2881
+
+#define MAX_CLIP_DISTANCES 3378
+
+#define CLIP_DISTANCE0 12288
+
+#define POLYGON_MODE 2880
+
+#define DEPTH_RANGE 2928
+
+#define DEPTH_TEST 2929
+
+#define DEPTH_WRITEMASK 2930
+
+#define DEPTH_CLEAR_VALUE 2931
+
+#define DEPTH_FUNC 2932
+
+#define STENCIL_TEST 2960
+
+#define VIEWPORT 2978
+
+#define ALPHA_TEST 3008
+
+#define SCISSOR_TEST 3089
+
+#define PACK_SWAP_BYTES 3328
+
+#define PACK_LSB_FIRST 3329
+
+#define PACK_ROW_LENGTH 3330
+
+#define PACK_SKIP_ROWS 3331
+
+#define PACK_SKIP_PIXELS 3332
+
+#define PACK_ALIGNMENT 3333
+
+#define DEPTH_SCALE 3358
+
+#define DEPTH_BIAS 3359
+
+#define SUBPIXEL_BITS 3408
+
+#define UNSIGNED_INT 5125
+
+#define FLOAT 5126
+
+#define DEPTH_COMPONENT 6402
+
+#define FILL 6914
+
+#define POLYGON_OFFSET_UNITS 10752
+
+#define POLYGON_OFFSET_FILL 32823
+
+#define POLYGON_OFFSET_FACTOR 32824
+
+#define PACK_SKIP_IMAGES 32875
+
+#define PACK_IMAGE_HEIGHT 32876
+
+#define DEPTH_COMPONENT16 33189
+
+#define DEPTH_COMPONENT24 33190
+
+#define DEPTH_COMPONENT32 33191
+
+#define MAJOR_VERSION 33307
+
+#define MINOR_VERSION 33308
+
+#define MAX_VIEWPORTS 33371
+
+#define ARRAY_BUFFER_BINDING 34964
+
+#define ARRAY_BUFFER 34962
+
+#define STREAM_DRAW 35040
+
+#define PIXEL_PACK_BUFFER 35051
+
+#define PIXEL_PACK_BUFFER_BINDING 35053
+
+#define DEPTH_CLAMP 34383
+
+#define FRAGMENT_SHADER 35632
+
+#define VERTEX_SHADER 35633
+
+#define COMPILE_STATUS 35713
+
+#define LINK_STATUS 35714
+
+#define CURRENT_PROGRAM 35725
+
+#define READ_FRAMEBUFFER_BINDING 36010
+
+#define DRAW_FRAMEBUFFER_BINDING 36006
+
+#define READ_FRAMEBUFFER 36008
+
+#define DRAW_FRAMEBUFFER 36009
+
+#define DEPTH_COMPONENT32F 36012
+
+#define FRAMEBUFFER_COMPLETE 36053
+
+#define DEPTH_ATTACHMENT 36096
+
+#define FRAMEBUFFER 36160
+
+#define RENDERBUFFER 36161
+
+#define RENDERBUFFER_BINDING 36007
+
+#define RASTERIZER_DISCARD 35977
+
+#define VERTEX_ARRAY_BINDING 34229
+
+#define NONE 0
+
+#define CONTEXT_PROFILE_MASK 37158
+
+#define CONTEXT_COMPATIBILITY_PROFILE_BIT 2
+
+#define CLIP_ORIGIN 37724
+
+#define CLIP_DEPTH_MODE 37725
+
+#define LOWER_LEFT 36001
+
+#define NEGATIVE_ONE_TO_ONE 37726
+
+#define ZERO_TO_ONE 37727
+
+#define POLYGON_OFFSET_CLAMP 36379
+
+#define DEPTH_BOUNDS_TEST_EXT 34960
+
+#define EXTENSIONS 7939
+
+#define RENDERER 7937
+
+#define VERSION 7938
+
+#define NUM_EXTENSIONS 33309
 
 /*
  A static, NUL-terminated English sentence describing `status`. Never NULL; unknown codes
@@ -522,6 +815,33 @@ ZshiftStatus zshift_recommend_clip(const ZshiftScene *scene,
  Errors: as `zshift_recommend_clip`. `out` is untouched on error.
  */
 ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip clip, float *out);
+
+/*
+ Cuts a convex base polygon to the view frustum of `glFrustum(l, r, b, t, n, f)` in double,
+ slightly inside (near plane at n * (1 + 2^-16), far at f * (1 - 2^-16), sides inward by
+ 2^-16 of the frustum's width: less than a quarter pixel up to 16384 pixels), so that the
+ rasterizer clips nothing of it: draw the result as a triangle fan and pass base_reach = 0.
+ A base the rasterizer clips in float (a ground plane running behind the camera) carries the
+ large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
+ (x, y, z, in order around the polygon); `out` receives up to `capacity` vertices (count + 6
+ always suffices) and `*out_count` how many were written (0 when nothing is inside).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `polygon` (with count > 0), `out` or `out_count` is NULL;
+ ZSHIFT_ERR_NOT_FINITE for a NaN or infinite coordinate or frustum parameter (except
+ f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, count > 65536, or a result with more
+ than `capacity` vertices. `out` and `*out_count` are untouched on error.
+ */
+ZshiftStatus zshift_clip_to_frustum(double l,
+                                    double r,
+                                    double b,
+                                    double t,
+                                    double n,
+                                    double f,
+                                    const double *polygon,
+                                    uint32_t count,
+                                    double *out,
+                                    uint32_t capacity,
+                                    uint32_t *out_count);
 
 /*
  Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -925,6 +1245,37 @@ ZshiftStatus zshift_range_offset(double n,
                                  double hi,
                                  double steps,
                                  double *out);
+
+/*
+ Writes the worst-case profile to `out`: the recommendation's default assumptions (8
+ sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+ in float), `measured` = 0.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.
+ */
+ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
+
+/*
+ Measures the rasterizer of the OpenGL context current on the calling thread and writes its
+ profile to `out` (see `ZshiftProfile`). Draws about 250 triangles into a framebuffer of its
+ own (512x512) and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once
+ after making the context current, not per frame.
+
+ GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
+ later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is
+ restored and every object it creates deleted, on success and on error; an active transform
+ feedback or query of the caller would see its draws (end them first).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `loader` or `out` is NULL; ZSHIFT_ERR_GL if the loader
+ returned NULL for a needed entry point, no context or one older than 3.2 is current, a GL
+ error was pending on entry (it is read, which clears it), D16, D24 or D32F cannot be
+ attached to a framebuffer, or a GL call failed; `zshift_last_error()` names which (e.g.
+ "the GL loader returned NULL for glReadPixels, ..."). `out` is untouched on error.
+
+ # Safety
+ `loader` must return, for each name, NULL or that entry point of the current context.
+ */
+ZshiftStatus zshift_probe(ZshiftGlLoader loader, void *user, ZshiftProfile *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

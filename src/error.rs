@@ -15,6 +15,10 @@ pub enum ErrorKind {
     Unresolvable,
     /// The inputs are valid but the result is too large for its type (f64, or f32 for matrices).
     Overflow,
+    /// The caller's OpenGL context could not do what the probe ([`crate::probe`]) needs: an
+    /// entry point the loader returned NULL for, a context older than 3.2, a depth format the
+    /// framebuffer refuses, a GL error; the detail names it.
+    Gl,
 }
 
 /// The value of the input an [`Error`] names, kept so the message can quote it.

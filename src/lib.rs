@@ -18,6 +18,7 @@
 //! | [`offset`] | ε from δ, the minimum ε and δ, offset matrices rounded outward | 000 eq. 4.1.3–4.1.11, 002 |
 //! | [`precision`] | window depth and the exact depth step at a distance; per clip convention and depth format (`DepthMapping`, `DepthFormat`) | 001 |
 //! | [`profile`] | what a rasterizer does that the offset model needs (snapping, polygon-offset `r`, clipping): plain data | |
+//! | [`probe`] | measures a `RasterizerProfile` in the caller's GL context, through its function loader | |
 //! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
 //! | [`clip_offset`] | offsets for every convention: constant NDC (element 10) or relative (element 14) | 000 eq. 4.1.3–4.1.7 |
@@ -44,6 +45,7 @@ pub mod orthographic;
 pub mod plan;
 pub mod polygon_offset;
 pub mod precision;
+pub mod probe;
 pub mod profile;
 pub mod projection;
 pub mod recommend;

@@ -390,7 +390,7 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
         )
         .with_value("tweak", tweak));
     }
-    let scene = scene(frustum_of(m, &r, handedness)?, decal);
+    let scene = scene(frustum_of(m, &r, handedness)?, decal, clip);
     let mut rec = crate::recommend::recommend_clip(&scene, clip)?;
     rec.matrix = if clip == ClipDepth::ReversedZeroToOne {
         let eps = rec.relative_epsilon;
@@ -419,8 +419,11 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
     })
 }
 
-/// The model's scene for a decal under a frustum (the one place that knows `Scene`'s fields).
-fn scene(frustum: Frustum, decal: &Decal) -> Scene {
+/// The model's scene for a decal under a frustum (the one place that knows `Scene`'s fields):
+/// the convention's strict depth test, a base inside the frustum, the worst-case profile with
+/// the decal's snapping.
+fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
+    use crate::recommend::{Base, DepthTest, RasterizerProfile};
     Scene {
         frustum,
         viewport: decal.viewport,
@@ -428,6 +431,15 @@ fn scene(frustum: Frustum, decal: &Decal) -> Scene {
         depth_range: decal.depth_range,
         slope: decal.slope,
         exact_depth: decal.exact_depth,
-        snapping: decal.snapping,
+        depth_test: if clip == ClipDepth::ReversedZeroToOne {
+            DepthTest::Greater
+        } else {
+            DepthTest::Less
+        },
+        base: Base::InsideFrustum,
+        profile: RasterizerProfile {
+            snapping: decal.snapping,
+            ..RasterizerProfile::worst_case()
+        },
     }
 }

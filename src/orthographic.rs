@@ -233,12 +233,16 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
             2f64.powi(-(b as i32) - 1) * (gx + gy)
         }
     };
+    let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max);
     Ok(ErrorTerms {
         quantum: scene.decal.format.spacing_at(w_max)?,
-        transform: U * (k * (m10.abs() * d_max + ndc_max) + w_max),
+        transform,
         vertex,
         interpolation,
         snap,
+        plane: transform + vertex + interpolation,
+        clip: 0.0,
+        strict: true,
     })
 }
 

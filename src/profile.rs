@@ -5,7 +5,8 @@
 //! difference `r` is 1×, 2× or 4× a format's quantum depending on the GPU). A
 //! [`RasterizerProfile`] holds those facts. [`RasterizerProfile::worst_case`] (the `Default`)
 //! assumes the worst of each and is what the recommendation uses unless told otherwise; a
-//! measured profile comes from the probe, which draws in the caller's own GL context.
+//! measured profile comes from [`crate::probe::probe`], which draws in the caller's own GL
+//! context (C: `zshift_probe`, `ZshiftProfile`).
 
 /// Whether the rasterizer snaps vertex positions before setting up the depth plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -21,8 +22,21 @@ pub enum Snapping {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum NearClip {
     /// New vertices are computed in f32 where the edges cross the near plane, and the depth plane
-    /// is set up from them: the worst case, and what Mesa's llvmpipe does.
+    /// is set up from them: the worst case, and what Mesa's llvmpipe does. The probe reports it
+    /// whenever ground planes crossing the near plane stray from their exact plane by more than
+    /// twice (plus 2 D24 quanta) what the same planes do when clipped in f64 before drawing —
+    /// whatever the cause (a float clipper, or, without clipping, the far-behind vertices' own
+    /// transform error): the model must add the clipping terms. On llvmpipe the clipper is the
+    /// cause: fed exact f32 clip coordinates (no transform), the clipped planes still erred by
+    /// 103 D24 quanta.
     ClippedF32,
+    /// A primitive crossing the near plane keeps the depth of its plane to within the same
+    /// per-pixel error as one that does not (homogeneous rasterization, a clipper working in
+    /// higher precision, or one that interpolates depth from the original vertices): ground
+    /// planes with corners ±1000 behind and ahead of the camera, clipped by the rasterizer, err
+    /// at most twice (plus 2 D24 quanta) what they do when clipped in f64 before drawing. The
+    /// model adds no clipping term; `plane_error` covers the clipped primitive too.
+    PlanePreserving,
 }
 
 /// The per-device facts the offset model needs. See the module docs.
@@ -33,14 +47,41 @@ pub struct RasterizerProfile {
     /// `glPolygonOffset`'s minimum resolvable difference `r` per format (D16, D24, D32, D32F), in
     /// units of the format's quantum (for D32F, of `2^(e−23)`).
     pub resolvable: [f64; 4],
-    /// The worst `|computed − exact|` window depth per pixel of a sloped plane, per format (D16,
-    /// D24, D32, D32F), in units of the format's quantum; NaN where not measured (the model's
-    /// bound applies).
+    /// The worst `|stored − exact|` window depth per pixel of a plane (facing to grazing), per
+    /// format (D16, D24, D32, D32F), under the standard `[−1, 1]` mapping, in units of the
+    /// format's quantum `1/(2^m − 1)`; for D32F in units of 2⁻²⁴ (float depth's error is mostly
+    /// absolute). NaN where not measured (the model's bound applies). The planes are drawn as
+    /// an engine draws them — f32 eye-space vertices times an f32 projection in the vertex
+    /// shader — and "exact" is the plane through the vertices times the matrix in f64, so the
+    /// figure covers the f32 transform, the division by `w`, the viewport transform, depth
+    /// setup, interpolation and the conversion to the format (rounding included): the model's
+    /// `T + I` and its quantization, not `V` (the rounding of the coordinates themselves). If
+    /// every pixel of two planes errs by at most `e` quanta, their stored order is the exact one
+    /// wherever the exact depths differ by more than `2e` quanta (no extra quantum needed).
     pub plane_error: [f64; 4],
+    /// D32F's `plane_error` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, window depth
+    /// `n(f − d)/((f − n)d)`), in units of the f32 spacing `2^(e − 23)` at the primitive's
+    /// largest window depth (errors there are relative); NaN where not measured (no
+    /// `glClipControl`).
+    pub plane_error_reversed: f64,
+    /// How the per-pixel error grows with the window position of a steep plane, in f32 unit
+    /// roundoffs `u = 2⁻²⁴` of `1 + M`, `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` the magnitude of the
+    /// terms when the plane's window depth is evaluated from the window origin (`w₀` the plane's
+    /// depth extrapolated to window `(0, 0)`, `∂w/∂x`, `∂w/∂y` its window-depth gradients per
+    /// pixel, `x`, `y` the pixel's window coordinates; the 1 stands for the transform's and the
+    /// viewport mapping's own roundings): every measured pixel under `[−1, 1]` kept
+    /// `|stored − exact| ≤ c + error_ulps·u·(1 + M)`, `c` one quantum on UNORM, 0 on D32F. Use
+    /// it where `plane_error`'s scenes (64-pixel tiles within 512 pixels of the origin) do not
+    /// cover the engine's viewport: on llvmpipe a grazing plane's error grows with its distance
+    /// from the window origin. NaN where not measured.
+    pub error_ulps: f64,
     /// How primitives crossing the near plane are clipped.
     pub near_clip: NearClip,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
     pub measured: bool,
+    /// How long the probe took to measure this profile, in seconds (0 for
+    /// [`RasterizerProfile::worst_case`]). Informational: the model ignores it.
+    pub probe_seconds: f64,
 }
 
 impl RasterizerProfile {
@@ -51,8 +92,11 @@ impl RasterizerProfile {
             snapping: Snapping::SubpixelBits(8),
             resolvable: [4.0; 4],
             plane_error: [f64::NAN; 4],
+            plane_error_reversed: f64::NAN,
+            error_ulps: f64::NAN,
             near_clip: NearClip::ClippedF32,
             measured: false,
+            probe_seconds: 0.0,
         }
     }
 }

@@ -2,68 +2,154 @@
 //! from its base's, and the smallest projection-matrix offset that beats every term of it.
 //!
 //! # The model
-//! A decal drawn over a coplanar base with `GL_LESS` survives at a pixel when its stored depth is
-//! smaller than the base's. The offset projection (seed 000, eq. 4.1.4) lowers the decal's NDC
-//! depth by the constant `Δndc = −ε·m10 = |ε|·(f+n)/(f−n)`, i.e. window depth by `Δw = Δndc/2`.
-//! Each quad's computed window depth at a pixel differs from the exact depth of the plane by
-//! at most `T + V + I + S` (terms below); stored values keep their order once two computed
-//! values are a quantum `q` apart (the conversion to the stored format is monotone). So no decal
-//! pixel is lost when
+//! A decal drawn over a coplanar base survives at a pixel when its stored depth passes the
+//! depth test against the base's. The offset projection (seed 000, eq. 4.1.4) lowers the
+//! decal's NDC depth by the constant `Δndc = −ε·m10 = |ε|·(f+n)/(f−n)`, i.e. window depth by
+//! `Δw = Δndc/2`. Each quad's computed window depth at a pixel differs from the exact depth of
+//! the plane by at most `E + S` (terms below), the base's by `C` more when the rasterizer clips
+//! it; stored values keep their order once two computed values are a quantum `q` apart (the
+//! conversion to the stored format is monotone), and computed values in order store in order.
+//! So no decal pixel is lost when
 //!
-//! `Δw ≥ q + 2·(T + V + I + S)`                                                    (R1)
+//! `Δw ≥ q + 2(E + S) + C`  under `GL_LESS` (`GL_GREATER` reversed),
+//! `Δw ≥ 2(E + S) + C`      under `GL_LEQUAL` (`GL_GEQUAL`): a tie passes,        (R1)
 //!
 //! and zshift recommends exactly the right-hand side: `ε = −2·Δw / |m10|`, rounded outward into
 //! element 10 by [`crate::offset::epsilon_matrix`]. With `u = 2⁻²⁴` (the unit roundoff of f32),
-//! all terms in window-depth units, `d₁ ≤ d₂` the decal's nearest and farthest eye distances,
-//! `w(d)` Walker's window depth (seed 001) and `F = f/(f−n)`:
+//! all terms in window-depth units, `d₁ ≤ d₂` the decal's nearest and farthest eye depths
+//! (`−z`), `w(d)` Walker's window depth (seed 001), `b = f·n/(f−n)`, `F = f/(f−n)`, `s` the
+//! plane's eye-space slope `|∂z/∂x| + |∂z/∂y|` and `e = max(|l|, |r|, |b|, |t|)/n`:
 //!
 //! * `q`, the **depth quantum**: `1/(2^m − 1)` for an m-bit unsigned normalized buffer (seed 002's
 //!   correction is this factor: one window step is `2/(2^m−1)` in NDC); for `GL_DEPTH_COMPONENT32F`
 //!   the spacing of f32 at `w(d₂)`, `2^(⌊log₂ w(d₂)⌋ − 23)` (2⁻²⁴ for `w ≥ ½`, which is why D32F
 //!   under the `[−1, 1]` mapping behaves as D24).
-//! * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
-//!   roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal and
-//!   product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding relative to
-//!   `w`): `T = u·(|m10|/2 + 1.5·|ndc|max + w(d₂))`. It applies even to bit-identical vertices,
-//!   because the decal's element 10 differs from the base's.
-//! * `V`, **f32 rounding of the vertex coordinates**: the decal's corners are not the base's, and
-//!   each eye coordinate is rounded to f32 (relative `u`); rounding z moves depth by `u·d`,
-//!   rounding x or y moves a point of a plane of slope `s` by `s·u·|x|`, `|x| ≤ e·d` inside a
-//!   frustum of half-extent tangent `e = max(|l|, |r|, |b|, |t|)/n`. Through `dw/dd = F·n/d²`:
-//!   `V = u·F·(n/d₁)·(1 + s·e)`. Zero when every corner of base and decal has the same f32 z
-//!   ([`Scene::exact_depth`]).
-//! * `I`, **f32 interpolation**: the rasterizer evaluates the plane `w₀ + ∂w/∂x·Δx + ∂w/∂y·Δy`
-//!   in f32 (three roundings of values at most `w(d₂)`), from gradients set up with a relative
-//!   error of about `3u`, applied across at most the decal's window-depth span:
-//!   `I = u·(3·w(d₂) + 3·(w(d₂) − w(d₁)))`. Zero with [`Scene::exact_depth`]: a constant plane
-//!   has exactly zero gradients, and `w₀ + 0` is exact.
+//! * `E = T + V + I`, the **plane error** of one quad, or with a measured profile
+//!   ([`RasterizerProfile::measured`]) the probe's per-pixel `plane_error` where that is smaller
+//!   (see "A measured profile"):
+//!   * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
+//!     roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal
+//!     and product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding
+//!     relative to `w`): `T = u·(|m10|/2 + 1.5·|ndc|max + w(d₂))`. It applies even to
+//!     bit-identical vertices, because the decal's element 10 differs from the base's.
+//!   * `V`, **f32 rounding of the vertex coordinates**: the decal's corners are not the base's,
+//!     and each eye coordinate is rounded to f32 (relative `u`); rounding z moves depth by
+//!     `u·d`, rounding x or y moves a point of a plane of slope `s` by `s·u·|x|`, `|x| ≤ e·d`
+//!     inside the frustum. Through `dw/dd = b/d²`: `V = u·(b/d₁)·(1 + s·e)`. Zero when every
+//!     corner of base and decal has the same f32 z ([`Scene::exact_depth`]).
+//!   * `I`, **f32 interpolation**: the rasterizer sets the plane up and evaluates it in f32,
+//!     relative to the framebuffer origin (llvmpipe's `a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀`, then
+//!     `a0 + ∂z/∂x·x + ∂z/∂y·y` per pixel: its own source warns that `a0` can get large), so the
+//!     roundings are relative to the depth extrapolated across the viewport,
+//!     `G = max(|gₓ|·W, |g_y|·H)·(1 + s·e)` (`g` the window gradient per pixel of a plane
+//!     crossing the axis at `d₁`, `1 + s·e` the bound on its real crossing, see `S`), not only to
+//!     the depth at the pixel; with gradients set up to a relative `3u`:
+//!     `I = u·(3·w(d₂) + 6·max(w(d₂) − w(d₁), G))`. A steep plane near the near plane showed 36
+//!     quanta (2⁻²⁴) of error on llvmpipe where the depth span alone bounds 3. Zero with
+//!     [`Scene::exact_depth`]: a constant plane has exactly zero gradients, and `w₀ + 0` is
+//!     exact.
 //! * `S`, **sub-pixel snapping**: a rasterizer that snaps window x, y to `2^-b` pixel
 //!   (`GL_SUBPIXEL_BITS` = b) *before* setting up the depth plane moves each vertex by up to
 //!   `2^-(b+1)` pixel per axis, so the plane's depth moves by up to
-//!   `S = 2^-(b+1)·(gₓ + g_y)`, with the window-depth gradients per pixel of a plane of eye-space
-//!   slope `s` seen at axis distance `d₁`: `g_y = s·F·(t−b)/(H·d₁)` (and `(r−l)/W` for x; the
-//!   tilt direction is unknown, so both use `s`). Mesa's llvmpipe snaps only coverage and sets
-//!   the depth plane up from the unsnapped float positions ([`Snapping::Unsnapped`], `S = 0`):
-//!   measured (`examples/sweep.rs`, last line), the snapped term alone asks 963 f32 steps of
-//!   element 10 at f/n = 10, slope 3, 256², where 2 suffice.
+//!   `S = 2^-(b+1)·(gₓ + g_y)·(1 + s·e)`, with `g_y = s·F·(t−b)/(H·d₁)` (and `(r−l)/W` for x)
+//!   the window-depth gradient per pixel of a plane crossing the view axis at `d₁`, and
+//!   `1 + s·e` the bound on where it really crosses it (a visible point at depth `d` on the ray
+//!   `(kₓ, k_y)` has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`). Mesa's
+//!   llvmpipe snaps only coverage and sets the depth plane up from the unsnapped float
+//!   positions ([`Snapping::Unsnapped`], `S = 0`).
+//! * `C`, **the base's f32 clipping** (0 for [`Base::InsideFrustum`]): see "The base".
 //!
 //! No term is a fudge factor and there is no safety margin: each is a worst-case bound on one
-//! rounding or snapping step. The bound is loose where the worst cases do not line up: on
-//! llvmpipe a quad's per-pixel depth error reaches at most 27% of `q/2 + T + V + I`, and the
-//! recommendation is 1.0–4.0× the smallest offset that works (bisection over f32 steps of
-//! element 10) on sloped D16 planes and 3.5–15× on sloped D24/D32F planes, where the f32 terms
-//! dominate (`examples/sweep.rs` prints the table; `tests/gl_recommend.rs` asserts ≤ 20×).
+//! rounding or snapping step, or a figure measured on the rasterizer that draws.
 //!
 //! [`recommend`] covers the standard `glFrustum` mapping (NDC depth `[−1, 1]`,
 //! `glDepthRange(0, 1)`); [`recommend_clip`] applies the same model to the other conventions.
 //!
+//! # The depth test and the bleed gap
+//! [`Scene::depth_test`] is the decal pass's `glDepthFunc`. Under the strict tests the decal's
+//! stored depth must differ from the base's, hence `q` in (R1); under `GL_LEQUAL`/`GL_GEQUAL`
+//! equal stored values pass, so computed values in order suffice and (R1) drops `q`.
+//!
+//! An occluder in front of the base must not lose to the decal. The occluder is a quad like the
+//! decal (inside the frustum), with the same error `E + S`; under a strict test the decal
+//! loses to it once its computed depth is at or behind the occluder's, under an `…EQUAL` test
+//! only once it is a quantum behind (a tie passes: at the `GL_LESS` gap an occluder can store the
+//! decal's very value). So an occluder whose exact window depth is in front of the base's by
+//!
+//! `G_w = Δw + 2(E + S)` (strict),  `G_w = Δw + 2(E + S) + q` (`…EQUAL`)             (R2)
+//!
+//! is never overdrawn. [`Recommendation::bleed_gap`] is that separation as an **eye depth**:
+//! the difference of `−z` between base and occluder at the same pixel (not a Euclidean distance
+//! along the ray, which is longer off-axis), taken at `d₂` where it is largest for a given
+//! window separation (`G = d·x/(1 + x)`, `x = G_w·d/b`).
+//!
+//! # The base
+//! The base is what the engine knows least about, and what breaks a model that treats it like
+//! the decal: a floor running behind the camera is clipped by the rasterizer, which computes
+//! the new vertices in f32 (Mesa's `draw_pipe_clip.c` interpolates every clip coordinate as
+//! `c = c₀ + t·(c₁ − c₀)`; llvmpipe has no guard band, so it clips against all six planes,
+//! and sets its depth plane up from the clipped vertices, `lp_state_setup.c`). [`Base`]
+//! says whether that happens: [`Base::InsideFrustum`] (the rasterizer clips nothing) or
+//! [`Base::Clipped`] with the base's `reach` `R`, the largest `|x|`, `|y|` or `|z|` of its
+//! eye-space vertices.
+//!
+//! **The term `C`.** Any point of the clip-space segment between two vertices projects onto the
+//! plane's image, so the error in `t` does not matter; what moves a clipped vertex off the plane
+//! is the rounding of each interpolated component. A clip-space component `c` of a base vertex is
+//! at most `A_c` in magnitude: `A_x = (|m0| + |m8|)·R`, `A_y = (|m5| + |m9|)·R`,
+//! `A_z = |m10|·R + |m14|`, `A_w = R`. Every rasterizer-made vertex carries component errors
+//! `|e_c| ≤ γ·A_c` with `γ = (6 + 5k)·u`: `u` for the f32 eye coordinates, `2u` for the vertex
+//! transform, `5u` per clip stage (`fl(c₀ + fl(t·fl(c₁ − c₀)))` errs by `u·(|c| + 2|t·(c₁ − c₀)|)`,
+//! at most `5u·A_c`), `k = 6` stages at most (one per plane), and `3u` for the division and the
+//! viewport map (their rounding at a vertex equals a clip-space error of `2u·|c|`, plus the
+//! window map). Write the plane `z = −d_a + sₓx + s_y·y` in clip coordinates normalised to
+//! `z_c`'s coefficient 1: `L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c` with `g_X = m14·sₓ/(d_a·m0)`,
+//! `g_Y = m14·s_y/(d_a·m5)`, `Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)` (`L` vanishes on
+//! the plane's image). A vertex `c + e` then has NDC depth off the plane, at its own screen
+//! position, by exactly `L(e)/(w + e_w)`, and the rasterizer's screen-space interpolation at a
+//! pixel of eye depth `d` inside the triangle weighs vertex `i` by `λᵢ = μᵢ·wᵢ/d` (`μᵢ ∈ [0, 1]`
+//! the clip-space barycentrics): the `1/wᵢ` amplification at the near plane cancels, and the
+//! pixel's depth error is at most `maxᵢ |L(eᵢ)| / d`. With `|1/d_a| ≤ (1 + s·e)/d₁`:
+//!
+//! `C = (window/NDC)·γ·(A_z + |g_X|·A_x + |g_Y|·A_y + |Z₀|·A_w) / (d₁ − γ·R)`
+//!
+//! It is a sound bound but a large one: on the issue's floor (corners at ±1000, n = 0.1, decals
+//! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
+//! and where it would move the decal past the near plane, or make the bleed gap exceed half the
+//! decal's distance, [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`], "cut the base to
+//! the frustum"). **The remedy is [`clip_to_frustum`]**: cut the base polygon in f64 to the
+//! frustum shrunk by 2⁻¹⁶ (near plane slightly in front, sides slightly inside: less than a
+//! quarter pixel up to 16384 pixels), draw the result as a fan, and pass
+//! [`Base::InsideFrustum`]: the rasterizer then clips nothing, every vertex's errors are
+//! relative to its own coordinates, and the base's error is the decal's `E` (on the same floor:
+//! 10 steps where 2 work).
+//!
+//! # A measured profile
+//! [`Scene::profile`] is a [`RasterizerProfile`]; the default, [`RasterizerProfile::worst_case`],
+//! assumes 8 sub-pixel bits of snapping and uses the bounds above. A measured profile (from the
+//! probe, or built by hand) replaces `S` by 0 where the rasterizer is unsnapped and `T + V + I`
+//! by its `plane_error` — the largest `|computed − exact|` window depth of a plane the probe
+//! drew, in quanta (`1/(2^m − 1)`) for the UNORM formats and in units of 2⁻²⁴ for D32F (float
+//! depth's error is mostly absolute, `u·|m10|` from the transform, so it is no multiple of the
+//! spacing at small depths) — plus the two parts of the bound that depend on the scene's own
+//! geometry rather than on the rasterizer: `V` (which grows as the decal nears the near plane
+//! and with the slope) and the interpolation's span and extrapolation,
+//! `6u·max(w(d₂) − w(d₁), G)`: `E = min(T + V + I, plane_error + V + 6u·max(…))`. The figure is
+//! measured on well-conditioned planes (3n or more away, slope ≤ 1), where those terms are
+//! small. (A figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154
+//! pixels at 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
+//! the offset where it is below the rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
+//! plane with shared f32 z (every rounding step is monotone in element 10, so the decal's computed
+//! depth never exceeds the base's), not in size: the rounding of two different products is
+//! independent, and (R1) keeps `2E`.
+//!
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
 //! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
-//! gradients of a sloped plane are the same in every convention: `V`, `I` and `S` keep their
-//! form (`V = u·(b/d₁)·(1 + s·e)`, the standard `F·n` being `b`). What changes:
+//! gradients of a sloped plane are the same in every convention: `V`, `I`, `S` and `C` keep their
+//! form (`C` through the convention's `m10`, `m14`). What changes:
 //!
-//! | term | `[−1, 1]` (`GL_LESS`) | `[0, 1]` (`GL_LESS`) | reversed `[0, 1]` (`GL_GREATER`, clear 0) |
+//! | term | `[−1, 1]` (`GL_LESS`/`GL_LEQUAL`) | `[0, 1]` (`GL_LESS`/`GL_LEQUAL`) | reversed `[0, 1]` (`GL_GREATER`/`GL_GEQUAL`, clear 0) |
 //! |---|---|---|---|
 //! | window depth | `½·ndc + ½` | `ndc` | `ndc`, `n(f − d)/((f − n)d)` |
 //! | `q` | at `w(d₂)` | at `w(d₂)` | at `w(d₂)`: relative for D32F, `2^(e−23)` at `w ≈ n/d` |
@@ -74,47 +160,50 @@
 //! Under `[0, 1]` the NDC depth is the window depth (`glDepthRange(0, 1)` maps it as `z·1 + 0`),
 //! so the transform's roundings are no longer halved, and `T`'s relative part is bounded by the
 //! largest window depth of the decal. The offset stays a constant through element 10
-//! ([`crate::clip_offset::ndc_offset_matrix`]): `Δw = q + 2(T + V + I + S)`, (R1) unchanged.
+//! ([`crate::clip_offset::ndc_offset_matrix`]), (R1) unchanged.
 //!
 //! Under reversed Z the offset is relative ([`crate::clip_offset::relative_offset_matrix`]:
 //! element 14 scaled by `1 + ε` moves every point from `d` to `d/(1 + ε)`), which gives the
 //! window offset `ε·b/d` at `d`: it shrinks with distance as D32F's spacing does, and exists
 //! where `m10 = 0`. (R1) must hold at every `d` of the decal, so
-//! `ε = max_d (q(w(d)) + 2(T + V + I + S))·d/b`: the budget part peaks at `d₂`, the quantum part
-//! at `d₂` or where `w(d)` crosses a power of two (within a binade the spacing is constant and
-//! `d/b` grows as `w` falls); both are evaluated, and `ε` is divided by `1 − u` for element 14's
-//! own f32 rounding. The bleed gap is the eye-space shift whose window change is
-//! `Δw(d) + 2(T + V + I + S)`, the larger of its values at `d₁` and `d₂`.
+//! `ε = max_d (q(w(d)) + 2(E + S) + C)·d/b` (no `q` under `GL_GEQUAL`): the budget part peaks at
+//! `d₂`, the quantum part at `d₂` or where `w(d)` crosses a power of two (within a binade the
+//! spacing is constant and `d/b` grows as `w` falls); both are evaluated, and `ε` is divided by
+//! `1 − u` for element 14's own f32 rounding. The bleed gap is (R2) at `d₁` and `d₂`, the larger.
 //!
-//! Measured on llvmpipe (`tests/gl_recommend_clip.rs`: 40 configurations at 96² in CI, 184 at
-//! 256² with `ZSHIFT_CLIP_SWEEP=1`; f/n 10 to 1e6 and ∞, slopes up to 3): no lost pixel at the
-//! recommendation, no bleed-through at the gap, 2–18× the smallest working offset in f32 steps
-//! of the offset element (up to 30× for reversed Z on slope-3 planes, where the budget taken at
-//! the decal's largest window depth meets the offset's smallest value at its far end). D32F under `[0, 1]` behaves as D24 wherever
-//! `w ≥ ½` (float spacing 2⁻²⁴ there), which is most of any range with f ≥ 3n.
+//! # Verified on llvmpipe
+//! `tests/gl_scenes.rs` draws ground planes running behind the camera (clipped by the
+//! rasterizer, and cut by [`clip_to_frustum`]), screen-fitted bases, slopes 0 to 10 with horizons
+//! on screen, 97×211, 320×180 and 64×48 viewports, centred and off-centre frusta (one with the
+//! view axis off screen), f/n from 10 to 1e7 and ∞, D16/D24/D32F under all three conventions and
+//! both kinds of depth test, decals whose corners are not the base's, with the worst-case
+//! profile and a measured llvmpipe profile: no pixel lost at the recommendation, none bled at the
+//! gap, in every scene; the README ("Verified on a rasterizer") has the ratios per class.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
 //! largest depth gradient per pixel and `r` the format's smallest resolvable difference. (R1)
-//! is the same shape: `q` and `2(T + V + I)` are constants (`units = (q + 2(T+V+I))/r`) and the
-//! snapping term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one
-//! constant for the whole decal, so zshift evaluates the slope term at the decal's worst depth
-//! instead of per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r`
-//! as [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
-//!
-//! # Bleed-through
-//! An occluder in front of the base must not lose to the decal. Its computed depth has the same
-//! error budget, and a computed decal depth at or above the occluder's stores at or above it
-//! (monotone conversion), so an occluder whose exact window depth is below the base's by at
-//! least `Δw + 2(T + V + I + S) = 2Δw − q` is never overdrawn; [`Recommendation::bleed_gap`] is
-//! that separation as an eye-space distance along the line of sight at `d₂`, where it is largest.
+//! is the same shape: `q`, `2E` and `C` are constants (`units = (Δw − 2S)/r`) and the snapping
+//! term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one constant
+//! for the whole decal, so zshift evaluates the slope term at the decal's worst depth instead of
+//! per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r` as
+//! [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
 
 use crate::domain::{domain, finite, representable};
 use crate::error::Result;
-use crate::projection::Frustum;
+use crate::precision::DepthMapping;
+use crate::projection::{ClipDepth, Frustum};
 
 /// The unit roundoff of f32: half an ulp of 1.
 const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+
+/// Clip stages a rasterizer-made vertex can pass: one per plane of the view volume (Mesa's
+/// clipper, with no guard band on llvmpipe, clips against all six in turn).
+const CLIP_STAGES: f64 = 6.0;
+
+/// The inward margin of [`clip_to_frustum`], relative: far above f32 rounding (2⁻²⁴), far below
+/// half a pixel of any viewport up to 2¹⁵ pixels wide.
+const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
@@ -122,50 +211,160 @@ pub use crate::precision::DepthFormat;
 /// Whether the rasterizer snaps vertex positions before depth setup (see [`crate::profile`]).
 pub use crate::profile::Snapping;
 
+/// The per-device facts the model takes (see [`crate::profile`]).
+pub use crate::profile::{NearClip, RasterizerProfile};
+
+/// The depth test of the decal pass (`glDepthFunc`). The strict tests need the decal's stored
+/// depth a quantum past the base's; the `…Equal` tests let a tie pass, so the decal needs one
+/// quantum less offset and an occluder one quantum more separation (see "The depth test").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DepthTest {
+    /// `GL_LESS` (`[−1, 1]` and `[0, 1]` clip depth).
+    #[default]
+    Less,
+    /// `GL_LEQUAL` (`[−1, 1]` and `[0, 1]` clip depth).
+    LessEqual,
+    /// `GL_GREATER` (reversed Z).
+    Greater,
+    /// `GL_GEQUAL` (reversed Z).
+    GreaterEqual,
+}
+
+impl DepthTest {
+    /// The test for a `glDepthFunc` enum value (`GL_LESS` 0x0201, `GL_LEQUAL` 0x0203,
+    /// `GL_GREATER` 0x0204, `GL_GEQUAL` 0x0206).
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::Domain`] for any other value (`GL_EQUAL`, `GL_ALWAYS`, …: no offset
+    /// makes a decal win under them).
+    pub fn from_gl(func: u32) -> Result<Self> {
+        match func {
+            0x0201 => Ok(Self::Less),
+            0x0203 => Ok(Self::LessEqual),
+            0x0204 => Ok(Self::Greater),
+            0x0206 => Ok(Self::GreaterEqual),
+            _ => Err(domain(
+                "the depth test must be GL_LESS, GL_LEQUAL, GL_GREATER or GL_GEQUAL",
+            )),
+        }
+    }
+
+    /// The `glDepthFunc` enum value.
+    pub fn gl_enum(self) -> u32 {
+        match self {
+            Self::Less => 0x0201,
+            Self::LessEqual => 0x0203,
+            Self::Greater => 0x0204,
+            Self::GreaterEqual => 0x0206,
+        }
+    }
+
+    /// `GL_LESS` or `GL_GREATER`: a tie fails.
+    pub fn is_strict(self) -> bool {
+        matches!(self, Self::Less | Self::Greater)
+    }
+
+    /// `GL_GREATER` or `GL_GEQUAL`: the reversed-Z tests.
+    pub fn is_reversed(self) -> bool {
+        matches!(self, Self::Greater | Self::GreaterEqual)
+    }
+}
+
+/// What the engine knows about the base (the surface under the decal).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum Base {
+    /// Every vertex of the base lies inside the view frustum, so the rasterizer clips nothing
+    /// (a base cut to the frustum by [`clip_to_frustum`], or one that fits the screen): the
+    /// base's error is bounded like the decal's.
+    #[default]
+    InsideFrustum,
+    /// The base may reach outside the view frustum (a ground plane running behind the camera,
+    /// a wall wider than the screen): the rasterizer clips it in f32, which adds the term `C`.
+    /// `reach` is the largest `|x|`, `|y|` or `|z|` of any of its eye-space vertices.
+    Clipped {
+        /// The largest eye-space coordinate magnitude of a base vertex (> 0).
+        reach: f64,
+    },
+}
+
 /// What a scene knows about one decal and the surface under it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scene {
-    /// The `glFrustum` the base is drawn with (OpenGL conventions, NDC depth `[−1, 1]`).
+    /// The `glFrustum` the base is drawn with (right-handed eye space looking down −z).
     pub frustum: Frustum,
     /// Viewport width and height in pixels (`glViewport`).
     pub viewport: [u32; 2],
     /// The depth attachment's format.
     pub format: DepthFormat,
-    /// The decal's nearest and farthest eye distance, `n ≤ d₁ ≤ d₂ ≤ f` (equal for a point
-    /// estimate). `d₁` also stands for the distance at which the decal's plane crosses the view
-    /// axis in the slope term: exact for a decal centred on the axis, conservative when the
+    /// The decal's nearest and farthest eye distance (`−z`), `n ≤ d₁ ≤ d₂ ≤ f` (equal for a
+    /// point estimate). `d₁` also stands for the distance at which the decal's plane crosses the
+    /// view axis in the slope terms: exact for a decal centred on the axis, conservative when the
     /// plane's axis crossing is farther than the decal's nearest point.
     pub depth_range: [f64; 2],
     /// Eye-space tilt of the plane: `|∂z/∂x| + |∂z/∂y|` (0 facing the camera, 3 ≈ 72°).
     pub slope: f64,
     /// Every corner of base and decal has the same f32 eye-space z (a camera-facing plane whose
     /// vertices reach the vertex shader unrotated): the terms `V` and `I` vanish. Requires
-    /// `slope == 0`.
+    /// `slope == 0` and [`Base::InsideFrustum`].
     pub exact_depth: bool,
-    /// How the rasterizer positions vertices before depth setup.
-    pub snapping: Snapping,
+    /// The decal pass's depth test; it must match the clip convention (`Less`/`LessEqual`
+    /// for `[−1, 1]` and `[0, 1]`, `Greater`/`GreaterEqual` for reversed Z).
+    pub depth_test: DepthTest,
+    /// What is known of the base's extent.
+    pub base: Base,
+    /// What the rasterizer does ([`RasterizerProfile::worst_case`] unless measured).
+    pub profile: RasterizerProfile,
 }
 
-/// The worst-case error of one quad's computed window depth, term by term (window-depth units),
+/// The error of the two quads' computed window depths, term by term (window-depth units),
 /// and the depth quantum. See the module docs for each.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ErrorTerms {
     /// `q`: the smallest difference the stored format keeps.
     pub quantum: f64,
-    /// `T`: f32 rounding in the vertex transform and viewport mapping.
+    /// `T`: f32 rounding in the vertex transform and viewport mapping (worst case, per quad).
     pub transform: f64,
-    /// `V`: f32 rounding of the decal's eye-space coordinates.
+    /// `V`: f32 rounding of the eye-space coordinates (worst case, per quad).
     pub vertex: f64,
-    /// `I`: f32 rounding in the rasterizer's depth-plane evaluation.
+    /// `I`: f32 rounding in the rasterizer's depth-plane evaluation (worst case, per quad).
     pub interpolation: f64,
-    /// `S`: sub-pixel snapping of a sloped plane.
+    /// `S`: sub-pixel snapping of a sloped plane (per quad; 0 unsnapped).
     pub snap: f64,
+    /// `E`, the per-quad plane error the offset uses: `T + V + I`, or the profile's measured
+    /// `plane_error·q` where that is smaller.
+    pub plane: f64,
+    /// `C`: the base's f32 clipping and far-vertex term (0 for [`Base::InsideFrustum`]).
+    pub clip: f64,
+    /// Whether the depth test is strict (`GL_LESS`/`GL_GREATER`): the offset then needs `q`.
+    pub strict: bool,
 }
 
 impl ErrorTerms {
-    /// The right-hand side of (R1): `q + 2(T + V + I + S)`, in window depth.
+    /// The errors of base and decal together: `2(E + S) + C`.
+    pub fn budget(&self) -> f64 {
+        2.0 * (self.plane + self.snap) + self.clip
+    }
+
+    /// The window offset (R1): `q + 2(E + S) + C` under a strict test, `2(E + S) + C` under
+    /// `GL_LEQUAL`/`GL_GEQUAL`.
     pub fn window_offset(&self) -> f64 {
-        self.quantum + 2.0 * (self.transform + self.vertex + self.interpolation + self.snap)
+        self.strict_quantum() + self.budget()
+    }
+
+    /// The window-depth separation an occluder needs in front of the base (R2): the offset,
+    /// the errors of decal and occluder `2(E + S)`, and under `GL_LEQUAL`/`GL_GEQUAL` one
+    /// quantum more (a tie passes).
+    pub fn gap_window(&self, offset: f64) -> f64 {
+        let tie = if self.strict { 0.0 } else { self.quantum };
+        offset + 2.0 * (self.plane + self.snap) + tie
+    }
+
+    fn strict_quantum(&self) -> f64 {
+        if self.strict {
+            self.quantum
+        } else {
+            0.0
+        }
     }
 }
 
@@ -181,8 +380,8 @@ pub struct Recommendation {
     /// The eye-space shift δ (toward the camera) at `Pz = −d₂` that gives the same ε through
     /// eq. 4.1.7, for `zshift_load_offset_matrix(…, delta, pz = −d₂)`.
     pub delta_at_far: f64,
-    /// Occluders nearer than the base by at least this eye-space distance along the line of
-    /// sight are never overdrawn by the decal.
+    /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
+    /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
     /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, with `r` = the quantum.
     pub polygon_offset: [f64; 2],
@@ -193,28 +392,33 @@ pub struct Recommendation {
 /// The smallest offset that model (R1) guarantees ends z-fighting for `scene`, with its bleed gap.
 ///
 /// Convention: OpenGL, NDC depth `[−1, 1]`, the decal drawn with element 10 scaled by `1 + ε`
-/// (seed 000 eq. 4.1.3), the base with the plain matrix, depth test `GL_LESS` or `GL_LEQUAL`.
+/// (seed 000 eq. 4.1.3), the base with the plain matrix, depth test `scene.depth_test`
+/// (`GL_LESS` or `GL_LEQUAL`).
 ///
 /// # Errors
-/// [`crate::ErrorKind::NotFinite`] for NaN or infinite depths or slope;
+/// [`crate::ErrorKind::NotFinite`] for NaN or infinite depths, slope or reach;
 /// [`crate::ErrorKind::Domain`] for a zero viewport, `depth_range` outside `[n, f]` or
-/// decreasing, a negative slope, `exact_depth` with a nonzero slope, or bits outside 1..=32;
-/// [`crate::ErrorKind::Overflow`] if a result overflows.
+/// decreasing, a negative slope, `exact_depth` with a nonzero slope or a clipped base, a
+/// reversed-Z depth test, bits outside 0..=32, or a base reach too large for f32 clipping to be
+/// bounded (clip it with [`clip_to_frustum`]); [`crate::ErrorKind::Overflow`] if a result
+/// overflows.
 pub fn recommend(scene: &Scene) -> Result<Recommendation> {
-    check(scene)?;
+    check(scene, ClipDepth::NegOneToOne)?;
     let terms = error_terms(scene)?;
     let window_offset = terms.window_offset();
+    check_in_range(
+        &mapping_of(scene, ClipDepth::NegOneToOne)?,
+        scene.depth_range[0],
+        window_offset,
+    )?;
     let planes = scene.frustum.planes();
     let m10 = planes.sum_over_span();
     let epsilon = representable(-2.0 * window_offset / m10, "epsilon overflows")?;
     let d2 = scene.depth_range[1];
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
-    let bleed_gap = gap_for_window_difference(scene, 2.0 * window_offset - terms.quantum, d2);
-    let units = (terms.window_offset() - 2.0 * terms.snap) / terms.quantum;
-    let factor = match scene.snapping {
-        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
-        Snapping::Unsnapped => 0.0,
-    };
+    let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
+    check_useful(&terms, bleed_gap, d2)?;
+    let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     Ok(Recommendation {
@@ -223,7 +427,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
         window_offset: fits(window_offset)?,
         delta_at_far: fits(delta_at_far)?,
         bleed_gap: fits(bleed_gap)?,
-        polygon_offset: [fits(factor)?, fits(units)?],
+        polygon_offset: [fits(slope_factor(scene))?, fits(units)?],
         terms,
     })
 }
@@ -233,28 +437,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
 /// # Errors
 /// As [`recommend`].
 pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
-    check(scene)?;
-    let u = F32_UNIT_ROUNDOFF;
-    let planes = scene.frustum.planes();
-    let (n, big_f) = (planes.near(), planes.far_over_span());
-    let [d1, d2] = scene.depth_range;
-    let (w1, w2) = (window(scene, d1)?, window(scene, d2)?);
-    let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
-    let transform = u * (planes.sum_over_span() / 2.0 + 1.5 * ndc_max + w2);
-    let (vertex, interpolation) = if scene.exact_depth {
-        (0.0, 0.0)
-    } else {
-        let e = half_extent_tangent(&scene.frustum)?;
-        let vertex = u * big_f * (n / d1) * (1.0 + scene.slope * e);
-        (vertex, u * (3.0 * w2 + 3.0 * (w2 - w1)))
-    };
-    Ok(ErrorTerms {
-        quantum: quantum(scene.format, w2)?,
-        transform,
-        vertex,
-        interpolation,
-        snap: snap(scene)?,
-    })
+    clip_error_terms(scene, ClipDepth::NegOneToOne)
 }
 
 /// The window-depth gradient per pixel `(gₓ, g_y)` of a plane of eye-space slope `s` that
@@ -273,20 +456,57 @@ pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
     Ok([gx, gy])
 }
 
+/// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
+fn slope_factor(scene: &Scene) -> f64 {
+    match scene.profile.snapping {
+        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::Unsnapped => 0.0,
+    }
+}
+
 fn snap(scene: &Scene) -> Result<f64> {
-    match scene.snapping {
+    match scene.profile.snapping {
         Snapping::Unsnapped => Ok(0.0),
         Snapping::SubpixelBits(b) => {
+            // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
-            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy))
+            let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
+            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy) * tilt)
         }
     }
 }
 
-/// `q` for a format at window depth `w` (the largest the decal reaches): one step of a UNORM
-/// buffer, or the f32 spacing at `w` for `GL_DEPTH_COMPONENT32F`.
+/// `q` for a format at window depth `w`: one step of a UNORM buffer, or the f32 spacing at `w`
+/// for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
+}
+
+/// The profile's measured per-pixel plane error for the scene's format, in window depth: the
+/// figure times the UNORM quantum, or for D32F times 2⁻²⁴ (the f32 spacing on `[½, 1)`: the
+/// error of computed float depth is mostly absolute, `u·|m10|` from the transform, so it is not
+/// a multiple of the spacing at small depths). `None` unless the profile is measured and has a
+/// finite, non-negative figure for the format.
+fn measured_plane_error(scene: &Scene) -> Option<f64> {
+    let p = scene.profile;
+    let unit = match scene.format {
+        DepthFormat::Unorm16 => 1.0 / 65_535.0,
+        DepthFormat::Unorm24 => 1.0 / 16_777_215.0,
+        DepthFormat::Unorm32 => 1.0 / 4_294_967_295.0,
+        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
+    };
+    let e = p.plane_error[profile_index(scene.format)];
+    (p.measured && e.is_finite() && e >= 0.0).then_some(e * unit)
+}
+
+/// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
+pub(crate) fn profile_index(format: DepthFormat) -> usize {
+    match format {
+        DepthFormat::Unorm16 => 0,
+        DepthFormat::Unorm24 => 1,
+        DepthFormat::Unorm32 => 2,
+        DepthFormat::Float32 => 3,
+    }
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
@@ -297,13 +517,88 @@ fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     Ok(ex.max(ey))
 }
 
-/// Walker's window depth (seed 001) at a distance `check` has put inside `[n, f]`.
-fn window(scene: &Scene, d: f64) -> Result<f64> {
-    let planes = scene.frustum.planes();
-    crate::precision::window_depth(planes.near(), planes.far(), d)
+/// The term `C` of a base the rasterizer clips (module docs, "The base"): every rasterizer-made
+/// vertex carries clip-space errors `|e_c| ≤ γ·A_c` (`γ = (6 + 5k)·u`, `k` clip stages, `A_c` the
+/// largest `|c|` a base vertex can have), and the depth error at a pixel at eye depth `d ≥ d₁` is
+/// at most `max |L(e)|/(d − γ·R)` in NDC, `L` the plane's homogeneous equation normalised to
+/// `z_c`'s coefficient 1.
+fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f64> {
+    let Base::Clipped { reach } = scene.base else {
+        return Ok(0.0);
+    };
+    let m = crate::projection::projection_f64(&scene.frustum, clip)?;
+    let (m0, m5, m8, m9, m10, m14) = (
+        m[0].abs(),
+        m[5].abs(),
+        m[8].abs(),
+        m[9].abs(),
+        m[10].abs(),
+        m[14].abs(),
+    );
+    let (s, d1) = (scene.slope, scene.depth_range[0]);
+    let gamma = (6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF;
+    // The plane z = −d_a + sₓx + s_y·y (|sₓ| + |s_y| = s, d_a ≥ d₁) in clip coordinates:
+    // L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c with g_X = m14·sₓ/(d_a·m0),
+    // g_Y = m14·s_y/(d_a·m5), Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5).
+    // A visible point at depth d on the ray (kₓ, k_y) (|k| ≤ e) has d = d_a/(1 + sₓkₓ + s_y·k_y),
+    // so |1/d_a| ≤ (1 + s·e)/d₁ wherever the axis crossing d_a lies.
+    let inv_da = (1.0 + s * half_extent_tangent(&scene.frustum)?) / d1;
+    let g_x = m14 * s * inv_da / m0;
+    let g_y = m14 * s * inv_da / m5;
+    let z0 = m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5));
+    let (a_x, a_y, a_z, a_w) = (
+        (m0 + m8) * reach,
+        (m5 + m9) * reach,
+        m10 * reach + m14,
+        reach,
+    );
+    let l = a_z + g_x * a_x + g_y * a_y + z0 * a_w;
+    let w_low = d1 - gamma * reach;
+    if w_low.is_nan() || w_low <= 0.5 * d1 {
+        return Err(domain(
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ));
+    }
+    representable(
+        mapping.window_per_ndc() * gamma * l / w_low,
+        "the clipping term overflows f64",
+    )
 }
 
-/// δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
+/// Refuses the answer for a clipped base whose term `C` makes it useless: a bleed gap past half
+/// the decal's distance (the decal would be drawn over everything in the nearer half of the
+/// way to the eye). Cutting the base to the frustum removes `C`.
+fn check_useful(terms: &ErrorTerms, bleed_gap: f64, d2: f64) -> Result<()> {
+    if terms.clip > 0.0 && bleed_gap > 0.5 * d2 {
+        return Err(crate::error::Error::new(
+            crate::ErrorKind::Unresolvable,
+            "the f32 clipping term of this clipped base makes the bleed gap exceed half the decal's distance: cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses an offset that would move the decal's nearest point out of the depth range (past
+/// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
+/// which happens when the clipping term `C` of a large clipped base dwarfs the decal's depth.
+fn check_in_range(mapping: &DepthMapping, d1: f64, offset_at_d1: f64) -> Result<()> {
+    let w1 = mapping.window_depth(d1)?;
+    let moved = if mapping.is_reversed() {
+        w1 + offset_at_d1
+    } else {
+        w1 - offset_at_d1
+    };
+    if (0.0..=1.0).contains(&moved) {
+        Ok(())
+    } else {
+        Err(crate::error::Error::new(
+            crate::ErrorKind::Unresolvable,
+            "the offset this scene needs moves the decal past the near plane (the f32 clipping term of a large clipped base): cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+        ))
+    }
+}
+
+/// The δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,
 /// `K = 2fn/(f+n)`.
 fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
     let planes = scene.frustum.planes();
@@ -317,8 +612,8 @@ fn delta_for_epsilon(scene: &Scene, epsilon: f64, pz: f64) -> Result<f64> {
     representable(-epsilon * pz * (pz / denominator), "delta overflows")
 }
 
-/// The eye-space distance `G` in front of distance `d` whose window depth is lower by `dw`:
-/// `F·n·(1/(d−G) − 1/d) = dw`, so `G = d·x/(1 + x)` with `x = dw·d/(F·n)`.
+/// The eye depth `G` in front of depth `d` (both `−z`, at the same pixel) whose window depth is
+/// lower by `dw`: `F·n·(1/(d−G) − 1/d) = dw`, so `G = d·x/(1 + x)` with `x = dw·d/(F·n)`.
 fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     let planes = scene.frustum.planes();
     let x = dw * d / (planes.far_over_span() * planes.near());
@@ -329,7 +624,7 @@ fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     d * (x / (1.0 + x))
 }
 
-fn check(scene: &Scene) -> Result<()> {
+fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
     let planes = scene.frustum.planes();
     let [d1, d2] = scene.depth_range;
     planes.check_distance(d1)?;
@@ -351,20 +646,117 @@ fn check(scene: &Scene) -> Result<()> {
             "exact_depth needs a plane facing the camera (slope 0)",
         ));
     }
-    if let Snapping::SubpixelBits(b) = scene.snapping {
+    if let Base::Clipped { reach } = scene.base {
+        finite(reach, "the base reach is NaN or infinite")?;
+        if reach <= 0.0 {
+            return Err(domain(
+                "the base reach (largest |x|, |y|, |z| of a base vertex) must be > 0",
+            ));
+        }
+        if scene.exact_depth {
+            return Err(domain(
+                "exact_depth needs a base the rasterizer does not clip (Base::InsideFrustum)",
+            ));
+        }
+    }
+    if let Snapping::SubpixelBits(b) = scene.profile.snapping {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
         }
+    }
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    if scene.depth_test.is_reversed() != reversed {
+        return Err(domain(if reversed {
+            "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
+        } else {
+            "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
+        }));
     }
     Ok(())
 }
 
 // ---------------------------------------------------------------------------------------------
-// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// Cutting a base to the view frustum in f64, so the rasterizer clips nothing.
 // ---------------------------------------------------------------------------------------------
 
-use crate::precision::DepthMapping;
-use crate::projection::ClipDepth;
+/// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
+/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the far one to
+/// `f·(1 − 2⁻¹⁶)`, the side planes inward by 2⁻¹⁶ of the frustum's width), in f64: drawn
+/// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
+/// with [`Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
+/// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
+/// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
+///
+/// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
+/// one plane at a time; a convex polygon stays convex (draw it as a fan).
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
+/// [`crate::ErrorKind::Overflow`] if a cut vertex overflows f64 (coordinates near `f64::MAX`).
+pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    for v in polygon {
+        for &c in v {
+            finite(c, "a polygon vertex coordinate is NaN or infinite")?;
+        }
+    }
+    let m = frustum.to_cols_array_f64()?;
+    let planes = frustum.planes();
+    let (n, f) = (planes.near(), planes.far());
+    // The side planes in clip space, −w ≤ x_c ≤ w with x_c = m0·x + m8·z and w = −z (no
+    // division: a subnormal n cannot overflow them), each moved inward by the margin.
+    let keep = 1.0 - 2.0 * FRUSTUM_MARGIN;
+    let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
+    let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
+    // Each plane as a signed distance, positive inside.
+    let mut sides: Vec<Side> = vec![
+        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
+        Box::new(move |p| x_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - x_c(p)),
+        Box::new(move |p| y_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - y_c(p)),
+    ];
+    if f.is_finite() {
+        sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
+    }
+    let mut poly = polygon.to_vec();
+    for side in &sides {
+        poly = cut(&poly, side.as_ref());
+        if poly.is_empty() {
+            break;
+        }
+    }
+    if poly.iter().flatten().any(|c| !c.is_finite()) {
+        return Err(crate::error::Error::new(
+            crate::ErrorKind::Overflow,
+            "the polygon's coordinates are too large to cut in f64",
+        ));
+    }
+    Ok(poly)
+}
+
+/// A frustum plane as a signed distance, positive inside.
+type Side = Box<dyn Fn(&[f64; 3]) -> f64>;
+
+/// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
+fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for (i, a) in poly.iter().enumerate() {
+        let b = &poly[(i + 1) % poly.len()];
+        let (da, db) = (side(a), side(b));
+        if da >= 0.0 {
+            out.push(*a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            out.push([0, 1, 2].map(|k| a[k] + t * (b[k] - a[k])));
+        }
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------------------------
+// The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
+// ---------------------------------------------------------------------------------------------
 
 /// The recommended offset for a [`Scene`] drawn under a clip-depth convention, in the form that
 /// convention needs, with the decal's matrix.
@@ -393,8 +785,8 @@ pub struct ClipRecommendation {
     pub window_offset: f64,
     /// The eye-space shift toward the camera at `d₂` that the offset amounts to there.
     pub delta_at_far: f64,
-    /// Occluders nearer than the base by at least this eye-space distance along the line of
-    /// sight are never overdrawn by the decal.
+    /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
+    /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
     /// The decal's projection matrix (f32, column-major), offset rounded outward; draw the base
     /// with [`crate::projection::projection`] of the same frustum and convention.
@@ -407,17 +799,18 @@ pub struct ClipRecommendation {
 /// The smallest offset that model (R1) guarantees ends z-fighting for `scene` drawn under
 /// `clip` (see "Other clip conventions" in the module docs), with its matrix and bleed gap.
 ///
-/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS`
-/// and gives exactly [`recommend`]'s offset; `ZeroToOne` is
-/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` (Direct3D/Vulkan clip space),
-/// offset through element 10; `ReversedZeroToOne` adds `glDepthFunc(GL_GREATER)` and
-/// `glClearDepth(0)`, offset through element 14 (relative, works where `m10 = 0`). `f` may be
-/// `+∞` in every convention.
+/// Conventions: OpenGL right-handed eye space; `NegOneToOne` is `glFrustum` with `GL_LESS` or
+/// `GL_LEQUAL` and gives exactly [`recommend`]'s offset; `ZeroToOne` is
+/// `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)` with `GL_LESS` or `GL_LEQUAL`
+/// (Direct3D/Vulkan clip space), offset through element 10; `ReversedZeroToOne` adds
+/// `glDepthFunc(GL_GREATER or GL_GEQUAL)` and `glClearDepth(0)`, offset through element 14
+/// (relative, works where `m10 = 0`). `f` may be `+∞` in every convention; `scene.depth_test`
+/// must match the convention.
 ///
 /// # Errors
 /// As [`recommend`]; [`crate::ErrorKind::Overflow`] if an element of the matrix leaves f32.
 pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
-    check(scene)?;
+    check(scene, clip)?;
     let frustum = &scene.frustum;
     let m = crate::projection::projection_f64(frustum, clip)?;
     if clip == ClipDepth::NegOneToOne {
@@ -437,7 +830,6 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     }
     let mapping = mapping_of(scene, clip)?;
     let terms = clip_error_terms(scene, clip)?;
-    let budget = 2.0 * (terms.transform + terms.vertex + terms.interpolation + terms.snap);
     let [d1, d2] = scene.depth_range;
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     let (ndc_offset, relative_epsilon, window_offset, matrix) = if clip == ClipDepth::ZeroToOne {
@@ -446,7 +838,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         let c = -dw / mapping.window_per_ndc();
         (c, 0.0, dw, crate::clip_offset::ndc_offset_matrix(&m, c)?)
     } else {
-        let eps = reversed_epsilon(scene, &mapping, budget)?;
+        let eps = reversed_epsilon(scene, &mapping, &terms)?;
         let b = scale(scene);
         let matrix = crate::clip_offset::relative_offset_matrix(&m, eps)?;
         (0.0, eps, fits(eps * (b / d2))?, matrix)
@@ -459,26 +851,28 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             window_offset
         }
     };
+    check_in_range(&mapping, d1, offset_at(d1))?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
     let mut bleed_gap = 0.0f64;
     for d in [d1, d2] {
-        let g = match mapping.shift_of_window_change(toward(offset_at(d) + budget), d) {
+        let at_d = ErrorTerms {
+            quantum: quantum(scene.format, mapping.window_depth(d)?)?,
+            ..terms
+        };
+        let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
             Ok(g) => g.min(d),
             // Past the eye: no occluder in front of the base is safe from the decal.
             Err(_) => d,
         };
         bleed_gap = bleed_gap.max(g);
     }
+    check_useful(&terms, bleed_gap, d2)?;
     let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
         (relative_epsilon, [0.0, 0.0])
     } else {
-        let factor = match scene.snapping {
-            Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
-            Snapping::Unsnapped => 0.0,
-        };
         let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
-        (-ndc_offset / m[10], [factor, fits(units)?])
+        (-ndc_offset / m[10], [slope_factor(scene), fits(units)?])
     };
     Ok(ClipRecommendation {
         clip,
@@ -494,43 +888,69 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     })
 }
 
-/// The model's terms for `scene` under `clip` (see "Other clip conventions" in the module
-/// docs); `NegOneToOne` gives exactly [`error_terms`].
+/// The model's terms for `scene` under `clip` (see the module docs); `NegOneToOne` gives
+/// exactly [`error_terms`].
 ///
 /// # Errors
 /// As [`recommend`].
 pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
-    if clip == ClipDepth::NegOneToOne {
-        return error_terms(scene);
-    }
-    check(scene)?;
+    check(scene, clip)?;
     let u = F32_UNIT_ROUNDOFF;
     let mapping = mapping_of(scene, clip)?;
     let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
     let [d1, d2] = scene.depth_range;
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
-    let w_max = w1.max(w2);
-    // NDC = window depth here: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
-    // the division by w = d; the sum, reciprocal and product round relative to |ndc| ≤ w_max;
-    // the viewport map z·1 + 0 is exact but counted (one rounding relative to w_max).
-    let transform = u * (m10.abs() + 4.0 * w_max);
+    let (w_min, w_max) = (w1.min(w2), w1.max(w2));
+    let transform = if clip == ClipDepth::NegOneToOne {
+        // m10·z and + m14 round relative to |m10|·d and |clip_z| ≤ d (halved by the viewport
+        // map), the reciprocal and product relative to |ndc|, ½·ndc + ½ relative to w.
+        let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
+        u * (m10.abs() / 2.0 + 1.5 * ndc_max + w_max)
+    } else {
+        // NDC = window depth: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
+        // the division by w = d; the sum, reciprocal and product round relative to
+        // |ndc| ≤ w_max; the viewport map z·1 + 0 is exact but counted.
+        u * (m10.abs() + 4.0 * w_max)
+    };
+    // G: how far the plane's window depth runs across the viewport, |gₓ|·W + |g_y|·H (with the
+    // axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative to
+    // the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
+    // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
+    // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·W + |g_y|·H is at most the
+    // larger of the two with the whole slope.
+    let extrapolated = {
+        let [gx, gy] = window_gradient(scene, d1)?;
+        let [width, height] = scene.viewport.map(f64::from);
+        (gx * width).max(gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+    };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
     } else {
         let e = half_extent_tangent(&scene.frustum)?;
-        let nearest = d1.min(d2);
-        let vertex = u * (scale(scene) / nearest) * (1.0 + scene.slope * e);
-        (vertex, u * (3.0 * w_max + 3.0 * (w1 - w2).abs()))
+        let vertex = u * (scale(scene) / d1) * (1.0 + scene.slope * e);
+        let span = (w_max - w_min).max(extrapolated);
+        (vertex, u * (3.0 * w_max + 6.0 * span))
     };
-    // The spacing at the decal's smallest window depth: its farthest point under either
-    // convention (reversed Z stores n/d-like values that shrink with distance).
-    let w_min = w1.min(w2);
+    // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
+    // its smallest.
+    let far_w = if mapping.is_reversed() { w_min } else { w_max };
+    let q = quantum(scene.format, far_w)?;
+    let bound = transform + vertex + interpolation;
+    // A measured figure stands for what every plane has on this rasterizer (the transform and
+    // the plane's evaluation at a depth); the scene's own geometry adds its vertex rounding V
+    // (which grows toward the near plane and with the slope) and the interpolation across its
+    // depth span, which no probe plane can stand for.
+    let geometry = vertex + 6.0 * u * (w_max - w_min).max(extrapolated);
+    let plane = measured_plane_error(scene).map_or(bound, |e| (e + geometry).min(bound));
     Ok(ErrorTerms {
-        quantum: quantum(scene.format, w_min)?,
+        quantum: q,
         transform,
         vertex,
         interpolation,
         snap: snap(scene)?,
+        plane,
+        clip: clip_term(scene, clip, &mapping)?,
+        strict: scene.depth_test.is_strict(),
     })
 }
 
@@ -547,16 +967,18 @@ fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
 }
 
 /// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
-/// reach `q(w(d)) + budget` at every `d` of the decal. The budget part is largest at `d₂`; the
-/// quantum part `q(w)·d/b` peaks, within each binade of float depth, where `w` is smallest, so
-/// at `d₂` or where `w(d)` is a power of two. Element 14 rounded to f32 (`p ≥ b·(1 − u)`)
-/// carries `ε·p`, hence the final `1/(1 − u)`.
-fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Result<f64> {
+/// reach `q(w(d)) + budget` (strict test) or `budget` at every `d` of the decal. The budget
+/// part is largest at `d₂`; the quantum part `q(w)·d/b` peaks, within each binade of float
+/// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
+/// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
+fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
     let b = scale(scene);
     let [d1, d2] = scene.depth_range;
+    let budget = terms.budget();
+    let strict = if terms.strict { 1.0 } else { 0.0 };
     let need = |d: f64| -> Result<f64> {
         let q = quantum(scene.format, mapping.window_depth(d)?)?;
-        Ok((q + budget) * (d / b))
+        Ok((strict * q + budget) * (d / b))
     };
     let mut eps = need(d1)?.max(need(d2)?);
     let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
@@ -566,7 +988,7 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, budget: f64) -> Resul
         let mut p = (w_lo.log2().floor() + 1.0).exp2();
         while p > 0.0 && p <= w_hi {
             let d = mapping.distance_at_window(p)?;
-            eps = eps.max((p * 2f64.powi(-23) + budget) * (d / b));
+            eps = eps.max((strict * p * 2f64.powi(-23) + budget) * (d / b));
             p *= 2.0;
         }
     }
@@ -582,6 +1004,10 @@ mod tests {
     use crate::ErrorKind;
 
     fn scene(format: DepthFormat, slope: f64, snapping: Snapping) -> Scene {
+        let profile = RasterizerProfile {
+            snapping,
+            ..RasterizerProfile::worst_case()
+        };
         let e = 0.577_350_269_189_625_7;
         Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
@@ -590,7 +1016,9 @@ mod tests {
             depth_range: [80.0, 120.0],
             slope,
             exact_depth: false,
-            snapping,
+            depth_test: DepthTest::Less,
+            base: Base::InsideFrustum,
+            profile,
         }
     }
 
@@ -642,7 +1070,10 @@ mod tests {
         assert_eq!(unsnapped.snap, 0.0);
         let s1 = error_terms(&scene(DepthFormat::Float32, 1.0, Snapping::SubpixelBits(8))).unwrap();
         let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
-        assert!((s3.snap / s1.snap - 3.0).abs() < 1e-12);
+        // S grows with the slope and with the axis-crossing bound (1 + s·e)/d₁.
+        let e = 0.577_350_269_189_625_7;
+        let want = 3.0 * (1.0 + 3.0 * e) / (1.0 + e);
+        assert!((s3.snap / s1.snap - want).abs() < 1e-12);
         assert!(s3.vertex > s1.vertex);
     }
 
@@ -698,6 +1129,7 @@ mod tests {
         let s = Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
             depth_range: [6.0, 10.0],
+            depth_test: DepthTest::Greater,
             ..scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped)
         };
         let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
@@ -729,6 +1161,7 @@ mod tests {
         let s = Scene {
             frustum: Frustum::new(-e, e, -e, e, 1.0, f64::INFINITY).unwrap(),
             depth_range: [50.0, 60.0],
+            depth_test: DepthTest::Greater,
             ..scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped)
         };
         let c = recommend_clip(&s, ClipDepth::ReversedZeroToOne).unwrap();
@@ -737,6 +1170,102 @@ mod tests {
         let dw = 1.0 / (60.0 - c.bleed_gap) - 1.0 / 60.0;
         let want = c.relative_epsilon / 60.0 + budget;
         assert!((dw - want).abs() <= 1e-9 * want, "{dw} vs {want}");
+    }
+
+    /// Under GL_LEQUAL a tie passes: the offset is one quantum smaller and the gap's window
+    /// separation one quantum larger than under GL_LESS, for the same terms. The gap is an eye
+    /// depth (−z) at the same pixel: Walker's window depth through `precision::window_depth`.
+    #[test]
+    fn or_equal_tests_trade_a_quantum_of_offset_for_a_quantum_of_gap() {
+        let less = scene(DepthFormat::Unorm16, 1.0, Snapping::Unsnapped);
+        let lequal = Scene {
+            depth_test: DepthTest::LessEqual,
+            ..less
+        };
+        let (a, b) = (recommend(&less).unwrap(), recommend(&lequal).unwrap());
+        let q = a.terms.quantum;
+        assert!((a.window_offset - b.window_offset - q).abs() <= 1e-12 * q);
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+        let sep = |r: &Recommendation| w(120.0) - w(120.0 - r.bleed_gap);
+        let budget = 2.0 * (a.terms.plane + a.terms.snap);
+        assert!((sep(&a) - (a.window_offset + budget)).abs() <= 1e-9 * sep(&a));
+        assert!((sep(&b) - (b.window_offset + budget + q)).abs() <= 1e-9 * sep(&b));
+    }
+
+    /// A base the rasterizer clips adds the term C, which grows with its reach; one inside the
+    /// frustum adds nothing. A reach so large that the offset would push the decal past the
+    /// near plane is refused as unresolvable, never answered.
+    #[test]
+    fn the_clip_term_grows_with_the_base_and_is_refused_when_useless() {
+        let inside = scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped);
+        let clipped = |reach| Scene {
+            base: Base::Clipped { reach },
+            ..inside
+        };
+        assert_eq!(error_terms(&inside).unwrap().clip, 0.0);
+        let (c1, c2) = (
+            error_terms(&clipped(1e3)).unwrap().clip,
+            error_terms(&clipped(1e4)).unwrap().clip,
+        );
+        assert!(c1 > 0.0 && c2 > 9.0 * c1, "{c1} {c2}");
+        assert!(recommend(&clipped(1e3)).unwrap().window_offset > c1);
+        assert_eq!(
+            recommend(&clipped(1e7)).unwrap_err().kind(),
+            ErrorKind::Unresolvable
+        );
+    }
+
+    /// A measured plane error (plus the scene's own V and depth span) replaces T + V + I where it
+    /// is smaller, never where it is larger; an unmeasured profile (or NaN) keeps the bound.
+    #[test]
+    fn a_measured_plane_error_is_used_only_below_the_bound() {
+        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+        let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
+        let with = |e: f64, measured: bool| Scene {
+            profile: RasterizerProfile {
+                plane_error: [e; 4],
+                measured,
+                ..worst.profile
+            },
+            ..worst
+        };
+        let t = error_terms(&worst).unwrap();
+        let bound = t.transform + t.vertex + t.interpolation;
+        assert_eq!(t.plane, bound);
+        let q = 1.0 / 16_777_215.0;
+        let geometry = t.interpolation - 3.0 * F32_UNIT_ROUNDOFF * w(120.0) + t.vertex;
+        let measured = error_terms(&with(0.5, true)).unwrap().plane;
+        assert!((measured - (0.5 * q + geometry)).abs() <= 1e-12 * measured);
+        assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
+        assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
+        assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
+    }
+
+    /// The depth test must match the convention; `DepthTest` round-trips GL enums.
+    #[test]
+    fn depth_tests_match_their_convention() {
+        let s = scene(DepthFormat::Float32, 1.0, Snapping::Unsnapped);
+        let reversed = Scene {
+            depth_test: DepthTest::GreaterEqual,
+            ..s
+        };
+        assert_eq!(recommend(&reversed).unwrap_err().kind(), ErrorKind::Domain);
+        assert_eq!(
+            recommend_clip(&s, ClipDepth::ReversedZeroToOne)
+                .unwrap_err()
+                .kind(),
+            ErrorKind::Domain
+        );
+        assert!(recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).is_ok());
+        for t in [
+            DepthTest::Less,
+            DepthTest::LessEqual,
+            DepthTest::Greater,
+            DepthTest::GreaterEqual,
+        ] {
+            assert_eq!(DepthTest::from_gl(t.gl_enum()).unwrap(), t);
+        }
+        assert!(DepthTest::from_gl(0x0202).is_err()); // GL_EQUAL
     }
 
     #[test]
@@ -787,7 +1316,10 @@ mod tests {
         );
         assert_eq!(
             kind(Scene {
-                snapping: Snapping::SubpixelBits(40),
+                profile: RasterizerProfile {
+                    snapping: Snapping::SubpixelBits(40),
+                    ..good.profile
+                },
                 ..good
             }),
             ErrorKind::Domain

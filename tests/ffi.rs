@@ -164,6 +164,7 @@ fn every_status_has_a_distinct_message_and_unknown_codes_are_safe() {
         ZSHIFT_ERR_UNRESOLVABLE,
         ZSHIFT_ERR_OVERFLOW,
         ZSHIFT_ERR_INTERNAL,
+        ZSHIFT_ERR_GL,
     ];
     let mut seen = std::collections::HashSet::new();
     for code in codes {
@@ -173,7 +174,7 @@ fn every_status_has_a_distinct_message_and_unknown_codes_are_safe() {
         assert!(!text.is_empty());
         assert!(seen.insert(text), "two statuses share the message {text:?}");
     }
-    for code in [-1, 7, i32::MAX, i32::MIN] {
+    for code in [-1, 8, i32::MAX, i32::MIN] {
         let text = unsafe { CStr::from_ptr(zshift_status_message(ZshiftStatus(code))) };
         assert_eq!(text.to_str().unwrap(), "unknown zshift status");
     }

@@ -93,7 +93,12 @@ fn transform_term(ratio: f64, d: f64) -> f64 {
         depth_range: [d, d],
         slope: 0.0,
         exact_depth: true,
-        snapping: zshift::recommend::Snapping::Unsnapped,
+        depth_test: zshift::recommend::DepthTest::Less,
+        base: zshift::recommend::Base::InsideFrustum,
+        profile: zshift::recommend::RasterizerProfile {
+            snapping: zshift::recommend::Snapping::Unsnapped,
+            ..Default::default()
+        },
     };
     zshift::recommend::error_terms(&scene).unwrap().transform
 }
@@ -232,7 +237,12 @@ fn sloped_plane_depth_stays_within_the_models_per_quad_bound() {
                     depth_range: [d_near, d_far],
                     slope,
                     exact_depth: false,
-                    snapping: zshift::recommend::Snapping::Unsnapped,
+                    depth_test: zshift::recommend::DepthTest::Less,
+                    base: zshift::recommend::Base::InsideFrustum,
+                    profile: zshift::recommend::RasterizerProfile {
+                        snapping: zshift::recommend::Snapping::Unsnapped,
+                        ..Default::default()
+                    },
                 };
                 let t = zshift::recommend::error_terms(&scene).unwrap();
                 let per_quad = 0.5 * t.quantum + t.transform + t.vertex + t.interpolation;
@@ -299,7 +309,12 @@ fn window_gradient_matches_the_rendered_depth_slope() {
             depth_range: [s.axis_depth(), s.axis_depth()],
             slope,
             exact_depth: false,
-            snapping: zshift::recommend::Snapping::SubpixelBits(8),
+            depth_test: zshift::recommend::DepthTest::Less,
+            base: zshift::recommend::Base::InsideFrustum,
+            profile: zshift::recommend::RasterizerProfile {
+                snapping: zshift::recommend::Snapping::SubpixelBits(8),
+                ..Default::default()
+            },
         };
         let [_, gy] = zshift::recommend::window_gradient(&scene, s.axis_depth()).unwrap();
         println!(

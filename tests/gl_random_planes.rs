@@ -125,7 +125,12 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
             depth_range: [d1, d2],
             slope: sx.abs() + sy.abs(),
             exact_depth: false,
-            snapping,
+            depth_test: zshift::recommend::DepthTest::Less,
+            base: zshift::recommend::Base::InsideFrustum,
+            profile: zshift::recommend::RasterizerProfile {
+                snapping: snapping,
+                ..Default::default()
+            },
         };
         let rec = recommend(&scene).unwrap();
         let plain = frustum.to_cols_array().unwrap();

@@ -14,8 +14,10 @@ const SIZE: u32 = 96;
 
 /// The stated factor: on sloped planes the recommended NDC offset is at most this many times
 /// the smallest offset that works (bisection over f32 steps of element 10). The model bounds
-/// worst cases that rarely line up; 15× is the largest measured at 256² (examples/sweep.rs).
-const FACTOR_SLOPED: f64 = 20.0;
+/// worst cases that rarely line up; the interpolation term's extrapolation across the viewport
+/// (llvmpipe evaluates the plane from the framebuffer origin) dominates steep planes near the
+/// near plane: 33× at f/n = 10, slope 1, on this 96² grid, where one step works.
+const FACTOR_SLOPED: f64 = 40.0;
 /// On facing planes the smallest working offset depends on where the plane's depth falls between
 /// two stored values (anything in (0, 2q] in NDC), so the recommendation is compared with the
 /// worst such phase, one quantum 2q: at most this factor above it (the f32 transform term).
@@ -193,6 +195,9 @@ fn c_entry_points_match_the_rust_recommendation() {
         slope: 1.0,
         exact_depth: 0,
         subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+        base_reach: 0.0,
+        plane_error: 0.0,
     };
     let rust = zshift::recommend::recommend(&scene_of(&s, zshift::recommend::Snapping::Unsnapped))
         .unwrap();
@@ -277,4 +282,155 @@ fn the_polygon_offset_equivalent_loses_no_pixel() {
             );
         }
     }
+}
+
+/// The C scene's newer fields reach the model with their documented defaults: depth_func 0 is
+/// the convention's strict test, GL_LEQUAL gives one quantum less offset, base_reach > 0 adds
+/// the clipping term, plane_error > 0 is a measured figure, a reversed-Z test under `[−1, 1]`
+/// is refused; zshift_clip_to_frustum gives the Rust cut.
+#[test]
+fn c_scene_fields_reach_the_model() {
+    use zshift::ffi::*;
+    let s = setup(DepthFormat::D24, 1e4, 0.5, 1.0, SIZE);
+    let (l, r, b, t, n, f) = s.frustum();
+    let (d1, d2) = s.decal_depth_range();
+    let scene = ZshiftScene {
+        l,
+        r,
+        b,
+        t,
+        n,
+        f,
+        viewport_width: SIZE,
+        viewport_height: SIZE,
+        depth_format: 0x81A6,
+        decal_near: d1,
+        decal_far: d2,
+        slope: 1.0,
+        exact_depth: 0,
+        subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
+        depth_func: ZshiftDepthTest { value: 0 },
+        base_reach: 0.0,
+        plane_error: 0.0,
+    };
+    let rec = |s: &ZshiftScene, clip: ZshiftClip| {
+        let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
+        let status = zshift_recommend_clip(s, clip, out.as_mut_ptr());
+        (
+            status,
+            (status == ZSHIFT_OK).then(|| unsafe { out.assume_init() }),
+        )
+    };
+    let (_, plain) = rec(&scene, ZSHIFT_CLIP_NEG_ONE_TO_ONE);
+    let plain = plain.unwrap();
+    let less = ZshiftScene {
+        depth_func: ZSHIFT_DEPTH_TEST_LESS,
+        ..scene
+    };
+    assert_eq!(rec(&less, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap(), plain);
+    let lequal = ZshiftScene {
+        depth_func: ZSHIFT_DEPTH_TEST_LEQUAL,
+        ..scene
+    };
+    let le = rec(&lequal, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap();
+    assert!((plain.window_offset - le.window_offset - plain.quantum).abs() < 1e-9 * plain.quantum);
+    let clipped = ZshiftScene {
+        base_reach: 1e3,
+        ..scene
+    };
+    let c = rec(&clipped, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap();
+    assert!(c.clip > 0.0 && c.window_offset > plain.window_offset);
+    let measured = ZshiftScene {
+        plane_error: 0.5,
+        ..scene
+    };
+    assert!(rec(&measured, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap().plane < plain.plane);
+    for (bad, status) in [
+        (
+            ZshiftScene {
+                depth_func: ZSHIFT_DEPTH_TEST_GREATER,
+                ..scene
+            },
+            ZSHIFT_ERR_DOMAIN,
+        ),
+        (
+            ZshiftScene {
+                base_reach: -1.0,
+                ..scene
+            },
+            ZSHIFT_ERR_DOMAIN,
+        ),
+        (
+            ZshiftScene {
+                plane_error: f64::NAN,
+                ..scene
+            },
+            ZSHIFT_ERR_NOT_FINITE,
+        ),
+    ] {
+        assert_eq!(rec(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE).0, status, "{bad:?}");
+    }
+    // Reversed Z: depth_func 0 means GL_GREATER; GL_LESS is a convention mismatch.
+    let float = ZshiftScene {
+        depth_format: 0x8CAC,
+        ..scene
+    };
+    assert_eq!(rec(&float, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE).0, ZSHIFT_OK);
+    let mismatched = ZshiftScene {
+        depth_func: ZSHIFT_DEPTH_TEST_LESS,
+        ..float
+    };
+    assert_eq!(
+        rec(&mismatched, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE).0,
+        ZSHIFT_ERR_DOMAIN
+    );
+    // zshift_clip_to_frustum: the Rust cut, vertex for vertex; too small a capacity refused.
+    let quad = [
+        [-1e3, -1e3, 490.0],
+        [1e3, -1e3, 490.0],
+        [1e3, 1e3, -510.0],
+        [-1e3, 1e3, -510.0],
+    ];
+    let frustum = zshift::Frustum::new(l, r, b, t, n, f).unwrap();
+    let want = zshift::recommend::clip_to_frustum(&frustum, &quad).unwrap();
+    let flat: Vec<f64> = quad.iter().flatten().copied().collect();
+    let mut out = [0.0f64; 30];
+    let mut count = 0u32;
+    let status = zshift_clip_to_frustum(
+        l,
+        r,
+        b,
+        t,
+        n,
+        f,
+        flat.as_ptr(),
+        4,
+        out.as_mut_ptr(),
+        10,
+        &mut count,
+    );
+    assert_eq!(status, ZSHIFT_OK);
+    assert_eq!(count as usize, want.len());
+    assert!(want.len() >= 3);
+    let got: Vec<[f64; 3]> = out[..3 * want.len()]
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    assert_eq!(got, want);
+    let mut keep = [7.0f64; 6];
+    let mut kept = 99u32;
+    let status = zshift_clip_to_frustum(
+        l,
+        r,
+        b,
+        t,
+        n,
+        f,
+        flat.as_ptr(),
+        4,
+        keep.as_mut_ptr(),
+        2,
+        &mut kept,
+    );
+    assert_eq!((status, kept, keep), (ZSHIFT_ERR_DOMAIN, 99, [7.0; 6]));
 }

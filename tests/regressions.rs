@@ -127,6 +127,9 @@ fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
         slope: 0.0,
         exact_depth: 3,
         subpixel_bits: -1,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+        base_reach: 0.0,
+        plane_error: 0.0,
     };
     let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
     let status = zshift_recommend(&scene, out.as_mut_ptr());
@@ -162,6 +165,9 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             slope: 0.0028721339874085983,
             exact_depth: 0,
             subpixel_bits: -1,
+            depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+            base_reach: 0.0,
+            plane_error: 0.0,
         },
         ZshiftScene {
             l: -7.645722780061472,
@@ -178,6 +184,9 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             slope: 4.771128792552485,
             exact_depth: 0,
             subpixel_bits: -1,
+            depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+            base_reach: 0.0,
+            plane_error: 0.0,
         },
     ];
     for scene in scenes {
@@ -222,6 +231,9 @@ fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
         slope: 0.0,
         exact_depth: 0,
         subpixel_bits: -1,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+        base_reach: 0.0,
+        plane_error: 0.0,
     };
     let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
     let status = zshift::ffi::zshift_recommend_clip(

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "zshift.h"
 
@@ -44,6 +45,7 @@ enum class Status : std::int32_t {
   unresolvable = ZSHIFT_ERR_UNRESOLVABLE,
   overflow = ZSHIFT_ERR_OVERFLOW,
   internal = ZSHIFT_ERR_INTERNAL,
+  gl = ZSHIFT_ERR_GL,
 };
 
 /// The C status code of a Status.
@@ -163,13 +165,15 @@ using Recommendation = ZshiftRecommendation;
 /// `subpixel_bits` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
 inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
 
-/// A Scene from its fields, in declaration order; usable in constant expressions.
+/// A Scene from its fields, in declaration order; usable in constant expressions. depth_func,
+/// base_reach and plane_error take their documented defaults (0: the convention's strict test,
+/// a base inside the frustum, no measured plane error); set them on the result.
 constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
                            std::uint32_t viewport_width, std::uint32_t viewport_height,
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
-               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits};
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, 0.0};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
@@ -503,6 +507,51 @@ inline std::string last_error() { return zshift_last_error(); }
 
 /// The library version, such as "0.1.0".
 inline std::string version() { return zshift_version(); }
+
+// ---------------------------------------------------------------------------------------------
+// The rasterizer probe (zshift_probe): measures the current GL context's profile through a
+// function loader. Added by the probe's owner; keep this block separate.
+// ---------------------------------------------------------------------------------------------
+
+/// What a rasterizer does that the offset model needs (the C ZshiftProfile; its fields are
+/// documented in zshift.h). Get one from probe() or profile_worst_case().
+using Profile = ZshiftProfile;
+
+/// Profile::near_clip values.
+enum class NearClip : std::int32_t {
+  clipped_f32 = ZSHIFT_NEAR_CLIP_CLIPPED_F32,
+  plane_preserving = ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
+};
+
+/// The worst-case profile: the recommendation's default assumptions (measured == 0).
+inline Profile profile_worst_case() {
+  Profile out{};
+  detail::check(zshift_profile_worst_case(&out));
+  return out;
+}
+
+/// Measures the rasterizer of the OpenGL context current on this thread (zshift_probe): call it
+/// once after creating the context. `loader(name, user)` returns the entry point `name` or NULL.
+/// Every GL state the probe touches is restored. Throws Error: Status::gl with what failed in
+/// zshift's message (a missing entry point, no context or one older than 3.2, a pending GL
+/// error, a refused depth format), Status::null_pointer for a null loader.
+inline Profile probe(ZshiftGlLoader loader, void *user = nullptr) {
+  Profile out{};
+  detail::check(zshift_probe(loader, user, &out));
+  return out;
+}
+
+/// probe() with any callable taking the entry point's name, such as
+/// `[](const char *name) { return eglGetProcAddress(name); }` or glfwGetProcAddress: its result
+/// (a function pointer, or NULL) is converted to ZshiftGlProc.
+template <typename GetProc>
+Profile probe_with(GetProc &&get_proc) {
+  ZshiftGlLoader trampoline = [](const char *name, void *user) -> ZshiftGlProc {
+    auto &get = *static_cast<std::remove_reference_t<GetProc> *>(user);
+    return reinterpret_cast<ZshiftGlProc>(get(name));
+  };
+  return probe(trampoline, static_cast<void *>(&get_proc));
+}
 
 }  // namespace zshift
 

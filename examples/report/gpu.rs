@@ -408,7 +408,12 @@ fn recommendation(
         depth_range: [d1, d2],
         slope: scene.slope,
         exact_depth: scene.slope == 0.0,
-        snapping: Snapping::Unsnapped,
+        depth_test: zshift::recommend::DepthTest::Less,
+        base: zshift::recommend::Base::InsideFrustum,
+        profile: zshift::recommend::RasterizerProfile {
+            snapping: Snapping::Unsnapped,
+            ..Default::default()
+        },
     })
     .map_err(|e| format!("recommend for decal at {y:?}: {e}"))
 }

@@ -45,6 +45,8 @@ mod polygon_offset;
 
 mod plan;
 
+mod probe;
+
 pub use builders::*;
 pub use kinds::*;
 pub use last_error::zshift_last_error;
@@ -53,6 +55,7 @@ pub use offset::*;
 pub use plan::*;
 pub use polygon_offset::*;
 pub use precision::*;
+pub use probe::*;
 pub use recommend::*;
 
 /// The version of this C ABI. It changes when a declaration in this header changes
@@ -88,6 +91,11 @@ pub const ZSHIFT_ERR_OVERFLOW: ZshiftStatus = ZshiftStatus(5);
 /// A bug inside zshift was caught at the ABI boundary; please report it.
 pub const ZSHIFT_ERR_INTERNAL: ZshiftStatus = ZshiftStatus(6);
 
+/// The current OpenGL context could not do what `zshift_probe` needs: the loader returned NULL
+/// for an entry point, no context (or one older than 3.2) is current, a GL error was pending,
+/// a depth format was refused, or a GL call failed.
+pub const ZSHIFT_ERR_GL: ZshiftStatus = ZshiftStatus(7);
+
 impl From<ErrorKind> for ZshiftStatus {
     fn from(kind: ErrorKind) -> Self {
         match kind {
@@ -95,6 +103,7 @@ impl From<ErrorKind> for ZshiftStatus {
             ErrorKind::Domain => ZSHIFT_ERR_DOMAIN,
             ErrorKind::Unresolvable => ZSHIFT_ERR_UNRESOLVABLE,
             ErrorKind::Overflow => ZSHIFT_ERR_OVERFLOW,
+            ErrorKind::Gl => ZSHIFT_ERR_GL,
         }
     }
 }
@@ -177,6 +186,7 @@ pub extern "C" fn zshift_status_message(status: ZshiftStatus) -> *const c_char {
         ZSHIFT_ERR_UNRESOLVABLE => c"no such value exists: the depth step is too large here",
         ZSHIFT_ERR_OVERFLOW => c"the result does not fit its floating-point type",
         ZSHIFT_ERR_INTERNAL => c"internal error in zshift (a caught panic); please report it",
+        ZSHIFT_ERR_GL => c"the current OpenGL context could not do what the probe needs",
         _ => c"unknown zshift status",
     };
     text.as_ptr()

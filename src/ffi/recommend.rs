@@ -4,11 +4,11 @@
 use std::panic::UnwindSafe;
 
 use super::{
-    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftStatus,
-    ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
+    ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
 };
 use crate::error::Result;
-use crate::projection::Frustum;
+use crate::projection::{ClipDepth, Frustum};
 
 /// `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
 /// vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
@@ -55,6 +55,22 @@ pub struct ZshiftScene {
     pub exact_depth: u32,
     /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
     pub subpixel_bits: i32,
+    /// The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+    /// reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
+    /// struct): the convention's strict test (GL_LESS, GL_GREATER under reversed Z). The `...EQUAL` tests need one quantum less offset and
+    /// report a bleed gap one quantum wider (a tie passes).
+    pub depth_func: ZshiftDepthTest,
+    /// 0: every vertex of the base lies inside the view frustum, so the rasterizer clips
+    /// nothing (a base cut by `zshift_clip_to_frustum`, or one that fits the screen). > 0: the
+    /// base may cross the near plane or the screen's edges and is clipped by the rasterizer in
+    /// float; the value is the largest |x|, |y| or |z| of its eye-space vertices, and the
+    /// offset gains the clipping term C (README, "Verified on a rasterizer": it is large; cut
+    /// the base instead where you can).
+    pub base_reach: f64,
+    /// The rasterizer's measured per-pixel plane error for this depth format, from the probe:
+    /// in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
+    /// GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
+    pub plane_error: f64,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -68,13 +84,14 @@ pub struct ZshiftRecommendation {
     pub epsilon: f64,
     /// The NDC depth offset -epsilon * m10 (= 2 * window_offset).
     pub ndc_offset: f64,
-    /// The window-depth offset: quantum + 2 * (transform + vertex + interpolation + snap).
+    /// The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
+    /// 2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
     pub window_offset: f64,
     /// The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
     /// (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
     pub delta_at_far: f64,
-    /// Occluders nearer than the base by at least this eye-space distance (along the line of
-    /// sight) are never overdrawn by the decal.
+    /// Occluders whose eye depth (-z) at the same pixel is smaller than the base's by at least
+    /// this are never overdrawn by the decal.
     pub bleed_gap: f64,
     /// The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
     /// 0 when unsnapped.
@@ -91,6 +108,12 @@ pub struct ZshiftRecommendation {
     pub interpolation: f64,
     /// Term S: sub-pixel snapping of a sloped plane before depth setup.
     pub snap: f64,
+    /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
+    /// or the measured plane_error where that is smaller.
+    pub plane: f64,
+    /// Term C: the rasterizer's float clipping of a base that reaches outside the frustum
+    /// (0 when base_reach is 0).
+    pub clip: f64,
 }
 
 impl ZshiftRecommendation {
@@ -117,6 +140,8 @@ impl ZshiftRecommendation {
             vertex: terms.vertex,
             interpolation: terms.interpolation,
             snap: terms.snap,
+            plane: terms.plane,
+            clip: terms.clip,
         }
     }
 }
@@ -142,8 +167,8 @@ fn checked_record(
     checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
 }
 
-fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
-    use crate::recommend::{Scene, Snapping};
+fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
+    use crate::recommend::{Base, DepthTest, RasterizerProfile, Scene, Snapping};
     let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
@@ -154,6 +179,33 @@ fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
             ))
         }
     };
+    let depth_test = match s.depth_func.value {
+        0 if clip == ClipDepth::ReversedZeroToOne => DepthTest::Greater,
+        0 => DepthTest::Less,
+        func => DepthTest::from_gl(func).map_err(|e| e.with_code("depth_func", func))?,
+    };
+    let base = if s.base_reach == 0.0 {
+        Base::InsideFrustum
+    } else {
+        Base::Clipped {
+            reach: s.base_reach,
+        }
+    };
+    let mut profile = RasterizerProfile {
+        snapping,
+        ..RasterizerProfile::worst_case()
+    };
+    if s.plane_error != 0.0 {
+        crate::domain::finite(s.plane_error, "plane_error is NaN or infinite")?;
+        if s.plane_error < 0.0 {
+            return Err(
+                crate::domain::domain("plane_error must be >= 0 (0: not measured)")
+                    .with_value("plane_error", s.plane_error),
+            );
+        }
+        profile.plane_error[crate::recommend::profile_index(format)] = s.plane_error;
+        profile.measured = true;
+    }
     Ok(Scene {
         frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
         viewport: [s.viewport_width, s.viewport_height],
@@ -161,7 +213,9 @@ fn to_model(s: &ZshiftScene) -> Result<crate::recommend::Scene> {
         depth_range: [s.decal_near, s.decal_far],
         slope: s.slope,
         exact_depth: s.exact_depth != 0,
-        snapping,
+        depth_test,
+        base,
+        profile,
     })
 }
 
@@ -186,7 +240,7 @@ pub extern "C" fn zshift_recommend(
         return null_pointer("scene");
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend(&to_model(&s)?)?;
+        let r = crate::recommend::recommend(&to_model(&s, ClipDepth::NegOneToOne)?)?;
         Ok(ZshiftRecommendation::new(
             r.epsilon,
             r.ndc_offset,
@@ -215,7 +269,7 @@ pub extern "C" fn zshift_recommend_matrix(
         return null_pointer("scene");
     };
     checked_array(out, move || {
-        let model = to_model(&s)?;
+        let model = to_model(&s, ClipDepth::NegOneToOne)?;
         let r = crate::recommend::recommend(&model)?;
         crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
     })
@@ -253,7 +307,7 @@ pub extern "C" fn zshift_recommend_clip(
         return null_pointer("scene");
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?;
+        let r = crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?;
         let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
             0.5
         } else {
@@ -289,6 +343,89 @@ pub extern "C" fn zshift_recommend_clip_matrix(
         return null_pointer("scene");
     };
     checked_array(out, move || {
-        Ok(crate::recommend::recommend_clip(&to_model(&s)?, clip_of(clip)?)?.matrix)
+        Ok(
+            crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?
+                .matrix,
+        )
     })
+}
+
+/// Cuts a convex base polygon to the view frustum of `glFrustum(l, r, b, t, n, f)` in double,
+/// slightly inside (near plane at n * (1 + 2^-16), far at f * (1 - 2^-16), sides inward by
+/// 2^-16 of the frustum's width: less than a quarter pixel up to 16384 pixels), so that the
+/// rasterizer clips nothing of it: draw the result as a triangle fan and pass base_reach = 0.
+/// A base the rasterizer clips in float (a ground plane running behind the camera) carries the
+/// large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
+/// (x, y, z, in order around the polygon); `out` receives up to `capacity` vertices (count + 6
+/// always suffices) and `*out_count` how many were written (0 when nothing is inside).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `polygon` (with count > 0), `out` or `out_count` is NULL;
+/// ZSHIFT_ERR_NOT_FINITE for a NaN or infinite coordinate or frustum parameter (except
+/// f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, count > 65536, or a result with more
+/// than `capacity` vertices. `out` and `*out_count` are untouched on error.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn zshift_clip_to_frustum(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    polygon: *const f64,
+    count: u32,
+    out: *mut f64,
+    capacity: u32,
+    out_count: *mut u32,
+) -> ZshiftStatus {
+    if polygon.is_null() && count > 0 {
+        return null_pointer("polygon");
+    }
+    if out.is_null() {
+        return null_pointer("out");
+    }
+    if count > 65_536 {
+        super::last_error::set("count must be at most 65536 vertices");
+        return ZSHIFT_ERR_DOMAIN;
+    }
+    let input = polygon_from_c(polygon, count as usize);
+    checked(
+        out_count,
+        move || {
+            let frustum = Frustum::new(l, r, b, t, n, f)?;
+            let cut = crate::recommend::clip_to_frustum(&frustum, &input)?;
+            if cut.len() > capacity as usize {
+                return Err(crate::domain::domain(
+                    "the cut polygon has more vertices than capacity (count + 6 always suffices)",
+                ));
+            }
+            Ok(cut)
+        },
+        |out_count, cut| store_vertices(out, out_count, &cut),
+    )
+}
+
+/// Reads `count` vertices of three doubles (`count > 0` needs a non-NULL `polygon`, checked by
+/// the caller; no alignment needed).
+fn polygon_from_c(polygon: *const f64, count: usize) -> Vec<[f64; 3]> {
+    (0..count)
+        .map(|i| {
+            // SAFETY: the caller promises `count` readable vertices; read_unaligned needs no
+            // alignment.
+            [0, 1, 2].map(|k| unsafe { polygon.add(3 * i + k).read_unaligned() })
+        })
+        .collect()
+}
+
+/// Writes the cut polygon and its vertex count (both pointers checked non-NULL by the caller,
+/// `cut.len()` within the caller's capacity).
+fn store_vertices(out: *mut f64, out_count: *mut u32, cut: &[[f64; 3]]) {
+    for (i, v) in cut.iter().enumerate() {
+        for (k, c) in v.iter().enumerate() {
+            // SAFETY: the caller promises `capacity` writable vertices, and cut.len() <= capacity.
+            unsafe { out.add(3 * i + k).write_unaligned(*c) };
+        }
+    }
+    // SAFETY: `checked` has refused NULL.
+    unsafe { out_count.write_unaligned(cut.len() as u32) };
 }

@@ -730,8 +730,8 @@ static void test_recommend_clip(void) {
 static void test_status_messages(void) {
   static const ZshiftStatus known[] = {ZSHIFT_OK,          ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE,
                                        ZSHIFT_ERR_DOMAIN,  ZSHIFT_ERR_UNRESOLVABLE, ZSHIFT_ERR_OVERFLOW,
-                                       ZSHIFT_ERR_INTERNAL};
-  static const ZshiftStatus unknown[] = {-1, 7, INT32_MAX, INT32_MIN};
+                                       ZSHIFT_ERR_INTERNAL, ZSHIFT_ERR_GL};
+  static const ZshiftStatus unknown[] = {-1, 8, INT32_MAX, INT32_MIN};
   const char *unknown_text = "unknown zshift status";
   size_t i, j;
   CHECK(ZSHIFT_OK == 0, "ZSHIFT_OK must be 0");

@@ -43,7 +43,12 @@ pub fn scene_of(s: &Setup, snapping: Snapping) -> Scene {
         slope: s.slope,
         // The setup's facing quads put one f32 z on every corner.
         exact_depth: s.slope == 0.0,
-        snapping,
+        depth_test: zshift::recommend::DepthTest::Less,
+        base: zshift::recommend::Base::InsideFrustum,
+        profile: zshift::recommend::RasterizerProfile {
+            snapping: snapping,
+            ..Default::default()
+        },
     }
 }
 

@@ -21,6 +21,11 @@ SOURCES = [
     "bindings/python/tests/test_quickstart.py",  # python3 -m unittest discover ...
     "tests/packaging/run.sh",  # bash tests/packaging/run.sh
     "tests/packaging/CMakeLists.txt",  # bash tests/packaging/run.sh
+    "tests/packaging/pip.sh",  # bash tests/packaging/pip.sh
+    "examples/engines/common/decal_scene.h",  # make -C examples/engines check
+    "examples/engines/osg/decal_osg.cpp",  # make -C examples/engines check
+    "examples/engines/irrlicht/decal_irrlicht.cpp",  # make -C examples/engines check
+    "examples/engines/ogre/decal_ogre.cpp",  # make -C examples/engines check
 ]
 
 START = re.compile(r"\[quickstart-([a-z0-9-]+)\]")

@@ -313,8 +313,10 @@ class Recommend(unittest.TestCase):
         for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
                                  ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
             body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
-            fields = re.findall(r"^\s*(double|uint32_t|int32_t) (\w+);", body, re.M)
-            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int"}
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest) (\w+);", body, re.M)
+            # ZshiftDepthTest is a struct of one uint32_t: the same layout.
+            ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int",
+                            "ZshiftDepthTest": "c_uint"}
             self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
             for (c_type, name), (_, field_type) in zip(fields, cls._fields_):
                 self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")
@@ -494,7 +496,7 @@ class FrontDoor(unittest.TestCase):
         for name, m, clip, is_ortho in cases:
             for delta, d in ((0.01, 50.0), (2.5, 400.0)):
                 what = f"{name} delta {delta} at {d}"
-                out = list(zshift.offset_matrix(m, clip, delta, d))
+                out = [float(x) for x in zshift.offset_matrix(m, clip, delta, d)]
                 m10, m14, fd, fdelta = Fraction(m[10]), Fraction(m[14]), Fraction(d), Fraction(delta)
                 if is_ortho:
                     self.check(m, out, 14, Fraction(out[14]) - m14, m10 * fdelta, what)

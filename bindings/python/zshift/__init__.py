@@ -1,8 +1,9 @@
 """zshift for Python: depth offsets through the projection matrix, and exact depth precision.
 
 A thin ctypes layer over zshift's C ABI (``include/zshift.h``); no compiled extension. The library
-is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then ``target/release``,
-then ``target/debug``, then the system path) on the first call.
+is found as :mod:`zshift._library` describes (``ZSHIFT_LIBRARY`` first, then the copy ``pip install``
+put inside this package, then ``target/release``, then ``target/debug``, then the system path) on
+the first call.
 
 Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
 [-1, 1], window depth [0, 1]; ``n``, ``f``, ``d`` are positive distances (``f`` may be
@@ -40,6 +41,7 @@ __all__ = [
     "status_message", "version", "library_path",
     "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
     "ortho_depth_step",
+    "probe", "profile_worst_case", "Profile", "NEAR_CLIP_CLIPPED_F32", "NEAR_CLIP_PLANE_PRESERVING",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
@@ -66,6 +68,7 @@ class Status(enum.IntEnum):
     UNRESOLVABLE = 4
     OVERFLOW = 5
     INTERNAL = 6
+    GL = 7
 
 
 class ZshiftError(ValueError):
@@ -612,3 +615,95 @@ def ortho_depth_step(n, f, clip, format, d):
     """The exact depth step of an orthographic projection at eye distance ``d``: ``r*(f - n)``
     (``zshift_ortho_depth_step``; the same at every distance for UNORM formats)."""
     return _scalar(lambda out: _front_door().zshift_ortho_depth_step(n, f, _enum(clip, Clip), _enum(format, Format), d, out))
+
+
+# ---------------------------------------------------------------------------------------------
+# The rasterizer probe (zshift_probe): measures the current GL context's profile through a
+# function loader. Added by the probe's owner; keep this block separate.
+# ---------------------------------------------------------------------------------------------
+
+#: ``Profile.near_clip``: primitives crossing the near plane are clipped in float (worst case).
+NEAR_CLIP_CLIPPED_F32 = 1
+#: ``Profile.near_clip``: a primitive crossing the near plane keeps its plane's depth.
+NEAR_CLIP_PLANE_PRESERVING = 2
+
+
+class _ZshiftProfile(ctypes.Structure):
+    """The C ``ZshiftProfile`` (fields documented in zshift.h)."""
+
+    _fields_ = [
+        ("measured", ctypes.c_uint32),
+        ("subpixel_bits", ctypes.c_int32),
+        ("resolvable", ctypes.c_double * 4),
+        ("plane_error", ctypes.c_double * 4),
+        ("plane_error_reversed", ctypes.c_double),
+        ("error_ulps", ctypes.c_double),
+        ("near_clip", ctypes.c_int32),
+        ("probe_seconds", ctypes.c_double),
+    ]
+
+
+#: What :func:`probe` and :func:`profile_worst_case` return: the C ``ZshiftProfile``'s fields
+#: (arrays as 4-tuples in the order D16, D24, D32, D32F; see zshift.h for each field).
+Profile = collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
+
+# ZshiftGlLoader: ZshiftGlProc (*)(const char *name, void *user); a function pointer travels
+# as an address (c_void_p), the same size on every platform Python's ctypes supports.
+_GL_LOADER = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_char_p, ctypes.c_void_p)
+
+
+@functools.lru_cache(maxsize=None)
+def _probe_lib():
+    lib = _lib()
+    lib.zshift_probe.argtypes = [_GL_LOADER, ctypes.c_void_p, ctypes.POINTER(_ZshiftProfile)]
+    lib.zshift_probe.restype = ctypes.c_int32
+    lib.zshift_profile_worst_case.argtypes = [ctypes.POINTER(_ZshiftProfile)]
+    lib.zshift_profile_worst_case.restype = ctypes.c_int32
+    return lib
+
+
+def _profile(record):
+    values = []
+    for name, _ in _ZshiftProfile._fields_:
+        value = getattr(record, name)
+        values.append(tuple(value) if isinstance(value, ctypes.Array) else value)
+    return Profile(*values)
+
+
+def profile_worst_case():
+    """The worst-case :class:`Profile`: the recommendation's default assumptions
+    (``measured == 0``)."""
+    out = _ZshiftProfile()
+    _check(_probe_lib().zshift_profile_worst_case(ctypes.byref(out)))
+    return _profile(out)
+
+
+def probe(get_proc_address):
+    """Measures the rasterizer of the OpenGL context current on this thread (``zshift_probe``)
+    and returns its :class:`Profile`. Call it once after creating the context.
+
+    ``get_proc_address(name)`` takes an entry point's name (``str``) and returns its address as
+    an ``int`` (or ``None``/0 when there is none): ``glfw.get_proc_address``, or EGL's through
+    ctypes::
+
+        egl = ctypes.CDLL("libEGL.so.1")
+        egl.eglGetProcAddress.restype = ctypes.c_void_p
+        egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+        profile = zshift.probe(lambda name: egl.eglGetProcAddress(name.encode()))
+
+    Every GL state the probe touches is restored. Raises :class:`ZshiftError`: ``Status.GL``
+    when the context cannot do what the probe needs (a missing entry point, no context or one
+    older than 3.2, a GL error pending, a refused depth format); an exception raised by
+    ``get_proc_address`` counts as "no such entry point"."""
+
+    def loader(name, _user):
+        try:
+            address = get_proc_address(name.decode("ascii"))
+        except Exception:  # a loader that fails finds nothing; the probe says which entry point
+            return None
+        return address or None
+
+    callback = _GL_LOADER(loader)  # kept alive for the call's duration
+    out = _ZshiftProfile()
+    _check(_probe_lib().zshift_probe(callback, None, ctypes.byref(out)))
+    return _profile(out)

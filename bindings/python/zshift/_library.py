@@ -2,14 +2,17 @@
 
 Search order: the ``ZSHIFT_LIBRARY`` environment variable (a path to the library file; if it is
 set, nothing else is tried, so a wrong path fails loudly instead of silently picking up another
-copy), then ``target/release`` and ``target/debug`` of the source tree this package sits in, then
-the system's library path (an installed copy, via ``ctypes.util.find_library``).
+copy), then the library ``pip install .`` put inside this package (``zshift/_zshift*.so``, built
+by setuptools-rust from the crate, see pyproject.toml), then ``target/release`` and
+``target/debug`` of the source tree this package sits in (a development checkout), then the
+system's library path (an installed copy, via ``ctypes.util.find_library``).
 """
 
 import ctypes
 import ctypes.util
 import os
 import sys
+import sysconfig
 from pathlib import Path
 
 # The file name cargo gives the cdylib on each platform.
@@ -22,6 +25,22 @@ else:
 
 # bindings/python/zshift/_library.py -> the repository root is three levels up.
 _SOURCE_ROOT = Path(__file__).resolve().parents[3]
+_PACKAGE_DIR = Path(__file__).resolve().parent
+
+
+def packaged():
+    """The library ``pip install`` placed in this package, or ``None`` in a source checkout.
+
+    setuptools-rust names it like an extension module: ``_zshift`` + this interpreter's
+    extension suffix (``.cpython-311-x86_64-linux-gnu.so``), or ``.abi3.so`` for a limited-API
+    wheel; it is a plain C library all the same, loaded with ctypes.
+    """
+    suffixes = [sysconfig.get_config_var("EXT_SUFFIX") or "", ".abi3" + (".pyd" if sys.platform == "win32" else ".so")]
+    for suffix in suffixes:
+        path = _PACKAGE_DIR / ("_zshift" + suffix)
+        if suffix and path.is_file():
+            return path
+    return None
 
 
 class LibraryNotFound(ImportError):
@@ -33,7 +52,8 @@ def candidates():
     override = os.environ.get("ZSHIFT_LIBRARY")
     if override:
         return [Path(override)]
-    return [
+    inside = packaged()
+    return ([inside] if inside is not None else []) + [
         _SOURCE_ROOT / "target" / "release" / _FILE_NAME,
         _SOURCE_ROOT / "target" / "debug" / _FILE_NAME,
         None,
@@ -64,8 +84,9 @@ def load():
         _declare(lib)
         return lib, str(path)
     raise LibraryNotFound(
-        "cannot load the zshift library; build it with `cargo build --release` or set "
-        "ZSHIFT_LIBRARY to its path. Tried: " + "; ".join(tried)
+        "cannot load the zshift library; install the package with `pip install .` from the "
+        "repository root, or build it with `cargo build --release`, or set ZSHIFT_LIBRARY to its "
+        "path. Tried: " + "; ".join(tried)
     )
 
 
@@ -79,6 +100,7 @@ class ZshiftScene(ctypes.Structure):
         ("depth_format", ctypes.c_uint32),
         ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
         ("exact_depth", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
+        ("depth_func", ctypes.c_uint32), ("base_reach", ctypes.c_double), ("plane_error", ctypes.c_double),
     ]
 
 
@@ -88,7 +110,7 @@ class ZshiftRecommendation(ctypes.Structure):
     _fields_ = [(name, ctypes.c_double) for name in (
         "epsilon", "ndc_offset", "window_offset", "delta_at_far", "bleed_gap",
         "polygon_offset_factor", "polygon_offset_units",
-        "quantum", "transform", "vertex", "interpolation", "snap",
+        "quantum", "transform", "vertex", "interpolation", "snap", "plane", "clip",
     )]
 
 

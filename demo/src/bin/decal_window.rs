@@ -1,15 +1,17 @@
 //! The decal demonstration in a window (glutin + winit, X11 — or XWayland — through GLX or EGL),
-//! for people with a display: the scene of `examples/decal.rs`, rendered by the window's own OpenGL context with
-//! no offset, the seed's `LoadOffsetMatrix` and zshift's recommended offset, side by side.
+//! for people with a display: the scene of the headless demonstration (`src/main.rs`), rendered
+//! by the window's own OpenGL context with every method of `scene::METHODS` (no offset, the
+//! seed's `LoadOffsetMatrix`, `glPolygonOffset` as three.js and Ogre set it, zshift's
+//! recommended offset), side by side.
 //!
 //! ```sh
-//! cargo run --release --features windowed --example decal_window
-//! cargo run --release --features windowed --example decal_window -- --frames 3 --screenshot shot.png
+//! cargo run --release -p zshift-demo --features windowed --bin decal_window
+//! cargo run --release -p zshift-demo --features windowed --bin decal_window -- --frames 3 --screenshot shot.png
 //! ```
 //!
-//! Keys: `1`, `2`, `3` show one render filling the window (none, seed, zshift), `0` all three,
-//! `Esc` quits. The lost decal pixels of each are printed (the same table as `decal`) and shown
-//! in the title.
+//! Keys: `1` to `5` show one render filling the window (in the order of `scene::METHODS`), `0`
+//! all of them, `Esc` quits. The lost and bled decal pixels of each are printed (the same table
+//! as the headless demonstration) and shown in the title.
 //!
 //! Options: `--frames N` draws N frames and exits (for scripted runs, e.g. under Xvfb);
 //! `--screenshot PATH` reads the window's back buffer with `glReadPixels` at the last frame
@@ -18,8 +20,8 @@
 //! for EGL first (the default is GLX, with EGL as the fallback).
 //!
 //! Each method is drawn into a `SIZE × SIZE` FBO with a 24-bit depth renderbuffer, exactly as the
-//! headless demonstration draws (the shared `decal_scene` module holds the scene, the three
-//! matrices and the counting), then blitted into the window: so the depth format is the one the
+//! headless demonstration draws (the shared `zshift_demo::scene` module holds the scene, the
+//! methods and the counting), then blitted into the window: so the depth format is the one the
 //! counts and the recommendation assume, whatever depth buffer the window's visual has. Needs an
 //! OpenGL compatibility context (fixed-function `glFrustum`, `glLoadMatrixf`, `glBegin`), as
 //! legacy engines use. Exits nonzero, with the reason, if no window or context can be made, or
@@ -47,13 +49,14 @@ use winit::raw_window_handle::HasWindowHandle;
 use winit::window::{Window, WindowId};
 use zshift_harness::{Image, Quad};
 
-// The scene, the three projections and the renders, shared with examples/decal.rs.
-#[path = "decal_scene/mod.rs"]
-mod decal_scene;
-use decal_scene::{compare, report, verdict, write_png, Canvas, Row, DEPTH, MAIN, SIZE};
+// The scene, the methods and the renders, shared with the headless demonstration.
+use zshift_demo::picture::Picture;
+use zshift_demo::scene::{compare, report, verdict, Canvas, Row, DEPTH, MAIN, SIZE};
 
 /// Gap between panels and around them, in pixels.
 const GAP: u32 = 8;
+/// One panel per method.
+const PANELS: usize = zshift_demo::scene::METHODS.len();
 /// Window background, distinct from the renders' black clear colour.
 const BACKGROUND: [f32; 4] = [0.3, 0.3, 0.3, 1.0];
 
@@ -221,7 +224,12 @@ impl Canvas for WindowCanvas {
         (self.fixed.load_matrixf)(m.as_ptr());
         self.check("glLoadMatrixf")
     }
-    fn draw(&mut self, quad: &Quad, color: [f32; 4]) -> Result<(), String> {
+    fn draw(
+        &mut self,
+        quad: &Quad,
+        color: [f32; 4],
+        polygon_offset: Option<(f32, f32)>,
+    ) -> Result<(), String> {
         self.bind();
         let f = &self.fixed;
         (f.matrix_mode)(GL_MODELVIEW);
@@ -230,6 +238,13 @@ impl Canvas for WindowCanvas {
             self.gl.enable(glow::DEPTH_TEST);
             self.gl.depth_func(glow::LESS);
             self.gl.depth_mask(true);
+            match polygon_offset {
+                Some((factor, units)) => {
+                    self.gl.enable(glow::POLYGON_OFFSET_FILL);
+                    self.gl.polygon_offset(factor, units);
+                }
+                None => self.gl.disable(glow::POLYGON_OFFSET_FILL),
+            }
         }
         (f.begin)(GL_QUADS);
         (f.color4f)(color[0], color[1], color[2], color[3]);
@@ -272,7 +287,7 @@ unsafe fn read_pixels(gl: &glow::Context, buffer: u32, width: u32, height: u32) 
     }
 }
 
-/// Which renders the window shows: all three side by side, or one filling it.
+/// Which renders the window shows: all side by side, or one filling it.
 #[derive(Clone, Copy, PartialEq)]
 enum View {
     All,
@@ -283,7 +298,7 @@ enum View {
 /// bottom-left, panels square and as large as fits, centred.
 fn layout(view: View, width: u32, height: u32) -> Vec<(usize, u32, u32, u32)> {
     let shown: Vec<usize> = match view {
-        View::All => vec![0, 1, 2],
+        View::All => (0..PANELS).collect(),
         View::One(i) => vec![i],
     };
     let k = shown.len() as u32;
@@ -309,7 +324,7 @@ fn check_panels(
 ) -> Result<usize, String> {
     let mut checked = 0;
     for &(row, x0, y0, side) in panels.iter().filter(|p| p.3 == SIZE) {
-        let image = &rows[row].4;
+        let image = &rows[row].image;
         let differ = (0..side as usize)
             .flat_map(|y| (0..side as usize).map(move |x| (x, y)))
             .filter(|&(x, y)| shot.at(x0 as usize + x, y0 as usize + y) != image.at(x, y))
@@ -317,7 +332,7 @@ fn check_panels(
         if differ > 0 {
             return Err(format!(
                 "the window's {} panel differs from the counted render in {differ} pixels",
-                rows[row].0
+                rows[row].method.name
             ));
         }
         checked += 1;
@@ -379,7 +394,7 @@ impl Options {
 /// surface before the window whose handle they were made from.
 struct Running {
     canvas: WindowCanvas,
-    panels: [glow::Framebuffer; 3],
+    panels: Vec<glow::Framebuffer>,
     rows: Vec<Row>,
     surface: Surface<WindowSurface>,
     context: PossiblyCurrentContext,
@@ -397,9 +412,10 @@ struct App {
 
 impl App {
     /// Opens the window, makes a compatibility context current on it, renders and counts the
-    /// three methods, and uploads the renders as the panels to show.
+    /// methods, and uploads the renders as the panels to show.
     fn start(&mut self, event_loop: &ActiveEventLoop) -> Result<Running, String> {
-        let (w, h) = (3 * SIZE + 4 * GAP, SIZE + 2 * GAP);
+        let k = PANELS as u32;
+        let (w, h) = (k * SIZE + (k + 1) * GAP, SIZE + 2 * GAP);
         let attributes = Window::default_attributes()
             .with_title("zshift: decal")
             .with_inner_size(PhysicalSize::new(w, h));
@@ -451,16 +467,17 @@ impl App {
             unsafe { canvas.gl.get_parameter_string(glow::VERSION) },
             canvas.renderer()
         );
-        let (rows, decal_pixels) = compare(&mut canvas, &MAIN)?;
-        report(&canvas, &rows, decal_pixels, None)?;
-        if let Err(e) = verdict(&rows) {
+        let comparison = compare(&mut canvas, &MAIN)?;
+        report(&canvas, &comparison);
+        if let Err(e) = verdict(&comparison) {
             self.error.get_or_insert(e);
         }
-        let panels = [0, 1, 2].map(|i| unsafe { framebuffer(&canvas.gl, 0, Some(&rows[i].4)) });
-        let [a, b, c] = panels;
-        let panels = [a?, b?, c?];
+        let panels = (comparison.rows.iter())
+            .map(|row| unsafe { framebuffer(&canvas.gl, 0, Some(&row.image)) })
+            .collect::<Result<Vec<_>, String>>()?;
         canvas.check("panel textures")?;
-        window.set_title(&title(&rows, decal_pixels));
+        window.set_title(&title(&comparison.rows));
+        let rows = comparison.rows;
         window.request_redraw();
         Ok(Running {
             canvas,
@@ -503,7 +520,7 @@ impl App {
                 let shot = unsafe { read_pixels(gl, glow::BACK, size.width, size.height) };
                 r.canvas.check("glReadPixels(GL_BACK)")?;
                 let n = check_panels(&shot, &panels, &r.rows)?;
-                write_png(path, &shot)?;
+                Picture::from_image(&shot).write_png(path)?;
                 println!(
                     "screenshot {} ({}x{}): {n} panel(s) equal the counted renders pixel for pixel",
                     path.display(),
@@ -525,16 +542,12 @@ impl App {
 }
 
 /// The window title: each method's lost pixels, and the keys.
-fn title(rows: &[Row], decal_pixels: usize) -> String {
-    let counts: Vec<String> = rows
-        .iter()
-        .map(|r| {
-            let pct = 100.0 * r.5 as f64 / decal_pixels as f64;
-            format!("{}: {} lost ({pct:.1}%)", r.0, r.5)
-        })
+fn title(rows: &[Row]) -> String {
+    let counts: Vec<String> = (rows.iter())
+        .map(|r| format!("{}: {} lost, {} bled", r.method.name, r.lost, r.bled))
         .collect();
     format!(
-        "zshift decal | {} | keys 1 2 3 one, 0 all, Esc quit",
+        "zshift decal | {} | keys 1-{PANELS} one, 0 all, Esc quit",
         counts.join(" | ")
     )
 }
@@ -573,10 +586,11 @@ impl ApplicationHandler for App {
             } => {
                 self.view = match logical_key.as_ref() {
                     Key::Named(NamedKey::Escape) => return event_loop.exit(),
-                    Key::Character("1") => View::One(0),
-                    Key::Character("2") => View::One(1),
-                    Key::Character("3") => View::One(2),
                     Key::Character("0") => View::All,
+                    Key::Character(c) => match c.parse::<usize>() {
+                        Ok(k) if (1..=PANELS).contains(&k) => View::One(k - 1),
+                        _ => return,
+                    },
                     _ => return,
                 };
                 if let Some(r) = self.running.as_ref() {

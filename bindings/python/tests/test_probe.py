@@ -1,0 +1,92 @@
+"""zshift.probe on a real OpenGL context: a headless EGL context made here through ctypes (Mesa's
+surfaceless platform, no window), EGL's eglGetProcAddress as the loader. Fails, never skips,
+when no context can be made."""
+
+import ctypes
+import math
+import unittest
+
+import zshift
+
+EGL_PLATFORM_SURFACELESS_MESA = 0x31DD
+EGL_NONE, EGL_OPENGL_API = 0x3038, 0x30A2
+EGL_CONTEXT_MAJOR_VERSION, EGL_CONTEXT_MINOR_VERSION = 0x3098, 0x30FB
+EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT = 0x30FD, 0x1
+
+
+def _egl():
+    egl = ctypes.CDLL("libEGL.so.1")
+    egl.eglGetProcAddress.restype = ctypes.c_void_p
+    egl.eglGetProcAddress.argtypes = [ctypes.c_char_p]
+    egl.eglGetPlatformDisplay.restype = ctypes.c_void_p
+    egl.eglGetPlatformDisplay.argtypes = [ctypes.c_uint, ctypes.c_void_p, ctypes.POINTER(ctypes.c_ssize_t)]
+    egl.eglInitialize.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+    egl.eglBindAPI.argtypes = [ctypes.c_uint]
+    egl.eglCreateContext.restype = ctypes.c_void_p
+    egl.eglCreateContext.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.POINTER(ctypes.c_int32)]
+    egl.eglMakeCurrent.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p]
+    egl.eglGetError.restype = ctypes.c_int32
+    return egl
+
+
+def make_context():
+    """A 3.3 core context current on this thread; returns EGL (for eglGetProcAddress), the
+    display and the context."""
+    egl = _egl()
+    display = egl.eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, None, (ctypes.c_ssize_t * 1)(EGL_NONE))
+    if not display or not egl.eglInitialize(display, None, None) or not egl.eglBindAPI(EGL_OPENGL_API):
+        raise AssertionError("no EGL surfaceless display (EGL error 0x%x)" % egl.eglGetError())
+    attributes = (ctypes.c_int32 * 7)(EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                      EGL_NONE)
+    context = egl.eglCreateContext(display, None, None, attributes)
+    if not context or not egl.eglMakeCurrent(display, None, None, context):
+        raise AssertionError("no OpenGL 3.3 core context (EGL error 0x%x)" % egl.eglGetError())
+    return egl, display, context
+
+
+class ProbeTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.egl, cls.display, cls.context = make_context()
+
+    def get_proc_address(self, name):
+        return self.egl.eglGetProcAddress(name.encode("ascii"))
+
+    def test_llvmpipe_profile(self):
+        p = zshift.probe(self.get_proc_address)
+        self.assertEqual(p.measured, 1)
+        self.assertEqual(p.subpixel_bits, zshift.SUBPIXEL_UNSNAPPED)
+        # lp_state_setup.c: units * 2 * mrd on UNORM formats, 2^(e - 23) on float depth.
+        self.assertAlmostEqual(p.resolvable[1], 2.0, delta=0.01)
+        self.assertAlmostEqual(p.resolvable[3], 1.0, delta=0.01)
+        self.assertLess(p.plane_error[0], 1.0)
+        self.assertEqual(p.near_clip, zshift.NEAR_CLIP_CLIPPED_F32)
+        self.assertGreater(p.probe_seconds, 0.0)
+
+    def test_a_missing_entry_point_is_a_gl_error(self):
+        def without_read_pixels(name):
+            return None if name == "glReadPixels" else self.get_proc_address(name)
+
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.probe(without_read_pixels)
+        self.assertEqual(caught.exception.status, zshift.Status.GL)
+
+    def test_no_current_context_is_a_gl_error(self):
+        self.egl.eglMakeCurrent(self.display, None, None, None)
+        try:
+            with self.assertRaises(zshift.ZshiftError) as caught:
+                zshift.probe(self.get_proc_address)
+            self.assertEqual(caught.exception.status, zshift.Status.GL)
+        finally:
+            self.assertTrue(self.egl.eglMakeCurrent(self.display, None, None, self.context))
+
+    def test_worst_case(self):
+        p = zshift.profile_worst_case()
+        self.assertEqual((p.measured, p.subpixel_bits, p.near_clip), (0, 8, zshift.NEAR_CLIP_CLIPPED_F32))
+        self.assertEqual(p.resolvable, (4.0, 4.0, 4.0, 4.0))
+        self.assertTrue(all(math.isnan(e) for e in p.plane_error))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,53 @@
+//! Measures the rasterizer profile of a headless OpenGL context (EGL surfaceless, Mesa llvmpipe
+//! unless another EGL driver is installed) and prints it with the figures it was decided from.
+//!
+//! `cargo run --release --example probe` (`-- compat` for a compatibility-profile context).
+//! The probe itself needs only the context's function loader: an engine calls
+//! `zshift::probe::probe(|name| get_proc_address(name))` with its own context current.
+
+use zshift_harness::{Gl, Profile};
+
+fn main() {
+    let profile = match std::env::args().nth(1).as_deref() {
+        Some("compat") => Profile::Compatibility,
+        _ => Profile::Core,
+    };
+    let gl = Gl::new(profile).unwrap_or_else(|e| panic!("no {profile:?} GL context: {e}"));
+    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
+    // SAFETY: the harness's context is current on this thread; EGL returns its entry points.
+    let (p, figures) = unsafe { zshift::probe::probe_with_figures(loader) }
+        .unwrap_or_else(|e| panic!("probe failed: {e}"));
+    println!("renderer       {} ({})", figures.renderer, figures.version);
+    println!("run time       {:.1} ms", p.probe_seconds * 1e3);
+    println!(
+        "snapping       {:?} (GL_SUBPIXEL_BITS {}; residual unsnapped {:.2e}, best snapped b={} {:.2e})",
+        p.snapping,
+        figures.subpixel_bits,
+        figures.snapping_residual.0,
+        figures.snapping_residual.1,
+        figures.snapping_residual.2
+    );
+    println!(
+        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1})",
+        p.near_clip, figures.near_clip_error, figures.near_preclipped_error
+    );
+    println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
+    for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
+        println!(
+            "{name:<6}  {:<10.4}  {:<20.4}  {:<19.3}  {}",
+            p.resolvable[i], p.plane_error[i], figures.error_ulps[i], figures.plane_pixels[i]
+        );
+    }
+    println!(
+        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; error_ulps {:.3}",
+        p.plane_error_reversed, figures.reversed_pixels, p.error_ulps
+    );
+    println!(
+        "D32F plane error in quanta at each pixel's own depth: [-1,1] {:.2}, reversed {:.2}",
+        figures.float_local_plane_error[0], figures.float_local_plane_error[1]
+    );
+    println!(
+        "D32F r per band (w ~ 0.45, w ~ 0.055): {:?}",
+        figures.float_resolvable
+    );
+}

@@ -1,0 +1,219 @@
+//! The rasterizer probe (src/probe/): the C profile record, `zshift_probe` and
+//! `zshift_profile_worst_case`.
+
+use std::ffi::{c_char, c_void, CStr};
+
+use super::{checked, null_pointer, ZshiftStatus};
+use crate::domain::domain;
+use crate::error::Result;
+use crate::profile::{NearClip, RasterizerProfile, Snapping};
+
+/// `near_clip` value: a primitive crossing the near plane is clipped with new vertices computed
+/// in float, and its depth plane set up from them (the worst case; Mesa llvmpipe).
+pub const ZSHIFT_NEAR_CLIP_CLIPPED_F32: i32 = 1;
+
+/// `near_clip` value: a primitive crossing the near plane keeps its plane's depth to within the
+/// per-pixel error of one that does not (measured: ground planes clipped by the rasterizer err
+/// at most twice, plus 2 D24 quanta, what they do when clipped in double before drawing).
+pub const ZSHIFT_NEAR_CLIP_PLANE_PRESERVING: i32 = 2;
+
+/// What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
+/// or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
+/// recommendation.
+///
+/// Arrays indexed by depth format are in the order D16, D24, D32, D32F
+/// (GL_DEPTH_COMPONENT16, 24, 32, 32F).
+///
+/// A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
+/// with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftProfile {
+    /// Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
+    pub measured: u32,
+    /// How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
+    /// plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
+    /// positions are snapped to (2^-b pixel) first. The worst case is 8.
+    pub subpixel_bits: i32,
+    /// glPolygonOffset's minimum resolvable difference r per format, in units of the format's
+    /// quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
+    /// primitive's largest depth). Finite and > 0. The worst case is 4.
+    pub resolvable: [f64; 4],
+    /// The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
+    /// units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+    /// not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+    /// vertices times an f32 projection in the vertex shader), against the plane through the
+    /// vertices times the matrix in double: covers the f32 transform, division by w, viewport
+    /// transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
+    pub plane_error: [f64; 4],
+    /// plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+    /// window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+    /// primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
+    pub plane_error_reversed: f64,
+    /// How the per-pixel error grows with a steep plane's window position: every measured pixel
+    /// kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
+    /// D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+    /// window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+    /// where not measured. NAN or finite >= 0.
+    pub error_ulps: f64,
+    /// How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
+    /// ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
+    pub near_clip: i32,
+    /// Seconds `zshift_probe` took (0 for the worst case). Informational.
+    pub probe_seconds: f64,
+}
+
+/// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
+/// function pointer, cast to its real type by the caller, or NULL.
+pub type ZshiftGlProc = Option<unsafe extern "C" fn()>;
+
+/// A GL function loader: returns the GL entry point `name` (a NUL-terminated string such as
+/// "glReadPixels") of the context current on this thread, or NULL. `user` is passed through
+/// unchanged. eglGetProcAddress and glfwGetProcAddress return this type already (wrap them to
+/// add the `user` argument); wrap SDL_GL_GetProcAddress or wglGetProcAddress likewise.
+pub type ZshiftGlLoader =
+    Option<unsafe extern "C" fn(name: *const c_char, user: *mut c_void) -> ZshiftGlProc>;
+
+impl From<RasterizerProfile> for ZshiftProfile {
+    fn from(p: RasterizerProfile) -> Self {
+        ZshiftProfile {
+            measured: p.measured as u32,
+            subpixel_bits: match p.snapping {
+                Snapping::Unsnapped => super::ZSHIFT_SUBPIXEL_UNSNAPPED,
+                Snapping::SubpixelBits(b) => b as i32,
+            },
+            resolvable: p.resolvable,
+            plane_error: p.plane_error,
+            plane_error_reversed: p.plane_error_reversed,
+            error_ulps: p.error_ulps,
+            near_clip: match p.near_clip {
+                NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
+                NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
+            },
+            probe_seconds: p.probe_seconds,
+        }
+    }
+}
+
+impl ZshiftProfile {
+    /// The Rust profile this record describes, every field validated (for the recommendation's
+    /// entry points).
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::Domain`] naming the first invalid field: `near_clip` not one of the
+    /// ZSHIFT_NEAR_CLIP_* values (a zero-filled record), `subpixel_bits` outside -1..=16, a
+    /// `resolvable` entry not finite and positive, a `plane_error` entry negative or infinite.
+    pub fn to_profile(&self) -> Result<RasterizerProfile> {
+        let near_clip = match self.near_clip {
+            ZSHIFT_NEAR_CLIP_CLIPPED_F32 => NearClip::ClippedF32,
+            ZSHIFT_NEAR_CLIP_PLANE_PRESERVING => NearClip::PlanePreserving,
+            _ => {
+                return Err(domain(
+                    "ZshiftProfile.near_clip is not a ZSHIFT_NEAR_CLIP_* value (a zero-filled \
+                     profile?): fill it with zshift_probe or zshift_profile_worst_case",
+                ))
+            }
+        };
+        let snapping = match self.subpixel_bits {
+            -1 => Snapping::Unsnapped,
+            b @ 0..=16 => Snapping::SubpixelBits(b as u32),
+            _ => return Err(domain("ZshiftProfile.subpixel_bits is outside -1..=16")),
+        };
+        if self.resolvable.iter().any(|r| !(r.is_finite() && *r > 0.0)) {
+            return Err(domain(
+                "a ZshiftProfile.resolvable entry is not finite and > 0",
+            ));
+        }
+        let errors = [self.plane_error_reversed, self.error_ulps];
+        if self
+            .plane_error
+            .iter()
+            .chain(&errors)
+            .any(|e| *e < 0.0 || e.is_infinite())
+        {
+            return Err(domain(
+                "ZshiftProfile.plane_error, plane_error_reversed or error_ulps is negative \
+                 or infinite \
+                 (NAN means not measured)",
+            ));
+        }
+        Ok(RasterizerProfile {
+            snapping,
+            resolvable: self.resolvable,
+            plane_error: self.plane_error,
+            plane_error_reversed: self.plane_error_reversed,
+            error_ulps: self.error_ulps,
+            near_clip,
+            measured: self.measured != 0,
+            probe_seconds: if self.probe_seconds.is_finite() {
+                self.probe_seconds
+            } else {
+                0.0
+            },
+        })
+    }
+}
+
+/// Writes the worst-case profile to `out`: the recommendation's default assumptions (8
+/// sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+/// in float), `measured` = 0.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.
+#[no_mangle]
+pub extern "C" fn zshift_profile_worst_case(out: *mut ZshiftProfile) -> ZshiftStatus {
+    checked(
+        out,
+        || Ok(ZshiftProfile::from(RasterizerProfile::worst_case())),
+        write,
+    )
+}
+
+/// Measures the rasterizer of the OpenGL context current on the calling thread and writes its
+/// profile to `out` (see `ZshiftProfile`). Draws about 250 triangles into a framebuffer of its
+/// own (512x512) and reads their depth back: 40-55 ms on Mesa llvmpipe (2 cores). Call it once
+/// after making the context current, not per frame.
+///
+/// GL is reached only through `loader` (called with `user`), never linked. Needs OpenGL 3.2 or
+/// later, core or compatibility profile (desktop GL, not GLES). Every GL state it touches is
+/// restored and every object it creates deleted, on success and on error; an active transform
+/// feedback or query of the caller would see its draws (end them first).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `loader` or `out` is NULL; ZSHIFT_ERR_GL if the loader
+/// returned NULL for a needed entry point, no context or one older than 3.2 is current, a GL
+/// error was pending on entry (it is read, which clears it), D16, D24 or D32F cannot be
+/// attached to a framebuffer, or a GL call failed; `zshift_last_error()` names which (e.g.
+/// "the GL loader returned NULL for glReadPixels, ..."). `out` is untouched on error.
+///
+/// # Safety
+/// `loader` must return, for each name, NULL or that entry point of the current context.
+#[no_mangle]
+pub unsafe extern "C" fn zshift_probe(
+    loader: ZshiftGlLoader,
+    user: *mut c_void,
+    out: *mut ZshiftProfile,
+) -> ZshiftStatus {
+    let Some(loader) = loader else {
+        return null_pointer("loader");
+    };
+    // The user pointer crosses the panic boundary as an address: the probe only passes it back.
+    let user = user as usize;
+    checked(
+        out,
+        move || {
+            let load = |name: &CStr| -> *const c_void {
+                // SAFETY: `name` is NUL-terminated; the caller vouches for the loader.
+                let proc = unsafe { loader(name.as_ptr(), user as *mut c_void) };
+                proc.map_or(std::ptr::null(), |f| f as *const c_void)
+            };
+            // SAFETY: the caller promises a current context and a loader for it.
+            unsafe { crate::probe::probe(load) }.map(ZshiftProfile::from)
+        },
+        write,
+    )
+}
+
+/// Writes the record with `write_unaligned`: `out` needs no alignment.
+fn write(out: *mut ZshiftProfile, value: ZshiftProfile) {
+    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftProfile.
+    unsafe { out.write_unaligned(value) }
+}

@@ -1,0 +1,1252 @@
+//! The recommendation on the scenes engines draw, checked on a real rasterizer (headless EGL;
+//! Mesa llvmpipe in CI): ground planes running behind the camera (base corners ≥ 100× the
+//! decal's distance, clipped by the rasterizer, and the same base cut to the frustum in f64 by
+//! `recommend::clip_to_frustum`), screen-fitted bases, slopes 0 to 10 and grazing planes whose
+//! horizon is on screen, odd viewports (97×211, 320×180, 64×48), off-centre frusta (one whose
+//! view axis is off screen), f/n from 10 to 1e7 and infinite, D16/D24/D32F under `[−1, 1]`,
+//! `[0, 1]` and reversed Z, `GL_LESS`/`GL_LEQUAL` (`GL_GREATER`/`GL_GEQUAL` reversed), decals
+//! whose corners are not the base's. Every scene is checked with the worst-case profile (the
+//! default) and with a measured llvmpipe profile: 0 decal pixels lost at the recommendation,
+//! 0 pixels bled through an occluder at the documented gap. Then it prints, per class, the
+//! recommended ÷ smallest working offset (bisection over f32 steps of the offset element).
+//!
+//! References are GL readbacks and this file's own f64 geometry, never zshift's numbers.
+//! Fails (never skips) without GL.
+//!
+//! CI runs a deterministic sample of the grid (`ZSHIFT_SCENES` unset: one scene in 12, about a
+//! minute on two cores); `ZSHIFT_SCENES=full` runs every scene of the grid, `ZSHIFT_SCENES=N`
+//! one in N. `cargo test --release --test gl_scenes -- --nocapture` prints the table;
+//! `ZSHIFT_SCENES_VERBOSE=1` also names every refused scene and the survey's worst planes,
+//! `ZSHIFT_SCENES_TERMS=1` every scene's error terms.
+
+use zshift::projection::{projection, ClipDepth, Frustum};
+use zshift::recommend::{
+    clip_to_frustum, recommend_clip, Base, ClipRecommendation, DepthTest, NearClip,
+    RasterizerProfile, Scene, Snapping,
+};
+use zshift_harness::coplanar::{BASE, CLEAR, DECAL, OCCLUDER};
+use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
+
+/// The llvmpipe profile built by hand until the probe lands: no snapping before depth setup,
+/// `r` = 1 quantum on UNORM formats (`1/(2^m − 1)`) and `2^(e−23)` on D32F, clipping in f32,
+/// and the per-pixel plane error measured by [`plane_error_survey`] (the largest
+/// `|computed − exact|` window depth of a plane, in quanta, over its 2160 well-conditioned planes: D32F read back
+/// gives llvmpipe's f32 depth before any conversion, so the UNORM figures are that error over
+/// the UNORM quantum). The survey is run by `the_measured_plane_error_holds` below, which fails
+/// if llvmpipe ever exceeds these figures.
+fn measured_llvmpipe() -> RasterizerProfile {
+    RasterizerProfile {
+        snapping: Snapping::Unsnapped,
+        resolvable: [1.0; 4],
+        plane_error: PLANE_ERROR,
+        near_clip: NearClip::ClippedF32,
+        measured: true,
+        ..RasterizerProfile::worst_case()
+    }
+}
+
+/// The plane error figures of [`measured_llvmpipe`]: D16, D24, D32 in quanta, D32F in units of
+/// 2⁻²⁴ (3.95 measured on D24/D32F by the survey, 2026-11-23, Mesa 22.3.6).
+const PLANE_ERROR: [f64; 4] = [0.016, 4.0, 1010.0, 4.0];
+
+// ---------------------------------------------------------------------------------------------
+// Geometry, in f64, independent of zshift.
+// ---------------------------------------------------------------------------------------------
+
+/// `glFrustum(l, r, b, t, n, f)`, `f` may be infinite.
+#[derive(Debug, Clone, Copy)]
+struct Cam {
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+}
+
+impl Cam {
+    /// The eye ray `(kₓ, k_y)` (eye x/d, y/d) through NDC `(x, y)`.
+    fn ray(&self, x: f64, y: f64) -> (f64, f64) {
+        let kx = (self.l + 0.5 * (x + 1.0) * (self.r - self.l)) / self.n;
+        let ky = (self.b + 0.5 * (y + 1.0) * (self.t - self.b)) / self.n;
+        (kx, ky)
+    }
+
+    /// Window depth of eye depth `d` under `clip` (`glDepthRange(0, 1)`).
+    fn window(&self, d: f64, clip: ClipDepth) -> f64 {
+        let (n, f) = (self.n, self.f);
+        let inf = f.is_infinite();
+        match clip {
+            ClipDepth::NegOneToOne if inf => 1.0 - n / d,
+            ClipDepth::NegOneToOne => 0.5 * ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * d)) + 0.5,
+            ClipDepth::ZeroToOne if inf => 1.0 - n / d,
+            ClipDepth::ZeroToOne => f / (f - n) * (1.0 - n / d),
+            ClipDepth::ReversedZeroToOne if inf => n / d,
+            ClipDepth::ReversedZeroToOne => n * (f - d) / ((f - n) * d),
+        }
+    }
+
+    fn frustum(&self) -> Frustum {
+        Frustum::new(self.l, self.r, self.b, self.t, self.n, self.f).expect("valid frustum")
+    }
+}
+
+/// The eye-space plane `z = −d_a + sₓ·x + s_y·y`.
+#[derive(Debug, Clone, Copy)]
+struct Plane {
+    sx: f64,
+    sy: f64,
+    da: f64,
+}
+
+impl Plane {
+    fn z(&self, x: f64, y: f64) -> f64 {
+        -self.da + self.sx * x + self.sy * y
+    }
+
+    /// Eye depth (−z) where the ray `(kₓ, k_y)` meets the plane, if in front of the eye.
+    fn depth_on_ray(&self, (kx, ky): (f64, f64)) -> Option<f64> {
+        let d = self.da / (1.0 + self.sx * kx + self.sy * ky);
+        (d.is_finite() && d > 0.0).then_some(d)
+    }
+
+    fn point(&self, (kx, ky): (f64, f64), d: f64) -> [f64; 3] {
+        [kx * d, ky * d, -d]
+    }
+}
+
+/// How the base is drawn.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum BaseKind {
+    /// Screen-fitted: the plane under NDC `[−0.9, 0.9]²` (cut at 0.9·f / 200·d₂ toward the
+    /// horizon), inside the frustum.
+    Fitted,
+    /// A quad `±R` around the decal (R = 100× the decal's far distance): the rasterizer clips it
+    /// (it runs behind the camera unless the plane faces it).
+    Ground,
+    /// The same quad cut to the frustum in f64 by `recommend::clip_to_frustum`.
+    Split,
+}
+
+/// One scene.
+#[derive(Debug, Clone)]
+struct Case {
+    cam: Cam,
+    size: (u32, u32),
+    clip: ClipDepth,
+    format: DepthFormat,
+    test: DepthTest,
+    plane: Plane,
+    base_kind: BaseKind,
+    /// The decal's corners (f64, on the plane), and the base's polygon.
+    decal: [[f64; 3]; 4],
+    base: Vec<[f64; 3]>,
+    frustum_kind: &'static str,
+}
+
+impl Case {
+    fn slope(&self) -> f64 {
+        self.plane.sx.abs() + self.plane.sy.abs()
+    }
+
+    fn depth_range(&self) -> (f64, f64) {
+        let d = self.decal.map(|p| -p[2]);
+        (
+            d.iter().copied().fold(f64::INFINITY, f64::min),
+            d.iter().copied().fold(0.0, f64::max),
+        )
+    }
+
+    fn class(&self) -> String {
+        let conv = match self.clip {
+            ClipDepth::NegOneToOne => "[-1,1]",
+            ClipDepth::ZeroToOne => "[0,1]",
+            ClipDepth::ReversedZeroToOne => "rev-Z",
+        };
+        let shape = if self.slope() == 0.0 {
+            "facing"
+        } else {
+            "sloped"
+        };
+        let test = if self.test.is_strict() { "<" } else { "<=" };
+        let base = match self.base_kind {
+            BaseKind::Fitted => "fitted",
+            BaseKind::Ground => "clipped",
+            BaseKind::Split => "split",
+        };
+        format!(
+            "{conv:<6} {:<4} {test:<2} {shape:<6} {base:<7}",
+            self.format.name()
+        )
+    }
+
+    fn label(&self) -> String {
+        let (d1, d2) = self.depth_range();
+        let far = if self.cam.f.is_infinite() {
+            "inf".to_string()
+        } else {
+            format!("{:.0e}", self.cam.f / self.cam.n)
+        };
+        format!(
+            "{} {:?} {}x{} {} f/n={far} s=({:.2},{:.2}) d=[{d1:.4e},{d2:.4e}]",
+            self.class(),
+            self.test,
+            self.size.0,
+            self.size.1,
+            self.frustum_kind,
+            self.plane.sx,
+            self.plane.sy,
+        )
+    }
+
+    fn reach(&self) -> f64 {
+        self.base
+            .iter()
+            .flat_map(|p| p.iter().map(|c| c.abs()))
+            .fold(0.0, f64::max)
+    }
+
+    /// What the engine knows, as zshift's `Scene` takes it.
+    fn scene(&self, profile: RasterizerProfile) -> Scene {
+        let (d1, d2) = self.depth_range();
+        let format = zshift::recommend::DepthFormat::from_gl_internal_format(self.format.gl_enum())
+            .expect("a GL depth format");
+        Scene {
+            frustum: self.cam.frustum(),
+            viewport: [self.size.0, self.size.1],
+            format,
+            depth_range: [d1, d2],
+            slope: self.slope(),
+            exact_depth: self.slope() == 0.0 && self.base_kind == BaseKind::Fitted,
+            depth_test: self.test,
+            base: match self.base_kind {
+                BaseKind::Ground => Base::Clipped {
+                    reach: self.reach(),
+                },
+                _ => Base::InsideFrustum,
+            },
+            profile,
+        }
+    }
+
+    fn reversed(&self) -> bool {
+        self.clip == ClipDepth::ReversedZeroToOne
+    }
+}
+
+/// Cuts `poly` to the region `keep(p) ≥ 0` (Sutherland–Hodgman, f64): this test's own clipper.
+fn cut(poly: &[[f64; 3]], keep: impl Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    for (i, a) in poly.iter().enumerate() {
+        let b = &poly[(i + 1) % poly.len()];
+        let (da, db) = (keep(a), keep(b));
+        if da >= 0.0 {
+            out.push(*a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            out.push([0, 1, 2].map(|k| a[k] + t * (b[k] - a[k])));
+        }
+    }
+    out
+}
+
+/// The plane under the screen rectangle NDC `[−0.9, 0.9]²`, cut at depth `far` and at 1.01·n.
+fn fitted_base(cam: &Cam, plane: &Plane, far: f64) -> Vec<[f64; 3]> {
+    // A big quad on the plane, cut to the shrunk frustum by this file's own clipper.
+    let big = 1e3 * far;
+    let mut poly: Vec<[f64; 3]> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .iter()
+        .map(|&(x, y)| [x * big, y * big, plane.z(x * big, y * big)])
+        .collect();
+    let (xl, yb) = cam.ray(-0.9, -0.9);
+    let (xr, yt) = cam.ray(0.9, 0.9);
+    let n = cam.n;
+    poly = cut(&poly, |p| -p[2] - 1.01 * n);
+    poly = cut(&poly, |p| far + p[2]);
+    poly = cut(&poly, |p| p[0] - xl * -p[2]);
+    poly = cut(&poly, |p| xr * -p[2] - p[0]);
+    poly = cut(&poly, |p| p[1] - yb * -p[2]);
+    poly = cut(&poly, |p| yt * -p[2] - p[1]);
+    poly
+}
+
+/// The f32 quads that draw a convex polygon as a fan (one triangle each, the fourth corner
+/// repeating the third: a zero-area second triangle).
+fn fan(poly: &[[f64; 3]]) -> Vec<Quad> {
+    let v = |p: &[f64; 3]| p.map(|c| c as f32);
+    (1..poly.len().saturating_sub(1))
+        .map(|i| Quad {
+            corners: [v(&poly[0]), v(&poly[i]), v(&poly[i + 1]), v(&poly[i + 1])],
+        })
+        .collect()
+}
+
+fn quad_of(c: &[[f64; 3]; 4]) -> Quad {
+    Quad {
+        corners: c.map(|p| p.map(|x| x as f32)),
+    }
+}
+
+/// A deterministic generator for sampling the grid.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// Builds a scene: the decal is the plane under the NDC rectangle centred at `(cx, cy)` with
+/// half-size `hs`, whose centre lies at eye depth `dc`. `None` when the decal leaves `[n, f]`
+/// or crosses the horizon.
+#[allow(clippy::too_many_arguments)]
+fn build(
+    cam: Cam,
+    frustum_kind: &'static str,
+    size: (u32, u32),
+    (clip, format): (ClipDepth, DepthFormat),
+    test: DepthTest,
+    (sx, sy): (f64, f64),
+    (cx, cy, hs, dc): (f64, f64, f64, f64),
+    base_kind: BaseKind,
+) -> Option<Case> {
+    let kc = cam.ray(cx, cy);
+    let centre = [kc.0 * dc, kc.1 * dc, -dc];
+    let plane = Plane {
+        sx,
+        sy,
+        da: dc + sx * centre[0] + sy * centre[1],
+    };
+    let mut decal = [[0.0; 3]; 4];
+    for (i, (x, y)) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+        .into_iter()
+        .enumerate()
+    {
+        // A slightly irregular quad: corners not on a grid the base shares.
+        let k = cam.ray(cx + hs * x * (1.0 + 0.07 * i as f64), cy + hs * y * 0.83);
+        let d = plane.depth_on_ray(k)?;
+        let far_limit = if cam.f.is_finite() {
+            0.95 * cam.f
+        } else {
+            1e12
+        };
+        if d < 1.05 * cam.n || d > far_limit {
+            return None;
+        }
+        decal[i] = plane.point(k, d);
+    }
+    let d2 = decal.iter().map(|p| -p[2]).fold(0.0, f64::max);
+    let base = match base_kind {
+        BaseKind::Fitted => {
+            let far = if cam.f.is_finite() {
+                (0.9 * cam.f).min(200.0 * d2)
+            } else {
+                200.0 * d2
+            };
+            fitted_base(&cam, &plane, far)
+        }
+        BaseKind::Ground | BaseKind::Split => {
+            let r = 100.0 * d2;
+            let ground: Vec<[f64; 3]> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .map(|&(x, y)| {
+                    let (px, py) = (centre[0] + x * r, centre[1] + y * r);
+                    [px, py, plane.z(px, py)]
+                })
+                .collect();
+            if base_kind == BaseKind::Split {
+                clip_to_frustum(&cam.frustum(), &ground).expect("clip_to_frustum")
+            } else {
+                ground
+            }
+        }
+    };
+    if base.len() < 3 {
+        return None;
+    }
+    Some(Case {
+        cam,
+        size,
+        clip,
+        format,
+        test,
+        plane,
+        base_kind,
+        decal,
+        base,
+        frustum_kind,
+    })
+}
+
+/// The grid, sampled one in `every` (deterministically).
+fn grid(every: usize) -> Vec<Case> {
+    let mut rng = Lcg(0x2026_1123);
+    let mut sample = Lcg(0x5A3D_1E);
+    let mut cases = Vec::new();
+    let kinds = [
+        (ClipDepth::NegOneToOne, DepthFormat::D16),
+        (ClipDepth::NegOneToOne, DepthFormat::D24),
+        (ClipDepth::NegOneToOne, DepthFormat::D32F),
+        (ClipDepth::ZeroToOne, DepthFormat::D16),
+        (ClipDepth::ZeroToOne, DepthFormat::D24),
+        (ClipDepth::ZeroToOne, DepthFormat::D32F),
+        (ClipDepth::ReversedZeroToOne, DepthFormat::D16),
+        (ClipDepth::ReversedZeroToOne, DepthFormat::D24),
+        (ClipDepth::ReversedZeroToOne, DepthFormat::D32F),
+    ];
+    for size in [(97u32, 211u32), (320, 180), (64, 48)] {
+        let aspect = f64::from(size.0) / f64::from(size.1);
+        for frustum_kind in ["centred", "off-centre", "axis-off"] {
+            for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
+                let n = 0.1;
+                let t = n * 0.5774;
+                let (l, r, b, tt) = match frustum_kind {
+                    "centred" => (-t * aspect, t * aspect, -t, t),
+                    "off-centre" => (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t),
+                    // The view axis (x = y = 0) is left of and below the screen.
+                    _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
+                };
+                let f = if ratio.is_finite() {
+                    n * ratio
+                } else {
+                    f64::INFINITY
+                };
+                let cam = Cam {
+                    l,
+                    r,
+                    b,
+                    t: tt,
+                    n,
+                    f,
+                };
+                for kind in kinds {
+                    for slope in [0.0, 0.3, 1.0, 3.0, 10.0] {
+                        for base_kind in [BaseKind::Fitted, BaseKind::Ground, BaseKind::Split] {
+                            for test in [false, true] {
+                                if sample.next() * every as f64 >= 1.0 {
+                                    continue;
+                                }
+                                let test = match (kind.0 == ClipDepth::ReversedZeroToOne, test) {
+                                    (false, false) => DepthTest::Less,
+                                    (false, true) => DepthTest::LessEqual,
+                                    (true, false) => DepthTest::Greater,
+                                    (true, true) => DepthTest::GreaterEqual,
+                                };
+                                // Tilt direction: mostly "ground" (about x), sometimes a wall.
+                                let a = rng.next() * std::f64::consts::TAU;
+                                let (sx, sy) = if rng.next() < 0.6 {
+                                    (0.2 * slope * a.cos(), slope * (0.8 + 0.2 * a.sin()))
+                                } else {
+                                    (slope * a.cos(), slope * a.sin())
+                                };
+                                let sy = if slope > 0.0 && rng.next() < 0.7 {
+                                    -sy.abs()
+                                } else {
+                                    sy
+                                };
+                                let span = if ratio.is_finite() { ratio } else { 1e4 };
+                                for _attempt in 0..8 {
+                                    let p = 0.15 + 0.8 * rng.next();
+                                    let dc = n * span.powf(p).max(1.5);
+                                    let (cx, cy) = (rng.next() - 0.5, rng.next() - 0.5);
+                                    let hs = 0.08 + 0.2 * rng.next();
+                                    if let Some(c) = build(
+                                        cam,
+                                        frustum_kind,
+                                        size,
+                                        kind,
+                                        test,
+                                        (sx, sy),
+                                        (cx, cy, hs, dc),
+                                        base_kind,
+                                    ) {
+                                        cases.push(c);
+                                        break;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    cases
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rendering.
+// ---------------------------------------------------------------------------------------------
+
+/// Pixels counted: `hit` of `of`.
+#[derive(Debug, Clone, Copy, Default)]
+struct Count {
+    hit: usize,
+    of: usize,
+}
+
+struct Bench<'a> {
+    gl: &'a mut Gl,
+    case: &'a Case,
+    plain: [f32; 16],
+    mask: Vec<bool>,
+    base: Vec<Quad>,
+    decal: Quad,
+}
+
+impl<'a> Bench<'a> {
+    fn new(gl: &'a mut Gl, case: &'a Case) -> Result<Self, String> {
+        gl.set_target(case.size.0, case.size.1, case.format)?;
+        gl.clip_control(if case.clip == ClipDepth::NegOneToOne {
+            GlClip::NegativeOneToOne
+        } else {
+            GlClip::ZeroToOne
+        })?;
+        let plain = projection(&case.cam.frustum(), case.clip).map_err(|e| e.to_string())?;
+        let base = match case.base_kind {
+            BaseKind::Ground => vec![Quad {
+                corners: [0, 1, 2, 3].map(|i| case.base[i].map(|c| c as f32)),
+            }],
+            _ => fan(&case.base),
+        };
+        let mut b = Bench {
+            gl,
+            case,
+            plain,
+            mask: Vec::new(),
+            base,
+            decal: quad_of(&case.decal),
+        };
+        b.mask = b.coverage(&b.decal.clone())?;
+        Ok(b)
+    }
+
+    /// The test the base and occluders are drawn with (the usual opaque pass).
+    fn opaque(&self) -> DrawState {
+        DrawState {
+            depth_func: if self.case.reversed() {
+                glow::GREATER
+            } else {
+                glow::LESS
+            },
+            ..DrawState::default()
+        }
+    }
+
+    /// The decal pass's test.
+    fn decal_state(&self) -> DrawState {
+        DrawState {
+            depth_func: self.case.test.gl_enum(),
+            ..DrawState::default()
+        }
+    }
+
+    fn clear(&mut self) -> Result<(), String> {
+        let depth = if self.case.reversed() { 0.0 } else { 1.0 };
+        self.gl.clear(CLEAR, depth)
+    }
+
+    fn coverage(&mut self, quad: &Quad) -> Result<Vec<bool>, String> {
+        self.clear()?;
+        let always = DrawState {
+            depth_func: glow::ALWAYS,
+            ..DrawState::default()
+        };
+        let plain = self.plain;
+        self.gl.draw_quad(quad, &plain, DECAL, &always)?;
+        Ok(self.gl.read_color()?.mask_of(rgba8(DECAL)))
+    }
+
+    fn draw_base(&mut self) -> Result<(), String> {
+        let (plain, state) = (self.plain, self.opaque());
+        for q in &self.base {
+            self.gl.draw_quad(q, &plain, BASE, &state)?;
+        }
+        Ok(())
+    }
+
+    /// Decal pixels lost to the base with the decal drawn through `decal`.
+    fn lost(&mut self, decal: &[f32; 16]) -> Result<Count, String> {
+        self.clear()?;
+        self.draw_base()?;
+        let (q, state) = (self.decal, self.decal_state());
+        self.gl.draw_quad(&q, decal, DECAL, &state)?;
+        let image = self.gl.read_color()?;
+        Ok(Count {
+            hit: image.count_not_in_mask(&self.mask, rgba8(DECAL)),
+            of: self.mask.iter().filter(|&&m| m).count(),
+        })
+    }
+
+    /// Decal pixels drawn over an occluder whose eye depth (−z) at every pixel is at least `gap`
+    /// less than the base's: the decal's quad moved along z by `gap·(1 + sₓkₓ + s_y·k_y)`, the
+    /// factor of largest magnitude over its corners (a plane shifted by δ along z moves by
+    /// `δ/(1 + sₓkₓ + s_y·k_y)` along the ray).
+    fn bleed(&mut self, decal: &[f32; 16], gap: f64) -> Result<Count, String> {
+        let p = self.case.plane;
+        // 1 + sₓkₓ + s_y·k_y has one sign over the visible plane (negative when the plane's
+        // axis crossing lies behind the eye: then the occluder moves along −z).
+        let widest = self
+            .case
+            .decal
+            .iter()
+            .map(|c| 1.0 + (p.sx * c[0] + p.sy * c[1]) / -c[2])
+            .fold(0.0, |a: f64, b| if b.abs() > a.abs() { b } else { a });
+        let shift = gap * widest;
+        let mut corners = self.case.decal;
+        for c in &mut corners {
+            c[2] += shift;
+        }
+        if corners.iter().any(|c| -c[2] <= 1.001 * self.case.cam.n) {
+            return Ok(Count::default());
+        }
+        let occluder = quad_of(&corners);
+        let both: Vec<bool> = self
+            .coverage(&occluder)?
+            .iter()
+            .zip(&self.mask)
+            .map(|(a, b)| *a && *b)
+            .collect();
+        self.clear()?;
+        self.draw_base()?;
+        let (plain, opaque, state) = (self.plain, self.opaque(), self.decal_state());
+        self.gl.draw_quad(&occluder, &plain, OCCLUDER, &opaque)?;
+        let q = self.decal;
+        self.gl.draw_quad(&q, decal, DECAL, &state)?;
+        let image = self.gl.read_color()?;
+        let red = rgba8(DECAL);
+        Ok(Count {
+            hit: image
+                .pixels
+                .iter()
+                .zip(&both)
+                .filter(|(px, &m)| m && px[..3] == red[..3])
+                .count(),
+            of: both.iter().filter(|&&m| m).count(),
+        })
+    }
+
+    fn element(&self) -> usize {
+        if self.case.reversed() {
+            14
+        } else {
+            10
+        }
+    }
+
+    /// The plain matrix with the offset element moved `k` f32 steps toward the camera.
+    fn stepped(&self, k: u32) -> [f32; 16] {
+        let mut m = self.plain;
+        let i = self.element();
+        let bits = m[i].to_bits();
+        // Element 14 (> 0) grows under reversed Z; element 10 (< 0) moves toward 0 otherwise.
+        m[i] = f32::from_bits(if self.case.reversed() {
+            bits + k
+        } else {
+            bits - k
+        });
+        m
+    }
+
+    fn steps_of(&self, m: &[f32; 16]) -> u32 {
+        let i = self.element();
+        m[i].to_bits().abs_diff(self.plain[i].to_bits())
+    }
+
+    /// The smallest k in 0..=hi that loses no pixel, by bisection (`hi` must work).
+    fn smallest_working(&mut self, hi: u32) -> Result<u32, String> {
+        if self.lost(&self.stepped(0))?.hit == 0 {
+            return Ok(0);
+        }
+        let (mut lo, mut hi) = (0u32, hi);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if self.lost(&self.stepped(mid))?.hit == 0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Ok(hi)
+    }
+}
+
+/// One profile's result on one scene.
+#[derive(Debug, Clone, Copy)]
+struct Outcome {
+    rec: ClipRecommendation,
+    lost: Count,
+    bled: Count,
+    steps: u32,
+}
+
+struct Row {
+    case: Case,
+    default: Outcome,
+    measured: Outcome,
+    /// Smallest working offset in f32 steps of the offset element (0: none needed).
+    k_min: u32,
+    none: Count,
+}
+
+fn outcome(bench: &mut Bench, rec: ClipRecommendation) -> Result<Outcome, String> {
+    let lost = bench.lost(&rec.matrix)?;
+    let bled = bench.bleed(&rec.matrix, rec.bleed_gap)?;
+    Ok(Outcome {
+        rec,
+        lost,
+        bled,
+        steps: bench.steps_of(&rec.matrix),
+    })
+}
+
+fn measure(gl: &mut Gl, case: Case) -> Result<Option<Row>, String> {
+    let label = case.label();
+    let rec = |p: RasterizerProfile| recommend_clip(&case.scene(p), case.clip);
+    let (rd, rm) = match (
+        rec(RasterizerProfile::worst_case()),
+        rec(measured_llvmpipe()),
+    ) {
+        (Ok(a), Ok(b)) => (a, b),
+        (a, b) => {
+            // Refused (the clipping term of a clipped base made the offset useless): say so.
+            if std::env::var_os("ZSHIFT_SCENES_VERBOSE").is_some() {
+                println!("{label}: refused: {:?} / {:?}", a.err(), b.err());
+            }
+            return Ok(None);
+        }
+    };
+    let mut bench = Bench::new(gl, &case)?;
+    if !bench.mask.iter().any(|&m| m) {
+        return Ok(None);
+    }
+    let none = bench.lost(&bench.plain.clone())?;
+    let default = outcome(&mut bench, rd)?;
+    let measured = outcome(&mut bench, rm)?;
+    let hi = default.steps.max(measured.steps);
+    let k_min = if default.lost.hit == 0 || measured.lost.hit == 0 {
+        bench.smallest_working(hi)?
+    } else {
+        u32::MAX
+    };
+    drop(bench);
+    if std::env::var_os("ZSHIFT_SCENES_TERMS").is_some() {
+        let t = measured.rec.terms;
+        println!(
+            "terms {label}: steps {} min {k_min} | q {:.2e} T {:.2e} V {:.2e} I {:.2e} E {:.2e} C {:.2e}",
+            measured.steps, t.quantum, t.transform, t.vertex, t.interpolation, t.plane, t.clip
+        );
+    }
+    Ok(Some(Row {
+        case,
+        default,
+        measured,
+        k_min,
+        none,
+    }))
+}
+
+fn every() -> usize {
+    match std::env::var("ZSHIFT_SCENES").ok().as_deref() {
+        Some("full") => 1,
+        Some(n) => n.parse().unwrap_or(12),
+        None => 12,
+    }
+}
+
+fn ratio(o: &Outcome, k_min: u32) -> f64 {
+    o.steps as f64 / f64::from(k_min.max(1))
+}
+
+/// Every scene: 0 lost, 0 bled with both profiles; prints the ratios per class.
+#[test]
+fn the_recommendation_holds_on_every_scene() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let cases = grid(every());
+    let total = cases.len();
+    let mut rows = Vec::new();
+    let (mut refused, mut refused_clipped) = (0, 0);
+    for c in cases {
+        let clipped = c.base_kind == BaseKind::Ground;
+        match measure(&mut gl, c).unwrap_or_else(|e| panic!("GL: {e}")) {
+            Some(r) => rows.push(r),
+            None if clipped => refused_clipped += 1,
+            None => refused += 1,
+        }
+    }
+    let mut failures = Vec::new();
+    for r in &rows {
+        for (name, o) in [("default", &r.default), ("measured", &r.measured)] {
+            if o.lost.hit > 0 {
+                failures.push(format!(
+                    "{} [{name} profile]: {} of {} decal pixels lost at the recommendation ({} steps; none needed {} lost without offset)",
+                    r.case.label(),
+                    o.lost.hit,
+                    o.lost.of,
+                    o.steps,
+                    r.none.hit
+                ));
+            }
+            if o.bled.hit > 0 {
+                failures.push(format!(
+                    "{} [{name} profile]: {} of {} pixels bled through an occluder at the gap {:.4e}",
+                    r.case.label(),
+                    o.bled.hit,
+                    o.bled.of,
+                    o.rec.bleed_gap
+                ));
+            }
+        }
+    }
+    print_classes(&rows);
+    println!(
+        "{} scenes ({total} sampled; refused or empty: {refused_clipped} with a rasterizer-clipped base, {refused} others), {} failures",
+        rows.len(),
+        failures.len()
+    );
+    for f in failures.iter().take(40) {
+        println!("FAIL {f}");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures, first: {}",
+        failures.len(),
+        failures[0]
+    );
+    let fought = rows.iter().filter(|r| r.none.hit > 0).count();
+    assert!(
+        fought * 2 > rows.len(),
+        "most scenes must z-fight with no offset ({fought} of {})",
+        rows.len()
+    );
+    // Only a base the rasterizer clips may be refused (its clipping term made the offset
+    // useless, and the status says to cut it); every other scene gets an answer.
+    assert_eq!(
+        refused, 0,
+        "scenes without a clipped base were refused or empty"
+    );
+    assert!(
+        refused_clipped * 2 < total / 3,
+        "most clipped bases should still get an answer ({refused_clipped} of about {})",
+        total / 3
+    );
+}
+
+/// Per class (`<` strict test, `<=` the `…EQUAL` one): scenes, those that need no offset at all
+/// (no ratio), and over the rest the largest and median recommended ÷ smallest working offset
+/// with each profile (f32 steps of the offset element).
+fn print_classes(rows: &[Row]) {
+    let mut classes: Vec<String> = rows.iter().map(|r| r.case.class()).collect();
+    classes.sort();
+    classes.dedup();
+    println!("class                           | scenes  no-offset | default rec/min: max  median | measured rec/min: max  median | worst (measured)");
+    for class in classes {
+        let all = rows.iter().filter(|r| r.case.class() == class).count();
+        let of: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.case.class() == class && r.k_min > 0)
+            .collect();
+        if of.is_empty() {
+            println!("{class} | {all:>6} {all:>10} |");
+            continue;
+        }
+        let stats = |f: &dyn Fn(&Row) -> f64| {
+            let mut v: Vec<f64> = of.iter().map(|r| f(r)).collect();
+            v.sort_by(f64::total_cmp);
+            (v[v.len() - 1], v[v.len() / 2])
+        };
+        let (dmax, dmed) = stats(&|r| ratio(&r.default, r.k_min));
+        let (mmax, mmed) = stats(&|r| ratio(&r.measured, r.k_min));
+        let worst = of
+            .iter()
+            .max_by(|a, b| ratio(&a.measured, a.k_min).total_cmp(&ratio(&b.measured, b.k_min)))
+            .map(|r| r.case.label())
+            .unwrap_or_default();
+        println!(
+            "{class} | {all:>6} {:>10} | {dmax:>19.1} {dmed:>7.1} | {mmax:>20.1} {mmed:>7.1} | {worst}",
+            all - of.len()
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The measured plane error of the hand-built llvmpipe profile.
+// ---------------------------------------------------------------------------------------------
+
+/// The largest `|read − exact|` window depth over the pixels of planes drawn into D32F, in
+/// units of the D16/D24/D32 quantum and, for D32F, of 2⁻²⁴ (the f32 spacing on `[½, 1)`, the
+/// unit `RasterizerProfile::plane_error` takes for float depth: the error is mostly absolute,
+/// from the transform's `u·|m10|`, so the spacing at small depths would not bound it): planes
+/// (f/n 10 to 1e7 and ∞, `[−1, 1]`, `[0, 1]` and reversed Z, slopes 0 to 10, two viewports).
+fn plane_error_survey(gl: &mut Gl) -> Result<[f64; 4], String> {
+    let mut worst = 0.0f64; // in window depth, for UNORM
+    let mut worst_rel = 0.0f64; // in f32 spacing at the exact depth
+    let mut rng = Lcg(0xDEC0_DE);
+    // Four times over the grid, each time with other plane depths and tilt directions.
+    for size in [(97u32, 211u32), (320, 180), (64, 48)].repeat(4) {
+        let aspect = f64::from(size.0) / f64::from(size.1);
+        for frustum_kind in ["centred", "off-centre", "axis-off"] {
+            for clip in [
+                ClipDepth::NegOneToOne,
+                ClipDepth::ZeroToOne,
+                ClipDepth::ReversedZeroToOne,
+            ] {
+                for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
+                    for slope in [0.0, 0.3, 0.6, 1.0] {
+                        let n = 0.1;
+                        let t = n * 0.5774;
+                        let (l, r, b, tt) = match frustum_kind {
+                            "centred" => (-t * aspect, t * aspect, -t, t),
+                            "off-centre" => {
+                                (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t)
+                            }
+                            _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
+                        };
+                        let f = if ratio.is_finite() {
+                            n * ratio
+                        } else {
+                            f64::INFINITY
+                        };
+                        let cam = Cam {
+                            l,
+                            r,
+                            b,
+                            t: tt,
+                            n,
+                            f,
+                        };
+                        let span = if ratio.is_finite() { ratio } else { 1e4 };
+                        // Well-conditioned planes (at least 3n away, slope at most 1), where
+                        // the model's geometry terms (V, the extrapolation across the viewport)
+                        // are small: the figure stands for the transform and the evaluation, and
+                        // the model adds each scene's own geometry terms to it.
+                        let dc = n * span.powf(0.9 * rng.next()).max(3.0);
+                        let a = rng.next() * std::f64::consts::TAU;
+                        let (sx, sy) = (slope * a.cos() * 0.3, -slope);
+                        let Some(case) = build(
+                            cam,
+                            frustum_kind,
+                            size,
+                            (clip, DepthFormat::D32F),
+                            DepthTest::Less,
+                            (sx, sy),
+                            (0.0, 0.0, 0.2, dc),
+                            BaseKind::Fitted,
+                        ) else {
+                            continue;
+                        };
+                        let (e, r) = plane_error(gl, &case)?;
+                        if e > worst && std::env::var_os("ZSHIFT_SCENES_VERBOSE").is_some() {
+                            println!(
+                                "survey: {:.2} quanta of D24 on {}",
+                                e * 16_777_215.0,
+                                case.label()
+                            );
+                        }
+                        worst = worst.max(e);
+                        worst_rel = worst_rel.max(r);
+                    }
+                }
+            }
+        }
+    }
+    let q = |m: i32| 1.0 / (2f64.powi(m) - 1.0);
+    println!("largest error over the f32 spacing at the exact depth: {worst_rel:.1}");
+    assert!(worst_rel > 0.0, "the survey saw no error: it cannot fail");
+    Ok([
+        worst / q(16),
+        worst / q(24),
+        worst / q(32),
+        worst / 2f64.powi(-24),
+    ])
+}
+
+/// Draws the case's base (fitted, inside the frustum) into D32F and returns the largest
+/// `|read − exact|` window depth over its pixels, absolute and over the f32 spacing there.
+fn plane_error(gl: &mut Gl, case: &Case) -> Result<(f64, f64), String> {
+    let mut bench = Bench::new(gl, case)?;
+    bench.clear()?;
+    bench.draw_base()?;
+    let depth = bench.gl.read_depth()?;
+    let (w, h) = (case.size.0 as usize, case.size.1 as usize);
+    let cleared = if case.reversed() { 0.0 } else { 1.0 };
+    let (mut worst, mut worst_rel) = (0.0f64, 0.0f64);
+    for (i, &read) in depth.iter().enumerate() {
+        if read == cleared {
+            continue;
+        }
+        let x = 2.0 * ((i % w) as f64 + 0.5) / w as f64 - 1.0;
+        let y = 2.0 * ((i / w) as f64 + 0.5) / h as f64 - 1.0;
+        // Stay off the base's edges, where a pixel's centre may lie just outside the polygon.
+        if x.abs() > 0.85 || y.abs() > 0.85 {
+            continue;
+        }
+        let Some(d) = case.plane.depth_on_ray(case.cam.ray(x, y)) else {
+            continue;
+        };
+        let exact = case.cam.window(d, case.clip);
+        let err = (f64::from(read) - exact).abs();
+        let spacing = 2f64.powi(exact.log2().floor() as i32 - 23);
+        worst = worst.max(err);
+        worst_rel = worst_rel.max(err / spacing);
+    }
+    Ok((worst, worst_rel))
+}
+
+/// llvmpipe's per-pixel plane error stays within the figures of the hand-built profile (so the
+/// measured profile the sweep uses is what this rasterizer does), and the survey can fail: it
+/// sees a nonzero error.
+#[test]
+fn the_measured_plane_error_holds() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let survey = plane_error_survey(&mut gl).unwrap_or_else(|e| panic!("GL: {e}"));
+    println!("plane error survey (D16, D24, D32 quanta; D32F in units of 2^-24): {survey:?}");
+    for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
+        assert!(
+            survey[i] <= PLANE_ERROR[i],
+            "{name}: llvmpipe's plane error {} quanta exceeds the profile's {}",
+            survey[i],
+            PLANE_ERROR[i]
+        );
+    }
+}
+
+/// `clip_to_frustum` keeps a polygon's plane and cuts it inside the frustum: every output
+/// vertex is inside (margin included) and on the input plane; a quad wholly inside is returned
+/// unchanged; one wholly behind the camera vanishes.
+#[test]
+fn clip_to_frustum_cuts_inside_and_on_the_plane() {
+    let cam = Cam {
+        l: -0.1,
+        r: 0.1,
+        b: -0.05,
+        t: 0.05,
+        n: 0.1,
+        f: 1000.0,
+    };
+    let plane = Plane {
+        sx: 0.2,
+        sy: -0.5,
+        da: 10.0,
+    };
+    let big: Vec<[f64; 3]> = [(-1e3, -1e3), (1e3, -1e3), (1e3, 1e3), (-1e3, 1e3)]
+        .iter()
+        .map(|&(x, y)| [x, y, plane.z(x, y)])
+        .collect();
+    let cut = clip_to_frustum(&cam.frustum(), &big).unwrap();
+    assert!(cut.len() >= 3, "the plane is visible: {cut:?}");
+    for p in &cut {
+        let d = -p[2];
+        assert!(d > cam.n && d < cam.f, "{p:?} outside [n, f]");
+        assert!(
+            p[0] / d > cam.l / cam.n && p[0] / d < cam.r / cam.n,
+            "{p:?} outside x"
+        );
+        assert!(
+            p[1] / d > cam.b / cam.n && p[1] / d < cam.t / cam.n,
+            "{p:?} outside y"
+        );
+        assert!((p[2] - plane.z(p[0], p[1])).abs() <= 1e-9 * p[2].abs().max(1.0));
+    }
+    let inside: Vec<[f64; 3]> = [(-0.1, -0.1), (0.1, -0.1), (0.1, 0.1), (-0.1, 0.1)]
+        .iter()
+        .map(|&(x, y)| [x, y, -5.0])
+        .collect();
+    assert_eq!(clip_to_frustum(&cam.frustum(), &inside).unwrap(), inside);
+    let behind: Vec<[f64; 3]> = inside.iter().map(|p| [p[0], p[1], 5.0]).collect();
+    assert!(clip_to_frustum(&cam.frustum(), &behind).unwrap().is_empty());
+}
+
+/// A scene from explicit geometry: the decal is the plane under the eye-space rectangle
+/// `[x0, x1] × [y0, y1]`; the base is the plane under `±reach` (as drawn: raw, or cut by
+/// `clip_to_frustum`).
+#[allow(clippy::too_many_arguments)]
+fn explicit(
+    cam: Cam,
+    size: (u32, u32),
+    (clip, format): (ClipDepth, DepthFormat),
+    test: DepthTest,
+    plane: Plane,
+    [x0, x1, y0, y1]: [f64; 4],
+    reach: f64,
+    base_kind: BaseKind,
+) -> Case {
+    let on = |x: f64, y: f64| [x, y, plane.z(x, y)];
+    let ground = vec![
+        on(-reach, -reach),
+        on(reach, -reach),
+        on(reach, reach),
+        on(-reach, reach),
+    ];
+    let base = match base_kind {
+        BaseKind::Split => clip_to_frustum(&cam.frustum(), &ground).expect("clip_to_frustum"),
+        BaseKind::Ground => ground,
+        BaseKind::Fitted => fitted_base(&cam, &plane, 0.9 * cam.f),
+    };
+    Case {
+        cam,
+        size,
+        clip,
+        format,
+        test,
+        plane,
+        base_kind,
+        decal: [on(x0, y0), on(x1, y0), on(x1, y1), on(x0, y1)],
+        base,
+        frustum_kind: "explicit",
+    }
+}
+
+/// The GL_LEQUAL bleed of the issue: D16, 320×180, glFrustum(±0.1, ±0.05625, 0.1, 100), a
+/// facing plane at d = 0.5. At the GL_LESS gap an occluder stores the decal's value and
+/// GL_LEQUAL lets the decal through; at the GL_LEQUAL gap (one quantum wider) none bleeds.
+#[test]
+fn lequal_needs_one_more_quantum_of_gap() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let cam = Cam {
+        l: -0.1,
+        r: 0.1,
+        b: -0.05625,
+        t: 0.05625,
+        n: 0.1,
+        f: 100.0,
+    };
+    let plane = Plane {
+        sx: 0.0,
+        sy: 0.0,
+        da: 0.5,
+    };
+    let kind = (ClipDepth::NegOneToOne, DepthFormat::D16);
+    let rect = [-0.2, 0.2, -0.1, 0.1];
+    let case = explicit(
+        cam,
+        (320, 180),
+        kind,
+        DepthTest::LessEqual,
+        plane,
+        rect,
+        0.0,
+        BaseKind::Fitted,
+    );
+    let less = Case {
+        test: DepthTest::Less,
+        ..case.clone()
+    };
+    let profile = RasterizerProfile::worst_case();
+    let rec_lequal = recommend_clip(&case.scene(profile), case.clip).unwrap();
+    let rec_less = recommend_clip(&less.scene(profile), less.clip).unwrap();
+    let q = rec_less.terms.quantum;
+    assert!(
+        (rec_less.window_offset - rec_lequal.window_offset - q).abs() <= 1e-9 * q,
+        "GL_LEQUAL needs exactly one quantum less offset"
+    );
+    let mut bench = Bench::new(&mut gl, &case).unwrap();
+    let at_lequal_gap = bench
+        .bleed(&rec_lequal.matrix, rec_lequal.bleed_gap)
+        .unwrap();
+    // The gap GL_LESS needs for the same offset: one quantum narrower in window depth.
+    let w = |d: f64| cam.window(d, ClipDepth::NegOneToOne);
+    let d = 0.5;
+    let target =
+        w(d) - (rec_lequal.window_offset + 2.0 * (rec_lequal.terms.plane + rec_lequal.terms.snap));
+    let (mut lo, mut hi) = (0.0, d - cam.n);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if w(d - mid) > target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let less_gap = hi;
+    let at_less_gap = bench.bleed(&rec_lequal.matrix, less_gap).unwrap();
+    println!(
+        "LEQUAL: gap {:.4e} bled {}/{}; the GL_LESS gap {less_gap:.4e} bled {}/{}",
+        rec_lequal.bleed_gap, at_lequal_gap.hit, at_lequal_gap.of, at_less_gap.hit, at_less_gap.of
+    );
+    assert!(at_lequal_gap.of > 0);
+    assert_eq!(at_lequal_gap.hit, 0, "bled through at the GL_LEQUAL gap");
+    assert!(
+        at_less_gap.hit > 0,
+        "the GL_LESS gap should let the decal through under GL_LEQUAL (the check can fail)"
+    );
+}
+
+/// The near-clipped ground of the issue: glFrustum(±0.1, ±0.05625, 0.1, 1000), 256×144, base
+/// corners at x, y = ±1000 on z = −10 − 0.5y, decals 8–13 units away, `[−1, 1]` D24 and `[0, 1]`
+/// D32F. Drawn raw (the rasterizer clips it in f32) with `Base::Clipped`, and cut by
+/// `clip_to_frustum` with `Base::InsideFrustum`: no pixel lost either way, and the cut base's
+/// offset is far smaller.
+#[test]
+fn the_issues_near_clipped_ground_holds() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let cam = Cam {
+        l: -0.1,
+        r: 0.1,
+        b: -0.05625,
+        t: 0.05625,
+        n: 0.1,
+        f: 1000.0,
+    };
+    let plane = Plane {
+        sx: 0.0,
+        sy: -0.5,
+        da: 10.0,
+    };
+    // Decal rows 8 to 13 units away: y from −4 to 6 on z = −10 − 0.5y, below the view axis.
+    let rect = [-0.6, 0.5, -4.0, 6.0];
+    for kind in [
+        (ClipDepth::NegOneToOne, DepthFormat::D24),
+        (ClipDepth::ZeroToOne, DepthFormat::D32F),
+    ] {
+        let mut steps = Vec::new();
+        for base_kind in [BaseKind::Ground, BaseKind::Split] {
+            let case = explicit(
+                cam,
+                (256, 144),
+                kind,
+                DepthTest::Less,
+                plane,
+                rect,
+                1000.0,
+                base_kind,
+            );
+            let row = measure(&mut gl, case.clone())
+                .unwrap()
+                .unwrap_or_else(|| panic!("{}: refused or empty", case.label()));
+            for (name, o) in [("default", &row.default), ("measured", &row.measured)] {
+                println!(
+                    "{} [{name}]: lost {}/{}, bled {}/{}, {} steps, smallest working {}",
+                    case.label(),
+                    o.lost.hit,
+                    o.lost.of,
+                    o.bled.hit,
+                    o.bled.of,
+                    o.steps,
+                    row.k_min
+                );
+                assert_eq!(o.lost.hit, 0, "{} [{name}]: pixels lost", case.label());
+                assert_eq!(o.bled.hit, 0, "{} [{name}]: pixels bled", case.label());
+            }
+            assert!(
+                row.none.hit > 0,
+                "{}: no z-fighting without offset",
+                case.label()
+            );
+            steps.push(row.measured.steps);
+        }
+        assert!(
+            steps[1] * 10 < steps[0],
+            "cutting the base should shrink the offset ({steps:?})"
+        );
+    }
+}
