@@ -37,10 +37,11 @@
  *   Argument types and their constants (ZshiftClip, ZshiftFormat, ZshiftDepthTest, ...);
  *   status codes, zshift_status_message, zshift_version, zshift_last_error;
  *   the front door (the calls above, zshift_offset_matrix_ndc, zshift_recommend_for_matrix);
- *   the recommendation for a glFrustum scene (zshift_recommend*);
+ *   the recommendation for a glFrustum scene (zshift_recommend*, zshift_clip_to_frustum);
  *   offset matrices from frustum parameters (zshift_load_offset_matrix and family);
  *   projection builders (zshift_frustum, zshift_projection, zshift_ortho, ...);
- *   precision (window depth, depth steps, minimum offsets); polygon offset; planning.
+ *   precision (window depth, depth steps, minimum offsets); polygon offset; planning;
+ *   the rasterizer profile and the probe that measures it (zshift_profile_worst_case, zshift_probe).
  *
  * "Seed NNN" and equation numbers name the five texts zshift implements: 000 Lengyel, "Tweaking
  * a Vertex's Projected Depth Value" (Game Programming Gems 4.1: the offset matrix, eq. 4.1.x);
