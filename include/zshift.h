@@ -846,7 +846,9 @@ ZshiftStatus zshift_clip_to_frustum(double l,
 
 /*
  Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
- with the same eight inputs, writing the matrix instead of loading it.
+ with the same eight inputs, writing the matrix instead of loading it. The seed-compatible
+ spelling of `zshift_offset_projection(.., ZSHIFT_CLIP_NEG_ONE_TO_ONE, delta, pz, out)` (the same
+ offset, element 10 within one float ulp); for a matrix you already have, `zshift_offset_matrix`.
 
  Convention: as `zshift_frustum`; `delta > 0` moves geometry toward the camera by `delta`
  eye-space units at eye-space depth `pz` (negative, in [-f, -n]). Element 10 is scaled by
@@ -961,7 +963,8 @@ ZshiftStatus zshift_offset_ortho(double l,
                                  float *out);
 
 /*
- Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
+ Writes the `glFrustum` matrix (column-major, 16 floats) to `out`. The seed-compatible spelling
+ of `zshift_projection(l, r, b, t, n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, out)` (bit-identical).
 
  Convention: right-handed eye space, NDC depth [-1, 1], the matrix `glFrustum(l, r, b, t, n, f)`
  builds. Each element is the f32 nearest the exact value (within 1 ulp). `f` may be
@@ -1040,7 +1043,8 @@ ZshiftStatus zshift_ortho(double l,
 /*
  Writes the smallest |epsilon| that moves depth by one step of a `bits`-bit depth buffer:
  2/(2^bits - 1) * (f - n)/(f + n), seed 000 eq. 4.1.8 as corrected by seed 002 (factor 2, since
- NDC depth spans [-1, 1]). With f = +INFINITY, 2/(2^bits - 1).
+ NDC depth spans [-1, 1]). With f = +INFINITY, 2/(2^bits - 1). The seed-compatible spelling
+ (any `bits`) of `zshift_min_epsilon_clip(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, UNORM format, d)`.
 
  Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, bits
  outside 1..=32). `*out` is untouched on error.
@@ -1050,7 +1054,8 @@ ZshiftStatus zshift_min_epsilon(double n, double f, uint32_t bits, double *out);
 /*
  Writes the smallest shift toward the camera (positive) that changes the stored depth of a
  point at eye-space depth `pz`: k*pz^2 / (1 - k*pz), seed 000 eq. 4.1.9 with the corrected
- k = (f - n)/(f*n*(2^bits - 1)) of seed 002. Equals `zshift_depth_resolution` at d = -pz.
+ k = (f - n)/(f*n*(2^bits - 1)) of seed 002. Equals `zshift_depth_resolution` at d = -pz: a
+ seed-compatible spelling of `zshift_depth_step(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, UNORM, -pz)`.
 
  Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz
  outside [-f, -n], bits outside 1..=32). `*out` is untouched on error.
@@ -1070,7 +1075,8 @@ ZshiftStatus zshift_max_delta_away(double n, double f, uint32_t bits, double pz,
 /*
  Writes the window depth in [0, 1] stored for a point at eye distance `d` (positive):
  Walker's f(d) = (f+n)/(2(f-n)) - fn/(d(f-n)) + 1/2 (seed 001), evaluated as
- f/(f-n) * (d-n)/d without cancellation. Standard GL depth range, NDC [-1, 1].
+ f/(f-n) * (d-n)/d without cancellation. Standard GL depth range, NDC [-1, 1]. The
+ seed-compatible spelling of `zshift_window_depth_clip(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, d)`.
 
  Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, d
  outside [n, f]). `*out` is untouched on error.
@@ -1080,7 +1086,9 @@ ZshiftStatus zshift_window_depth(double n, double f, double d, double *out);
 /*
  Writes the exact size of one depth step at eye distance `d`: the Δd > 0 with
  f(d) - f(d - Δd) = 1/(2^bits - 1), i.e. q*d^2/(b + q*d) with q = 1/(2^bits - 1) and
- b = fn/(f - n): Walker's eq. (3) (seed 001) generalised to any d in [n, f].
+ b = fn/(f - n): Walker's eq. (3) (seed 001) generalised to any d in [n, f]. The
+ seed-compatible spelling (any `bits`) of `zshift_depth_step(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+ UNORM format, d)`.
 
  Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, d
  outside [n, f], bits outside 1..=32). `*out` is untouched on error.
