@@ -45,9 +45,8 @@ use crate::double_double::DoubleDouble;
 use crate::error::ErrorKind;
 use crate::error::Result;
 use crate::offset::rounded_outward;
-use crate::precision::DepthFormat;
 use crate::projection::{ClipDepth, Frustum};
-use crate::recommend::{ClipRecommendation, Scene, Snapping};
+use crate::recommend::{ClipRecommendation, Scene};
 
 /// The shape of a projection matrix, as far as depth is concerned.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -141,21 +140,19 @@ fn perspective(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
     }
     let (m10, m14) = (e[10], e[14]);
     let (z_near, z_far) = ends(clip);
-    let reversed = clip == ClipDepth::ReversedZeroToOne;
     // dz_ndc/dd = −m14/d²: depth grows with distance iff m14 < 0.
     if m14 == 0.0 {
         return Err(domain(
             "m[14] is 0: depth does not vary with distance, not a perspective projection",
         ));
     }
-    if (m14 > 0.0) != reversed {
-        let detail = if reversed {
-            "depth grows with distance (m[14] < 0): a standard matrix, but clip is ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE"
-        } else {
-            "depth falls with distance (m[14] > 0): a reversed-Z matrix; pass clip ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE"
-        };
-        return Err(domain(detail).with_value("m[14]", m14));
-    }
+    direction(
+        clip,
+        m14 > 0.0,
+        ("m[14]", m14),
+        "depth grows with distance (m[14] < 0): a standard matrix, but clip is ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE",
+        "depth falls with distance (m[14] > 0): a reversed-Z matrix; pass clip ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE",
+    )?;
     // z_ndc(d) = s·m10 + m14/d, so the distance at NDC depth z is m14/(z − s·m10).
     let a = s * m10;
     let near = m14 / (z_near - a);
@@ -189,6 +186,28 @@ fn perspective(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
     })
 }
 
+/// Refuses a depth row that runs against `clip` (a convention mismatch): depth must grow with
+/// distance unless `clip` is reversed. `falls` says whether it falls; the detail names the
+/// element that says so.
+fn direction(
+    clip: ClipDepth,
+    falls: bool,
+    (name, value): (&'static str, f64),
+    grows_but_reversed: &'static str,
+    falls_but_standard: &'static str,
+) -> Result<()> {
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    if falls == reversed {
+        return Ok(());
+    }
+    let detail = if reversed {
+        grows_but_reversed
+    } else {
+        falls_but_standard
+    };
+    Err(domain(detail).with_value(name, value))
+}
+
 fn orthographic(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
     zero(
         e,
@@ -208,15 +227,13 @@ fn orthographic(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
         ));
     }
     // z_ndc = m10·z + m14 with z = −d: the distance at NDC depth z is (m14 − z)/m10.
-    let reversed = clip == ClipDepth::ReversedZeroToOne;
-    if (m10 > 0.0) != reversed {
-        let detail = if reversed {
-            "depth grows with distance (m[10] < 0): a standard orthographic matrix, but clip is ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE"
-        } else {
-            "depth falls with distance in OpenGL eye space (m[10] > 0): a reversed-Z orthographic matrix (pass clip ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE), or a left-handed one (negate elements 8-11 first)"
-        };
-        return Err(domain(detail).with_value("m[10]", m10));
-    }
+    direction(
+        clip,
+        m10 > 0.0,
+        ("m[10]", m10),
+        "depth grows with distance (m[10] < 0): a standard orthographic matrix, but clip is ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE",
+        "depth falls with distance in OpenGL eye space (m[10] > 0): a reversed-Z orthographic matrix (pass clip ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE), or a left-handed one (negate elements 8-11 first)",
+    )?;
     let (z_near, z_far) = ends(clip);
     Ok(Recognized {
         clip,
@@ -318,22 +335,7 @@ pub fn offset_shift(m: &[f32; 16], clip: ClipDepth, delta: f64, d: f64) -> Resul
     }
 }
 
-/// What the engine knows about a decal besides its projection matrix, for [`recommend`].
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Decal {
-    /// Viewport width and height in pixels (`glViewport`).
-    pub viewport: [u32; 2],
-    /// The depth attachment's format.
-    pub format: DepthFormat,
-    /// The decal's nearest and farthest eye distance (`n ≤ d₁ ≤ d₂ ≤ f`).
-    pub depth_range: [f64; 2],
-    /// Eye-space tilt of its plane, `|∂z/∂x| + |∂z/∂y|` (0 facing the camera).
-    pub slope: f64,
-    /// Every corner of base and decal has the same f32 eye-space z (requires `slope == 0`).
-    pub exact_depth: bool,
-    /// How the rasterizer positions vertices before depth setup.
-    pub snapping: Snapping,
-}
+pub use crate::decal::Decal;
 
 /// The frustum of a recognised perspective matrix: `l, r, b, t` on the near plane from the x
 /// and y rows (`x_ndc = m0·x/d + s·m8`), sorted so `l < r` and `b < t` (a y flip changes no
@@ -413,12 +415,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
     let (near, far) = (r.near.min(r.far), r.near.max(r.far));
     Ok(crate::orthographic::Scene {
         ortho: crate::orthographic::Ortho::new(l, rt, b, t, near, far)?,
-        viewport: decal.viewport,
-        format: decal.format,
-        depth_range: decal.depth_range,
-        slope: decal.slope,
-        exact_depth: decal.exact_depth,
-        snapping: decal.snapping,
+        decal: *decal,
     })
 }
 

@@ -165,28 +165,19 @@ pub fn offset_ortho(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]>
 // `w(d) = w₀ ± d/(f − n)` (`|dw/dd| = 1/(f − n)` =: g at every distance).
 // ---------------------------------------------------------------------------------------------
 
+use crate::decal::Decal;
 use crate::recommend::{ClipRecommendation, ErrorTerms, Snapping};
 
 /// The unit roundoff of f32.
 const U: f64 = 1.0 / 16_777_216.0;
 
-/// What an engine knows about a decal over an orthographic base.
+/// A decal over an orthographic base.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scene {
     /// The `glOrtho` box the base is drawn with.
     pub ortho: Ortho,
-    /// Viewport width and height in pixels.
-    pub viewport: [u32; 2],
-    /// The depth attachment's format.
-    pub format: DepthFormat,
-    /// The decal's nearest and farthest eye distance (`n ≤ d₁ ≤ d₂ ≤ f`).
-    pub depth_range: [f64; 2],
-    /// Eye-space tilt of the plane, `|∂z/∂x| + |∂z/∂y|`.
-    pub slope: f64,
-    /// Every corner of base and decal has the same f32 eye-space z (requires `slope == 0`).
-    pub exact_depth: bool,
-    /// How the rasterizer positions vertices before depth setup.
-    pub snapping: Snapping,
+    /// What the engine knows about the decal.
+    pub decal: Decal,
 }
 
 /// The model's terms for an orthographic `scene` under `clip` (window-depth units):
@@ -207,7 +198,7 @@ pub struct Scene {
 pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     check(scene)?;
     let o = &scene.ortho;
-    let [d1, d2] = scene.depth_range;
+    let [d1, d2] = scene.decal.depth_range;
     let (w1, w2) = (o.window_depth(clip, d1)?, o.window_depth(clip, d2)?);
     let (w_min, w_max) = (w1.min(w2), w1.max(w2));
     let span = o.far - o.near;
@@ -224,8 +215,8 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let half_extent = [o.left, o.right, o.bottom, o.top]
         .into_iter()
         .fold(0.0f64, |a, x| a.max(x.abs()));
-    let s = scene.slope;
-    let (vertex, interpolation) = if scene.exact_depth {
+    let s = scene.decal.slope;
+    let (vertex, interpolation) = if scene.decal.exact_depth {
         (0.0, 0.0)
     } else {
         (
@@ -233,10 +224,10 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
             U * (3.0 * w_max + 3.0 * (w_max - w_min)),
         )
     };
-    let snap = match scene.snapping {
+    let snap = match scene.decal.snapping {
         Snapping::Unsnapped => 0.0,
         Snapping::SubpixelBits(b) => {
-            let [width, height] = scene.viewport.map(f64::from);
+            let [width, height] = scene.decal.viewport.map(f64::from);
             let gx = s * g * (o.right - o.left).abs() / width;
             let gy = s * g * (o.top - o.bottom).abs() / height;
             2f64.powi(-(b as i32) - 1) * (gx + gy)
@@ -244,7 +235,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     };
     let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max);
     Ok(ErrorTerms {
-        quantum: scene.format.spacing_at(w_max)?,
+        quantum: scene.decal.format.spacing_at(w_max)?,
         transform,
         vertex,
         interpolation,
@@ -281,7 +272,7 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         -1.0
     };
     let delta = window_offset * span;
-    let factor = match scene.snapping {
+    let factor = match scene.decal.snapping {
         Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
         Snapping::Unsnapped => 0.0,
     };
@@ -305,29 +296,29 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] and [`crate::ErrorKind::Domain`], naming the input.
 pub fn check(scene: &Scene) -> Result<()> {
-    let [d1, d2] = scene.depth_range;
+    let [d1, d2] = scene.decal.depth_range;
     scene.ortho.check_distance(d1)?;
     scene.ortho.check_distance(d2)?;
     if d1 > d2 {
         return Err(domain("the decal's nearest distance exceeds its farthest")
             .with_value("decal_near", d1));
     }
-    if scene.viewport.contains(&0) {
+    if scene.decal.viewport.contains(&0) {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
-    finite(scene.slope, "the plane slope is NaN or infinite")
-        .map_err(|e| e.with_value("slope", scene.slope))?;
-    if scene.slope < 0.0 {
+    finite(scene.decal.slope, "the plane slope is NaN or infinite")
+        .map_err(|e| e.with_value("slope", scene.decal.slope))?;
+    if scene.decal.slope < 0.0 {
         return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0")
-            .with_value("slope", scene.slope));
+            .with_value("slope", scene.decal.slope));
     }
-    if scene.exact_depth && scene.slope != 0.0 {
+    if scene.decal.exact_depth && scene.decal.slope != 0.0 {
         return Err(
             domain("exact_depth needs a plane facing the camera (slope 0)")
-                .with_value("slope", scene.slope),
+                .with_value("slope", scene.decal.slope),
         );
     }
-    if let Snapping::SubpixelBits(b) = scene.snapping {
+    if let Snapping::SubpixelBits(b) = scene.decal.snapping {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32")
                 .with_integer("subpixel_bits", i64::from(b)));

@@ -988,8 +988,10 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
     let mut eps = need(d1)?.max(need(d2)?);
     let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
     if !scene.format.is_unorm() && w_lo > 0.0 {
-        let mut p = 2f64.powi(w_lo.log2().floor() as i32 + 1);
-        while p <= w_hi {
+        // exp2, not powi: powi(k) for k < −1022 is 1/2^−k, which overflows to ∞ and gives 0,
+        // and a walk from 0 never ends (a subnormal window depth reaches here).
+        let mut p = (w_lo.log2().floor() + 1.0).exp2();
+        while p > 0.0 && p <= w_hi {
             let d = mapping.distance_at_window(p)?;
             eps = eps.max((strict * p * 2f64.powi(-23) + budget) * (d / b));
             p *= 2.0;

@@ -57,3 +57,31 @@ fn hand_written_argument_constants_match_the_rust_ones() {
         "the header declares argument constants that src/ffi/kinds.rs does not list"
     );
 }
+
+/// Every name the header declares carries the library's prefix: a bare `#define ZERO_TO_ONE`
+/// (once leaked from an internal `pub const`) breaks any engine that includes GL or
+/// OpenSceneGraph headers after ours.
+#[test]
+fn every_declared_name_is_prefixed() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let header = std::fs::read_to_string(root.join("include/zshift.h")).expect("read header");
+    let prefixed = |name: &str| {
+        ["ZSHIFT_", "zshift_", "Zshift"].iter().any(|p| name.starts_with(p))
+    };
+    for line in header.lines() {
+        let line = line.trim_start();
+        let name = if let Some(rest) = line.strip_prefix("#define ") {
+            rest.split_whitespace().next()
+        } else if line.starts_with("} ") && line.ends_with(';') {
+            // The name a `typedef struct { … } Name;` closes with.
+            line[2..line.len() - 1].split_whitespace().last()
+        } else if let Some(rest) = line.strip_prefix("ZshiftStatus ") {
+            rest.split('(').next()
+        } else {
+            None
+        };
+        if let Some(name) = name {
+            assert!(prefixed(name), "include/zshift.h declares `{name}` without the zshift prefix: {line:?}");
+        }
+    }
+}

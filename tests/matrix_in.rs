@@ -35,7 +35,7 @@ struct Case {
     ortho: bool,
 }
 
-const FOVY: f32 = 1.0471976; // 60°
+const FOVY: f32 = std::f32::consts::FRAC_PI_3; // 60°
 const ASPECT: f32 = 16.0 / 9.0;
 
 fn cases() -> Vec<Case> {

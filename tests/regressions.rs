@@ -209,3 +209,37 @@ fn window_depth_at_the_top_of_f64_is_one() {
     );
     assert_eq!(out, 1.0); // f(f) = 1 exactly
 }
+
+/// Reversed Z with float depth and a window depth in the subnormal range at the decal's far
+/// end: the recommendation walks the binades of f32 up from there. `2^k` for k below −1022 was
+/// computed as `1/2^−k`, which overflows to ∞ and gave 0, and the walk never ended (found by
+/// scripts/sanitize once it fed the front door). It must return, whatever it returns.
+#[test]
+fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
+    let scene = ZshiftScene {
+        l: -1e-300,
+        r: 1e-300,
+        b: -1e-300,
+        t: 1e-300,
+        n: 1e-300,
+        f: f64::INFINITY,
+        viewport_width: 64,
+        viewport_height: 64,
+        depth_format: 0x8CAC,
+        decal_near: 1e-3,
+        decal_far: 1e20,
+        slope: 0.0,
+        exact_depth: 0,
+        subpixel_bits: -1,
+        depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+        base_reach: 0.0,
+        plane_error: 0.0,
+    };
+    let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
+    let status = zshift::ffi::zshift_recommend_clip(
+        &scene,
+        zshift::ffi::ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE,
+        out.as_mut_ptr(),
+    );
+    assert!(status.0 >= 0, "{status:?}");
+}

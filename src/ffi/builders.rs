@@ -3,7 +3,8 @@
 use super::{checked_array, checked_matrix, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::{fast, ClipDepth, DepthRow, Frustum};
 
-/// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`.
+/// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`. The seed-compatible spelling
+/// of `zshift_projection(l, r, b, t, n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, out)` (bit-identical).
 ///
 /// Convention: right-handed eye space, NDC depth [-1, 1], the matrix `glFrustum(l, r, b, t, n, f)`
 /// builds. Each element is the f32 nearest the exact value (within 1 ulp). `f` may be

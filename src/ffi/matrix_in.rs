@@ -184,19 +184,21 @@ fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
     Some(unsafe { decal.read_unaligned() })
 }
 
-/// Writes the decal's projection matrix: the engine's own perspective projection `m` (the one
-/// its base is drawn with) with the smallest offset that ends z-fighting for `decal` on a real
-/// rasterizer (`zshift_recommend_clip`'s model: depth quantum, f32 rounding of transform,
-/// vertices and interpolation, sub-pixel snapping of sloped planes). The front door: one call,
-/// and the engine never restates its frustum, which is read from `m` (any perspective matrix
-/// `zshift_offset_matrix` accepts; a tweaked infinite one with a tweak up to 2^-10 is treated
-/// as infinite). The offset is applied to `m`'s own element (10, a constant NDC offset, under
-/// [-1, 1] and [0, 1]; 14, relative, under reversed Z), rounded outward; the other 15 elements
-/// are bit-identical to `m`. `zshift_recommend_for_matrix` gives the numbers behind it.
+/// Writes the decal's projection matrix: the engine's own projection `m` (the one its base is
+/// drawn with) with the smallest offset that ends z-fighting for `decal` on a real rasterizer
+/// (`zshift_recommend_clip`'s model: depth quantum, f32 rounding of transform, vertices and
+/// interpolation, sub-pixel snapping of sloped planes; for an orthographic `m` the same terms
+/// through its linear depth). The front door: one call, and the engine never restates its
+/// frustum, which is read from `m` (any matrix `zshift_offset_matrix` accepts; a tweaked
+/// infinite one with a tweak up to 2^-10 is treated as infinite). The offset is applied to
+/// `m`'s own element (10, a constant NDC offset, for perspective [-1, 1] and [0, 1]; 14,
+/// relative, for reversed Z; 14, constant, for orthographic), rounded outward; the other 15
+/// elements are bit-identical to `m`. Verified on Mesa llvmpipe with glam-built matrices
+/// (tests/gl_matrix_in.rs). `zshift_recommend_for_matrix` gives the numbers behind it.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decal` or `out` is NULL; as `zshift_offset_matrix`
-/// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for an orthographic
-/// matrix, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
+/// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
+/// 2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
 /// -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
 /// exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
 /// zshift_last_error() names the field. `out` is untouched on error.

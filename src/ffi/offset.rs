@@ -5,7 +5,9 @@ use super::{checked_array, checked_matrix, checked_scalar, clip_of, ZshiftClip, 
 use crate::projection::Frustum;
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
-/// with the same eight inputs, writing the matrix instead of loading it.
+/// with the same eight inputs, writing the matrix instead of loading it. The seed-compatible
+/// spelling of `zshift_offset_projection(.., ZSHIFT_CLIP_NEG_ONE_TO_ONE, delta, pz, out)` (the same
+/// offset, element 10 within one float ulp); for a matrix you already have, `zshift_offset_matrix`.
 ///
 /// Convention: as `zshift_frustum`; `delta > 0` moves geometry toward the camera by `delta`
 /// eye-space units at eye-space depth `pz` (negative, in [-f, -n]). Element 10 is scaled by

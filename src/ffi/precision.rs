@@ -5,7 +5,8 @@ use crate::precision::DepthMapping;
 
 /// Writes the smallest |epsilon| that moves depth by one step of a `bits`-bit depth buffer:
 /// 2/(2^bits - 1) * (f - n)/(f + n), seed 000 eq. 4.1.8 as corrected by seed 002 (factor 2, since
-/// NDC depth spans [-1, 1]). With f = +INFINITY, 2/(2^bits - 1).
+/// NDC depth spans [-1, 1]). With f = +INFINITY, 2/(2^bits - 1). The seed-compatible spelling
+/// (any `bits`) of `zshift_min_epsilon_clip(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, UNORM format, d)`.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, bits
 /// outside 1..=32). `*out` is untouched on error.
@@ -16,7 +17,8 @@ pub extern "C" fn zshift_min_epsilon(n: f64, f: f64, bits: u32, out: *mut f64) -
 
 /// Writes the smallest shift toward the camera (positive) that changes the stored depth of a
 /// point at eye-space depth `pz`: k*pz^2 / (1 - k*pz), seed 000 eq. 4.1.9 with the corrected
-/// k = (f - n)/(f*n*(2^bits - 1)) of seed 002. Equals `zshift_depth_resolution` at d = -pz.
+/// k = (f - n)/(f*n*(2^bits - 1)) of seed 002. Equals `zshift_depth_resolution` at d = -pz: a
+/// seed-compatible spelling of `zshift_depth_step(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, UNORM, -pz)`.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, pz
 /// outside [-f, -n], bits outside 1..=32). `*out` is untouched on error.
@@ -50,7 +52,8 @@ pub extern "C" fn zshift_max_delta_away(
 
 /// Writes the window depth in [0, 1] stored for a point at eye distance `d` (positive):
 /// Walker's f(d) = (f+n)/(2(f-n)) - fn/(d(f-n)) + 1/2 (seed 001), evaluated as
-/// f/(f-n) * (d-n)/d without cancellation. Standard GL depth range, NDC [-1, 1].
+/// f/(f-n) * (d-n)/d without cancellation. Standard GL depth range, NDC [-1, 1]. The
+/// seed-compatible spelling of `zshift_window_depth_clip(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, d)`.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, d
 /// outside [n, f]). `*out` is untouched on error.
@@ -61,7 +64,9 @@ pub extern "C" fn zshift_window_depth(n: f64, f: f64, d: f64, out: *mut f64) -> 
 
 /// Writes the exact size of one depth step at eye distance `d`: the Δd > 0 with
 /// f(d) - f(d - Δd) = 1/(2^bits - 1), i.e. q*d^2/(b + q*d) with q = 1/(2^bits - 1) and
-/// b = fn/(f - n): Walker's eq. (3) (seed 001) generalised to any d in [n, f].
+/// b = fn/(f - n): Walker's eq. (3) (seed 001) generalised to any d in [n, f]. The
+/// seed-compatible spelling (any `bits`) of `zshift_depth_step(n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+/// UNORM format, d)`.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER, ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN (bad planes, d
 /// outside [n, f], bits outside 1..=32). `*out` is untouched on error.

@@ -804,8 +804,106 @@ static void test_last_error(void) {
   CHECK(strlen(zshift_last_error()) > 10, "an all-zero scene is refused with a detail");
 }
 
+/* ---- the front door: the engine's own matrix in, the decal's matrix out ---- */
+
+/* glm::perspective (right-handed, [-1, 1]) as an engine computes it, in float. */
+static void engine_perspective(float fovy, float aspect, float n, float f, float m[16]) {
+  const float t = (float)tan(fovy / 2.0f);
+  int i;
+  for (i = 0; i < 16; i++) m[i] = 0.0f;
+  m[0] = 1.0f / (aspect * t);
+  m[5] = 1.0f / t;
+  m[10] = -(f + n) / (f - n);
+  m[11] = -1.0f;
+  m[14] = -(2.0f * f * n) / (f - n);
+}
+
+static int only_element_changed(const float *m, const float *out, int element) {
+  int i;
+  for (i = 0; i < 16; i++)
+    if (i != element && memcmp(&m[i], &out[i], sizeof(float)) != 0) return 0;
+  return out[element] != m[element];
+}
+
+static long double float_ulp(float x) {
+  float a = fabsf(x);
+  return (long double)nextafterf(a, INFINITY) - a;
+}
+
+static void test_front_door(void) {
+  float m[16], rev[16], ortho[16], out[16];
+  ZshiftDecal decal;
+  ZshiftRecommendation rec;
+  const long double delta = 0.25L, d = 37.0L;
+  long double seen, want;
+  int i;
+  engine_perspective(1.0471976f, 1.5f, 0.1f, 1000.0f, m);
+  /* Eye shift through element 10: z_ndc = -m10 + m14/d, so the change is m14 delta/(d(d - delta)). */
+  CHECK_STATUS(zshift_offset_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.25, 37.0, out), ZSHIFT_OK);
+  CHECK(only_element_changed(m, out, 10), "zshift_offset_matrix changed more than element 10");
+  seen = -((long double)out[10] - m[10]);
+  want = (long double)m[14] * delta / (d * (d - delta));
+  CHECK(seen <= want * (1 - 1e-15L) && want - seen <= float_ulp(out[10]) * (1 + 1e-12L),
+        "zshift_offset_matrix: NDC change %.20Lg for %.20Lg asked", seen, want);
+  /* Reversed Z (glm::perspectiveRH_ZO(fovy, aspect, f, n)): element 14 scaled by 1 + delta/(d - delta). */
+  memcpy(rev, m, sizeof rev);
+  rev[10] = 0.1f / (1000.0f - 0.1f);
+  rev[14] = 1000.0f * 0.1f / (1000.0f - 0.1f);
+  CHECK_STATUS(zshift_offset_matrix(rev, ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE, 0.25, 37.0, out), ZSHIFT_OK);
+  CHECK(only_element_changed(rev, out, 14), "reversed: more than element 14 changed");
+  CHECK((long double)out[14] - rev[14] >= rev[14] * delta / (d - delta) * (1 - 1e-15L),
+        "reversed: element 14 moved by %.20Lg", (long double)out[14] - rev[14]);
+  /* Orthographic (glOrtho): element 14 moves by m10 * delta. */
+  for (i = 0; i < 16; i++) ortho[i] = 0.0f;
+  ortho[0] = 0.05f, ortho[5] = 0.1f, ortho[10] = -2.0f / 499.0f, ortho[14] = -501.0f / 499.0f, ortho[15] = 1.0f;
+  CHECK_STATUS(zshift_offset_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.25, 37.0, out), ZSHIFT_OK);
+  CHECK(only_element_changed(ortho, out, 14), "orthographic: more than element 14 changed");
+  CHECK((long double)out[14] - ortho[14] <= (long double)ortho[10] * delta * (1 - 1e-15L),
+        "orthographic: element 14 moved by %.20Lg", (long double)out[14] - ortho[14]);
+  /* The decal matrix from a ZshiftDecal. */
+  memset(&decal, 0, sizeof decal);
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("all-zero ZshiftDecal", "viewport_width");
+  decal.viewport_width = 1280;
+  decal.viewport_height = 720;
+  decal.format = ZSHIFT_FORMAT_UNORM24;
+  decal.subpixel_bits = 8;
+  decal.decal_near = 40.0;
+  decal.decal_far = 60.0;
+  decal.slope = 1.0;
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_OK);
+  CHECK(only_element_changed(m, out, 10) && out[10] > m[10], "zshift_decal_matrix: element 10 %g from %g",
+        (double)out[10], (double)m[10]);
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &rec), ZSHIFT_OK);
+  CHECK(rec.window_offset > rec.quantum && rec.delta_at_far > 0, "recommend_for_matrix: window offset %g",
+        rec.window_offset);
+  CHECK_STATUS(zshift_decal_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_OK);
+  CHECK(only_element_changed(ortho, out, 14), "zshift_decal_matrix (orthographic): more than element 14");
+  /* Refusals, each with its detail; outputs untouched. */
+  memset(out, PATTERN, sizeof out);
+  CHECK_STATUS(zshift_offset_matrix(rev, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.25, 37.0, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("reversed matrix as [-1, 1]", "reversed-Z");
+  CHECK_STATUS(zshift_decal_matrix(rev, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_offset_matrix(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.25, 37.0, out), ZSHIFT_ERR_NULL_POINTER);
+  expect_detail("NULL m", "`m` is NULL");
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL, out), ZSHIFT_ERR_NULL_POINTER);
+  expect_detail("NULL decal", "`decal` is NULL");
+  CHECK_STATUS(zshift_offset_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 40.0, 37.0, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("d - delta", "d - delta");
+  m[2] = 0.5f;
+  CHECK_STATUS(zshift_offset_matrix_ndc(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 1e-5, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("oblique", "m[2]");
+  m[2] = NAN;
+  CHECK_STATUS(zshift_offset_matrix_ndc(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 1e-5, out), ZSHIFT_ERR_NOT_FINITE);
+  expect_detail("NaN element", "m[2]");
+  CHECK(untouched(out, sizeof out), "a refused front-door call wrote its output");
+  CHECK_STATUS(zshift_ortho(-1, 1, -1, 1, 5, 5, ZSHIFT_CLIP_NEG_ONE_TO_ONE, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("ortho f = n", "(f = 5)");
+}
+
 int main(void) {
   test_last_error();
+  test_front_door();
   test_frustum();
   test_load_offset_matrix();
   test_epsilon();

@@ -16,18 +16,7 @@
 
 #include "zshift.hpp"
 
-static int checks, failures;
-
-#define CHECK(cond, ...)                                   \
-  do {                                                     \
-    checks++;                                              \
-    if (!(cond)) {                                         \
-      failures++;                                          \
-      std::fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-      std::fprintf(stderr, __VA_ARGS__);                   \
-      std::fputc('\n', stderr);                            \
-    }                                                      \
-  } while (0)
+#include "check.hpp"
 
 struct Case {
   const char *name;

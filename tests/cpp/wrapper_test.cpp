@@ -19,18 +19,7 @@ static_assert(std::is_same_v<zshift::Matrix, std::array<float, 16>>, "Matrix is 
 static_assert(std::is_base_of_v<std::runtime_error, zshift::Error>, "Error is a std::runtime_error");
 static_assert(zshift::subpixel_unsnapped == ZSHIFT_SUBPIXEL_UNSNAPPED, "unsnapped mirrors the header");
 
-static int checks, failures;
-
-#define CHECK(cond, ...)                                   \
-  do {                                                     \
-    checks++;                                              \
-    if (!(cond)) {                                         \
-      failures++;                                          \
-      std::fprintf(stderr, "FAIL %s:%d: ", __FILE__, __LINE__); \
-      std::fprintf(stderr, __VA_ARGS__);                   \
-      std::fputc('\n', stderr);                            \
-    }                                                      \
-  } while (0)
+#include "check.hpp"
 
 // The call must throw zshift::Error with `expected` status and the C library's message for it.
 template <typename Call>

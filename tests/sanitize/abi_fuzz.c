@@ -33,6 +33,9 @@ struct inputs {
     ZshiftBiasApi api;
     ZshiftOffsetKind kind;
     ZshiftScene scene;
+    float matrix[16]; /* the engine's own projection, for the front door */
+    ZshiftDecal decal;
+    double ndc;
 };
 
 #define REC_DOUBLES (sizeof(ZshiftRecommendation) / sizeof(double))
@@ -75,7 +78,15 @@ struct inputs {
     X(zshift_recommend, double, REC_DOUBLES, -1, &in->scene)                                   \
     X(zshift_recommend_matrix, float, 16, -1, &in->scene)                                   \
     X(zshift_recommend_clip, double, REC_DOUBLES, -1, &in->scene, in->clip)                    \
-    X(zshift_recommend_clip_matrix, float, 16, -1, &in->scene, in->clip)
+    X(zshift_recommend_clip_matrix, float, 16, -1, &in->scene, in->clip)                      \
+    X(zshift_offset_matrix, float, 16, -1, in->matrix, in->clip, in->delta, in->d)            \
+    X(zshift_offset_matrix_ndc, float, 16, -1, in->matrix, in->clip, in->ndc)                 \
+    X(zshift_decal_matrix, float, 16, -1, in->matrix, in->clip, &in->decal)                   \
+    X(zshift_recommend_for_matrix, double, REC_DOUBLES, -1, in->matrix, in->clip, &in->decal) \
+    X(zshift_ortho, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f, in->clip)        \
+    X(zshift_offset_ortho, float, 16, -1, in->l, in->r, in->b, in->t, in->n, in->f, in->clip, \
+      in->delta)                                                                               \
+    X(zshift_ortho_depth_step, double, 1, -1, in->n, in->f, in->clip, in->format, in->d)
 
 /* X(name, arguments) for functions that return a static C string */
 #define ZSHIFT_TEXTS(X)                                                                        \
@@ -220,7 +231,12 @@ static const struct inputs VALID = {
     .scene = {.l = -0.1, .r = 0.1, .b = -0.075, .t = 0.075, .n = 0.1, .f = 1000.0,
               .viewport_width = 1920, .viewport_height = 1080, .depth_format = 0x81A6,
               .decal_near = 49.0, .decal_far = 51.0, .slope = 0.5, .exact_depth = 0,
-              .subpixel_bits = 8}};
+              .subpixel_bits = 8},
+    /* glFrustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000) */
+    .matrix = {1.0f, 0, 0, 0, 0, 1.3333334f, 0, 0, 0, 0, -1.0002f, -1.0f, 0, 0, -0.20002f, 0},
+    .decal = {.viewport_width = 1920, .viewport_height = 1080, .format = {0x81A6}, .subpixel_bits = 8,
+              .decal_near = 49.0, .decal_far = 51.0, .slope = 0.5, .exact_depth = 0},
+    .ndc = 1e-5};
 
 /* Every double input, the scene's included, by index. */
 static double *field(struct inputs *in, int k) {
@@ -328,6 +344,21 @@ int main(int argc, char **argv) {
                                  .slope = next_u64() % 3 ? decades(-3, 1) : 0.0,
                                  .exact_depth = 0,
                                  .subpixel_bits = (int32_t)(next_u64() % 14) - 1};
+        /* The engine's matrix: the random frustum's, perspective or orthographic, sometimes with one
+         * element set to an edge value; the decal: the scene's. */
+        if (next_u64() % 2) {
+            (void)zshift_projection(in.l, in.r, in.b, in.t, in.n, in.f, in.clip, in.matrix);
+        } else {
+            (void)zshift_ortho(in.l, in.r, in.b, in.t, in.n, in.f, in.clip, in.matrix);
+        }
+        if (next_u64() % 8 == 0) in.matrix[next_u64() % 16] = (float)edges[next_u64() % nedges];
+        in.decal = (ZshiftDecal){.viewport_width = in.scene.viewport_width,
+                                 .viewport_height = in.scene.viewport_height,
+                                 .format = {in.scene.depth_format},
+                                 .subpixel_bits = in.scene.subpixel_bits,
+                                 .decal_near = in.lo, .decal_far = in.hi, .slope = in.scene.slope,
+                                 .exact_depth = 0};
+        in.ndc = sign() * decades(-9, -1);
         if (next_u64() % 4 == 0) *field(&in, (int)(next_u64() % NFIELDS)) = edges[next_u64() % nedges];
         if (next_u64() % 8 == 0) *int_field(&in, (int)(next_u64() % NINTS)) = edge_ints[next_u64() % nints];
         check_all(&in), cases++;
