@@ -345,61 +345,51 @@ impl Ratio {
     }
 }
 
-/// [`outward_fast`] for an offset `o = num/den` known as a [`Ratio`] whose estimate takes at
-/// most `rounds` roundings, quotient included. The usual case (an offset of a few depth steps,
-/// smaller than the step from `plain` to the next f32 outward) is decided without the division:
-/// `|num|·(1 + rounds·2⁻⁵²) < step·|den|` (its own product rounded once more, inside the
-/// doubled margin) proves `|o| < step`, so the least f32 at or beyond `plain + o` is that next
-/// f32.
+/// The outward rounding of `plain + o` (see [`rounded_outward`]) for an offset `o = num/den`
+/// known as a [`Ratio`] whose quotient takes at most `rounds` roundings (relative error below
+/// `rounds·2⁻⁵³`: the f64 operations that computed it, on inputs scaled into the normal range).
+/// `None` (use the double-double value) when the estimate cannot decide it, and for a zero or
+/// non-finite one.
+///
+/// Two cases decide it, both computed and one chosen without a branch. An offset whose magnitude
+/// (with the doubled error bound) is below the step from `plain` to the next f32 outward (the
+/// usual one: a few depth steps or less) rounds outward to that next f32. A larger one: when
+/// no f32 lies within the estimate's error of `plain + o`, every value in that interval rounds
+/// outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32 are farther
+/// still); that fails for an f32 within about `1e-15` relative (offsets that land on one).
 #[inline(always)]
 pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
-    let Ratio(num, den) = o;
-    let up = (num > 0.0) == (den > 0.0);
-    // One f32 outward: one unit in the last place away from zero when `up` agrees with the sign.
-    let bits = plain.to_bits();
-    let next = f32::from_bits(if up == (plain > 0.0) {
-        bits.wrapping_add(1)
-    } else {
-        bits.wrapping_sub(1)
-    });
-    let step = (f64::from(next) - f64::from(plain)).abs();
-    let usual = (plain != 0.0) & (plain.abs() < f32::INFINITY) & (next.abs() < f32::INFINITY);
+    let estimate = o.value();
     let bound = rounds * f64::EPSILON;
-    if usual & (num != 0.0) & (num.abs() * (1.0 + bound) < step * den.abs()) {
-        return Some(next);
-    }
-    outward_fast(plain, o.value(), rounds)
-}
-
-/// The outward rounding of `plain + o` (see [`rounded_outward`]) from an f64 estimate of `o`
-/// within `rounds` roundings (relative error below `rounds·2⁻⁵³`: the f64 operations that
-/// computed it, on inputs scaled into the normal range). `None` (use the double-double value)
-/// when that cannot decide it, and for a zero or non-finite estimate.
-///
-/// When no f32 lies within the estimate's error of `plain + estimate`, every value in that
-/// interval rounds outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32
-/// are farther still); that fails for an f32 within about `1e-15` relative (offsets that land
-/// on one) and for offsets below that error, which [`outward_of_ratio`] decides first.
-#[inline(always)]
-pub(crate) fn outward_fast(plain: f32, estimate: f64, rounds: f64) -> Option<f32> {
-    let target = f64::from(plain) + estimate;
-    // The estimate's own error (doubled), and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = rounds * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
     let up = estimate > 0.0;
+    // One f32 outward from `v` (nonzero, finite): one unit of its bit pattern, away from zero
+    // when the direction agrees with its sign.
+    let outward = |v: f32| {
+        let bits = v.to_bits();
+        f32::from_bits(if up == (v > 0.0) {
+            bits.wrapping_add(1)
+        } else {
+            bits.wrapping_sub(1)
+        })
+    };
+    let next = outward(plain);
+    let step = (f64::from(next) - f64::from(plain)).abs();
+    let small = estimate.abs() * (1.0 + bound) < step;
+    let target = f64::from(plain) + estimate;
+    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = bound * estimate.abs() + f64::EPSILON * target.abs();
     let nearest = target as f32;
     let gap = f64::from(nearest) - target; // exact
-                                           // The f32 one step beyond `nearest` in the offset's direction (for a nonzero finite f32,
-                                           // one unit of its bit pattern, away from zero when the direction agrees with its sign).
-    let bits = nearest.to_bits();
-    let stepped = f32::from_bits(if up == (nearest > 0.0) {
-        bits.wrapping_add(1)
-    } else {
-        bits.wrapping_sub(1)
-    });
     let beyond = if up { gap < 0.0 } else { gap > 0.0 };
-    let x = if beyond { stepped } else { nearest };
-    let usable = (nearest != 0.0) & (nearest.abs() < f32::INFINITY) & (x.abs() < f32::INFINITY);
-    (usable & (estimate != 0.0) & (gap.abs() > error)).then_some(x)
+    let x = match (small, beyond) {
+        (true, _) => next,
+        (false, true) => outward(nearest),
+        (false, false) => nearest,
+    };
+    let nonzero_finite = |v: f32| (v != 0.0) & (v.abs() < f32::INFINITY);
+    let decided = small | (gap.abs() > error);
+    let usable = nonzero_finite(plain) & nonzero_finite(nearest) & (x.abs() < f32::INFINITY);
+    (decided & usable & (estimate != 0.0)).then_some(x)
 }
 
 /// [`outward_of_ratio`], falling back to the double-double `exact` offset.

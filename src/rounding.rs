@@ -402,7 +402,11 @@ fn bisected(x: &Ratio<'_>) -> f32 {
     };
     let value = |k: i64| {
         let magnitude = k.unsigned_abs() as u32;
-        f32::from_bits(if k < 0 { magnitude | 0x8000_0000 } else { magnitude })
+        f32::from_bits(if k < 0 {
+            magnitude | 0x8000_0000
+        } else {
+            magnitude
+        })
     };
     let (mut lo, mut hi) = (key(f32::NEG_INFINITY), key(f32::INFINITY));
     while lo < hi {
@@ -526,8 +530,8 @@ mod tests {
             scale: 1.0,
         };
         assert_eq!(nearest_of_ratio(r), 2.0 * 2f32.powi(-149)); // 1.5 ulp: tie to even, 2
-        // A useless estimate (the f64 sum cancels to 0, 2·10⁸ f32 below the value) ends at
-        // once, by bisection.
+                                                                // A useless estimate (the f64 sum cancels to 0, 2·10⁸ f32 below the value) ends at
+                                                                // once, by bisection.
         let cancelling = [1.0, 1e-30, -1.0];
         let r = Ratio {
             num: &cancelling,

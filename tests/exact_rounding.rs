@@ -882,14 +882,20 @@ fn c_entry_points_write_the_rust_matrices() {
 /// end at once, and round to the nearest f32 or refuse with an overflow.
 #[test]
 fn extreme_frustums_round_exactly_or_overflow() {
-    let scales = [1e-300, 1e-200, 1e-45, 1e-40, 1e-20, 1.0, 1e20, 1e38, 1e39, 1e200, 1e300];
+    let scales = [
+        1e-300, 1e-200, 1e-45, 1e-40, 1e-20, 1.0, 1e20, 1e38, 1e39, 1e200, 1e300,
+    ];
     let rng = Rng::new(4711);
     let mut built = 0;
     for &sn in &scales {
         for &sx in &scales {
             for clip in CLIPS {
                 let n = sn * (1.0 + rng.next());
-                let f = if rng.next() < 0.3 { f64::INFINITY } else { n * (1.0 + 1e3 * rng.next()) };
+                let f = if rng.next() < 0.3 {
+                    f64::INFINITY
+                } else {
+                    n * (1.0 + 1e3 * rng.next())
+                };
                 let r = sx * (1.0 + rng.next());
                 let l = -r * rng.next();
                 let Ok(frustum) = Frustum::new(l, r, -r, r * 0.5, n, f) else {
