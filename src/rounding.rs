@@ -62,10 +62,10 @@
 //!
 //! ## Outward rounding
 //! Offset elements are rounded away from the plain element instead (`crate::offset`): the
-//! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves; an
-//! offset below one f32 step is decided by comparing `|num|` with `step·|den|` (no division),
-//! and a larger one when the f64 target lies farther from every f32 than its error bound, as
-//! the enclosure does; otherwise double-double decides.
+//! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves. An
+//! offset whose estimate, grown by its error bound, stays below the step to the next f32 is
+//! decided as that next f32; a larger one when the f64 target lies farther from every f32 than
+//! its error bound, as the enclosure does; otherwise double-double decides.
 
 use std::cmp::Ordering;
 
