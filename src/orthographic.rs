@@ -9,11 +9,13 @@
 //! `n` may be 0 or negative (the near plane behind the eye); `f > n`.
 
 use crate::domain::{domain, finite};
+use crate::double_double::unit_scale;
 use crate::double_double::DoubleDouble;
 use crate::error::Result;
 use crate::offset::rounded_outward;
 use crate::precision::DepthFormat;
 use crate::projection::{to_f32, ClipDepth};
+use crate::rounding::{enclosed, nearest_of_ratio, two_sum, Ratio};
 
 /// The six parameters of `glOrtho`, validated: finite, `l ≠ r`, `b ≠ t`, `n < f`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -136,12 +138,92 @@ pub fn ortho_f64(ortho: &Ortho, clip: ClipDepth) -> [f64; 16] {
     m
 }
 
-/// [`ortho_f64`] rounded to f32, each element the nearest f32.
+/// The `glOrtho` matrix of `clip` in f32, each element the nearest f32 of its exact value (ties
+/// to even), decided as in [`crate::rounding`]: from the f64 estimate of [`ortho_f64`] (at
+/// most three roundings) when it is far enough from an f32 rounding boundary, else exactly.
 ///
 /// # Errors
 /// [`crate::ErrorKind::Overflow`] if an element leaves f32.
 pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
-    to_f32(&ortho_f64(ortho, clip))
+    let y = ortho_f64(ortho, clip);
+    // The estimates' error bound needs finite intermediates: a sum or difference of extents
+    // near f64::MAX that overflows sends every element to the exact decision.
+    let (l, r, b, t) = (ortho.left, ortho.right, ortho.bottom, ortho.top);
+    let intermediates = [
+        r - l,
+        r + l,
+        t - b,
+        t + b,
+        ortho.far - ortho.near,
+        ortho.far + ortho.near,
+    ];
+    let trusted = intermediates.iter().all(|x| x.is_finite());
+    let nearest = |y: f64, num: &[f64], den: &[f64]| nearest(trusted, y, num, den);
+    let (m0, m12) = nearest_row(trusted, y[0], y[12], l, r);
+    let (m5, m13) = nearest_row(trusted, y[5], y[13], b, t);
+    let (n, f) = (ortho.near, ortho.far);
+    let s = unit_scale(n.abs().max(f.abs()));
+    let (span, span_err) = two_sum(f * s, -(n * s));
+    let den = [span, span_err];
+    let (sum, sum_err) = two_sum(f * s, n * s);
+    let (m10_num, m14_num): ([f64; 2], [f64; 2]) = match clip {
+        ClipDepth::NegOneToOne => ([-2.0 * s, 0.0], [-sum, -sum_err]),
+        ClipDepth::ZeroToOne => ([-s, 0.0], [-(n * s), 0.0]),
+        ClipDepth::ReversedZeroToOne => ([s, 0.0], [f * s, 0.0]),
+    };
+    let m10 = nearest(y[10], &m10_num, &den);
+    let m14 = nearest(y[14], &m14_num, &den);
+    to_f32(&[
+        f64::from(m0),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        f64::from(m5),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        f64::from(m10),
+        0.0,
+        f64::from(m12),
+        f64::from(m13),
+        f64::from(m14),
+        1.0,
+    ])
+}
+
+/// `2/(hi − lo)` and `−(hi + lo)/(hi − lo)` (one row of x or y), each the nearest f32 of its
+/// exact value given their f64 estimates: inputs scaled by a power of two so that the exact
+/// decision's products stay normal.
+fn nearest_row(
+    trusted: bool,
+    scale_estimate: f64,
+    centre_estimate: f64,
+    lo: f64,
+    hi: f64,
+) -> (f32, f32) {
+    let s = unit_scale(lo.abs().max(hi.abs()));
+    let (w, w_err) = two_sum(hi * s, -(lo * s));
+    let (c, c_err) = two_sum(hi * s, lo * s);
+    (
+        nearest(trusted, scale_estimate, &[2.0 * s, 0.0], &[w, w_err]),
+        nearest(trusted, centre_estimate, &[-c, -c_err], &[w, w_err]),
+    )
+}
+
+/// The nearest f32 of the exact ratio `Σ num / Σ den`, given its f64 estimate `y`: `y`'s own
+/// rounding when the estimate is `trusted` (finite intermediates) and the enclosure test
+/// decides it, else the exact decision.
+fn nearest(trusted: bool, y: f64, num: &[f64], den: &[f64]) -> f32 {
+    let fast = if trusted { enclosed(y) } else { None };
+    fast.unwrap_or_else(|| {
+        nearest_of_ratio(Ratio {
+            num,
+            den,
+            scale: 1.0,
+        })
+    })
 }
 
 /// The orthographic matrix of `clip` with every point moved toward the camera by `delta` (eye

@@ -27,8 +27,8 @@
 //! chain.
 //!
 //! ## The test (an enclosure, rounded twice)
-//! With `ρ = 16u = 2⁻⁴⁹` the builders compute `lo = fl(fl(N·(1 − ρ))·fl(1/D))` and `hi` with
-//! `1 + ρ` (both factors are exact f64). By the bound, `lo ≤ x·(1 − ρ)(1 − u)⁻⁵ < x` and
+//! With `ρ = 16u = 2⁻⁴⁹` the builders compute `lo = fl(fl(N·fl(1/D))·(1 − ρ))` and `hi` with
+//! `1 + ρ` (both factors are exact f64; the estimate `N·(1/D)` is computed once for both). By the bound, `lo ≤ x·(1 − ρ)(1 − u)⁻⁵ < x` and
 //! `hi ≥ x·(1 + ρ)(1 − u)⁵ > x` for `x > 0` (mirrored for `x < 0`), so `x` lies between them.
 //! Rounding to the nearest f32 is monotone, so when `lo as f32 == hi as f32` every value
 //! between them, `x` included, has that nearest f32. This holds across binades, among f32
@@ -75,9 +75,9 @@ use glam::{Mat4, Vec4};
 /// five roundings of any estimate with room to spare).
 pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
 
-#[cfg(test)]
 /// The nearest f32 of every value within a relative [`ENCLOSURE`]`/2` of `y`, if it is one f32
-/// (else `None`): the enclosure test of the module docs, for one estimate.
+/// (else `None`): the enclosure test of the module docs, for one estimate (of at most five
+/// roundings, on normal intermediates).
 #[inline(always)]
 pub(crate) fn enclosed(y: f64) -> Option<f32> {
     let lo = (y * (1.0 - ENCLOSURE)) as f32;
@@ -108,8 +108,8 @@ pub(crate) struct Estimates {
 /// enclosure test decides all six and every element is finite, and both denominators are finite
 /// and nonzero (the zero estimates' proof needs that); `None` otherwise.
 ///
-/// The enclosure's ends are computed directly as `(numerator·(1 ∓ ρ))·(1/denominator)`, so the
-/// factor `1 ∓ ρ` is applied while the division runs. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
+/// The enclosure's ends are computed as `(numerator·(1/denominator))·(1 ∓ ρ)`, the estimate
+/// once for both ends. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
 /// no detection); elsewhere the same arithmetic lane by lane.
 /// The projection's columns, as [`nearest_columns_portable`] describes, with element 10 replaced by `element_10(m10)` (an offset rounded
 /// outward) before the columns are assembled, so the matrix still leaves in four registers.
@@ -155,8 +155,9 @@ pub(crate) fn nearest_columns_portable(
     let mut m = [0.0f32; 6];
     let mut good = true;
     for i in 0..6 {
-        let lo = (num[i] * (1.0 - ENCLOSURE) * inv[i]) as f32;
-        let hi = (num[i] * (1.0 + ENCLOSURE) * inv[i]) as f32;
+        let y = num[i] * inv[i];
+        let lo = (y * (1.0 - ENCLOSURE)) as f32;
+        let hi = (y * (1.0 + ENCLOSURE)) as f32;
         good &= (lo == hi) & (lo.abs() < f32::INFINITY);
         m[i] = lo;
     }
@@ -193,16 +194,16 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32
         let scale = _mm_set1_pd(e.scale);
         let centre = _mm_set_pd(e.centre[1], e.centre[0]);
         let depth = _mm_set_pd(e.depth[1], e.depth[0]);
-        // (numerator·(1 ∓ ρ))·reciprocal, narrowed to f32: [m0 m5 m8 m9] and [m10 m14 0 0].
+        // The estimates numerator·reciprocal, then each times (1 ∓ ρ), narrowed to f32:
+        // [m0 m5 m8 m9] and [m10 m14 0 0].
+        let (y_scale, y_centre) = (_mm_mul_pd(scale, inv), _mm_mul_pd(centre, inv));
+        let y_depth = _mm_mul_pd(depth, inv_z);
         let end = |factor: __m128d| {
             let xy = _mm_movelh_ps(
-                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(scale, factor), inv)),
-                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(centre, factor), inv)),
+                _mm_cvtpd_ps(_mm_mul_pd(y_scale, factor)),
+                _mm_cvtpd_ps(_mm_mul_pd(y_centre, factor)),
             );
-            (
-                xy,
-                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(depth, factor), inv_z)),
-            )
+            (xy, _mm_cvtpd_ps(_mm_mul_pd(y_depth, factor)))
         };
         let (lo_xy, lo_z) = end(down);
         let (hi_xy, hi_z) = end(up);
@@ -213,23 +214,18 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32
             _mm_and_ps(_mm_cmpeq_ps(lo, hi), finite)
         };
         let all = _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z));
-        // |r − l|, |t − b| in (0, ∞); n in (0, ∞); f − n > 0.
-        let den_magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), den);
-        let planes = _mm_set_pd(e.planes[1], e.planes[0]);
+        // n in (0, ∞); f − n > 0; r − l, t − b finite and nonzero. A finite denominator is one
+        // whose reciprocal is nonzero (NaN fails the comparison); a zero one has an infinite
+        // reciprocal, which makes element 0 or 5 (2n·(1/D), 2n > 0) infinite and fails the
+        // enclosure's finiteness test above.
         let zero = _mm_setzero_pd();
-        let finite = _mm_cmplt_pd(
-            _mm_move_sd(den_magnitude, planes),
-            _mm_set1_pd(f64::INFINITY),
-        ); // [n, |t − b|]
-        let positive = _mm_and_pd(
-            _mm_cmpgt_pd(den_magnitude, zero),
-            _mm_cmpgt_pd(planes, zero),
+        let planes = _mm_set_pd(e.planes[1], e.planes[0]);
+        let near_finite = _mm_cmplt_pd(_mm_set_sd(e.planes[0]), _mm_set1_pd(f64::INFINITY));
+        let inv_nonzero = _mm_cmpgt_pd(_mm_andnot_pd(_mm_set1_pd(-0.0), inv), zero);
+        let den_ok = _mm_and_pd(
+            _mm_and_pd(_mm_cmpgt_pd(planes, zero), near_finite),
+            inv_nonzero,
         );
-        let finite = _mm_and_pd(
-            finite,
-            _mm_cmplt_pd(den_magnitude, _mm_set1_pd(f64::INFINITY)),
-        );
-        let den_ok = _mm_and_pd(finite, positive);
         if (_mm_movemask_ps(all) != 0xf) | (_mm_movemask_pd(den_ok) != 0x3) {
             return None;
         }

@@ -923,3 +923,97 @@ fn extreme_frustums_round_exactly_or_overflow() {
     }
     assert!(built > 100, "only {built} extreme matrices were in range");
 }
+
+/// `glOrtho`'s elements as exact rationals: (index, value) for 0, 5, 10, 12, 13, 14.
+fn exact_ortho(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64, clip: ClipDepth) -> Vec<(usize, Q)> {
+    let (w, h, span) = (q(r) - q(l), q(t) - q(b), q(f) - q(n));
+    let (m10, m14) = match clip {
+        ClipDepth::NegOneToOne => (-int(2) / &span, -(q(f) + q(n)) / &span),
+        ClipDepth::ZeroToOne => (-int(1) / &span, -q(n) / &span),
+        ClipDepth::ReversedZeroToOne => (int(1) / &span, q(f) / &span),
+    };
+    vec![
+        (0, int(2) / &w),
+        (5, int(2) / &h),
+        (10, m10),
+        (12, -(q(r) + q(l)) / &w),
+        (13, -(q(t) + q(b)) / &h),
+        (14, m14),
+    ]
+}
+
+/// Every `glOrtho` element is the nearest f32 of its exact value, on boxes built so that one
+/// element (0, 12, 10 or 14) lies within a few f64 ulps of an f32 midpoint. Rounding the f64
+/// element instead (what the builder did before) is wrong on some of them, so the inputs do
+/// reach the boundaries.
+#[test]
+fn every_ortho_element_is_the_nearest_f32_near_rounding_boundaries() {
+    use zshift::orthographic::{ortho, ortho_f64, Ortho};
+    let rng = Rng::new(0x0f1e_2d3c_4b5a_6978);
+    let mut double_rounding_wrong = 0usize;
+    for i in 0..4000 {
+        let clip = CLIPS[i % 3];
+        let scale = 10f64.powf(rng.next() * 8.0 - 4.0);
+        let m = midpoint_near(&rng, if i % 2 == 0 { scale } else { -scale });
+        let (mut l, mut r, mut n, mut f) =
+            (-1.0, 1.0 + rng.next(), -rng.next(), 10.0 * rng.next() + 0.5);
+        match (i / 3) % 4 {
+            // 2/(r − l) = |m|
+            0 => r = l + nudge_small(&rng, 2.0 / m.abs()),
+            // −(r + l)/(r − l) = m with r − l = w
+            1 => {
+                let w = 1.0 + rng.next();
+                r = nudge_small(&rng, (w - m * w) / 2.0);
+                l = r - w;
+            }
+            // element 10 = m: the span from it
+            2 => {
+                let k = match clip {
+                    ClipDepth::NegOneToOne => -2.0,
+                    ClipDepth::ZeroToOne => -1.0,
+                    ClipDepth::ReversedZeroToOne => 1.0,
+                };
+                let span = nudge_small(&rng, (k / m).abs());
+                f = n + span;
+            }
+            // element 14 = m (NegOneToOne: −(f + n)/span; else −n/span or f/span)
+            _ => {
+                let span = 1.0 + rng.next();
+                match clip {
+                    ClipDepth::NegOneToOne => {
+                        f = nudge_small(&rng, (span - m * span) / 2.0);
+                        n = f - span;
+                    }
+                    ClipDepth::ZeroToOne => {
+                        n = nudge_small(&rng, -m * span);
+                        f = n + span;
+                    }
+                    ClipDepth::ReversedZeroToOne => {
+                        f = nudge_small(&rng, m * span);
+                        n = f - span;
+                    }
+                }
+            }
+        }
+        let (b, t) = (-0.75, 0.5 + rng.next());
+        let o = Ortho::new(l, r, b, t, n, f).expect("valid box");
+        let got = ortho(&o, clip).expect("in range");
+        let rounded_twice = ortho_f64(&o, clip).map(|x| x as f32);
+        for (index, value) in exact_ortho(l, r, b, t, n, f, clip) {
+            let want = nearest_f32(&value);
+            assert_eq!(
+                got[index].to_bits(),
+                want.to_bits(),
+                "ortho({l:e}, {r:e}, {b:e}, {t:e}, {n:e}, {f:e}, {clip:?}) element {index}: {} is not the nearest f32 {}",
+                got[index],
+                want
+            );
+            double_rounding_wrong += usize::from(rounded_twice[index].to_bits() != want.to_bits());
+        }
+    }
+    assert!(
+        double_rounding_wrong > 10,
+        "only {double_rounding_wrong} elements were rounded wrongly by double rounding"
+    );
+    println!("{double_rounding_wrong} elements of 4000 boxes differ under double rounding");
+}

@@ -3,6 +3,15 @@
 
 use std::cell::{Cell, RefCell};
 use std::ffi::{c_char, CString};
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// Whether any thread has ever recorded an error. Until one has, no thread's `HOLDS` can be
+/// set, so a successful call has nothing to clear and skips the thread-local lookup (in a
+/// shared library, a call to `__tls_get_addr` that costs as much as a third of a matrix
+/// builder). Written once, by the first error, then only read: no cache line bounces between
+/// threads. A thread that set its own `HOLDS` stored `true` here first, so it sees `true`
+/// (program order on one thread), and clears its detail as before.
+static RECORDED: AtomicBool = AtomicBool::new(false);
 
 thread_local! {
     /// The sentence `zshift_last_error` returns; empty after a successful call.
@@ -16,6 +25,7 @@ thread_local! {
 /// early: it is replaced).
 pub(super) fn set(detail: &str) {
     let text = CString::new(detail.replace('\0', " ")).unwrap_or_default();
+    RECORDED.store(true, Ordering::Relaxed);
     LAST.with(|last| *last.borrow_mut() = text);
     HOLDS.with(|holds| holds.set(true));
 }
@@ -23,13 +33,18 @@ pub(super) fn set(detail: &str) {
 /// Forgets the last error: the call succeeded.
 #[inline]
 pub(super) fn clear() {
-    if HOLDS.with(Cell::get) {
+    if RECORDED.load(Ordering::Relaxed) {
         forget();
     }
 }
 
-#[cold]
+/// Clears this thread's detail if it holds one. Out of line: inlined, the compiler hoists the
+/// thread-local lookup above [`clear`]'s test.
+#[inline(never)]
 fn forget() {
+    if !HOLDS.with(Cell::get) {
+        return;
+    }
     LAST.with(|last| *last.borrow_mut() = CString::default());
     HOLDS.with(|holds| holds.set(false));
 }
