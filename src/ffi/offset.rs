@@ -76,10 +76,28 @@ pub extern "C" fn zshift_offset_projection(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = Frustum::new(l, r, b, t, n, f)
+        .ok()
+        .and_then(|frustum| offset_projection_fast(&frustum, clip, delta, pz));
+    checked_matrix(out, fast, || {
         let frustum = Frustum::new(l, r, b, t, n, f)?;
         crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
     })
+}
+
+/// The fast path of `zshift_offset_projection` and `zshift_offset_perspective` for a valid
+/// frustum (float arithmetic and comparisons only, nothing that can panic): `None` where the
+/// checked, exact path must decide or explain.
+#[inline(always)]
+fn offset_projection_fast(
+    frustum: &Frustum,
+    clip: ZshiftClip,
+    delta: f64,
+    pz: f64,
+) -> Option<glam::Mat4> {
+    let clip = clip_of(clip).ok()?;
+    let m = crate::clip_offset::offset_projection_fast(frustum, clip, delta, pz)?;
+    Some(glam::Mat4::from_cols_array(&m))
 }
 
 /// `zshift_offset_projection` for gluPerspective parameters (fovy in degrees).
@@ -96,7 +114,10 @@ pub extern "C" fn zshift_offset_perspective(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = crate::projection::perspective_frustum(fovy, aspect, n, f)
+        .ok()
+        .and_then(|frustum| offset_projection_fast(&frustum, clip, delta, pz));
+    checked_matrix(out, fast, || {
         let frustum = crate::projection::perspective_frustum(fovy, aspect, n, f)?;
         crate::clip_offset::offset_projection(&frustum, clip_of(clip)?, delta, pz)
     })
