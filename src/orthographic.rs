@@ -243,6 +243,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         plane: transform + vertex + interpolation,
         clip: 0.0,
         strict: true,
+        correlated: false,
     })
 }
 

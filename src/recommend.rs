@@ -125,24 +125,45 @@
 //! 10 steps where 2 work).
 //!
 //! # A measured profile
-//! [`Scene::profile`] is a [`RasterizerProfile`]; the default, [`RasterizerProfile::worst_case`],
-//! assumes 8 sub-pixel bits of snapping and uses the bounds above. A measured profile (from the
-//! probe, or built by hand) replaces `S` by 0 where the rasterizer is unsnapped and `T + V + I`
-//! by its `plane_error` — the largest `|computed − exact|` window depth of a plane the probe
-//! drew, in quanta (`1/(2^m − 1)`) for the UNORM formats and in units of 2⁻²⁴ for D32F (float
-//! depth's error is mostly absolute, `u·|m10|` from the transform, so it is no multiple of the
-//! spacing at small depths) — plus the two parts of the bound that depend on the scene's own
-//! geometry rather than on the rasterizer: `V` (which grows as the decal nears the near plane
-//! and with the slope) and the interpolation's span and extrapolation,
-//! `6u·max(w(d₂) − w(d₁), G)`: `E = min(T + V + I, plane_error + V + 6u·max(…))`. The figure is
-//! measured on well-conditioned planes (3n or more away, slope ≤ 1), where those terms are
-//! small. (A figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154
-//! pixels at 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
-//! the offset where it is below the rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
-//! plane with shared f32 z (every rounding step is monotone in element 10, so the decal's computed
-//! depth never exceeds the base's), not in size: the rounding of two different products is
-//! independent, and (R1) keeps `2E`.
+//! [`Scene::profile`] is a [`RasterizerProfile`] (each field defined once, in
+//! [`crate::profile`]); the default, [`RasterizerProfile::worst_case`], assumes 8 sub-pixel bits
+//! of snapping, `r` = 1 quantum and clipping in f32, and uses the bounds above. A profile the
+//! probe measured ([`crate::probe::probe`], in the engine's own context) enters the model field
+//! by field:
 //!
+//! * `snapping`: `S` as above, 0 where the rasterizer is unsnapped.
+//! * `error_ulps` `k` (only from a measured profile, only under `[−1, 1]` where the probe measures
+//!   it): every pixel's computed depth errs by at most `k·u·(1 + M)`, `M` the magnitude of the
+//!   plane's terms evaluated from the window origin. For the scene, the depth extrapolated to the
+//!   origin is at most `w(d₂) + G` and the gradients times the pixel position add at most `G`
+//!   (`G` as in `I`), so `E = min(T + V + I, k·u·(1 + w(d₂) + 2G) + V)`: `V`, the rounding of
+//!   the scene's own coordinates, is no part of the figure ("exact" is the plane through the f32
+//!   vertices). Unlike one worst figure per format, it scales with each scene's plane: a steep
+//!   plane far from the origin gets the larger error it has, a gentle one the smaller.
+//! * `near_clip`: [`NearClip::ClippedF32`] keeps `C` (above); [`NearClip::PlanePreserving`]
+//!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
+//!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
+//! * `resolvable` `r`: [`Recommendation::polygon_offset`]'s units are `(Δw − 2S)/(r·q)`.
+//!
+//! `plane_error` is the probe's summary (the worst plane it drew) and is not used: it cannot
+//! scale with the scene. The probe checks `k` against the stored depth of every format (D32F
+//! stores the computed depth; the UNORM figures are the stored error less a quantum of
+//! conversion), which assumes the rasterizer converts one computed depth monotonically (llvmpipe
+//! does, and every GPU whose depth is interpolated in float).
+//!
+//! # Correlated errors
+//! Base and decal errors are independent in size in general: the rounding of two different
+//! products is. One case is correlated in full: a plane facing the camera whose every corner
+//! (base and decal) has the same f32 z ([`Scene::exact_depth`]), drawn with the same program.
+//! Every vertex of both then has the same computed depth but for element 10, the plane is
+//! constant (zero gradients are exact), and every step of the chain — `m10·z`, `+ m14`, the
+//! division by `w`, the viewport map, the conversion — is monotone in element 10: the decal's
+//! stored depth is never behind the base's. Under `GL_LEQUAL`/`GL_GEQUAL` (a tie passes) that
+//! is enough, and the recommendation is no offset at all ([`ErrorTerms::correlated`]); the gap
+//! keeps the occluder's error. Under the strict tests the decal's depth must drop a whole
+//! quantum, and each rounding step can lose up to one unit of its own result whatever the
+//! correlation, so (R1) stands.
+
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
 //! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
@@ -337,12 +358,19 @@ pub struct ErrorTerms {
     pub clip: f64,
     /// Whether the depth test is strict (`GL_LESS`/`GL_GREATER`): the offset then needs `q`.
     pub strict: bool,
+    /// Base and decal err alike (a facing plane with shared f32 z under an `…EQUAL` test, see
+    /// "Correlated errors"): the offset needs no budget for them.
+    pub correlated: bool,
 }
 
 impl ErrorTerms {
-    /// The errors of base and decal together: `2(E + S) + C`.
+    /// The errors of base and decal together: `2(E + S) + C`, or 0 when they are correlated.
     pub fn budget(&self) -> f64 {
-        2.0 * (self.plane + self.snap) + self.clip
+        if self.correlated {
+            0.0
+        } else {
+            2.0 * (self.plane + self.snap) + self.clip
+        }
     }
 
     /// The window offset (R1): `q + 2(E + S) + C` under a strict test, `2(E + S) + C` under
@@ -418,7 +446,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
     let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
     check_useful(&terms, bleed_gap, d2)?;
-    let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+    let units = polygon_units(scene, &terms, window_offset);
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     Ok(Recommendation {
@@ -456,6 +484,13 @@ pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
     Ok([gx, gy])
 }
 
+/// `glPolygonOffset`'s units equivalent to the constant part of the offset, `(Δw − 2S)/(r·q)`,
+/// `r` the profile's [`RasterizerProfile::resolvable`] for the format (quanta per unit).
+fn polygon_units(scene: &Scene, terms: &ErrorTerms, window_offset: f64) -> f64 {
+    let r = scene.profile.resolvable[profile_index(scene.format)];
+    (window_offset - 2.0 * terms.snap).max(0.0) / (r * terms.quantum)
+}
+
 /// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
 fn slope_factor(scene: &Scene) -> f64 {
     match scene.profile.snapping {
@@ -482,21 +517,13 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
 }
 
-/// The profile's measured per-pixel plane error for the scene's format, in window depth: the
-/// figure times the UNORM quantum, or for D32F times 2⁻²⁴ (the f32 spacing on `[½, 1)`: the
-/// error of computed float depth is mostly absolute, `u·|m10|` from the transform, so it is not
-/// a multiple of the spacing at small depths). `None` unless the profile is measured and has a
-/// finite, non-negative figure for the format.
-fn measured_plane_error(scene: &Scene) -> Option<f64> {
-    let p = scene.profile;
-    let unit = match scene.format {
-        DepthFormat::Unorm16 => 1.0 / 65_535.0,
-        DepthFormat::Unorm24 => 1.0 / 16_777_215.0,
-        DepthFormat::Unorm32 => 1.0 / 4_294_967_295.0,
-        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
-    };
-    let e = p.plane_error[profile_index(scene.format)];
-    (p.measured && e.is_finite() && e >= 0.0).then_some(e * unit)
+/// The profile's per-pixel error growth [`RasterizerProfile::error_ulps`], where the model may
+/// use it: a measured profile with a finite, non-negative figure, under the `[−1, 1]` mapping
+/// the probe measured it in.
+fn measured_error_ulps(scene: &Scene, clip: ClipDepth) -> Option<f64> {
+    let k = scene.profile.error_ulps;
+    (scene.profile.measured && clip == ClipDepth::NegOneToOne && k.is_finite() && k >= 0.0)
+        .then_some(k)
 }
 
 /// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
@@ -663,6 +690,13 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
         }
+    }
+    let r = scene.profile.resolvable[profile_index(scene.format)];
+    if !(r.is_finite() && r > 0.0) {
+        return Err(
+            domain("the profile's resolvable r for this format must be finite and > 0")
+                .with_value("resolvable", r),
+        );
     }
     let reversed = clip == ClipDepth::ReversedZeroToOne;
     if scene.depth_test.is_reversed() != reversed {
@@ -845,7 +879,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
     };
     // The window offset at d: constant, or ε·b/d under reversed Z.
     let offset_at = |d: f64| {
-        if relative_epsilon > 0.0 {
+        if clip == ClipDepth::ReversedZeroToOne {
             relative_epsilon * (scale(scene) / d)
         } else {
             window_offset
@@ -868,10 +902,10 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         bleed_gap = bleed_gap.max(g);
     }
     check_useful(&terms, bleed_gap, d2)?;
-    let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
+    let (epsilon, polygon_offset) = if clip == ClipDepth::ReversedZeroToOne {
         (relative_epsilon, [0.0, 0.0])
     } else {
-        let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+        let units = polygon_units(scene, &terms, window_offset);
         (-ndc_offset / m[10], [slope_factor(scene), fits(units)?])
     };
     Ok(ClipRecommendation {
@@ -936,21 +970,39 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    // A measured figure stands for what every plane has on this rasterizer (the transform and
-    // the plane's evaluation at a depth); the scene's own geometry adds its vertex rounding V
-    // (which grows toward the near plane and with the slope) and the interpolation across its
-    // depth span, which no probe plane can stand for.
-    let geometry = vertex + 6.0 * u * (w_max - w_min).max(extrapolated);
-    let plane = measured_plane_error(scene).map_or(bound, |e| (e + geometry).min(bound));
+    // A measured profile bounds the computed depth of every pixel by error_ulps·u·(1 + M), M the
+    // magnitude of the plane's terms evaluated from the window origin; here M ≤ w_max + 2G (the
+    // depth extrapolated to the origin is at most w_max + G, and the gradients times the pixel
+    // position add at most G). Measured under [−1, 1] only; the scene's own vertex rounding V
+    // is no part of it.
+    let plane = match measured_error_ulps(scene, clip) {
+        Some(k) => (k * u * (1.0 + w_max + 2.0 * extrapolated) + vertex).min(bound),
+        None => bound,
+    };
+    let snap = snap(scene)?;
+    let clip_term = match scene.profile.near_clip {
+        NearClip::ClippedF32 => clip_term(scene, clip, &mapping)?,
+        // The probe found clipped planes within twice the unclipped error plus 2 D24 quanta.
+        NearClip::PlanePreserving if matches!(scene.base, Base::Clipped { .. }) => {
+            plane + snap + 2.0 / 16_777_215.0
+        }
+        NearClip::PlanePreserving => 0.0,
+    };
+    // A facing plane whose every corner has the same f32 z (base and decal) is drawn at one
+    // depth, and each step of the depth chain is monotone in element 10: the decal's computed
+    // depth is never behind the base's, so under an …EQUAL test (a tie passes) no offset is
+    // needed. The budget of base and decal is then 0; the occluder's error stays in the gap.
+    let correlated = scene.exact_depth && !scene.depth_test.is_strict();
     Ok(ErrorTerms {
         quantum: q,
         transform,
         vertex,
         interpolation,
-        snap: snap(scene)?,
+        snap,
         plane,
-        clip: clip_term(scene, clip, &mapping)?,
+        clip: clip_term,
         strict: scene.depth_test.is_strict(),
+        correlated,
     })
 }
 
@@ -1215,15 +1267,17 @@ mod tests {
         );
     }
 
-    /// A measured plane error (plus the scene's own V and depth span) replaces T + V + I where it
-    /// is smaller, never where it is larger; an unmeasured profile (or NaN) keeps the bound.
+    /// A measured error_ulps k replaces T + V + I by k·u·(1 + w(d₂) + 2G) + V where that is
+    /// smaller (G the extrapolation across the viewport, recomputed here from the gradients),
+    /// never where it is larger; an unmeasured profile, NaN, or another convention keeps the
+    /// bound; plane_error alone changes nothing.
     #[test]
-    fn a_measured_plane_error_is_used_only_below_the_bound() {
+    fn a_measured_error_growth_is_used_only_below_the_bound() {
         let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
         let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
-        let with = |e: f64, measured: bool| Scene {
+        let with = |k: f64, measured: bool| Scene {
             profile: RasterizerProfile {
-                plane_error: [e; 4],
+                error_ulps: k,
                 measured,
                 ..worst.profile
             },
@@ -1232,13 +1286,98 @@ mod tests {
         let t = error_terms(&worst).unwrap();
         let bound = t.transform + t.vertex + t.interpolation;
         assert_eq!(t.plane, bound);
-        let q = 1.0 / 16_777_215.0;
-        let geometry = t.interpolation - 3.0 * F32_UNIT_ROUNDOFF * w(120.0) + t.vertex;
-        let measured = error_terms(&with(0.5, true)).unwrap().plane;
-        assert!((measured - (0.5 * q + geometry)).abs() <= 1e-12 * measured);
+        let [gx, gy] = window_gradient(&worst, 80.0).unwrap();
+        let e = 0.577_350_269_189_625_7;
+        let g = (gx * 256.0).max(gy * 256.0) * (1.0 + e);
+        let want = 1.5 * F32_UNIT_ROUNDOFF * (1.0 + w(120.0) + 2.0 * g) + t.vertex;
+        let measured = error_terms(&with(1.5, true)).unwrap().plane;
+        assert!(
+            (measured - want).abs() <= 1e-12 * want,
+            "{measured} vs {want}"
+        );
+        assert!(measured < bound);
         assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
-        assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
+        assert_eq!(error_terms(&with(1.5, false)).unwrap().plane, bound);
         assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
+        let zero_to_one = clip_error_terms(&with(1.5, true), ClipDepth::ZeroToOne).unwrap();
+        assert_eq!(
+            zero_to_one.plane,
+            zero_to_one.transform + zero_to_one.vertex + zero_to_one.interpolation
+        );
+        let only_plane_error = Scene {
+            profile: RasterizerProfile {
+                plane_error: [0.0; 4],
+                measured: true,
+                ..worst.profile
+            },
+            ..worst
+        };
+        assert_eq!(error_terms(&only_plane_error).unwrap().plane, bound);
+    }
+
+    /// A facing plane with shared f32 z under GL_LEQUAL needs no offset (the chain is monotone in
+    /// element 10); under GL_LESS it keeps q + 2E; the gap keeps the occluder's error either way.
+    #[test]
+    fn correlated_facing_planes_need_no_offset_under_an_equal_test() {
+        let less = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Unorm24, 0.0, Snapping::Unsnapped)
+        };
+        let lequal = Scene {
+            depth_test: DepthTest::LessEqual,
+            ..less
+        };
+        let (a, b) = (recommend(&less).unwrap(), recommend(&lequal).unwrap());
+        assert!(!a.terms.correlated && b.terms.correlated);
+        assert_eq!((b.window_offset, b.epsilon), (0.0, 0.0));
+        assert!((a.window_offset - (a.terms.quantum + 2.0 * a.terms.plane)).abs() < 1e-20);
+        assert!(b.bleed_gap > 0.0);
+        let reversed = Scene {
+            frustum: Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, f64::INFINITY).unwrap(),
+            depth_test: DepthTest::GreaterEqual,
+            ..lequal
+        };
+        let r = recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).unwrap();
+        assert_eq!(r.relative_epsilon, 0.0);
+    }
+
+    /// A plane-preserving clipper replaces C by the base's own E + S plus 2 D24 quanta; the
+    /// polygon-offset units divide by the profile's r.
+    #[test]
+    fn near_clip_and_resolvable_enter_where_documented() {
+        let clipped = Scene {
+            base: Base::Clipped { reach: 1e3 },
+            ..scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped)
+        };
+        let preserving = Scene {
+            profile: RasterizerProfile {
+                near_clip: NearClip::PlanePreserving,
+                resolvable: [2.0; 4],
+                ..clipped.profile
+            },
+            ..clipped
+        };
+        let (f32c, kept) = (
+            error_terms(&clipped).unwrap(),
+            error_terms(&preserving).unwrap(),
+        );
+        assert!((kept.clip - (kept.plane + kept.snap + 2.0 / 16_777_215.0)).abs() < 1e-20);
+        assert!(kept.clip < f32c.clip);
+        let (a, b) = (
+            recommend(&clipped).unwrap(),
+            recommend(&preserving).unwrap(),
+        );
+        let units = |r: &Recommendation, per: f64| r.window_offset / (per * r.terms.quantum);
+        assert!((a.polygon_offset[1] - units(&a, 1.0)).abs() <= 1e-9 * a.polygon_offset[1]);
+        assert!((b.polygon_offset[1] - units(&b, 2.0)).abs() <= 1e-9 * b.polygon_offset[1]);
+        let zero_r = Scene {
+            profile: RasterizerProfile {
+                resolvable: [0.0; 4],
+                ..clipped.profile
+            },
+            ..clipped
+        };
+        assert_eq!(recommend(&zero_r).unwrap_err().kind(), ErrorKind::Domain);
     }
 
     /// The depth test must match the convention; `DepthTest` round-trips GL enums.

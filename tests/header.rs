@@ -66,7 +66,9 @@ fn every_declared_name_is_prefixed() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let header = std::fs::read_to_string(root.join("include/zshift.h")).expect("read header");
     let prefixed = |name: &str| {
-        ["ZSHIFT_", "zshift_", "Zshift"].iter().any(|p| name.starts_with(p))
+        ["ZSHIFT_", "zshift_", "Zshift"]
+            .iter()
+            .any(|p| name.starts_with(p))
     };
     for line in header.lines() {
         let line = line.trim_start();
@@ -81,7 +83,10 @@ fn every_declared_name_is_prefixed() {
             None
         };
         if let Some(name) = name {
-            assert!(prefixed(name), "include/zshift.h declares `{name}` without the zshift prefix: {line:?}");
+            assert!(
+                prefixed(name),
+                "include/zshift.h declares `{name}` without the zshift prefix: {line:?}"
+            );
         }
     }
 }

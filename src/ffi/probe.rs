@@ -37,7 +37,8 @@ pub struct ZshiftProfile {
     pub subpixel_bits: i32,
     /// glPolygonOffset's minimum resolvable difference r per format, in units of the format's
     /// quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
-    /// primitive's largest depth). Finite and > 0. The worst case is 4.
+    /// primitive's largest depth). Finite and > 0. The worst case is 1 (the smallest r known, so
+    /// the recommendation's polygon_offset_units suffice on every implementation).
     pub resolvable: [f64; 4],
     /// The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
     /// units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
