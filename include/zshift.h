@@ -156,6 +156,69 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 typedef int32_t ZshiftStatus;
 
 /*
+ What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
+ or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
+ recommendation.
+
+ Arrays indexed by depth format are in the order D16, D24, D32, D32F
+ (GL_DEPTH_COMPONENT16, 24, 32, 32F).
+
+ A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
+ with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
+ */
+typedef struct {
+  /*
+   Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
+   */
+  uint32_t measured;
+  /*
+   How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
+   plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
+   positions are snapped to (2^-b pixel) first. The worst case is 8.
+   */
+  int32_t subpixel_bits;
+  /*
+   glPolygonOffset's minimum resolvable difference r per format, in units of the format's
+   quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
+   primitive's largest depth). Finite and > 0. The worst case is 1 (the smallest r known, so
+   the recommendation's polygon_offset_units suffice on every implementation).
+   */
+  double resolvable[4];
+  /*
+   The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
+   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+   vertices times an f32 projection in the vertex shader), against the plane through the
+   vertices times the matrix in double: covers the f32 transform, division by w, viewport
+   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
+   */
+  double plane_error[4];
+  /*
+   plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
+   */
+  double plane_error_reversed;
+  /*
+   How the per-pixel error grows with a steep plane's window position: every measured pixel
+   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
+   D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+   window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+   where not measured. NAN or finite >= 0.
+   */
+  double error_ulps;
+  /*
+   How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
+   ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
+   */
+  int32_t near_clip;
+  /*
+   Seconds `zshift_probe` took (0 for the worst case). Informational.
+   */
+  double probe_seconds;
+} ZshiftProfile;
+
+/*
  What an engine knows about a decal besides its projection matrix, for
  `zshift_recommend_for_matrix`. Fill every field: an all-zero ZshiftDecal is refused
  (viewport 0), and subpixel_bits = 0 is the most conservative value, not a default.
@@ -196,6 +259,19 @@ typedef struct {
    slope == 0).
    */
   uint32_t exact_depth;
+  /*
+   0: every vertex of the base lies inside the view frustum (the rasterizer clips nothing).
+   > 0: the base may cross the near plane or the screen's edges (a floor running behind the
+   camera), and this is the largest |x|, |y| or |z| of its eye-space vertices: the offset
+   gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
+   */
+  double base_reach;
+  /*
+   The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+   `subpixel_bits`. When not NULL it supplies every rasterizer fact, its snapping included,
+   and `subpixel_bits` is ignored (but must still lie in -1..=32).
+   */
+  const ZshiftProfile *profile;
 } ZshiftDecal;
 
 /*
@@ -335,7 +411,8 @@ typedef struct {
    */
   uint32_t exact_depth;
   /*
-   GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+   GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1). Used only when
+   `profile` is NULL (a profile carries its own, measured snapping).
    */
   int32_t subpixel_bits;
   /*
@@ -355,74 +432,15 @@ typedef struct {
    */
   double base_reach;
   /*
-   The rasterizer's measured per-pixel plane error for this depth format, from the probe:
-   in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
-   GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
+   The rasterizer's profile, from `zshift_probe` (call it once per context and pass the
+   same record to every recommendation), or NULL: the worst case
+   (`zshift_profile_worst_case`) with this scene's `subpixel_bits`. When not NULL the
+   profile supplies every rasterizer fact, its snapping included, and `subpixel_bits` is
+   ignored; it is validated as `ZshiftProfile` documents (a zero-filled one is refused).
+   A zeroed ZshiftScene has NULL here.
    */
-  double plane_error;
+  const ZshiftProfile *profile;
 } ZshiftScene;
-
-/*
- What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
- or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
- recommendation.
-
- Arrays indexed by depth format are in the order D16, D24, D32, D32F
- (GL_DEPTH_COMPONENT16, 24, 32, 32F).
-
- A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
- with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
- */
-typedef struct {
-  /*
-   Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
-   */
-  uint32_t measured;
-  /*
-   How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
-   plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
-   positions are snapped to (2^-b pixel) first. The worst case is 8.
-   */
-  int32_t subpixel_bits;
-  /*
-   glPolygonOffset's minimum resolvable difference r per format, in units of the format's
-   quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
-   primitive's largest depth). Finite and > 0. The worst case is 4.
-   */
-  double resolvable[4];
-  /*
-   The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
-   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
-   vertices times an f32 projection in the vertex shader), against the plane through the
-   vertices times the matrix in double: covers the f32 transform, division by w, viewport
-   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
-   */
-  double plane_error[4];
-  /*
-   plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
-   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
-   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
-   */
-  double plane_error_reversed;
-  /*
-   How the per-pixel error grows with a steep plane's window position: every measured pixel
-   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
-   D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
-   window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
-   where not measured. NAN or finite >= 0.
-   */
-  double error_ulps;
-  /*
-   How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
-   ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
-   */
-  int32_t near_clip;
-  /*
-   Seconds `zshift_probe` took (0 for the worst case). Informational.
-   */
-  double probe_seconds;
-} ZshiftProfile;
 
 /*
  A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a

@@ -108,6 +108,15 @@ pub struct ZshiftDecal {
     /// Nonzero when every corner of base and decal has the same float eye-space z (requires
     /// slope == 0).
     pub exact_depth: u32,
+    /// 0: every vertex of the base lies inside the view frustum (the rasterizer clips nothing).
+    /// > 0: the base may cross the near plane or the screen's edges (a floor running behind the
+    /// camera), and this is the largest |x|, |y| or |z| of its eye-space vertices: the offset
+    /// gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
+    pub base_reach: f64,
+    /// The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+    /// `subpixel_bits`. When not NULL it supplies every rasterizer fact, its snapping included,
+    /// and `subpixel_bits` is ignored (but must still lie in -1..=32).
+    pub profile: *const super::probe::ZshiftProfile,
 }
 
 fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
@@ -147,6 +156,18 @@ fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
         slope: d.slope,
         exact_depth: d.exact_depth != 0,
         snapping,
+        base: if d.base_reach == 0.0 {
+            crate::recommend::Base::InsideFrustum
+        } else {
+            crate::recommend::Base::Clipped {
+                reach: d.base_reach,
+            }
+        },
+        profile: if d.profile.is_null() {
+            None
+        } else {
+            Some(super::probe::profile_or_worst(d.profile, snapping)?)
+        },
     })
 }
 

@@ -218,3 +218,21 @@ fn write(out: *mut ZshiftProfile, value: ZshiftProfile) {
     // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftProfile.
     unsafe { out.write_unaligned(value) }
 }
+
+/// The profile a recommendation entry point uses: the caller's `ZshiftProfile` when `profile`
+/// is not NULL (validated; it supplies every rasterizer fact, snapping included), else the
+/// worst case with `snapping` (from the scene's own `subpixel_bits`).
+pub(super) fn profile_or_worst(
+    profile: *const ZshiftProfile,
+    snapping: Snapping,
+) -> Result<RasterizerProfile> {
+    if profile.is_null() {
+        return Ok(RasterizerProfile {
+            snapping,
+            ..RasterizerProfile::worst_case()
+        });
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftProfile; read_unaligned needs no
+    // alignment and the struct is plain data.
+    unsafe { profile.read_unaligned() }.to_profile()
+}

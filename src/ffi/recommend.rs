@@ -53,7 +53,8 @@ pub struct ZshiftScene {
     /// Nonzero when every corner of base and decal has the same float eye-space z (a plane
     /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
     pub exact_depth: u32,
-    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1). Used only when
+    /// `profile` is NULL (a profile carries its own, measured snapping).
     pub subpixel_bits: i32,
     /// The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
     /// reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
@@ -67,10 +68,13 @@ pub struct ZshiftScene {
     /// offset gains the clipping term C (README, "Verified on a rasterizer": it is large; cut
     /// the base instead where you can).
     pub base_reach: f64,
-    /// The rasterizer's measured per-pixel plane error for this depth format, from the probe:
-    /// in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
-    /// GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
-    pub plane_error: f64,
+    /// The rasterizer's profile, from `zshift_probe` (call it once per context and pass the
+    /// same record to every recommendation), or NULL: the worst case
+    /// (`zshift_profile_worst_case`) with this scene's `subpixel_bits`. When not NULL the
+    /// profile supplies every rasterizer fact, its snapping included, and `subpixel_bits` is
+    /// ignored; it is validated as `ZshiftProfile` documents (a zero-filled one is refused).
+    /// A zeroed ZshiftScene has NULL here.
+    pub profile: *const super::probe::ZshiftProfile,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -168,7 +172,7 @@ fn checked_record(
 }
 
 fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
-    use crate::recommend::{Base, DepthTest, RasterizerProfile, Scene, Snapping};
+    use crate::recommend::{Base, DepthTest, Scene, Snapping};
     let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
@@ -191,21 +195,7 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
             reach: s.base_reach,
         }
     };
-    let mut profile = RasterizerProfile {
-        snapping,
-        ..RasterizerProfile::worst_case()
-    };
-    if s.plane_error != 0.0 {
-        crate::domain::finite(s.plane_error, "plane_error is NaN or infinite")?;
-        if s.plane_error < 0.0 {
-            return Err(
-                crate::domain::domain("plane_error must be >= 0 (0: not measured)")
-                    .with_value("plane_error", s.plane_error),
-            );
-        }
-        profile.plane_error[crate::recommend::profile_index(format)] = s.plane_error;
-        profile.measured = true;
-    }
+    let profile = super::probe::profile_or_worst(s.profile, snapping)?;
     Ok(Scene {
         frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
         viewport: [s.viewport_width, s.viewport_height],
