@@ -260,9 +260,9 @@ typedef struct {
    */
   uint32_t exact_depth;
   /*
-   0: every vertex of the base lies inside the view frustum (the rasterizer clips nothing).
-   > 0: the base may cross the near plane or the screen's edges (a floor running behind the
-   camera), and this is the largest |x|, |y| or |z| of its eye-space vertices: the offset
+   0 when every vertex of the base lies inside the view frustum (the rasterizer clips
+   nothing); when the base may cross the near plane or the screen's edges (a floor running
+   behind the camera), the largest |x|, |y| or |z| of its eye-space vertices, and the offset
    gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
    */
   double base_reach;
@@ -310,7 +310,9 @@ typedef struct {
    */
   double polygon_offset_factor;
   /*
-   The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+   The constant units of the equivalent glPolygonOffset(-factor, -units): the constant part
+   of the offset over r quanta, r the profile's `resolvable` for the format (1 without a
+   profile: the smallest r known, so the units suffice on every implementation).
    */
   double polygon_offset_units;
   /*
@@ -334,8 +336,7 @@ typedef struct {
    */
   double snap;
   /*
-   Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
-   or the measured plane_error where that is smaller.
+   Term E: the per-quad plane error the offset used: transform + vertex + interpolation.
    */
   double plane;
   /*

@@ -24,9 +24,8 @@
 //!   correction is this factor: one window step is `2/(2^m−1)` in NDC); for `GL_DEPTH_COMPONENT32F`
 //!   the spacing of f32 at `w(d₂)`, `2^(⌊log₂ w(d₂)⌋ − 23)` (2⁻²⁴ for `w ≥ ½`, which is why D32F
 //!   under the `[−1, 1]` mapping behaves as D24).
-//! * `E = T + V + I`, the **plane error** of one quad, or with a measured profile
-//!   ([`RasterizerProfile::measured`]) the probe's per-pixel `plane_error` where that is smaller
-//!   (see "A measured profile"):
+//! * `E = T + V + I`, the **plane error** of one quad, with any profile (see "A measured
+//!   profile" for why no probed figure replaces it):
 //!   * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
 //!     roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal
 //!     and product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding
@@ -194,8 +193,8 @@
 //! on screen, 97×211, 320×180 and 64×48 viewports, centred and off-centre frusta (one with the
 //! view axis off screen), f/n from 10 to 1e7 and ∞, D16/D24/D32F under all three conventions and
 //! both kinds of depth test, decals whose corners are not the base's, with the worst-case
-//! profile and a measured llvmpipe profile: no pixel lost at the recommendation, none bled at the
-//! gap, in every scene; the README ("Verified on a rasterizer") has the ratios per class.
+//! profile and the profile [`crate::probe::probe`] measures in the test's context: no pixel lost
+//! at the recommendation, none bled at the gap, in every scene; the README ("Verified on a rasterizer") has the ratios per class.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
@@ -203,8 +202,9 @@
 //! is the same shape: `q`, `2E` and `C` are constants (`units = (Δw − 2S)/r`) and the snapping
 //! term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one constant
 //! for the whole decal, so zshift evaluates the slope term at the decal's worst depth instead of
-//! per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r` as
-//! [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
+//! per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r` the
+//! profile's [`RasterizerProfile::resolvable`] quanta (1 in the worst case, the smallest known;
+//! 2 measured on llvmpipe, whose `lp_state_setup.c` scales units by `2·mrd`).
 
 use crate::domain::{domain, finite, representable};
 use crate::error::Result;
@@ -347,8 +347,8 @@ pub struct ErrorTerms {
     pub interpolation: f64,
     /// `S`: sub-pixel snapping of a sloped plane (per quad; 0 unsnapped).
     pub snap: f64,
-    /// `E`, the per-quad plane error the offset uses: `T + V + I`, or the profile's measured
-    /// `plane_error·q` where that is smaller.
+    /// `E`, the per-quad plane error the offset uses: `T + V + I` (see "A measured profile" for
+    /// why no probed figure replaces it).
     pub plane: f64,
     /// `C`: the base's f32 clipping and far-vertex term (0 for [`Base::InsideFrustum`]).
     pub clip: f64,
@@ -407,7 +407,8 @@ pub struct Recommendation {
     /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
     /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
-    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, with `r` = the quantum.
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, `units` counted in the
+    /// profile's [`RasterizerProfile::resolvable`] quanta.
     pub polygon_offset: [f64; 2],
     /// The terms the offset was built from.
     pub terms: ErrorTerms,
@@ -797,7 +798,7 @@ pub struct ClipRecommendation {
     /// so `ε = −c/m10`, negative) under `NegOneToOne` and `ZeroToOne`; [`Self::relative_epsilon`]
     /// (positive) under `ReversedZeroToOne`.
     pub epsilon: f64,
-    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum, as
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, as
     /// [`Recommendation::polygon_offset`], under `NegOneToOne` and `ZeroToOne`; `[0, 0]` under
     /// reversed Z, where the offset is relative and no constant `units` matches it.
     pub polygon_offset: [f64; 2],

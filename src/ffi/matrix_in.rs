@@ -108,9 +108,9 @@ pub struct ZshiftDecal {
     /// Nonzero when every corner of base and decal has the same float eye-space z (requires
     /// slope == 0).
     pub exact_depth: u32,
-    /// 0: every vertex of the base lies inside the view frustum (the rasterizer clips nothing).
-    /// > 0: the base may cross the near plane or the screen's edges (a floor running behind the
-    /// camera), and this is the largest |x|, |y| or |z| of its eye-space vertices: the offset
+    /// 0 when every vertex of the base lies inside the view frustum (the rasterizer clips
+    /// nothing); when the base may cross the near plane or the screen's edges (a floor running
+    /// behind the camera), the largest |x|, |y| or |z| of its eye-space vertices, and the offset
     /// gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
     pub base_reach: f64,
     /// The rasterizer's profile from `zshift_probe`, or NULL for the worst case with

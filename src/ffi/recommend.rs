@@ -100,7 +100,9 @@ pub struct ZshiftRecommendation {
     /// The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
     /// 0 when unsnapped.
     pub polygon_offset_factor: f64,
-    /// The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+    /// The constant units of the equivalent glPolygonOffset(-factor, -units): the constant part
+    /// of the offset over r quanta, r the profile's `resolvable` for the format (1 without a
+    /// profile: the smallest r known, so the units suffice on every implementation).
     pub polygon_offset_units: f64,
     /// Term q: the smallest difference the stored format keeps (window depth).
     pub quantum: f64,
@@ -112,8 +114,7 @@ pub struct ZshiftRecommendation {
     pub interpolation: f64,
     /// Term S: sub-pixel snapping of a sloped plane before depth setup.
     pub snap: f64,
-    /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
-    /// or the measured plane_error where that is smaller.
+    /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation.
     pub plane: f64,
     /// Term C: the rasterizer's float clipping of a base that reaches outside the frustum
     /// (0 when base_reach is 0).
