@@ -584,7 +584,8 @@ ZshiftStatus zshift_offset_matrix_ndc(const float *m, ZshiftClip clip, double nd
  for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
  2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
  -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
- exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+ exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
+ (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
  zshift_last_error() names the field. `out` is untouched on error.
  */
 ZshiftStatus zshift_decal_matrix(const float *m,
@@ -616,8 +617,10 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
  Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
  or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
  viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
- negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
- ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+ negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
+ base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
+ `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
+ `*out` is untouched on error.
  */
 ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
 

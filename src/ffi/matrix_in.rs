@@ -146,8 +146,15 @@ fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
         ("decal_near", d.decal_near),
         ("decal_far", d.decal_far),
         ("slope", d.slope),
+        ("base_reach", d.base_reach),
     ] {
         finite(x, "a ZshiftDecal field is NaN or infinite").map_err(|e| e.with_value(name, x))?;
+    }
+    if d.base_reach < 0.0 {
+        return Err(
+            domain("ZshiftDecal.base_reach must be >= 0 (0: a base inside the frustum)")
+                .with_value("base_reach", d.base_reach),
+        );
     }
     Ok(Decal {
         viewport: [d.viewport_width, d.viewport_height],
@@ -221,7 +228,8 @@ fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
 /// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
 /// 2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
 /// -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
-/// exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+/// exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
+/// (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
 /// zshift_last_error() names the field. `out` is untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_decal_matrix(

@@ -220,8 +220,10 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
 /// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
 /// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
-/// negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
-/// ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+/// negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
+/// base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
+/// `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
+/// `*out` is untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_recommend(
     scene: *const ZshiftScene,

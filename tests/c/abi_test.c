@@ -910,6 +910,10 @@ static void test_front_door(void) {
     CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &clipped), ZSHIFT_OK);
     CHECK(clipped.clip > 0 && clipped.window_offset > profiled.window_offset, "base_reach: clip term %g",
           clipped.clip);
+    decal.base_reach = -1.0;
+    CHECK_STATUS(zshift_decal_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+    expect_detail("negative base_reach", "base_reach");
+    decal.base_reach = 1000.0;
     memset(&zeroed, 0, sizeof zeroed);
     decal.profile = &zeroed;
     CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
