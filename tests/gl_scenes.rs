@@ -6,7 +6,8 @@
 //! view axis is off screen), f/n from 10 to 1e7 and infinite, D16/D24/D32F under `[−1, 1]`,
 //! `[0, 1]` and reversed Z, `GL_LESS`/`GL_LEQUAL` (`GL_GREATER`/`GL_GEQUAL` reversed), decals
 //! whose corners are not the base's. Every scene is checked with the worst-case profile (the
-//! default) and with a measured llvmpipe profile: 0 decal pixels lost at the recommendation,
+//! default) and with the profile `zshift::probe::probe` measures in this test's own context: 0
+//! decal pixels lost at the recommendation,
 //! 0 pixels bled through an occluder at the documented gap. Then it prints, per class, the
 //! recommended ÷ smallest working offset (bisection over f32 steps of the offset element).
 //!
