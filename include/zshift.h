@@ -216,6 +216,15 @@ typedef struct {
    Seconds `zshift_probe` took (0 for the worst case). Informational.
    */
   double probe_seconds;
+  /*
+   The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
+   facing the camera needs to pass GL_LESS over its base when
+   every corner of both has the same float z and the matrices differ only in element 10:
+   the largest over 64 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+   test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
+   NAN or finite >= 0.
+   */
+  double facing_quanta[4];
 } ZshiftProfile;
 
 /*
@@ -291,7 +300,9 @@ typedef struct {
   double ndc_offset;
   /*
    The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
-   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
+   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL; for a facing plane with exact_depth,
+   0 under GL_LEQUAL/GL_GEQUAL and, with a probed profile under [-1, 1] and GL_LESS, the
+   profile's facing_quanta times the quantum (D32F: 2^-24).
    */
   double window_offset;
   /*
@@ -1115,7 +1126,7 @@ ZshiftStatus zshift_range_offset(double n,
 
 /*
  Writes the worst-case profile to `out`: the recommendation's default assumptions (8
- sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+ sub-pixel bits, r = 1 quantum, per-pixel errors as the model bounds them, near-plane clipping
  in float), `measured` = 0.
 
  Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.

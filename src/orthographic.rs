@@ -244,6 +244,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         clip: 0.0,
         strict: true,
         correlated: false,
+        facing: 0.0,
     })
 }
 

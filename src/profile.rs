@@ -87,6 +87,15 @@ pub struct RasterizerProfile {
     /// the formats. "Exact" is the plane through the f32 vertices, as for `plane_error`. NaN
     /// where not measured. A summary: not a bound on planes the probe does not draw.
     pub error_ulps: f64,
+    /// The window-depth offset, per format (D16, D24, D32, D32F), in units of the format's
+    /// quantum `1/(2^m − 1)` (D32F: of 2⁻²⁴), that a decal facing the camera needs to pass
+    /// `GL_LESS` over its base when every corner of both has the same f32 z and the decal's
+    /// matrix differs from the base's only in element 10 (moved toward 0): measured at 64 depths
+    /// (each its own phase between two stored values, window depth 0.02 to 0.9995, two frusta)
+    /// under `[−1, 1]`, the largest. Replaces the model's `q + 2T` for such scenes
+    /// ([`crate::recommend::Scene::exact_depth`], strict test, `[−1, 1]`). NaN where not
+    /// measured (D16, whose quantum is hundreds of element-10 steps).
+    pub facing_quanta: [f64; 4],
     /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
     /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
@@ -109,6 +118,7 @@ impl RasterizerProfile {
             plane_error: [f64::NAN; 4],
             plane_error_reversed: f64::NAN,
             error_ulps: f64::NAN,
+            facing_quanta: [f64::NAN; 4],
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

@@ -145,6 +145,8 @@
 //!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
 //!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
 //! * `resolvable` `r`: [`Recommendation::polygon_offset`]'s units are `(Δw − 2S)/(r·q)`.
+//! * `facing_quanta` (only from a measured profile, only under `[−1, 1]`): the offset of a
+//!   facing plane with shared f32 z under a strict test (see "Correlated errors").
 //!
 //! # Correlated errors
 //! Base and decal errors are independent in size in general: the rounding of two different
@@ -157,7 +159,11 @@
 //! is enough, and the recommendation is no offset at all ([`ErrorTerms::correlated`]); the gap
 //! keeps the occluder's error. Under the strict tests the decal's depth must drop a whole
 //! quantum, and each rounding step can lose up to one unit of its own result whatever the
-//! correlation, so (R1) stands.
+//! correlation, so (R1) stands as a bound; but the whole chain is one function of element 10
+//! and the depth, the same for every such scene, so the probe measures it directly
+//! ([`RasterizerProfile::facing_quanta`]: the offset the worst of 64 depth phases needs, 3 D24
+//! quanta on llvmpipe where `q + 2T` is about 7), and a measured profile uses that figure
+//! instead under `[−1, 1]` ([`ErrorTerms::facing`]).
 
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
@@ -357,6 +363,10 @@ pub struct ErrorTerms {
     /// Base and decal err alike (a facing plane with shared f32 z under an `…EQUAL` test, see
     /// "Correlated errors"): the offset needs no budget for them.
     pub correlated: bool,
+    /// The measured offset a facing plane with shared f32 z needs under a strict test
+    /// ([`RasterizerProfile::facing_quanta`] times its unit; `[−1, 1]` only), which replaces
+    /// `q + 2E` in (R1); 0 where not used.
+    pub facing: f64,
 }
 
 impl ErrorTerms {
@@ -372,7 +382,11 @@ impl ErrorTerms {
     /// The window offset (R1): `q + 2(E + S) + C` under a strict test, `2(E + S) + C` under
     /// `GL_LEQUAL`/`GL_GEQUAL`.
     pub fn window_offset(&self) -> f64 {
-        self.strict_quantum() + self.budget()
+        if self.facing > 0.0 {
+            self.facing
+        } else {
+            self.strict_quantum() + self.budget()
+        }
     }
 
     /// The window-depth separation an occluder needs in front of the base (R2): the offset,
@@ -512,6 +526,22 @@ fn snap(scene: &Scene) -> Result<f64> {
 /// for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
+}
+
+/// The profile's measured offset for a shared-z facing plane under a strict test, in window
+/// depth: [`RasterizerProfile::facing_quanta`] times the format's quantum (D32F: 2⁻²⁴), from a
+/// measured profile under `[−1, 1]` (where the probe measures it); 0 otherwise.
+fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
+    let p = scene.profile;
+    let k = p.facing_quanta[profile_index(scene.format)];
+    if !(p.measured && clip == ClipDepth::NegOneToOne && k.is_finite() && k > 0.0) {
+        return 0.0;
+    }
+    let unit = match scene.format {
+        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
+        format => format.spacing_at(0.5).unwrap_or(0.0),
+    };
+    k * unit
 }
 
 /// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
@@ -975,6 +1005,11 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // depth is never behind the base's, so under an …EQUAL test (a tie passes) no offset is
     // needed. The budget of base and decal is then 0; the occluder's error stays in the gap.
     let correlated = scene.exact_depth && !scene.depth_test.is_strict();
+    let facing = if scene.exact_depth && scene.depth_test.is_strict() {
+        measured_facing(scene, clip)
+    } else {
+        0.0
+    };
     Ok(ErrorTerms {
         quantum: q,
         transform,
@@ -985,6 +1020,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         clip: clip_term,
         strict: scene.depth_test.is_strict(),
         correlated,
+        facing,
     })
 }
 
@@ -1295,6 +1331,48 @@ mod tests {
         };
         let r = recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).unwrap();
         assert_eq!(r.relative_epsilon, 0.0);
+    }
+
+    /// A measured facing figure replaces q + 2E for shared-z facing planes under a strict test and
+    /// [−1, 1] only; never from the worst case, another convention or a sloped plane.
+    #[test]
+    fn a_measured_facing_offset_replaces_the_bound_where_measured() {
+        let less = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Unorm24, 0.0, Snapping::Unsnapped)
+        };
+        let measured = Scene {
+            profile: RasterizerProfile {
+                facing_quanta: [f64::NAN, 3.0, f64::NAN, 3.0],
+                measured: true,
+                ..less.profile
+            },
+            ..less
+        };
+        let q = 1.0 / 16_777_215.0;
+        let (a, b) = (recommend(&less).unwrap(), recommend(&measured).unwrap());
+        assert!((b.window_offset - 3.0 * q).abs() < 1e-20 && a.window_offset > b.window_offset);
+        let float = Scene {
+            format: DepthFormat::Float32,
+            ..measured
+        };
+        assert_eq!(
+            recommend(&float).unwrap().window_offset,
+            3.0 * F32_UNIT_ROUNDOFF
+        );
+        let zero_to_one = recommend_clip(&measured, ClipDepth::ZeroToOne).unwrap();
+        assert_eq!(zero_to_one.terms.facing, 0.0);
+        let unmeasured = Scene {
+            profile: RasterizerProfile {
+                measured: false,
+                ..measured.profile
+            },
+            ..measured
+        };
+        assert_eq!(
+            recommend(&unmeasured).unwrap().window_offset,
+            a.window_offset
+        );
     }
 
     /// A plane-preserving clipper replaces C by the base's own E + S plus 2 D24 quanta; the

@@ -76,6 +76,14 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         assert!(p.probe_seconds > 0.0);
         // llvmpipe snaps coverage to GL_SUBPIXEL_BITS but sets the depth plane up from the float
         // positions (lp_setup_tri.c): unsnapped, and clearly so.
+        // A facing decal over its shared-z base: a few f32 steps of element 10 on D24 (one step
+        // is about a quantum); D16 is not measured (its quantum is hundreds of steps).
+        assert!(p.facing_quanta[0].is_nan(), "{:?}", p.facing_quanta);
+        assert!(
+            (1.0..=4.0).contains(&p.facing_quanta[1]),
+            "{:?}",
+            p.facing_quanta
+        );
         assert_eq!(p.snapping, Snapping::Unsnapped);
         assert!(
             figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2,

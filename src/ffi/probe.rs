@@ -62,6 +62,13 @@ pub struct ZshiftProfile {
     pub near_clip: i32,
     /// Seconds `zshift_probe` took (0 for the worst case). Informational.
     pub probe_seconds: f64,
+    /// The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
+    /// facing the camera needs to pass GL_LESS over its base when
+    /// every corner of both has the same float z and the matrices differ only in element 10:
+    /// the largest over 64 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+    /// test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
+    /// NAN or finite >= 0.
+    pub facing_quanta: [f64; 4],
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -87,6 +94,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             plane_error: p.plane_error,
             plane_error_reversed: p.plane_error_reversed,
             error_ulps: p.error_ulps,
+            facing_quanta: p.facing_quanta,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -130,10 +138,11 @@ impl ZshiftProfile {
             .plane_error
             .iter()
             .chain(&errors)
+            .chain(&self.facing_quanta)
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed or error_ulps is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps or facing_quanta is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -144,6 +153,7 @@ impl ZshiftProfile {
             plane_error: self.plane_error,
             plane_error_reversed: self.plane_error_reversed,
             error_ulps: self.error_ulps,
+            facing_quanta: self.facing_quanta,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {
@@ -156,7 +166,7 @@ impl ZshiftProfile {
 }
 
 /// Writes the worst-case profile to `out`: the recommendation's default assumptions (8
-/// sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+/// sub-pixel bits, r = 1 quantum, per-pixel errors as the model bounds them, near-plane clipping
 /// in float), `measured` = 0.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.

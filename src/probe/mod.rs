@@ -275,6 +275,9 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
+        if let Some(q) = facing_quanta(gl, o, format)? {
+            profile.facing_quanta[slot] = q;
+        }
         let errors = plane_error(gl, o, format, false)?;
         profile.plane_error[slot] = errors.worst;
         figures.plane_pixels[slot] = errors.pixels;
@@ -884,6 +887,105 @@ unsafe fn reversed_plane_error(gl: &Gl, o: &Objects) -> Result<Option<PlaneError
     let result = plane_error(gl, o, Format::Float, true);
     clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
     result.map(Some)
+}
+
+// ---------------------------------------------------------------------------------------------
+// What a facing decal needs: the element-10 offset that always wins a strict depth test
+// ---------------------------------------------------------------------------------------------
+
+/// The most f32 steps of element 10 the search tries (a D24 quantum is one or two).
+const FACING_MAX_STEPS: u32 = 16;
+
+/// The window-depth offset, in quanta of `format`, that a decal facing the camera needs to pass
+/// `GL_LESS` over its base when both share one f32 z and the decal's element 10 moves toward 0
+/// by `k` f32 steps (the rest of the matrix unchanged, as `zshift_recommend_matrix` draws it):
+/// for each of 64 depths (window depth 0.02 to 0.9995, two frusta, one tile each), the smallest
+/// `k` whose stored depth is below the base's, its exact window offset `k·ulp(m10)/2` over the
+/// quantum (D32F: over 2⁻²⁴); the largest over the depths. Each depth has its own phase between two stored
+/// values, so the largest is what the worst phase needs. `None` (not measured) on D16, whose
+/// quantum is hundreds of steps (its `q + 2T` is within a few percent of `q` anyway), or if some
+/// depth needs more than [`FACING_MAX_STEPS`].
+unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format) -> Result<Option<f64>> {
+    if format == Format::Unorm(16) {
+        return Ok(None);
+    }
+    let views = [
+        View {
+            e: 0.5,
+            n: 0.1,
+            f: 1e3,
+            reversed: false,
+            squash: 1.0,
+        },
+        View {
+            e: 0.6,
+            n: 1.0,
+            f: 1e6,
+            reversed: false,
+            squash: 0.5625,
+        },
+    ];
+    let per_view = TILES * TILES / 2;
+    // (view, window depth) per tile.
+    let tiles: Vec<(View, f64)> = views
+        .iter()
+        .flat_map(|&v| {
+            (0..per_view)
+                .map(move |i| (v, 0.02 + (0.9995 - 0.02) * i as f64 / (per_view - 1) as f64))
+        })
+        .collect();
+    let scenes = |k: u32| -> Vec<Scene> {
+        tiles
+            .iter()
+            .map(|&(view, w)| {
+                let d = view.distance_at_depth(w);
+                let ey = view.e * view.squash;
+                let at = |xn: f64, yn: f64| [xn * view.e * d, yn * ey * d, -d];
+                let (a, b, c, e) = (
+                    at(-0.99, -0.99),
+                    at(0.99, -0.99),
+                    at(0.99, 0.99),
+                    at(-0.99, 0.99),
+                );
+                let mut matrix = view.matrix();
+                matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
+                Scene {
+                    matrix,
+                    triangles: vec![View::triangle([a, b, c]), View::triangle([a, c, e])],
+                }
+            })
+            .collect()
+    };
+    let centre = |tile: &[f64]| tile[(SIZE / 2) * SIZE + SIZE / 2];
+    let base: Vec<f64> = draw_tiles(gl, o, format, &scenes(0))?
+        .iter()
+        .map(|t| centre(t))
+        .collect();
+    let mut needed = vec![None; tiles.len()];
+    for k in 1..=FACING_MAX_STEPS {
+        let decal = draw_tiles(gl, o, format, &scenes(k))?;
+        for (i, d) in decal.iter().enumerate() {
+            if needed[i].is_none() && centre(d) < base[i] {
+                needed[i] = Some(k);
+            }
+        }
+        if needed.iter().all(Option::is_some) {
+            break;
+        }
+    }
+    let mut worst = 0.0f64;
+    for (&(view, w), k) in tiles.iter().zip(&needed) {
+        let Some(k) = k else { return Ok(None) };
+        let m10 = view.matrix()[10];
+        let ulp = f64::from(m10).abs() - f64::from(f32::from_bits(m10.to_bits() - 1)).abs();
+        // D32F in units of 2⁻²⁴ (the offset is a constant window depth), as `plane_error`.
+        let unit = match format {
+            Format::Float => F32_UNIT_ROUNDOFF,
+            _ => format.quantum(w),
+        };
+        worst = worst.max(f64::from(*k) * ulp / 2.0 / unit);
+    }
+    Ok(Some(worst))
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -61,6 +61,9 @@ class ProbeTest(unittest.TestCase):
         self.assertAlmostEqual(p.resolvable[1], 2.0, delta=0.01)
         self.assertAlmostEqual(p.resolvable[3], 1.0, delta=0.01)
         self.assertLess(p.plane_error[0], 1.0)
+        # A facing decal with shared z needs a few element-10 steps on D24 (not measured on D16).
+        self.assertTrue(math.isnan(p.facing_quanta[0]))
+        self.assertTrue(1.0 <= p.facing_quanta[1] <= 4.0, p.facing_quanta)
         self.assertEqual(p.near_clip, zshift.NEAR_CLIP_CLIPPED_F32)
         self.assertGreater(p.probe_seconds, 0.0)
 
@@ -82,7 +85,7 @@ class ProbeTest(unittest.TestCase):
         clipped = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, profile=p, base_reach=1000.0, **front)
         self.assertEqual((inside.snap, inside.clip), (0.0, 0.0))
         self.assertGreater(clipped.clip, 0.0)
-        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0]))
+        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4]))
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.recommend(profile=zeroed, **args)
         self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
@@ -111,6 +114,7 @@ class ProbeTest(unittest.TestCase):
         self.assertEqual((p.measured, p.subpixel_bits, p.near_clip), (0, 8, zshift.NEAR_CLIP_CLIPPED_F32))
         self.assertEqual(p.resolvable, (1.0, 1.0, 1.0, 1.0))
         self.assertTrue(all(math.isnan(e) for e in p.plane_error))
+        self.assertTrue(all(math.isnan(e) for e in p.facing_quanta))
 
 
 if __name__ == "__main__":

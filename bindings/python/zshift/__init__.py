@@ -676,6 +676,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("error_ulps", ctypes.c_double),
         ("near_clip", ctypes.c_int32),
         ("probe_seconds", ctypes.c_double),
+        ("facing_quanta", ctypes.c_double * 4),
     ]
 
 
