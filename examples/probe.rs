@@ -50,4 +50,8 @@ fn main() {
         "D32F r per band (w ~ 0.45, w ~ 0.055): {:?}",
         figures.float_resolvable
     );
+    println!(
+        "facing decal over a shared-z base, GL_LESS (quanta; D32F: 2^-24; NaN not measured): {:?}",
+        p.facing_quanta
+    );
 }
