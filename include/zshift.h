@@ -220,11 +220,17 @@ typedef struct {
    The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
    facing the camera needs to pass GL_LESS over its base when
    every corner of both has the same float z and the matrices differ only in element 10:
-   the largest over 64 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+   the largest over 256 depths under [-1, 1]. Used for such scenes (exact_depth, strict
    test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
    NAN or finite >= 0.
    */
   double facing_quanta[4];
+  /*
+   facing_quanta under [0, 1] depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), standard,
+   not reversed), used for such scenes under ZSHIFT_CLIP_ZERO_TO_ONE. NAN where not measured.
+   NAN or finite >= 0.
+   */
+  double facing_quanta_zero_to_one[4];
 } ZshiftProfile;
 
 /*

@@ -90,12 +90,17 @@ pub struct RasterizerProfile {
     /// The window-depth offset, per format (D16, D24, D32, D32F), in units of the format's
     /// quantum `1/(2^m − 1)` (D32F: of 2⁻²⁴), that a decal facing the camera needs to pass
     /// `GL_LESS` over its base when every corner of both has the same f32 z and the decal's
-    /// matrix differs from the base's only in element 10 (moved toward 0): measured at 64 depths
+    /// matrix differs from the base's only in element 10 (moved toward 0): measured at 256 depths
     /// (each its own phase between two stored values, window depth 0.02 to 0.9995, two frusta)
     /// under `[−1, 1]`, the largest. Replaces the model's `q + 2T` for such scenes
     /// ([`crate::recommend::Scene::exact_depth`], strict test, `[−1, 1]`). NaN where not
     /// measured (D16, whose quantum is hundreds of element-10 steps).
     pub facing_quanta: [f64; 4],
+    /// `facing_quanta` under `[0, 1]` depth (`glClipControl(GL_ZERO_TO_ONE)`, standard, not
+    /// reversed), where one step of element 10 moves window depth twice as far; used for such
+    /// scenes under [`crate::projection::ClipDepth::ZeroToOne`]. NaN where not measured (no
+    /// `glClipControl`, or D16).
+    pub facing_quanta_zero_to_one: [f64; 4],
     /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
     /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
@@ -119,6 +124,7 @@ impl RasterizerProfile {
             plane_error_reversed: f64::NAN,
             error_ulps: f64::NAN,
             facing_quanta: [f64::NAN; 4],
+            facing_quanta_zero_to_one: [f64::NAN; 4],
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

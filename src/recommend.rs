@@ -145,8 +145,9 @@
 //!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
 //!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
 //! * `resolvable` `r`: [`Recommendation::polygon_offset`]'s units are `(Δw − 2S)/(r·q)`.
-//! * `facing_quanta` (only from a measured profile, only under `[−1, 1]`): the offset of a
-//!   facing plane with shared f32 z under a strict test (see "Correlated errors").
+//! * `facing_quanta`, `facing_quanta_zero_to_one` (only from a measured profile, under `[−1, 1]`
+//!   and `[0, 1]`): the offset of a facing plane with shared f32 z under a strict test (see
+//!   "Correlated errors").
 //!
 //! # Correlated errors
 //! Base and decal errors are independent in size in general: the rounding of two different
@@ -161,9 +162,10 @@
 //! quantum, and each rounding step can lose up to one unit of its own result whatever the
 //! correlation, so (R1) stands as a bound; but the whole chain is one function of element 10
 //! and the depth, the same for every such scene, so the probe measures it directly
-//! ([`RasterizerProfile::facing_quanta`]: the offset the worst of 64 depth phases needs, 3 D24
-//! quanta on llvmpipe where `q + 2T` is about 7), and a measured profile uses that figure
-//! instead under `[−1, 1]` ([`ErrorTerms::facing`]).
+//! ([`RasterizerProfile::facing_quanta`]: the offset the worst of 256 depth phases needs, 3 D24
+//! quanta on llvmpipe where `q + 2T` is about 7; under `[0, 1]`
+//! [`RasterizerProfile::facing_quanta_zero_to_one`]), and a measured profile uses that figure
+//! instead ([`ErrorTerms::facing`]; not under reversed Z, whose offset is relative).
 
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
@@ -364,7 +366,8 @@ pub struct ErrorTerms {
     /// "Correlated errors"): the offset needs no budget for them.
     pub correlated: bool,
     /// The measured offset a facing plane with shared f32 z needs under a strict test
-    /// ([`RasterizerProfile::facing_quanta`] times its unit; `[−1, 1]` only), which replaces
+    /// ([`RasterizerProfile::facing_quanta`] or, under `[0, 1]`,
+    /// [`RasterizerProfile::facing_quanta_zero_to_one`], times its unit), which replaces
     /// `q + 2E` in (R1); 0 where not used.
     pub facing: f64,
 }
@@ -529,12 +532,18 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
 }
 
 /// The profile's measured offset for a shared-z facing plane under a strict test, in window
-/// depth: [`RasterizerProfile::facing_quanta`] times the format's quantum (D32F: 2⁻²⁴), from a
-/// measured profile under `[−1, 1]` (where the probe measures it); 0 otherwise.
+/// depth: [`RasterizerProfile::facing_quanta`] (under `[0, 1]`
+/// [`RasterizerProfile::facing_quanta_zero_to_one`]) times the format's quantum (D32F: 2⁻²⁴),
+/// from a measured profile; 0 otherwise (and under reversed Z, where the probe does not measure
+/// it).
 fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
     let p = scene.profile;
-    let k = p.facing_quanta[profile_index(scene.format)];
-    if !(p.measured && clip == ClipDepth::NegOneToOne && k.is_finite() && k > 0.0) {
+    let k = match clip {
+        ClipDepth::NegOneToOne => p.facing_quanta[profile_index(scene.format)],
+        ClipDepth::ZeroToOne => p.facing_quanta_zero_to_one[profile_index(scene.format)],
+        ClipDepth::ReversedZeroToOne => f64::NAN,
+    };
+    if !(p.measured && k.is_finite() && k > 0.0) {
         return 0.0;
     }
     let unit = match scene.format {

@@ -65,10 +65,14 @@ pub struct ZshiftProfile {
     /// The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
     /// facing the camera needs to pass GL_LESS over its base when
     /// every corner of both has the same float z and the matrices differ only in element 10:
-    /// the largest over 64 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+    /// the largest over 256 depths under [-1, 1]. Used for such scenes (exact_depth, strict
     /// test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
     /// NAN or finite >= 0.
     pub facing_quanta: [f64; 4],
+    /// facing_quanta under [0, 1] depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), standard,
+    /// not reversed), used for such scenes under ZSHIFT_CLIP_ZERO_TO_ONE. NAN where not measured.
+    /// NAN or finite >= 0.
+    pub facing_quanta_zero_to_one: [f64; 4],
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -95,6 +99,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             plane_error_reversed: p.plane_error_reversed,
             error_ulps: p.error_ulps,
             facing_quanta: p.facing_quanta,
+            facing_quanta_zero_to_one: p.facing_quanta_zero_to_one,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -139,6 +144,7 @@ impl ZshiftProfile {
             .iter()
             .chain(&errors)
             .chain(&self.facing_quanta)
+            .chain(&self.facing_quanta_zero_to_one)
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
@@ -154,6 +160,7 @@ impl ZshiftProfile {
             plane_error_reversed: self.plane_error_reversed,
             error_ulps: self.error_ulps,
             facing_quanta: self.facing_quanta,
+            facing_quanta_zero_to_one: self.facing_quanta_zero_to_one,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

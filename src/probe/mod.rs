@@ -275,8 +275,16 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
-        if let Some(q) = facing_quanta(gl, o, format)? {
+        if let Some(q) = facing_quanta(gl, o, format, false)? {
             profile.facing_quanta[slot] = q;
+        }
+        if let Some(clip_control) = gl.ClipControl {
+            clip_control(LOWER_LEFT, ZERO_TO_ONE);
+            let measured = facing_quanta(gl, o, format, true);
+            clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
+            if let Some(q) = measured? {
+                profile.facing_quanta_zero_to_one[slot] = q;
+            }
         }
         let errors = plane_error(gl, o, format, false)?;
         profile.plane_error[slot] = errors.worst;
@@ -893,19 +901,39 @@ unsafe fn reversed_plane_error(gl: &Gl, o: &Objects) -> Result<Option<PlaneError
 // What a facing decal needs: the element-10 offset that always wins a strict depth test
 // ---------------------------------------------------------------------------------------------
 
+/// The view's `glFrustum` matrix, or under `zero_to_one` its `[0, 1]` form (`glClipControl`
+/// `GL_ZERO_TO_ONE`, standard depth): `m10 = −f/(f − n)`, `m14 = −fn/(f − n)`.
+fn facing_matrix(view: &View, zero_to_one: bool) -> [f32; 16] {
+    let mut m = view.matrix();
+    if zero_to_one {
+        let (n, f) = (view.n, view.f);
+        m[10] = (-f / (f - n)) as f32;
+        m[14] = (-f * n / (f - n)) as f32;
+    }
+    m
+}
+
 /// The most f32 steps of element 10 the search tries (a D24 quantum is one or two).
 const FACING_MAX_STEPS: u32 = 16;
 
 /// The window-depth offset, in quanta of `format`, that a decal facing the camera needs to pass
 /// `GL_LESS` over its base when both share one f32 z and the decal's element 10 moves toward 0
 /// by `k` f32 steps (the rest of the matrix unchanged, as `zshift_recommend_matrix` draws it):
-/// for each of 64 depths (window depth 0.02 to 0.9995, two frusta, one tile each), the smallest
+/// for each of 256 depths (window depth 0.02 to 0.9995, two frusta, a tile quadrant each), the smallest
 /// `k` whose stored depth is below the base's, its exact window offset `k·ulp(m10)/2` over the
 /// quantum (D32F: over 2⁻²⁴); the largest over the depths. Each depth has its own phase between two stored
 /// values, so the largest is what the worst phase needs. `None` (not measured) on D16, whose
 /// quantum is hundreds of steps (its `q + 2T` is within a few percent of `q` anyway), or if some
 /// depth needs more than [`FACING_MAX_STEPS`].
-unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format) -> Result<Option<f64>> {
+/// With `zero_to_one` the same under `glClipControl(GL_ZERO_TO_ONE)` (set by the caller) with
+/// the `[0, 1]` matrix (`m10 = −f/(f − n)`, `m14 = −fn/(f − n)`), where a step of element 10
+/// moves window depth by a whole `ulp(m10)`.
+unsafe fn facing_quanta(
+    gl: &Gl,
+    o: &Objects,
+    format: Format,
+    zero_to_one: bool,
+) -> Result<Option<f64>> {
     if format == Format::Unorm(16) {
         return Ok(None);
     }
@@ -925,47 +953,63 @@ unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format) -> Result<Option<f
             squash: 0.5625,
         },
     ];
+    // Four planes per tile, one per quadrant (the tile's matrix is its view's): 128 depths per
+    // view for the cost of 32 tiles.
     let per_view = TILES * TILES / 2;
-    // (view, window depth) per tile.
-    let tiles: Vec<(View, f64)> = views
+    let planes: Vec<(View, f64)> = views
         .iter()
         .flat_map(|&v| {
-            (0..per_view)
-                .map(move |i| (v, 0.02 + (0.9995 - 0.02) * i as f64 / (per_view - 1) as f64))
+            let count = 4 * per_view;
+            (0..count).map(move |i| (v, 0.02 + (0.9995 - 0.02) * i as f64 / (count - 1) as f64))
         })
         .collect();
+    const QUADRANTS: [(f64, f64); 4] = [(-0.5, -0.5), (0.5, -0.5), (-0.5, 0.5), (0.5, 0.5)];
     let scenes = |k: u32| -> Vec<Scene> {
-        tiles
-            .iter()
-            .map(|&(view, w)| {
-                let d = view.distance_at_depth(w);
+        planes
+            .chunks(4)
+            .map(|four| {
+                let view = four[0].0;
                 let ey = view.e * view.squash;
-                let at = |xn: f64, yn: f64| [xn * view.e * d, yn * ey * d, -d];
-                let (a, b, c, e) = (
-                    at(-0.99, -0.99),
-                    at(0.99, -0.99),
-                    at(0.99, 0.99),
-                    at(-0.99, 0.99),
-                );
-                let mut matrix = view.matrix();
-                matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
-                Scene {
-                    matrix,
-                    triangles: vec![View::triangle([a, b, c]), View::triangle([a, c, e])],
+                let mut triangles = Vec::new();
+                for (&(_, w), (cx, cy)) in four.iter().zip(QUADRANTS) {
+                    let d = view.distance_at_depth(w);
+                    let at = |xn: f64, yn: f64| [(cx + xn) * view.e * d, (cy + yn) * ey * d, -d];
+                    let (a, b, c, e) = (
+                        at(-0.45, -0.45),
+                        at(0.45, -0.45),
+                        at(0.45, 0.45),
+                        at(-0.45, 0.45),
+                    );
+                    triangles.push(View::triangle([a, b, c]));
+                    triangles.push(View::triangle([a, c, e]));
                 }
+                let mut matrix = facing_matrix(&view, zero_to_one);
+                matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
+                Scene { matrix, triangles }
             })
             .collect()
     };
-    let centre = |tile: &[f64]| tile[(SIZE / 2) * SIZE + SIZE / 2];
-    let base: Vec<f64> = draw_tiles(gl, o, format, &scenes(0))?
-        .iter()
-        .map(|t| centre(t))
-        .collect();
-    let mut needed = vec![None; tiles.len()];
+    // The stored depth at each quadrant's centre, plane by plane.
+    let read = |tiles: Vec<Vec<f64>>| -> Vec<f64> {
+        tiles
+            .iter()
+            .flat_map(|t| {
+                QUADRANTS.map(|(cx, cy)| {
+                    let (px, py) = (
+                        (cx + 1.0) * 0.5 * SIZE as f64,
+                        (cy + 1.0) * 0.5 * SIZE as f64,
+                    );
+                    t[py as usize * SIZE + px as usize]
+                })
+            })
+            .collect()
+    };
+    let base = read(draw_tiles(gl, o, format, &scenes(0))?);
+    let mut needed = vec![None; planes.len()];
     for k in 1..=FACING_MAX_STEPS {
-        let decal = draw_tiles(gl, o, format, &scenes(k))?;
+        let decal = read(draw_tiles(gl, o, format, &scenes(k))?);
         for (i, d) in decal.iter().enumerate() {
-            if needed[i].is_none() && centre(d) < base[i] {
+            if needed[i].is_none() && *d < base[i] {
                 needed[i] = Some(k);
             }
         }
@@ -974,10 +1018,12 @@ unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format) -> Result<Option<f
         }
     }
     let mut worst = 0.0f64;
-    for (&(view, w), k) in tiles.iter().zip(&needed) {
+    for (&(view, w), k) in planes.iter().zip(&needed) {
         let Some(k) = k else { return Ok(None) };
-        let m10 = view.matrix()[10];
-        let ulp = f64::from(m10).abs() - f64::from(f32::from_bits(m10.to_bits() - 1)).abs();
+        let m10 = facing_matrix(&view, zero_to_one)[10];
+        let step = f64::from(m10).abs() - f64::from(f32::from_bits(m10.to_bits() - 1)).abs();
+        // Window depth moves by the NDC change, halved under [−1, 1].
+        let ulp = if zero_to_one { 2.0 * step } else { step };
         // D32F in units of 2⁻²⁴ (the offset is a constant window depth), as `plane_error`.
         let unit = match format {
             Format::Float => F32_UNIT_ROUNDOFF,

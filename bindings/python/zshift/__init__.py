@@ -677,6 +677,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("near_clip", ctypes.c_int32),
         ("probe_seconds", ctypes.c_double),
         ("facing_quanta", ctypes.c_double * 4),
+        ("facing_quanta_zero_to_one", ctypes.c_double * 4),
     ]
 
 
