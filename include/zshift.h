@@ -307,8 +307,9 @@ typedef struct {
   /*
    The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
    2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL; for a facing plane with exact_depth,
-   0 under GL_LEQUAL/GL_GEQUAL and, with a probed profile under [-1, 1] and GL_LESS, the
-   profile's facing_quanta times the quantum (D32F: 2^-24).
+   0 under GL_LEQUAL/GL_GEQUAL and, with a probed profile under GL_LESS, the profile's
+   facing_quanta ([-1, 1]) or facing_quanta_zero_to_one ([0, 1]) times the quantum (D32F:
+   2^-24).
    */
   double window_offset;
   /*

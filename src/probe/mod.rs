@@ -1,6 +1,6 @@
 //! Measures a [`RasterizerProfile`] in the caller's own OpenGL context.
 //!
-//! [`probe`] draws about 250 triangles into a framebuffer of its own (512×512, in 64×64 tiles,
+//! [`probe`] draws a few thousand triangles into a framebuffer of its own (512×512, in 64×64 tiles,
 //! one depth format at a time), reads the stored depth back with `glReadPixels` and compares it,
 //! pixel by pixel, with the exact depth of the plane each triangle lies in, computed in f64 from
 //! the very f32 values the GPU was given. It reaches GL only through the function loader the
@@ -43,6 +43,12 @@
 //!   by `2⁻²⁴·(1 + M)`, `M` the magnitude of the terms of the plane evaluated from the window
 //!   origin (see the field): how the error of a steep plane grows with its distance from the
 //!   origin, for viewports larger than the tiles.
+//! * **`facing_quanta`** (per format, and `facing_quanta_zero_to_one` under
+//!   `glClipControl(GL_ZERO_TO_ONE)`): facing quads at 256 depths (four per tile), drawn with the
+//!   plain `glFrustum` matrix and again with element 10 moved toward 0 by `k` f32 steps; for each
+//!   depth the smallest `k` whose stored depth is below the base's, as a window offset in quanta
+//!   (D32F: 2⁻²⁴); the largest over the depths (each its own phase between two stored values).
+//!   What a shared-z facing decal needs under `GL_LESS` (not measured on D16).
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -76,7 +82,7 @@
 //! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
 //!
 //! # Time
-//! 40–60 ms on Mesa llvmpipe on 2 cores (up to 120 ms while other builds load them;
+//! 60–95 ms on Mesa llvmpipe on 2 cores (up to 140 ms while other builds load them;
 //! `examples/probe.rs` prints it), most of it llvmpipe compiling a shader variant per depth
 //! format and polygon-offset state; the profile records its own run time in
 //! [`RasterizerProfile::probe_seconds`].
