@@ -115,6 +115,22 @@ fn cpu_builders(c: &mut Criterion) {
             .unwrap()
         })
     });
+    g.bench_function("zshift_frustum_c_abi", |b| {
+        let mut out = [0.0f32; 16];
+        b.iter(|| {
+            let status = zshift::ffi::zshift_frustum(
+                black_box(k.l),
+                black_box(k.r),
+                black_box(k.b),
+                black_box(k.t),
+                black_box(k.n),
+                black_box(k.f),
+                black_box(out.as_mut_ptr()),
+            );
+            black_box(&out);
+            status
+        })
+    });
     g.bench_function("glam_frustum_plain", |b| {
         b.iter(|| glam_frustum(&k, black_box(1.0)))
     });

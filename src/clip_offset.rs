@@ -20,14 +20,20 @@
 use crate::domain::{finite, representable};
 use crate::double_double::DoubleDouble;
 use crate::error::Result;
-use crate::offset::rounded_outward;
+use crate::offset::{outward_of_ratio, rounded_outward, Ratio};
 use crate::precision::DepthMapping;
-use crate::projection::{projection_f64, to_f32, tweaked_infinite_f64, ClipDepth, Frustum};
+#[cfg(doc)]
+use crate::projection::tweaked_infinite_f64;
+use crate::projection::{
+    projection, projection_exact, to_f32, tweaked_infinite, ClipDepth, Frustum,
+};
 
 /// The f32 projection with `c` added to every NDC depth through element 10 (`m10 − c`).
 ///
 /// `m` is any column-major perspective matrix with `w = −z_eye` (the `glFrustum` family, any
-/// [`ClipDepth`], the tweaked infinite projection). Every element but 10 is the nearest f32;
+/// [`ClipDepth`], the tweaked infinite projection). Every element but 10 is the nearest f32 of
+/// the given f64 (builders from a [`Frustum`], such as [`offset_projection`], round the exact
+/// elements instead);
 /// element 10 is `p − x` with `p = f32(m10)` and `x` the f32 satisfying `|c| ≤ |x| ≤ |c| + ulp`,
 /// same sign as `c`. `c < 0` moves depth toward the camera under `NegOneToOne`/`ZeroToOne`;
 /// `c > 0` under reversed Z.
@@ -36,10 +42,44 @@ use crate::projection::{projection_f64, to_f32, tweaked_infinite_f64, ClipDepth,
 /// [`ErrorKind::NotFinite`](crate::ErrorKind::NotFinite) if `c` is NaN or infinite; [`ErrorKind::Overflow`](crate::ErrorKind::Overflow) if an element
 /// leaves f32.
 pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
+    with_ndc_offset(to_f32(m)?, c)
+}
+
+/// [`ndc_offset_matrix`] for the projection of `frustum` under `clip`: every element but 10 the
+/// nearest f32 of the exact element (as [`projection`]), element 10 lowered by `c` and rounded
+/// outward.
+///
+/// # Errors
+/// As [`projection`] and [`ndc_offset_matrix`].
+pub fn ndc_offset_projection(frustum: &Frustum, clip: ClipDepth, c: f64) -> Result<[f32; 16]> {
+    with_ndc_offset(projection(frustum, clip)?, c)
+}
+
+/// [`relative_offset_matrix`] for the projection of `frustum` under `clip`: every element but 14
+/// the nearest f32 of the exact element (as [`projection`]), element 14 scaled by `1 + ε` and
+/// rounded outward.
+///
+/// # Errors
+/// As [`projection`] and [`relative_offset_matrix`].
+pub fn relative_offset_projection(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    epsilon: f64,
+) -> Result<[f32; 16]> {
+    with_relative_offset(projection(frustum, clip)?, epsilon)
+}
+
+/// `plain` with `c` added to every NDC depth through element 10, rounded outward as
+/// [`ndc_offset_matrix`] describes. The offset `−c` is exact, so the estimate of
+/// `plain[10] − c` has one rounding.
+fn with_ndc_offset(mut plain: [f32; 16], c: f64) -> Result<[f32; 16]> {
+    if let Some(x) = outward_of_ratio(plain[10], Ratio(-c, 1.0), 0.0) {
+        plain[10] = x;
+        return Ok(plain);
+    }
     finite(c, "the NDC depth offset c is NaN or infinite")?;
-    let mut out = to_f32(m)?;
-    out[10] = rounded_outward(out[10], DoubleDouble::from_f64(-c))?;
-    Ok(out)
+    plain[10] = rounded_outward(plain[10], DoubleDouble::from_f64(-c))?;
+    Ok(plain)
 }
 
 /// The f32 projection with element 14 scaled by `1 + ε`: every point's depth becomes that of
@@ -52,16 +92,27 @@ pub fn ndc_offset_matrix(m: &[f64; 16], c: f64) -> Result<[f32; 16]> {
 /// [`ErrorKind::NotFinite`](crate::ErrorKind::NotFinite) if `ε` is NaN or infinite; [`ErrorKind::Domain`](crate::ErrorKind::Domain) unless `ε > −1`;
 /// [`ErrorKind::Overflow`](crate::ErrorKind::Overflow) if an element leaves f32.
 pub fn relative_offset_matrix(m: &[f64; 16], epsilon: f64) -> Result<[f32; 16]> {
+    with_relative_offset(to_f32(m)?, epsilon)
+}
+
+/// `plain` with element 14 scaled by `1 + ε`, rounded outward as [`relative_offset_matrix`]
+/// describes. The offset `p·ε` is estimated with one rounding.
+fn with_relative_offset(mut plain: [f32; 16], epsilon: f64) -> Result<[f32; 16]> {
+    let p = plain[14];
+    if epsilon > -1.0 {
+        if let Some(x) = outward_of_ratio(p, Ratio(f64::from(p) * epsilon, 1.0), 1.0) {
+            plain[14] = x;
+            return Ok(plain);
+        }
+    }
     finite(epsilon, "the relative offset epsilon is NaN or infinite")?;
     if epsilon <= -1.0 {
         return Err(crate::domain::domain(
             "the relative offset epsilon must be greater than -1",
         ));
     }
-    let mut out = to_f32(m)?;
-    let plain = out[14];
-    out[14] = rounded_outward(plain, DoubleDouble::product(f64::from(plain), epsilon))?;
-    Ok(out)
+    plain[14] = rounded_outward(p, DoubleDouble::product(f64::from(p), epsilon))?;
+    Ok(plain)
 }
 
 /// The relative offset `ε = δ/(d − δ)` (with `d = −Pz`) that moves a point at eye-space depth
@@ -109,14 +160,63 @@ pub fn offset_projection(
     delta: f64,
     pz: f64,
 ) -> Result<[f32; 16]> {
+    let plain = projection(frustum, clip)?;
     let planes = frustum.planes();
-    let m = projection_f64(frustum, clip)?;
     if clip == ClipDepth::ReversedZeroToOne {
         planes.check_eye_z(pz)?;
-        return relative_offset_matrix(&m, relative_epsilon(delta, pz)?);
+        return with_relative_offset(plain, relative_epsilon(delta, pz)?);
     }
     let mapping = DepthMapping::projection(planes.near(), planes.far(), clip)?;
-    ndc_offset_matrix(&m, ndc_offset_of_shift(&mapping, delta, pz)?)
+    with_ndc_offset(plain, ndc_offset_of_shift(&mapping, delta, pz)?)
+}
+
+/// The fast path of [`offset_projection`] alone: `None` where it defers to the exact path
+/// (checks, details and every rounding too close to call). When it returns a matrix, that
+/// matrix is [`offset_projection`]'s (and [`offset_projection_exact`]'s).
+pub fn offset_projection_fast(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    delta: f64,
+    pz: f64,
+) -> Option<[f32; 16]> {
+    let mut m = crate::projection::projection_fast(frustum, clip)?;
+    if clip == ClipDepth::ReversedZeroToOne {
+        frustum.planes().check_eye_z(pz).ok()?;
+        let epsilon = relative_epsilon(delta, pz).ok()?;
+        m[14] = outward_of_ratio(m[14], Ratio(f64::from(m[14]) * epsilon, 1.0), 1.0)?;
+        return Some(m);
+    }
+    let planes = frustum.planes();
+    let mapping = DepthMapping::projection(planes.near(), planes.far(), clip).ok()?;
+    let c = ndc_offset_of_shift(&mapping, delta, pz).ok()?;
+    m[10] = outward_of_ratio(m[10], Ratio(-c, 1.0), 0.0)?;
+    Some(m)
+}
+
+/// [`offset_projection`] decided by the exact path alone (the plain elements by
+/// [`crate::projection::projection_exact`], the offset element by double-double): the same
+/// matrix, slower; tests compare the fast path with it.
+///
+/// # Errors
+/// As [`offset_projection`].
+pub fn offset_projection_exact(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    let mut m = projection_exact(frustum, clip)?;
+    let planes = frustum.planes();
+    if clip == ClipDepth::ReversedZeroToOne {
+        planes.check_eye_z(pz)?;
+        let epsilon = relative_epsilon(delta, pz)?;
+        m[14] = rounded_outward(m[14], DoubleDouble::product(f64::from(m[14]), epsilon))?;
+        return Ok(m);
+    }
+    let mapping = DepthMapping::projection(planes.near(), planes.far(), clip)?;
+    let c = ndc_offset_of_shift(&mapping, delta, pz)?;
+    m[10] = rounded_outward(m[10], DoubleDouble::from_f64(-c))?;
+    Ok(m)
 }
 
 /// The offset variant of [`crate::projection::tweaked_infinite`]: moves geometry at `Pz`
@@ -130,7 +230,7 @@ pub fn offset_tweaked_infinite(
     delta: f64,
     pz: f64,
 ) -> Result<[f32; 16]> {
-    let m = tweaked_infinite_f64(frustum, tweak)?;
+    let plain = tweaked_infinite(frustum, tweak)?;
     let mapping = DepthMapping::tweaked_infinite(frustum.planes().near(), tweak)?;
-    ndc_offset_matrix(&m, ndc_offset_of_shift(&mapping, delta, pz)?)
+    with_ndc_offset(plain, ndc_offset_of_shift(&mapping, delta, pz)?)
 }

@@ -8,8 +8,8 @@
 //! in `[−w, w]`, NDC depth in `[−1, 1]`, window depth in `[0, 1]`; column-major matrices, as
 //! `glLoadMatrixf` takes them. Distances `n`, `f`, `d` are positive; `Pz` is an eye-space z
 //! (negative in front of the camera). `δ > 0` moves geometry toward the camera. All arithmetic
-//! is f64; matrices are rounded to f32 at the end, and where the rounding direction matters
-//! (the offset element) it is chosen so the offset is never lost.
+//! is f64; each matrix element is the f32 nearest its exact value ([`rounding`]), and where the
+//! rounding direction matters (the offset element) it is chosen so the offset is never lost.
 //!
 //! ## Map of the modules
 //! | module | computes | seeds |
@@ -28,6 +28,7 @@
 //! | [`decal`] | what an engine knows about a decal besides its matrix (the recommendation's input) | |
 //! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
 //! | [`orthographic`] | `glOrtho` for every clip convention, its constant offset through element 14, its (constant) depth step | |
+//! | [`rounding`] | how matrices reach f32: the nearest f32 of the exact element (proven fast test, exact fallback), offsets outward | |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
 #![warn(missing_docs)]
@@ -49,6 +50,7 @@ pub mod probe;
 pub mod profile;
 pub mod projection;
 pub mod recommend;
+pub mod rounding;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};

@@ -11,7 +11,7 @@ use crate::domain::{depth_steps, finite, representable, Planes};
 use crate::double_double::{unit_scale, DoubleDouble};
 use crate::error::{Error, ErrorKind, Result};
 use crate::precision::{depth_step_toward, StepTerms};
-use crate::projection::Frustum;
+use crate::projection::{ClipDepth, DepthRow, Frustum};
 
 /// ε for an eye-space shift `δ` of a point at eye-space depth `Pz` (eq. 4.1.7):
 ///
@@ -120,6 +120,7 @@ pub fn max_delta_away(n: f64, f: f64, bits: u32, pz: f64) -> Result<f64> {
 /// # Errors
 /// As [`Frustum::new`] and [`epsilon`]; [`ErrorKind::Overflow`] if element 10 leaves f32.
 #[allow(clippy::too_many_arguments)] // the seed's LoadOffsetMatrix takes these eight
+#[inline]
 pub fn load_offset_matrix(
     l: f64,
     r: f64,
@@ -130,20 +131,111 @@ pub fn load_offset_matrix(
     delta: f64,
     pz: f64,
 ) -> Result<Mat4> {
-    let frustum = Frustum::new(l, r, b, t, n, f)?;
-    Ok(Mat4::from_cols_array(&offset_matrix(&frustum, delta, pz)?))
+    match offset_fast(l, r, b, t, n, f, delta, pz) {
+        Some(m) => Ok(m),
+        None => Ok(Mat4::from_cols_array(&offset_slow(
+            l, r, b, t, n, f, delta, pz,
+        )?)),
+    }
+}
+
+/// [`load_offset_matrix`] as a column-major array: the fast path (f64 estimates checked
+/// against their error bound, [`crate::rounding`]), falling back to the exact path when an
+/// element is too close to call or an input is invalid.
+///
+/// # Errors
+/// As [`load_offset_matrix`].
+#[allow(clippy::too_many_arguments)]
+#[inline]
+pub fn load_offset_array(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    match offset_fast(l, r, b, t, n, f, delta, pz) {
+        Some(m) => Ok(m.to_cols_array()),
+        None => offset_slow(l, r, b, t, n, f, delta, pz),
+    }
+}
+
+/// The fast path of [`load_offset_array`]: `None` when an input is invalid or a rounding is
+/// too close to call from the f64 estimates.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn offset_fast(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Option<Mat4> {
+    let shifted = pz + delta;
+    let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
+    if !(good & (shifted < 0.0) & (delta.abs() < f64::INFINITY)) {
+        return None;
+    }
+    let planes = Planes::from_checked(n, f);
+    let (estimate, _) = ndc_offset_of_shift(&planes, delta, pz);
+    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
+    crate::projection::fast_then(l, r, b, t, n, f, depth, |m10| {
+        outward_of_ratio(m10, estimate, 8.0)
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+#[cold]
+#[inline(never)]
+fn offset_slow(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Result<[f32; 16]> {
+    offset_matrix_exact(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
 }
 
 /// [`load_offset_matrix`] for an already validated [`Frustum`], as a column-major array.
 ///
 /// # Errors
 /// As [`load_offset_matrix`].
+#[inline]
 pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    load_offset_array(l, r, b, t, n, f, delta, pz)
+}
+
+/// The fast path of [`offset_matrix`] alone: `None` where it defers to the exact path. When it
+/// returns a matrix, that matrix is [`offset_matrix`]'s (and [`offset_matrix_exact`]'s).
+#[inline(always)]
+pub fn offset_matrix_fast(frustum: &Frustum, delta: f64, pz: f64) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    Some(offset_fast(l, r, b, t, n, f, delta, pz)?.to_cols_array())
+}
+
+/// [`offset_matrix`] decided by the exact path alone: the plain elements by
+/// [`crate::projection::projection_exact`], element 10 by double-double arithmetic. The same
+/// matrix, slower; tests compare the fast path with it.
+///
+/// # Errors
+/// As [`offset_matrix`].
+pub fn offset_matrix_exact(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]> {
     let planes = frustum.planes();
     shifted_depth(&planes, delta, pz)?;
-    let mut m = frustum.to_cols_array()?;
-    let (estimate, exact) = ndc_offset_of_shift(&planes, delta, pz);
-    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
+    let mut m = crate::projection::projection_exact(frustum, ClipDepth::NegOneToOne)?;
+    let (_, exact) = ndc_offset_of_shift(&planes, delta, pz);
+    m[10] = rounded_outward(m[10], exact())?;
     Ok(m)
 }
 
@@ -153,12 +245,32 @@ pub fn offset_matrix(frustum: &Frustum, delta: f64, pz: f64) -> Result<[f32; 16]
 /// # Errors
 /// As [`Frustum::to_cols_array`]; [`ErrorKind::NotFinite`] if ε is NaN or infinite;
 /// [`ErrorKind::Overflow`] if element 10 leaves f32.
+#[inline]
 pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
+    match epsilon_matrix_fast(frustum, epsilon) {
+        Some(m) => Ok(m),
+        None => epsilon_matrix_exact(frustum, epsilon),
+    }
+}
+
+/// The fast path of [`epsilon_matrix`] alone, as [`offset_matrix_fast`].
+#[inline(always)]
+pub fn epsilon_matrix_fast(frustum: &Frustum, epsilon: f64) -> Option<[f32; 16]> {
+    let mut m = crate::projection::projection_fast(frustum, ClipDepth::NegOneToOne)?;
+    let (estimate, _) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
+    m[10] = outward_of_ratio(m[10], estimate, 4.0)?;
+    Some(m)
+}
+
+/// [`epsilon_matrix`] decided by the exact path alone, as [`offset_matrix_exact`].
+///
+/// # Errors
+/// As [`epsilon_matrix`].
+pub fn epsilon_matrix_exact(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
     finite(epsilon, "epsilon is NaN or infinite")?;
-    let planes = frustum.planes();
-    let mut m = frustum.to_cols_array()?;
-    let (estimate, exact) = ndc_offset_of_epsilon(&planes, epsilon);
-    m[10] = rounded_outward_estimated(m[10], estimate, exact)?;
+    let mut m = crate::projection::projection_exact(frustum, ClipDepth::NegOneToOne)?;
+    let (_, exact) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
+    m[10] = rounded_outward(m[10], exact())?;
     Ok(m)
 }
 
@@ -176,20 +288,20 @@ fn shifted_depth(planes: &Planes, delta: f64, pz: f64) -> Result<f64> {
     Ok(shifted)
 }
 
-/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))`: an f64 estimate (seven roundings) and, on demand, its
-/// double-double value. `f + n` cancels, and the formula is homogeneous of degree 0, so the
+/// `o = m10·ε = 2fnδ / ((f−n)·Pz·(Pz+δ))`: an f64 estimate of its numerator (two roundings)
+/// and denominator (four) and, on demand, its double-double value. `f + n` cancels, and the formula is homogeneous of degree 0, so the
 /// inputs are first scaled by a power of two that keeps every product in range.
 fn ndc_offset_of_shift(
     planes: &Planes,
     delta: f64,
     pz: f64,
-) -> (f64, impl FnOnce() -> DoubleDouble) {
+) -> (Ratio, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
-    let far = (!planes.is_infinite()).then(|| planes.far() * s);
+    let far = (!planes.is_infinite()).then_some(planes.far() * s);
     let estimate = match far {
-        None => 2.0 * n * delta / (pz * (pz + delta)),
-        Some(f) => 2.0 * n * delta * f / (pz * (pz + delta) * (f - n)),
+        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
+        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
     };
     let exact = move || {
         let two_n_delta = DoubleDouble::product(2.0 * n, delta);
@@ -204,14 +316,14 @@ fn ndc_offset_of_shift(
     (estimate, exact)
 }
 
-/// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate (three roundings) and, on
-/// demand, its double-double value.
-fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -> DoubleDouble) {
+/// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate of its numerator (two
+/// roundings) and denominator (one) and, on demand, its double-double value.
+fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (Ratio, impl FnOnce() -> DoubleDouble) {
     let s = unit_scale(planes.far());
     let far = (!planes.is_infinite()).then(|| (planes.far() * s, planes.near() * s));
     let estimate = match far {
-        None => -epsilon,
-        Some((f, n)) => -epsilon * (f + n) / (f - n),
+        None => Ratio(-epsilon, 1.0),
+        Some((f, n)) => Ratio(-epsilon * (f + n), f - n),
     };
     let exact = move || match far {
         None => DoubleDouble::from_f64(-epsilon),
@@ -222,32 +334,75 @@ fn ndc_offset_of_epsilon(planes: &Planes, epsilon: f64) -> (f64, impl FnOnce() -
     (estimate, exact)
 }
 
-/// [`rounded_outward`] for an offset known as an f64 `estimate` within eight roundings
-/// (relative error below 8·2⁻⁵³): when no f32 lies within the estimate's error of
-/// `plain + estimate`, every value in that interval rounds outward to the same f32, so the
-/// double-double `exact` value is computed only in the rare remaining cases (an f32 within
-/// about 1e-15 relative, which includes offsets that land exactly on one).
-fn rounded_outward_estimated(
-    plain: f32,
-    estimate: f64,
-    exact: impl FnOnce() -> DoubleDouble,
-) -> Result<f32> {
+/// An offset as f64 estimates of its numerator and denominator.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ratio(pub f64, pub f64);
+
+impl Ratio {
+    /// The quotient (one more rounding).
+    pub(crate) fn value(self) -> f64 {
+        self.0 / self.1
+    }
+}
+
+/// The outward rounding of `plain + o` (see [`rounded_outward`]) for an offset `o = num/den`
+/// known as a [`Ratio`] whose quotient takes at most `rounds` roundings (relative error below
+/// `rounds·2⁻⁵³`: the f64 operations that computed it, on inputs scaled into the normal range).
+/// `None` (use the double-double value) when the estimate cannot decide it, and for a zero or
+/// non-finite one.
+///
+/// Two cases decide it, both computed and one chosen without a branch. An offset whose magnitude
+/// (with the doubled error bound) is below the step from `plain` to the next f32 outward (the
+/// usual one: a few depth steps or less) rounds outward to that next f32. A larger one: when
+/// no f32 lies within the estimate's error of `plain + o`, every value in that interval rounds
+/// outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32 are farther
+/// still); that fails for an f32 within about `1e-15` relative (offsets that land on one).
+#[inline(always)]
+pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
+    let estimate = o.value();
+    let bound = rounds * f64::EPSILON;
+    let up = estimate > 0.0;
+    // One f32 outward from `v` (nonzero, finite): one unit of its bit pattern, away from zero
+    // when the direction agrees with its sign.
+    let outward = |v: f32| {
+        let bits = v.to_bits();
+        f32::from_bits(if up == (v > 0.0) {
+            bits.wrapping_add(1)
+        } else {
+            bits.wrapping_sub(1)
+        })
+    };
+    let next = outward(plain);
+    let step = (f64::from(next) - f64::from(plain)).abs();
+    let small = estimate.abs() * (1.0 + bound) < step;
     let target = f64::from(plain) + estimate;
     // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = 8.0 * f64::EPSILON * estimate.abs() + f64::EPSILON * target.abs();
+    let error = bound * estimate.abs() + f64::EPSILON * target.abs();
     let nearest = target as f32;
-    let gap = f64::from(nearest) - target;
-    if target.is_finite() && nearest.is_finite() && estimate != 0.0 && gap.abs() > error {
-        let outward = match (estimate > 0.0, gap > 0.0) {
-            (true, false) => nearest.next_up(),
-            (false, true) => nearest.next_down(),
-            _ => nearest,
-        };
-        if outward.is_finite() {
-            return Ok(outward);
-        }
+    let gap = f64::from(nearest) - target; // exact
+    let beyond = if up { gap < 0.0 } else { gap > 0.0 };
+    let x = match (small, beyond) {
+        (true, _) => next,
+        (false, true) => outward(nearest),
+        (false, false) => nearest,
+    };
+    let nonzero_finite = |v: f32| (v != 0.0) & (v.abs() < f32::INFINITY);
+    let decided = small | (gap.abs() > error);
+    let usable = nonzero_finite(plain) & nonzero_finite(nearest) & (x.abs() < f32::INFINITY);
+    (decided & usable & (estimate != 0.0)).then_some(x)
+}
+
+/// [`outward_of_ratio`], falling back to the double-double `exact` offset.
+#[cfg(test)]
+fn rounded_outward_estimated(
+    plain: f32,
+    estimate: Ratio,
+    exact: impl FnOnce() -> DoubleDouble,
+) -> Result<f32> {
+    match outward_of_ratio(plain, estimate, 8.0) {
+        Some(x) => Ok(x),
+        None => rounded_outward(plain, exact()),
     }
-    rounded_outward(plain, exact())
 }
 
 /// Rounds `plain + offset` to f32 away from `plain`, so the offset the GPU sees is never
@@ -303,8 +458,7 @@ mod tests {
                 rounded_outward_estimated(plain, estimate, exact).unwrap(),
                 want
             );
-            let target = f64::from(plain) + estimate;
-            shortcuts += usize::from(f64::from(target as f32) != target);
+            shortcuts += usize::from(outward_of_ratio(plain, estimate, 8.0).is_some());
         }
         assert!(
             shortcuts > 19_000,
@@ -323,7 +477,7 @@ mod tests {
         ] {
             let exact = || DoubleDouble::from_f64(offset);
             assert_eq!(
-                rounded_outward_estimated(plain, offset, exact).unwrap(),
+                rounded_outward_estimated(plain, Ratio(offset, 1.0), exact).unwrap(),
                 want
             );
         }

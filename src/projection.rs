@@ -8,7 +8,11 @@
 use glam::{DMat4, Mat4};
 
 use crate::domain::{check_tweak, domain, finite, representable, Planes};
+use crate::double_double::unit_scale;
 use crate::error::{Error, ErrorKind, Result};
+use crate::rounding::{
+    nearest_columns_then, nearest_of_ratio, two_product, two_sum, Estimates, Ratio,
+};
 
 /// The six parameters of `glFrustum`, validated.
 ///
@@ -56,6 +60,12 @@ impl Frustum {
         self.planes
     }
 
+    /// `(l, r, b, t, n, f)`, as passed to [`Self::new`].
+    pub fn parameters(&self) -> (f64, f64, f64, f64, f64, f64) {
+        let (n, f) = (self.planes.near(), self.planes.far());
+        (self.left, self.right, self.bottom, self.top, n, f)
+    }
+
     /// The 16 elements, column-major, each within a few f64 ulp of the exact value.
     ///
     /// ```text
@@ -94,14 +104,15 @@ impl Frustum {
         Ok(DMat4::from_cols_array(&self.to_cols_array_f64()?))
     }
 
-    /// The matrix rounded to f32, each element the nearest f32 to the f64 value (so within
-    /// one f32 ulp of the exact element). This is what `glFrustum` followed by
-    /// `glGetFloatv(GL_PROJECTION_MATRIX)` gives.
+    /// The matrix in f32, each element the nearest f32 of the exact element (ties to even),
+    /// decided as in [`crate::rounding`]. `glFrustum` followed by
+    /// `glGetFloatv(GL_PROJECTION_MATRIX)` rounds twice (f64, then f32) and can be one ulp off.
     ///
     /// # Errors
     /// [`ErrorKind::Overflow`] if an element does not fit in f32.
+    #[inline]
     pub fn to_cols_array(&self) -> Result<[f32; 16]> {
-        to_f32(&self.to_cols_array_f64()?)
+        projection(self, ClipDepth::NegOneToOne)
     }
 
     /// The matrix rounded to f32, as a glam [`Mat4`].
@@ -120,8 +131,20 @@ impl Frustum {
 ///
 /// # Errors
 /// As [`Frustum::new`] and [`Frustum::to_cols_array`].
+#[inline]
 pub fn frustum(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Mat4> {
-    Frustum::new(l, r, b, t, n, f)?.to_mat4()
+    match fast(l, r, b, t, n, f, DepthRow::Clip(ClipDepth::NegOneToOne)) {
+        Some(m) => Ok(m),
+        None => Ok(Mat4::from_cols_array(&exact(
+            l,
+            r,
+            b,
+            t,
+            n,
+            f,
+            DepthRow::Clip(ClipDepth::NegOneToOne),
+        )?)),
+    }
 }
 
 /// Rounds each element to the nearest f32, refusing elements that overflow f32.
@@ -206,8 +229,21 @@ pub fn projection_f64(frustum: &Frustum, clip: ClipDepth) -> Result<[f64; 16]> {
 ///
 /// # Errors
 /// As [`projection_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+#[inline]
 pub fn projection(frustum: &Frustum, clip: ClipDepth) -> Result<[f32; 16]> {
-    to_f32(&projection_f64(frustum, clip)?)
+    let (l, r, b, t, n, f) = frustum.parameters();
+    build(l, r, b, t, n, f, DepthRow::Clip(clip))
+}
+
+/// [`projection`] decided by the exact path alone (every element through
+/// [`crate::rounding`]'s exact decision, no f64 shortcut): the same matrix, about a hundred
+/// times slower. Exists so tests can compare the fast path with it.
+///
+/// # Errors
+/// As [`projection`].
+pub fn projection_exact(frustum: &Frustum, clip: ClipDepth) -> Result<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    exact(l, r, b, t, n, f, DepthRow::Clip(clip))
 }
 
 /// The frustum `gluPerspective(fovy, aspect, n, f)` describes: `t = n·tan(fovy/2)`, `b = −t`,
@@ -240,8 +276,76 @@ pub fn perspective_frustum(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Re
 ///
 /// # Errors
 /// As [`perspective_frustum`] and [`Frustum::to_cols_array`].
+#[inline]
 pub fn perspective(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<Mat4> {
-    perspective_frustum(fovy_degrees, aspect, n, f)?.to_mat4()
+    Ok(Mat4::from_cols_array(&perspective_array(
+        fovy_degrees,
+        aspect,
+        n,
+        f,
+    )?))
+}
+
+/// [`perspective`] as a column-major array: each element the nearest f32 of the exact
+/// `glFrustum` element of [`perspective_frustum`]'s frustum (whose `t = n·tan(fovy/2)` and
+/// `r = t·aspect` are rounded in f64 first).
+///
+/// # Errors
+/// As [`perspective`].
+#[inline]
+pub fn perspective_array(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Result<[f32; 16]> {
+    match perspective_fast(fovy_degrees, aspect, n, f) {
+        Some(m) => Ok(m),
+        None => perspective_frustum(fovy_degrees, aspect, n, f)?.to_cols_array(),
+    }
+}
+
+/// The fast path of [`perspective_array`] alone: `None` where it defers to the exact path (an
+/// invalid input, or an element within [`crate::rounding`]'s slack of an f32 rounding
+/// boundary). When it returns a matrix, that matrix is [`perspective_array`]'s.
+#[inline(always)]
+pub fn perspective_fast(fovy_degrees: f64, aspect: f64, n: f64, f: f64) -> Option<[f32; 16]> {
+    Some(perspective_fast_columns(fovy_degrees, aspect, n, f)?.to_cols_array())
+}
+
+/// [`perspective_fast`] as glam columns (kept in registers by the C ABI's one store).
+#[inline(always)]
+pub(crate) fn perspective_fast_columns(
+    fovy_degrees: f64,
+    aspect: f64,
+    n: f64,
+    f: f64,
+) -> Option<Mat4> {
+    let good = (fovy_degrees > 0.0) & (fovy_degrees < 180.0) & (aspect > 0.0);
+    if !(good & (aspect < f64::INFINITY) & (n > 0.0) & (n < f64::INFINITY)) {
+        return None;
+    }
+    let top = n * (fovy_degrees.to_radians() * 0.5).tan();
+    let right = top * aspect;
+    fast(
+        -right,
+        right,
+        -top,
+        top,
+        n,
+        f,
+        DepthRow::Clip(ClipDepth::NegOneToOne),
+    )
+}
+
+/// The fast path of [`projection`] alone: `None` where it defers to the exact path. When it
+/// returns a matrix, that matrix is [`projection`]'s (and [`projection_exact`]'s).
+#[inline(always)]
+pub fn projection_fast(frustum: &Frustum, clip: ClipDepth) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, f) = frustum.parameters();
+    Some(fast(l, r, b, t, n, f, DepthRow::Clip(clip))?.to_cols_array())
+}
+
+/// The fast path of [`tweaked_infinite`] alone, as [`projection_fast`].
+#[inline(always)]
+pub fn tweaked_infinite_fast(frustum: &Frustum, tweak: f64) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, _) = frustum.parameters();
+    Some(fast(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))?.to_cols_array())
 }
 
 /// The smallest tweak that keeps geometry at any distance inside the clip volume of the
@@ -277,11 +381,236 @@ pub fn tweaked_infinite_f64(frustum: &Frustum, tweak: f64) -> Result<[f64; 16]> 
     Ok(m)
 }
 
-/// [`tweaked_infinite_f64`] rounded to f32 (element 10 is exact whenever `ε` is a multiple of
-/// `2⁻²⁴`, as [`MIN_INFINITE_TWEAK`] is).
+/// [`tweaked_infinite_f64`] in f32, each element the nearest f32 of the exact element
+/// (element 10, `ε − 1`, is exact whenever `ε` is a multiple of `2⁻²⁴`, as
+/// [`MIN_INFINITE_TWEAK`] is).
 ///
 /// # Errors
 /// As [`tweaked_infinite_f64`]; [`ErrorKind::Overflow`] if an element leaves f32.
+#[inline]
 pub fn tweaked_infinite(frustum: &Frustum, tweak: f64) -> Result<[f32; 16]> {
-    to_f32(&tweaked_infinite_f64(frustum, tweak)?)
+    let (l, r, b, t, n, _) = frustum.parameters();
+    build(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))
+}
+
+/// [`tweaked_infinite`] decided by the exact path alone, as [`projection_exact`].
+///
+/// # Errors
+/// As [`tweaked_infinite`].
+pub fn tweaked_infinite_exact(frustum: &Frustum, tweak: f64) -> Result<[f32; 16]> {
+    let (l, r, b, t, n, _) = frustum.parameters();
+    exact(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak))
+}
+
+// ---------------------------------------------------------------------------------------------
+// The f32 builders: a fast path (f64 estimates, a few comparisons, one low-bit test per element)
+// and an exact path (validation with details, every element decided exactly). See
+// `crate::rounding` for the error bound that makes the fast path's answer the exact one.
+// ---------------------------------------------------------------------------------------------
+
+/// Which depth row a builder writes (elements 10 and 14).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum DepthRow {
+    /// The projection of a clip convention (`f` may be `+∞`).
+    Clip(ClipDepth),
+    /// The tweaked infinite projection with this ε (`f` is ignored; pass `+∞`).
+    Tweaked(f64),
+}
+
+/// The f32 matrix of `glFrustum(l, r, b, t, n, f)` with `depth`'s row, each element the
+/// nearest f32 of the exact element: the fast path, falling back to [`exact`] (which also
+/// explains any error).
+///
+/// # Errors
+/// As [`Frustum::new`] and [`check_tweak`]; [`ErrorKind::Overflow`] if an element leaves f32.
+#[inline(always)]
+pub(crate) fn build(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    depth: DepthRow,
+) -> Result<[f32; 16]> {
+    match fast(l, r, b, t, n, f, depth) {
+        Some(m) => Ok(m.to_cols_array()),
+        None => exact(l, r, b, t, n, f, depth),
+    }
+}
+
+/// The fast path: `None` if an input is invalid or an element is too close to an f32 rounding
+/// boundary to decide from its f64 estimate (then [`exact`] decides). Branch-free but for the
+/// one test at the end (and `f = +∞`), so a caller can write its output once.
+///
+/// Validation, equivalent to [`Frustum::new`]'s, is done with the rounding decision in
+/// [`nearest_columns_then`]: `0 < n < ∞`, `f − n > 0` (so `f > n`; NaN fails every comparison),
+/// and `r − l`, `t − b` finite and nonzero (so `l`, `r`, `b`, `t` are finite and `l ≠ r`,
+/// `b ≠ t`). Every estimate is at most four roundings
+/// (module docs of [`crate::rounding`]): a sum or product, a difference, its reciprocal and the
+/// product with it.
+#[inline(always)]
+pub(crate) fn fast(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    depth: DepthRow,
+) -> Option<Mat4> {
+    fast_then(l, r, b, t, n, f, depth, Some)
+}
+
+/// [`fast`] with element 10 replaced by `element_10(m10)` before the columns are assembled
+/// (the offset builders round their offset element outward there).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn fast_then(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    depth: DepthRow,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
+    let mut good = true;
+    let two_n = 2.0 * n;
+    let span = f - n;
+    let (depth, depth_den) = match depth {
+        DepthRow::Tweaked(tweak) => {
+            good = (0.0..1.0).contains(&tweak);
+            ([tweak - 1.0, (tweak - 2.0) * n], 1.0)
+        }
+        DepthRow::Clip(clip) if f == f64::INFINITY => match clip {
+            ClipDepth::NegOneToOne => ([-1.0, -two_n], 1.0),
+            ClipDepth::ZeroToOne => ([-1.0, -n], 1.0),
+            ClipDepth::ReversedZeroToOne => ([0.0, n], 1.0),
+        },
+        DepthRow::Clip(clip) => match clip {
+            ClipDepth::NegOneToOne => ([-(f + n), -(two_n * f)], span),
+            ClipDepth::ZeroToOne => ([-f, -(n * f)], span),
+            ClipDepth::ReversedZeroToOne => ([n, n * f], span),
+        },
+    };
+    if !good {
+        return None;
+    }
+    nearest_columns_then(
+        Estimates {
+            scale: two_n,
+            centre: [r + l, t + b],
+            den: [r - l, t - b],
+            depth,
+            depth_den,
+            planes: [n, span],
+        },
+        element_10,
+    )
+}
+
+/// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],
+/// then decides every element with [`nearest_of_ratio`] on inputs scaled by powers of two.
+///
+/// # Errors
+/// As [`build`].
+#[cold]
+#[inline(never)]
+fn exact(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64, depth: DepthRow) -> Result<[f32; 16]> {
+    Frustum::new(l, r, b, t, n, f)?;
+    if let DepthRow::Tweaked(tweak) = depth {
+        check_tweak(tweak)?;
+    }
+    let (m0, m8) = exact_xy(l, r, n);
+    let (m5, m9) = exact_xy(b, t, n);
+    let (m10, m14) = exact_depth_row(n, f, depth);
+    let m = [
+        m0, 0.0, 0.0, 0.0, 0.0, m5, 0.0, 0.0, m8, m9, m10, -1.0, 0.0, 0.0, m14, 0.0,
+    ];
+    if m.iter().any(|x| !x.is_finite()) {
+        return Err(Error::new(
+            ErrorKind::Overflow,
+            "a projection matrix element overflows f32",
+        ));
+    }
+    Ok(m)
+}
+
+/// `2n/(hi − lo)` and `(hi + lo)/(hi − lo)`, exactly rounded (one row of x or y).
+fn exact_xy(lo: f64, hi: f64, n: f64) -> (f32, f32) {
+    let s = unit_scale(lo.abs().max(hi.abs()));
+    let (lo_s, hi_s) = (lo * s, hi * s);
+    let (w, w_err) = two_sum(hi_s, -lo_s);
+    let (c, c_err) = two_sum(hi_s, lo_s);
+    let centre = nearest_of_ratio(Ratio {
+        num: &[c, c_err],
+        den: &[w, w_err],
+        scale: 1.0,
+    });
+    let s = unit_scale(lo.abs().max(hi.abs()).max(n));
+    let (w, w_err) = two_sum(hi * s, -(lo * s));
+    let scale = nearest_of_ratio(Ratio {
+        num: &[2.0 * n * s],
+        den: &[w, w_err],
+        scale: 1.0,
+    });
+    (scale, centre)
+}
+
+/// Elements 10 and 14, exactly rounded.
+fn exact_depth_row(n: f64, f: f64, depth: DepthRow) -> (f32, f32) {
+    let clip = match depth {
+        DepthRow::Tweaked(tweak) => {
+            let (m10, m10_err) = two_sum(tweak, -1.0);
+            let s = unit_scale(n);
+            let (c, c_err) = two_sum(tweak, -2.0);
+            let (p, p_err) = two_product(c, n * s);
+            let (q, q_err) = two_product(c_err, n * s);
+            let m14 = Ratio {
+                num: &[p, p_err, q, q_err],
+                den: &[1.0],
+                scale: s,
+            };
+            return (
+                nearest_of_ratio(Ratio {
+                    num: &[m10, m10_err],
+                    den: &[1.0],
+                    scale: 1.0,
+                }),
+                nearest_of_ratio(m14),
+            );
+        }
+        DepthRow::Clip(clip) => clip,
+    };
+    if f == f64::INFINITY {
+        // Exact in f64, so one conversion rounds correctly.
+        return match clip {
+            ClipDepth::NegOneToOne => (-1.0, (-2.0 * n) as f32),
+            ClipDepth::ZeroToOne => (-1.0, -n as f32),
+            ClipDepth::ReversedZeroToOne => (0.0, n as f32),
+        };
+    }
+    let s = unit_scale(f);
+    let (f, n) = (f * s, n * s);
+    let span = two_sum(f, -n);
+    let span = [span.0, span.1];
+    let (fn_, fn_err) = two_product(f, n);
+    let (m10, m14) = match clip {
+        ClipDepth::NegOneToOne => {
+            let (sum, sum_err) = two_sum(f, n);
+            ([-sum, -sum_err], [-2.0 * fn_, -2.0 * fn_err])
+        }
+        ClipDepth::ZeroToOne => ([-f, 0.0], [-fn_, -fn_err]),
+        ClipDepth::ReversedZeroToOne => ([n, 0.0], [fn_, fn_err]),
+    };
+    let ratio = |num: &[f64], scale| {
+        nearest_of_ratio(Ratio {
+            num,
+            den: &span,
+            scale,
+        })
+    };
+    (ratio(&m10, 1.0), ratio(&m14, s))
 }

@@ -897,11 +897,16 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         // Window depth = NDC depth: the constant offset is (R1) itself.
         let dw = fits(terms.window_offset())?;
         let c = -dw / mapping.window_per_ndc();
-        (c, 0.0, dw, crate::clip_offset::ndc_offset_matrix(&m, c)?)
+        (
+            c,
+            0.0,
+            dw,
+            crate::clip_offset::ndc_offset_projection(frustum, clip, c)?,
+        )
     } else {
         let eps = reversed_epsilon(scene, &mapping, &terms)?;
         let b = scale(scene);
-        let matrix = crate::clip_offset::relative_offset_matrix(&m, eps)?;
+        let matrix = crate::clip_offset::relative_offset_projection(frustum, clip, eps)?;
         (0.0, eps, fits(eps * (b / d2))?, matrix)
     };
     // The window offset at d: constant, or ε·b/d under reversed Z.

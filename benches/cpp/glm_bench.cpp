@@ -1,5 +1,5 @@
 // C++ side of the zshift benchmarks: GLM's glm::frustum (Debian libglm-dev) beside zshift's C ABI
-// called from C++, timed in the same loop shape, and GLM's element 10 for the report's error table.
+// called from C++, and GLM's element 10 for the report's error table.
 //
 // Built and run by scripts/report (not part of CI):
 //   g++ -O2 -std=c++17 -Iinclude benches/cpp/glm_bench.cpp -Ltarget/release -lzshift ...
@@ -7,6 +7,14 @@
 //   glm_bench time      -> one JSON object: median ns per call of each variant
 //   glm_bench m10       -> reads "l r b t n f" lines on stdin, prints GLM's element 10 as
 //                          C99 hex floats: float build, double build (one line per input)
+//
+// Fairness: every variant leaves its whole 16-float matrix in memory that the compiler must
+// assume is read (an empty asm statement with a memory clobber): GLM's in its own glm::mat4,
+// ready for glUniformMatrix4fv(.., &m[0][0]), zshift's in the buffer its C ABI writes. Without
+// that, GLM's inline builder is reduced to the elements a sink reads.
+// Inputs are read through volatiles on every call, so nothing is constant-folded. Batches of
+// the variants are interleaved (round robin), so a machine shared with other jobs loads every
+// variant alike, and the median batch is reported.
 #include <glm/glm.hpp>
 #include <glm/ext/matrix_clip_space.hpp>
 
@@ -22,30 +30,35 @@ extern "C" {
 
 namespace {
 
-// Inputs read through volatiles each call, so the compiler cannot fold the builders.
 volatile double vl = -0.0577, vr = 0.0577, vb = -0.0414, vt = 0.0414, vn = 0.1, vf = 1000.0;
 volatile double vpz = -50.0, vdelta = 0.0;
-volatile float sink;
+volatile double vfovy = 45.0, vaspect = 1.3937;
+
+// Tells the compiler the 16 floats at `p` are read: the matrix must really be stored.
+inline void escape(const float* p) { asm volatile("" : : "g"(p) : "memory"); }
 
 // The seed's LoadOffsetMatrix arithmetic: f, n GLdouble; delta, pz GLfloat (see benches/shared/seed.rs).
 float seed_epsilon(double n, double f, float delta, float pz) {
     return -2.0F * f * n * delta / ((f + n) * pz * (pz + delta));
 }
 
+// Nanoseconds per call of `body` over one batch (the template inlines each builder into its loop).
 template <class F>
-double median_ns_per_call(F body) {
-    const int batches = 21;
-    const long calls = 200000;
-    std::vector<double> per_call;
-    for (int i = 0; i < batches + 2; ++i) {
-        auto t0 = std::chrono::steady_clock::now();
-        for (long j = 0; j < calls; ++j) body();
-        auto t1 = std::chrono::steady_clock::now();
-        if (i >= 2)  // the first two batches warm caches and clocks
-            per_call.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / calls);
+double batch(F body) {
+    const long calls = 100000;
+    alignas(64) float out[16];
+    auto t0 = std::chrono::steady_clock::now();
+    for (long j = 0; j < calls; ++j) {
+        body(out);
+        escape(out);
     }
-    std::sort(per_call.begin(), per_call.end());
-    return per_call[per_call.size() / 2];
+    auto t1 = std::chrono::steady_clock::now();
+    return std::chrono::duration<double, std::nano>(t1 - t0).count() / calls;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
 }
 
 int time_all() {
@@ -54,37 +67,64 @@ int time_all() {
     if (zshift_min_delta_toward(n, f, 24, pz, &step) != ZSHIFT_OK) return 1;
     vdelta = 4.0 * step;  // the same case as benches/cpu.rs
 
-    double glm_plain = median_ns_per_call([] {
+    int failures = 0;
+    auto glm_plain = [](float* out) {
         glm::mat4 m = glm::frustum<float>(float(vl), float(vr), float(vb), float(vt), float(vn), float(vf));
-        sink = m[2][2] + m[3][2];
-    });
-    double glm_tweak = median_ns_per_call([] {
+        (void)out;
+        escape(&m[0][0]);
+    };
+    auto glm_tweak = [](float* out) {
         glm::mat4 m = glm::frustum<float>(float(vl), float(vr), float(vb), float(vt), float(vn), float(vf));
         m[2][2] *= 1.0F + seed_epsilon(vn, vf, float(vdelta), float(vpz));
-        sink = m[2][2] + m[3][2];
-    });
-    double glm_double = median_ns_per_call([] {
-        glm::dmat4 m = glm::frustum<double>(vl, vr, vb, vt, vn, vf);
-        sink = float(m[2][2] + m[3][2]);
-    });
-    int failures = 0;
-    double zs = median_ns_per_call([&failures] {
-        float m[16];
-        if (zshift_load_offset_matrix(vl, vr, vb, vt, vn, vf, vdelta, vpz, m) != ZSHIFT_OK) ++failures;
-        sink = m[10] + m[14];
-    });
-    double zs_plain = median_ns_per_call([&failures] {
-        float m[16];
-        if (zshift_frustum(vl, vr, vb, vt, vn, vf, m) != ZSHIFT_OK) ++failures;
-        sink = m[10] + m[14];
-    });
+        (void)out;
+        escape(&m[0][0]);
+    };
+    auto glm_double = [](float* out) {
+        glm::mat4 m(glm::frustum<double>(vl, vr, vb, vt, vn, vf));
+        (void)out;
+        escape(&m[0][0]);
+    };
+    auto glm_perspective = [](float* out) {
+        glm::mat4 m = glm::perspective<float>(glm::radians(float(vfovy)), float(vaspect), float(vn), float(vf));
+        (void)out;
+        escape(&m[0][0]);
+    };
+    auto zs_offset = [&failures](float* out) {
+        if (zshift_load_offset_matrix(vl, vr, vb, vt, vn, vf, vdelta, vpz, out) != ZSHIFT_OK) ++failures;
+    };
+    auto zs_frustum = [&failures](float* out) {
+        if (zshift_frustum(vl, vr, vb, vt, vn, vf, out) != ZSHIFT_OK) ++failures;
+    };
+    auto zs_perspective = [&failures](float* out) {
+        if (zshift_perspective(vfovy, vaspect, vn, vf, out) != ZSHIFT_OK) ++failures;
+    };
+
+    const char* keys[] = {"glm_frustum_float",          "glm_frustum_float_seed_tweak",
+                          "glm_frustum_double",         "glm_perspective_float",
+                          "zshift_load_offset_matrix_c_abi", "zshift_frustum_c_abi",
+                          "zshift_perspective_c_abi"};
+    std::vector<double> ns[7];
+    const int rounds = 61;
+    for (int i = 0; i < rounds + 2; ++i) {
+        double t[7] = {batch(glm_plain),  batch(glm_tweak),  batch(glm_double), batch(glm_perspective),
+                       batch(zs_offset),  batch(zs_frustum), batch(zs_perspective)};
+        if (i < 2) continue;  // the first two rounds warm caches and clocks
+        for (int k = 0; k < 7; ++k) ns[k].push_back(t[k]);
+    }
     if (failures) return 2;
-    std::printf(
-        "{\"glm_version\": \"%d.%d.%d.%d\", \"glm_frustum_float\": %.3f, "
-        "\"glm_frustum_float_seed_tweak\": %.3f, \"glm_frustum_double\": %.3f, "
-        "\"zshift_load_offset_matrix_c_abi\": %.3f, \"zshift_frustum_c_abi\": %.3f}\n",
-        GLM_VERSION_MAJOR, GLM_VERSION_MINOR, GLM_VERSION_PATCH, GLM_VERSION_REVISION, glm_plain,
-        glm_tweak, glm_double, zs, zs_plain);
+    // Ratios round by round (the two sides a few milliseconds apart, under the same load), then
+    // their median: steadier than a ratio of medians on a machine shared with other jobs.
+    auto ratio = [&ns](int a, int b) {
+        std::vector<double> r;
+        for (size_t i = 0; i < ns[a].size(); ++i) r.push_back(ns[a][i] / ns[b][i]);
+        return median(r);
+    };
+    std::printf("{\"glm_version\": \"%d.%d.%d.%d\"", GLM_VERSION_MAJOR, GLM_VERSION_MINOR,
+                GLM_VERSION_PATCH, GLM_VERSION_REVISION);
+    for (int k = 0; k < 7; ++k) std::printf(", \"%s\": %.3f", keys[k], median(ns[k]));
+    std::printf(", \"ratio_frustum_to_glm\": %.3f, \"ratio_offset_to_glm_tweak\": %.3f",
+                ratio(5, 0), ratio(4, 1));
+    std::printf("}\n");
     return 0;
 }
 

@@ -12,7 +12,7 @@ pub struct Timing {
 }
 
 /// The criterion benches of benches/cpu.rs, with the label the report gives each.
-const CRITERION: [(&str, &str, &str); 8] = [
+const CRITERION: [(&str, &str, &str); 9] = [
     (
         "offset_matrix",
         "zshift_recommend_epsilon_matrix",
@@ -32,6 +32,11 @@ const CRITERION: [(&str, &str, &str); 8] = [
         "offset_matrix",
         "zshift_frustum_plain",
         "zshift::frustum, no offset (Rust API)",
+    ),
+    (
+        "offset_matrix",
+        "zshift_frustum_c_abi",
+        "zshift_frustum, no offset (C ABI, called from Rust)",
     ),
     (
         "offset_matrix",
@@ -72,6 +77,46 @@ pub fn criterion_timings(dir: &Path) -> Vec<Timing> {
         .collect()
 }
 
+/// The interleaved Rust timings (benches/interleaved.rs), from its one-line JSON. Names start
+/// with "interleaved: " so that the headline finds them apart from criterion's.
+pub fn interleaved_timings(json: &str) -> Vec<Timing> {
+    [
+        (
+            "glam_frustum",
+            "interleaved: glam 0.34 opengl::frustum (f32), no offset",
+        ),
+        (
+            "glam_frustum_seed_tweak",
+            "interleaved: glam frustum + the seed's f32 tweak",
+        ),
+        (
+            "zshift_frustum",
+            "interleaved: zshift::frustum, no offset (Rust API)",
+        ),
+        (
+            "zshift_load_offset_matrix",
+            "interleaved: zshift::load_offset_matrix (Rust API)",
+        ),
+        (
+            "zshift_frustum_c_abi",
+            "interleaved: zshift_frustum, no offset (C ABI, called from Rust)",
+        ),
+        (
+            "zshift_recommend_epsilon_matrix",
+            "interleaved: zshift recommend + epsilon_matrix (Rust API, slope 1, 1920×1080)",
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(key, label)| {
+        Some(Timing {
+            source: "interleaved (Rust)",
+            name: label.to_string(),
+            ns: number_after(json, &format!("\"{key}\":"))?,
+        })
+    })
+    .collect()
+}
+
 /// The C++ harness's timings, from its one-line JSON.
 pub fn cpp_timings(json: &str) -> Vec<Timing> {
     let version = json
@@ -100,6 +145,14 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
             "zshift_frustum_c_abi",
             "zshift_frustum (C ABI, called from C++), no offset".to_string(),
         ),
+        (
+            "glm_perspective_float",
+            format!("GLM {version} glm::perspective<float>, no offset"),
+        ),
+        (
+            "zshift_perspective_c_abi",
+            "zshift_perspective (C ABI, called from C++), no offset".to_string(),
+        ),
     ]
     .into_iter()
     .filter_map(|(key, label)| {
@@ -110,6 +163,12 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
         })
     })
     .collect()
+}
+
+/// A round-by-round ratio the harnesses print (`ratio_*` keys): the median over rounds of the
+/// two sides' ratio, steadier than a ratio of medians on a shared machine.
+pub fn round_ratio(json: &str, key: &str) -> Option<f64> {
+    number_after(json, &format!("\"{key}\":"))
 }
 
 fn number_after(text: &str, key: &str) -> Option<f64> {

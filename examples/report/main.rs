@@ -40,6 +40,10 @@ fn run() -> Result<(), String> {
     std::fs::create_dir_all(&docs).map_err(|e| format!("creating docs/: {e}"))?;
 
     let mut timings = cpu::criterion_timings(&target.join("criterion"));
+    let rust_json = std::fs::read_to_string(target.join("bench-rust/interleaved.json")).ok();
+    if let Some(json) = &rust_json {
+        timings.extend(cpu::interleaved_timings(json));
+    }
     let glm_bench = target.join("bench-cpp/glm_bench");
     let cpp_json = run_tool(&glm_bench, &["time"], "")?;
     if let Some(json) = &cpp_json {
@@ -96,6 +100,13 @@ fn run() -> Result<(), String> {
         machine: machine(&gl_info),
         timings: &timings,
         cpp_ran: cpp_json.is_some(),
+        round_ratios: [
+            (cpp_json.as_deref(), "ratio_frustum_to_glm"),
+            (cpp_json.as_deref(), "ratio_offset_to_glm_tweak"),
+            (rust_json.as_deref(), "ratio_frustum_to_glam"),
+            (rust_json.as_deref(), "ratio_offset_to_glam_tweak"),
+        ]
+        .map(|(json, key)| json.and_then(|j| cpu::round_ratio(j, key))),
         cases: &cases,
         numeric: &numeric,
         scenes: &scenes,
@@ -251,6 +262,9 @@ struct Report<'a> {
     machine: String,
     timings: &'a [cpu::Timing],
     cpp_ran: bool,
+    /// zshift_frustum / GLM, zshift_load_offset_matrix / GLM + tweak (C++), zshift::frustum /
+    /// glam, zshift::load_offset_matrix / glam + tweak (Rust): medians of per-round ratios.
+    round_ratios: [Option<f64>; 4],
     cases: &'a [numeric::Case],
     numeric: &'a [numeric::VariantStats],
     scenes: &'a [gpu::Scene],
@@ -292,19 +306,23 @@ fn markdown(r: &Report) -> String {
 fn headline(w: &mut String, r: &Report) {
     let t = r.timings;
     let _ = writeln!(w, "## Headline\n");
+    let ns = |name: &str| find(t, name).map_or("n/a".into(), |x| format!("{:.0} ns", x.ns));
+    let round = |x: Option<f64>| x.map_or("n/a".into(), |x| format!("{x:.2}×"));
     let _ = writeln!(
         w,
-        "- CPU, one offset matrix: zshift (Rust API) costs {} of glam's plain f32 frustum and {} \
-         of glam + the seed's f32 tweak; through the C ABI from C++ it costs {} of GLM's \
-         `glm::frustum<float>`. On Mesa, zshift + `glLoadMatrixf` costs {} of the seed's \
-         `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
-        ratio(t, "zshift::load_offset_matrix", "glam 0.34"),
-        ratio(t, "zshift::load_offset_matrix", "glam frustum + the seed"),
-        ratio(
-            t,
-            "zshift_load_offset_matrix (C ABI, called from C++)",
-            "GLM 0.9.9.8 glm::frustum<float>, no"
-        ),
+        "- CPU, through the C ABI from C++ (interleaved with GLM; medians of round-by-round \
+         ratios): \
+         `zshift_frustum` costs {} of GLM's `glm::frustum<float>` and \
+         `zshift_load_offset_matrix` {} of `glm::frustum<float>` + the seed's f32 tweak, every \
+         element correctly rounded (the offset element outward). Rust API (interleaved, the same \
+         way): `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of \
+         glam + the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
+         the seed's `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
+        round(r.round_ratios[0]),
+        round(r.round_ratios[1]),
+        round(r.round_ratios[2]),
+        round(r.round_ratios[3]),
+        ns("interleaved: zshift recommend + epsilon_matrix"),
         ratio(
             t,
             "zshift_load_offset_matrix + glLoadMatrixf",
@@ -367,10 +385,15 @@ fn cpu_table(w: &mut String, r: &Report) {
     let _ = writeln!(
         w,
         "Case: a 60°×45° `glFrustum`, n = 0.1, f = 1000, decal at Pz = −50, δ = 4 × the \
-         minimum δ of a 24-bit buffer. Medians; the ratio is to zshift's Rust API \
-         (criterion) or to zshift's C ABI called from C++ (C++ harness), each within its own \
-         harness. `cargo bench --bench cpu` reproduces the criterion rows; \
-         `target/bench-cpp/glm_bench time` the C++ rows.\n"
+         minimum δ of a 24-bit buffer (perspective rows: 45°, aspect 1.3937). Medians; the ratio \
+         is to zshift's Rust API (criterion) or to zshift's C ABI called from C++ (C++ harness), \
+         each within its own harness. The C++ harness (g++ -O2) leaves every matrix whole in \
+         memory (GLM's in its own `glm::mat4`, zshift's in the buffer it writes) and interleaves \
+         its variants' batches, so a shared machine loads them alike. `cargo bench --bench cpu` \
+         reproduces the criterion rows, `cargo bench --bench interleaved` the interleaved Rust \
+         rows (timed like the C++ harness) and `target/bench-cpp/glm_bench time` the C++ rows. \
+         Read ratios within one harness; criterion's, one variant after another, move most \
+         when other jobs share the machine.\n"
     );
     if !r.cpp_ran {
         let _ = writeln!(w, "(The C++ harness was not built: no GLM rows.)\n");
@@ -386,6 +409,8 @@ fn cpu_table(w: &mut String, r: &Report) {
                 r.timings,
                 "zshift_load_offset_matrix (C ABI, called from C++)",
             )
+        } else if t.source.starts_with("interleaved") {
+            find(r.timings, "interleaved: zshift::load_offset_matrix")
         } else {
             find(r.timings, "zshift::load_offset_matrix")
         };

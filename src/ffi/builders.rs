@@ -1,7 +1,7 @@
 //! Projection builders: glFrustum, gluPerspective, every clip convention, tweaked infinite.
 
-use super::{checked_array, clip_of, ZshiftClip, ZshiftStatus};
-use crate::projection::Frustum;
+use super::{checked_array, checked_matrix, clip_of, ZshiftClip, ZshiftStatus};
+use crate::projection::{fast, ClipDepth, DepthRow, Frustum};
 
 /// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`. The seed-compatible spelling
 /// of `zshift_projection(l, r, b, t, n, f, ZSHIFT_CLIP_NEG_ONE_TO_ONE, out)` (bit-identical).
@@ -23,7 +23,10 @@ pub extern "C" fn zshift_frustum(
     f: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || Frustum::new(l, r, b, t, n, f)?.to_cols_array())
+    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
+    checked_matrix(out, fast(l, r, b, t, n, f, depth), move || {
+        Frustum::new(l, r, b, t, n, f)?.to_cols_array()
+    })
 }
 
 /// Writes the gluPerspective(fovy, aspect, n, f) matrix (column-major, 16 floats) to `out`.
@@ -41,7 +44,8 @@ pub extern "C" fn zshift_perspective(
     f: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = crate::projection::perspective_fast_columns(fovy, aspect, n, f);
+    checked_matrix(out, fast, move || {
         crate::projection::perspective_frustum(fovy, aspect, n, f)?.to_cols_array()
     })
 }
@@ -62,7 +66,10 @@ pub extern "C" fn zshift_projection(
     clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = clip_of(clip)
+        .ok()
+        .and_then(|c| fast(l, r, b, t, n, f, DepthRow::Clip(c)));
+    checked_matrix(out, fast, move || {
         crate::projection::projection(&Frustum::new(l, r, b, t, n, f)?, clip_of(clip)?)
     })
 }
@@ -89,7 +96,8 @@ pub extern "C" fn zshift_tweaked_infinite(
     tweak: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = fast(l, r, b, t, n, f64::INFINITY, DepthRow::Tweaked(tweak));
+    checked_matrix(out, fast, move || {
         crate::projection::tweaked_infinite(&Frustum::new(l, r, b, t, n, f64::INFINITY)?, tweak)
     })
 }

@@ -1,12 +1,15 @@
 //! The detail of the last failed call on this thread (libgit2's `git_error_last` style): which
 //! input, its value and why, as a sentence. Set by the one checked entry pattern.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::ffi::{c_char, CString};
 
 thread_local! {
     /// The sentence `zshift_last_error` returns; empty after a successful call.
     static LAST: RefCell<CString> = RefCell::new(CString::default());
+    /// Whether `LAST` holds a sentence: const-initialised, so the fast entry points read it
+    /// with one thread-local load and touch `LAST` only after an error.
+    static HOLDS: Cell<bool> = const { Cell::new(false) };
 }
 
 /// Records `detail` (an interior NUL, which no zshift message has, would end the C string
@@ -14,16 +17,21 @@ thread_local! {
 pub(super) fn set(detail: &str) {
     let text = CString::new(detail.replace('\0', " ")).unwrap_or_default();
     LAST.with(|last| *last.borrow_mut() = text);
+    HOLDS.with(|holds| holds.set(true));
 }
 
 /// Forgets the last error: the call succeeded.
+#[inline]
 pub(super) fn clear() {
-    LAST.with(|last| {
-        let mut last = last.borrow_mut();
-        if !last.as_bytes().is_empty() {
-            *last = CString::default();
-        }
-    });
+    if HOLDS.with(Cell::get) {
+        forget();
+    }
+}
+
+#[cold]
+fn forget() {
+    LAST.with(|last| *last.borrow_mut() = CString::default());
+    HOLDS.with(|holds| holds.set(false));
 }
 
 /// The message of a caught panic, if it carried one.

@@ -164,6 +164,40 @@ fn checked_array<T: Copy, const N: usize>(
     })
 }
 
+/// [`checked_array`] behind a fast path, for the matrix builders: when `fast` holds the matrix
+/// (computed without anything that can panic: float arithmetic on the inputs, see
+/// `crate::rounding`) and `out` is not NULL, the 16 floats are written with one unaligned
+/// store of four columns, no panic boundary and no copy through memory, and the last error is
+/// cleared as [`checked`] does. Otherwise `slow` (the checked, exact path, which also explains
+/// every error) runs through [`checked_array`].
+#[inline(always)]
+fn checked_matrix(
+    out: *mut f32,
+    fast: Option<glam::Mat4>,
+    slow: impl FnOnce() -> Result<[f32; 16]> + UnwindSafe,
+) -> ZshiftStatus {
+    match fast {
+        Some(m) if !out.is_null() => {
+            // SAFETY: not NULL; the caller promises 16 writable floats; write_unaligned needs no
+            // alignment, and a Mat4 is 16 column-major f32 with no padding.
+            unsafe { out.cast::<glam::Mat4>().write_unaligned(m) };
+            last_error::clear();
+            ZSHIFT_OK
+        }
+        _ => checked_matrix_slow(out, slow),
+    }
+}
+
+/// The slow side of [`checked_matrix`], kept out of line.
+#[cold]
+#[inline(never)]
+fn checked_matrix_slow(
+    out: *mut f32,
+    slow: impl FnOnce() -> Result<[f32; 16]> + UnwindSafe,
+) -> ZshiftStatus {
+    checked_array(out, slow)
+}
+
 /// [`checked_array`] for a single double.
 fn checked_scalar(
     out: *mut f64,

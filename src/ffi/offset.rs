@@ -1,7 +1,7 @@
 //! Offset matrices: the seed-compatible LoadOffsetMatrix, epsilon, and the offset projection of
 //! every convention; Kooima's median offset.
 
-use super::{checked_array, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
+use super::{checked_array, checked_matrix, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -30,7 +30,8 @@ pub extern "C" fn zshift_load_offset_matrix(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = crate::offset::offset_fast(l, r, b, t, n, f, delta, pz);
+    checked_matrix(out, fast, move || {
         crate::offset::offset_matrix(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
     })
 }

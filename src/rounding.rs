@@ -1,0 +1,543 @@
+//! How every matrix element reaches f32: the nearest f32 of the exact value, decided fast from
+//! an f64 estimate and exactly when the estimate is too close to call.
+//!
+//! Each plain matrix element is a rational function `x` of the f64 inputs (`2n/(r−l)`,
+//! `−(f+n)/(f−n)`, …). The builders compute it in f64 as `y`, then need `x` rounded to the
+//! nearest f32 (ties to even). Rounding `y` instead is a double rounding and is wrong whenever
+//! an f32 rounding boundary (a midpoint between two adjacent f32) lies between `x` and `y`.
+//!
+//! ## The bound
+//! The builders compute each element as `x = N/D` in f64: the numerator `N` and denominator `D`
+//! from the inputs (`r + l`, `2n·f`, `f − n`, …), the reciprocal `1/D`, and the product. With
+//! `u = 2⁻⁵³`, each correctly rounded operation returns `(a ∘ b)(1 + θ)`, `|θ| ≤ u`, as long as
+//! its result is a normal f64, and exact operations (×2, `1/1`, negation) count for nothing.
+//! Counting every rounding, no element takes more than `k = 5`:
+//!
+//! | elements | roundings |
+//! |---|---|
+//! | 0, 5: `2n·(1/(r − l))` | `r − l`, `1/·`, product, and the `(1 ∓ ρ)` below: 4 |
+//! | 8, 9: `(r + l)·(1/(r − l))` | 5 |
+//! | 10, 14, finite `f`: `−(f + n)`, `−2n·f`, `−f`, `−n·f`, `n`, `n·f` times `1/(f − n)` | at most 5 |
+//! | 10, 14, `f = ∞`: `−1`, `−2n`, `−n`, `0`, `n` (exact) | 1 |
+//! | 10, 14, tweaked: `ε − 1`, `(ε − 2)·n` | at most 3 |
+//!
+//! (`gluPerspective`'s elements are those of the f64 frustum `t = n·tan(fovy/2)`,
+//! `r = t·aspect` it describes, so they count as `glFrustum`'s.) Each rounding multiplies the
+//! result by a factor in `[1/(1 + u), 1/(1 − u)] ⊂ [1 − u, 1 + u + 2u²]`, wherever it sits in the
+//! chain.
+//!
+//! ## The test (an enclosure, rounded twice)
+//! With `ρ = 16u = 2⁻⁴⁹` the builders compute `lo = fl(fl(N·(1 − ρ))·fl(1/D))` and `hi` with
+//! `1 + ρ` (both factors are exact f64). By the bound, `lo ≤ x·(1 − ρ)(1 − u)⁻⁵ < x` and
+//! `hi ≥ x·(1 + ρ)(1 − u)⁵ > x` for `x > 0` (mirrored for `x < 0`), so `x` lies between them.
+//! Rounding to the nearest f32 is monotone, so when `lo as f32 == hi as f32` every value
+//! between them, `x` included, has that nearest f32. This holds across binades, among f32
+//! subnormals and at zero alike; only an enclosure containing an f32 rounding boundary fails
+//! it, which happens when the element is within about 16 f64 ulps of a boundary: about one
+//! element in 16 million (`2·16/2²⁹`) of evenly spread inputs. Two multiplications, two
+//! conversions and a comparison per element, done two (f64) or four (f32) at a time with SSE2
+//! (`nearest_columns_then`), so the whole test costs less than one division.
+//!
+//! A zero or f64-subnormal result passes too, and is right: with both denominators checked
+//! nonzero and finite and the numerators finite, `lo = hi = ±0` is either an exact zero (`a + b`
+//! rounds to 0 only when `a = −b`) or a product that underflowed below `2⁻¹⁰⁷⁴`, and an
+//! f64-subnormal `lo` comes from a last operation whose exact result is below `2⁻¹⁰²²`; in
+//! both cases `|x| < 2⁻¹⁵⁰` (the earlier operations are normal, so their relative bound holds)
+//! and `x` rounds to a zero of the same sign. An intermediate that overflows gives `±∞` or NaN,
+//! which fail the test (NaN ≠ NaN) or its finiteness check and go to the exact decision, which
+//! also explains the overflow.
+//!
+//! ## The exact decision
+//! `nearest_of_ratio` takes `x` as a ratio `N/D` whose numerator and denominator are
+//! each an exact sum of a few f64 (TwoSum and TwoProd give those without error). A midpoint
+//! `m` between adjacent f32 has at most 25 significant bits, so each `m·Dᵢ` is exact as a
+//! TwoProd pair, and the sign of `N − m·D` is the sign of an exact sum of at most 8 f64: a
+//! nonoverlapping expansion (Shewchuk's Grow-Expansion), whose sign is that of its largest
+//! component. Starting from the f32 nearest the estimate, it steps to the neighbour while `x`
+//! lies beyond a midpoint (at a midpoint, to the even one), which also settles subnormal
+//! results and overflow (`f32::MAX` is odd, so a tie there rounds to infinity, as IEEE 754
+//! does). Inputs are first scaled by a power of two so that every product stays a normal
+//! f64; the decision is exact unless an input is below `2⁻⁹⁰⁰` of another in the same
+//! element, where the element is within `2⁻⁹⁰⁰` (relative) of its limit.
+//!
+//! ## Outward rounding
+//! Offset elements are rounded away from the plain element instead (`crate::offset`): the
+//! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves. An
+//! offset whose estimate, grown by its error bound, stays below the step to the next f32 is
+//! decided as that next f32; a larger one when the f64 target lies farther from every f32 than
+//! its error bound, as the enclosure does; otherwise double-double decides.
+
+use std::cmp::Ordering;
+
+use glam::{Mat4, Vec4};
+
+/// The relative half-width `ρ = 2⁻⁴⁹ = 16u` of the enclosure (module docs: it exceeds the
+/// five roundings of any estimate with room to spare).
+pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
+
+#[cfg(test)]
+/// The nearest f32 of every value within a relative [`ENCLOSURE`]`/2` of `y`, if it is one f32
+/// (else `None`): the enclosure test of the module docs, for one estimate.
+#[inline(always)]
+pub(crate) fn enclosed(y: f64) -> Option<f32> {
+    let lo = (y * (1.0 - ENCLOSURE)) as f32;
+    let hi = (y * (1.0 + ENCLOSURE)) as f32;
+    (lo == hi && lo.abs() < f32::INFINITY).then_some(lo)
+}
+
+/// A projection's six varying elements as ratios of f64 values the builders compute:
+/// `m0, m5 = scale/den`, `m8, m9 = centre/den` and `m10, m14 = depth/depth_den`, each through
+/// the reciprocal of its denominator.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Estimates {
+    /// `2n` (the numerator of elements 0 and 5).
+    pub scale: f64,
+    /// `r + l`, `t + b` (the numerators of elements 8 and 9).
+    pub centre: [f64; 2],
+    /// `r − l`, `t − b`.
+    pub den: [f64; 2],
+    /// The numerators of elements 10 and 14.
+    pub depth: [f64; 2],
+    /// Their denominator: `f − n`, or 1 where the row is a product (infinite, tweaked).
+    pub depth_den: f64,
+    /// `n` and `f − n`, checked here too: `0 < n < ∞`, `f − n > 0` (NaN fails).
+    pub planes: [f64; 2],
+}
+
+/// The projection's columns, each element the nearest f32 of its exact value, when the
+/// enclosure test decides all six and every element is finite, and both denominators are finite
+/// and nonzero (the zero estimates' proof needs that); `None` otherwise.
+///
+/// The enclosure's ends are computed directly as `(numerator·(1 ∓ ρ))·(1/denominator)`, so the
+/// factor `1 ∓ ρ` is applied while the division runs. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
+/// no detection); elsewhere the same arithmetic lane by lane.
+/// The projection's columns, as [`nearest_columns_portable`] describes, with element 10 replaced by `element_10(m10)` (an offset rounded
+/// outward) before the columns are assembled, so the matrix still leaves in four registers.
+#[inline(always)]
+pub(crate) fn nearest_columns_then(
+    e: Estimates,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
+    #[cfg(target_arch = "x86_64")]
+    {
+        nearest_columns_sse2(e, element_10)
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        nearest_columns_portable(e, element_10)
+    }
+}
+
+/// [`nearest_columns_then`] lane by lane.
+#[cfg_attr(target_arch = "x86_64", allow(dead_code))] // x86_64 uses it in tests only
+#[inline(always)]
+pub(crate) fn nearest_columns_portable(
+    e: Estimates,
+    element_10: impl FnOnce(f32) -> Option<f32>,
+) -> Option<Mat4> {
+    let inv_z = 1.0 / e.depth_den;
+    let inv = [
+        1.0 / e.den[0],
+        1.0 / e.den[1],
+        1.0 / e.den[0],
+        1.0 / e.den[1],
+        inv_z,
+        inv_z,
+    ];
+    let num = [
+        e.scale,
+        e.scale,
+        e.centre[0],
+        e.centre[1],
+        e.depth[0],
+        e.depth[1],
+    ];
+    let mut m = [0.0f32; 6];
+    let mut good = true;
+    for i in 0..6 {
+        let lo = (num[i] * (1.0 - ENCLOSURE) * inv[i]) as f32;
+        let hi = (num[i] * (1.0 + ENCLOSURE) * inv[i]) as f32;
+        good &= (lo == hi) & (lo.abs() < f32::INFINITY);
+        m[i] = lo;
+    }
+    for d in e.den {
+        good &= (d.abs() < f64::INFINITY) & (d != 0.0);
+    }
+    good &= (e.planes[0] > 0.0) & (e.planes[0] < f64::INFINITY) & (e.planes[1] > 0.0);
+    if !good {
+        return None;
+    }
+    m[4] = element_10(m[4])?;
+    Some(Mat4::from_cols(
+        Vec4::new(m[0], 0.0, 0.0, 0.0),
+        Vec4::new(0.0, m[1], 0.0, 0.0),
+        Vec4::new(m[2], m[3], m[4], -1.0),
+        Vec4::new(0.0, 0.0, m[5], 0.0),
+    ))
+}
+
+/// [`nearest_columns_then`] with SSE2: two elements per f64 operation, four per f32 comparison, and
+/// the columns assembled by shuffles in registers (stored once by the caller).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+#[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
+fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32>) -> Option<Mat4> {
+    use std::arch::x86_64::*;
+    // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
+    unsafe {
+        let den = _mm_set_pd(e.den[1], e.den[0]);
+        let inv = _mm_div_pd(_mm_set1_pd(1.0), den); // [1/(r − l), 1/(t − b)]
+        let inv_z = _mm_set1_pd(1.0 / e.depth_den);
+        let down = _mm_set1_pd(1.0 - ENCLOSURE);
+        let up = _mm_set1_pd(1.0 + ENCLOSURE);
+        let scale = _mm_set1_pd(e.scale);
+        let centre = _mm_set_pd(e.centre[1], e.centre[0]);
+        let depth = _mm_set_pd(e.depth[1], e.depth[0]);
+        // (numerator·(1 ∓ ρ))·reciprocal, narrowed to f32: [m0 m5 m8 m9] and [m10 m14 0 0].
+        let end = |factor: __m128d| {
+            let xy = _mm_movelh_ps(
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(scale, factor), inv)),
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(centre, factor), inv)),
+            );
+            (
+                xy,
+                _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(depth, factor), inv_z)),
+            )
+        };
+        let (lo_xy, lo_z) = end(down);
+        let (hi_xy, hi_z) = end(up);
+        let magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
+        let infinity = _mm_set1_ps(f32::INFINITY);
+        let decided = |lo: __m128, hi: __m128| {
+            let finite = _mm_cmplt_ps(_mm_and_ps(lo, magnitude), infinity);
+            _mm_and_ps(_mm_cmpeq_ps(lo, hi), finite)
+        };
+        let all = _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z));
+        // |r − l|, |t − b| in (0, ∞); n in (0, ∞); f − n > 0.
+        let den_magnitude = _mm_andnot_pd(_mm_set1_pd(-0.0), den);
+        let planes = _mm_set_pd(e.planes[1], e.planes[0]);
+        let zero = _mm_setzero_pd();
+        let finite = _mm_cmplt_pd(
+            _mm_move_sd(den_magnitude, planes),
+            _mm_set1_pd(f64::INFINITY),
+        ); // [n, |t − b|]
+        let positive = _mm_and_pd(
+            _mm_cmpgt_pd(den_magnitude, zero),
+            _mm_cmpgt_pd(planes, zero),
+        );
+        let finite = _mm_and_pd(
+            finite,
+            _mm_cmplt_pd(den_magnitude, _mm_set1_pd(f64::INFINITY)),
+        );
+        let den_ok = _mm_and_pd(finite, positive);
+        if (_mm_movemask_ps(all) != 0xf) | (_mm_movemask_pd(den_ok) != 0x3) {
+            return None;
+        }
+        let lo_z = _mm_move_ss(lo_z, _mm_set_ss(element_10(_mm_cvtss_f32(lo_z))?));
+        let col0 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, 0, -1)));
+        let col1 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, -1, 0)));
+        let z_and_w = _mm_unpacklo_ps(lo_z, _mm_set1_ps(-1.0)); // [m10 −1 m14 −1]
+        let col2 = _mm_shuffle_ps::<0b01_00_11_10>(lo_xy, z_and_w); // [m8 m9 m10 −1]
+        let col3 = _mm_shuffle_ps::<0b11_01_00_00>(_mm_setzero_ps(), lo_z); // [0 0 m14 0]
+        Some(Mat4::from_cols(
+            Vec4::from(col0),
+            Vec4::from(col1),
+            Vec4::from(col2),
+            Vec4::from(col3),
+        ))
+    }
+}
+
+/// The error-free sum: `a + b = s + e` exactly (Knuth's TwoSum, any order of magnitudes).
+#[inline]
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+/// The error-free product: `a · b = p + e` exactly (with a fused multiply-add), unless `e`
+/// underflows.
+#[inline]
+pub(crate) fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// The exact sign of `Σ terms` (finite f64): the terms are turned in place into a
+/// nonoverlapping expansion of increasing magnitude (Shewchuk's Grow-Expansion, one term at a
+/// time), whose sign is that of its last nonzero component.
+fn sign_of_sum(terms: &mut [f64]) -> Ordering {
+    for i in 1..terms.len() {
+        let (grown, rest) = terms.split_at_mut(i);
+        let mut q = rest[0];
+        for term in grown {
+            let (s, e) = two_sum(q, *term);
+            *term = e;
+            q = s;
+        }
+        rest[0] = q;
+    }
+    match terms.iter().rev().find(|&&x| x != 0.0) {
+        Some(&x) if x > 0.0 => Ordering::Greater,
+        Some(_) => Ordering::Less,
+        None => Ordering::Equal,
+    }
+}
+
+/// The value of an f32 for midpoints: infinities stand for `±2¹²⁸`, where IEEE 754's
+/// round-to-nearest puts the overflow threshold.
+fn extended(x: f32) -> f64 {
+    if x.is_infinite() {
+        f64::from(x.signum()) * 2f64.powi(128)
+    } else {
+        f64::from(x)
+    }
+}
+
+/// A ratio `x = (Σ num)/(Σ den) / scale`, each sum exact, `scale` a power of two.
+#[derive(Clone, Copy)]
+pub(crate) struct Ratio<'a> {
+    pub num: &'a [f64],
+    pub den: &'a [f64],
+    pub scale: f64,
+}
+
+impl Ratio<'_> {
+    /// The sign of `x − m`, exactly: the sign of `N − (m·scale)·D` times the sign of `D`.
+    fn compare(&self, m: f64) -> Ordering {
+        let ms = m * self.scale;
+        let mut terms = [0.0; 8];
+        let mut len = 0;
+        for &t in self.num {
+            terms[len] = t;
+            len += 1;
+        }
+        for &d in self.den {
+            let (p, e) = two_product(ms, d);
+            terms[len] = -p;
+            terms[len + 1] = -e;
+            len += 2;
+        }
+        let numerator_side = sign_of_sum(&mut terms[..len]);
+        let mut den = [0.0; 2];
+        den[..self.den.len()].copy_from_slice(self.den);
+        let den_sign = sign_of_sum(&mut den[..self.den.len()]);
+        if den_sign == Ordering::Less {
+            numerator_side.reverse()
+        } else {
+            numerator_side
+        }
+    }
+
+    /// A few-ulp f64 estimate of `x`.
+    fn estimate(&self) -> f64 {
+        let n: f64 = self.num.iter().sum();
+        let d: f64 = self.den.iter().sum();
+        n / d / self.scale
+    }
+}
+
+/// The nearest f32 (ties to even; `±∞` past the overflow threshold) of the exact ratio `x`:
+/// the exact decision of the module docs. At most 4 numerator and 2 denominator terms.
+#[cold]
+#[inline(never)]
+pub(crate) fn nearest_of_ratio(x: Ratio<'_>) -> f32 {
+    debug_assert!(x.num.len() <= 4 && x.den.len() <= 2);
+    let mut c = x.estimate() as f32;
+    if c.is_nan() {
+        c = 0.0;
+    }
+    // Step to a neighbour while `x` lies beyond a midpoint (at a midpoint, toward the even f32).
+    // A few steps at most from a good estimate; after that, bisect (an estimate that left the
+    // normal range can be far off, and stepping one f32 at a time would take forever).
+    let mut steps = 0;
+    loop {
+        let next = if c == f32::INFINITY {
+            None
+        } else {
+            beyond(&x, c, c.next_up(), Ordering::Greater)
+        };
+        let next = next.or_else(|| {
+            if c == f32::NEG_INFINITY {
+                None
+            } else {
+                beyond(&x, c, c.next_down(), Ordering::Less)
+            }
+        });
+        match next {
+            None => return c,
+            Some(n) if steps < 4 => {
+                c = n;
+                steps += 1;
+            }
+            // Bisection lands on the nearest f32 or, at a tie, beside it: one step remains.
+            Some(_) => {
+                c = bisected(&x);
+                steps = 0;
+            }
+        }
+    }
+}
+
+/// `neighbour` when `x` lies beyond the midpoint of `c` and `neighbour` (on the side `side`), or
+/// on it with `c` odd (ties to even); `None` when `c` is at least as near.
+fn beyond(x: &Ratio<'_>, c: f32, neighbour: f32, side: Ordering) -> Option<f32> {
+    let m = 0.5 * (extended(c) + extended(neighbour));
+    let o = x.compare(m);
+    (o == side || (o == Ordering::Equal && c.to_bits() & 1 == 1)).then_some(neighbour)
+}
+
+/// An f32 within one of the nearest to `x`, by bisection over all f32 in order (32 exact
+/// comparisons): the largest whose midpoint with the f32 below does not exceed `x`.
+fn bisected(x: &Ratio<'_>) -> f32 {
+    // f32 in order as integers: −∞ … −0 = +0 … +∞.
+    let key = |v: f32| {
+        let magnitude = i64::from(v.to_bits() & 0x7fff_ffff);
+        if v.is_sign_negative() {
+            -magnitude
+        } else {
+            magnitude
+        }
+    };
+    let value = |k: i64| {
+        let magnitude = k.unsigned_abs() as u32;
+        f32::from_bits(if k < 0 {
+            magnitude | 0x8000_0000
+        } else {
+            magnitude
+        })
+    };
+    let (mut lo, mut hi) = (key(f32::NEG_INFINITY), key(f32::INFINITY));
+    while lo < hi {
+        let k = lo + (hi - lo + 1) / 2;
+        let m = 0.5 * (extended(value(k - 1)) + extended(value(k)));
+        match x.compare(m) {
+            Ordering::Less => hi = k - 1,
+            _ => lo = k,
+        }
+    }
+    value(lo)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_enclosure_refuses_midpoints_and_accepts_f32_values() {
+        let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
+        let ulps = |k: i64| f64::from_bits((mid.to_bits() as i64 + k) as u64);
+        assert_eq!(enclosed(mid), None);
+        assert_eq!(enclosed(ulps(7)), None);
+        assert_eq!(enclosed(ulps(-7)), None);
+        assert_eq!(enclosed(ulps(40)), Some(1.0 + f32::EPSILON));
+        assert_eq!(enclosed(ulps(-40)), Some(1.0));
+        for (y, want) in [
+            (1.0, 1.0f32),
+            (-3.5, -3.5),
+            (0.0, 0.0),
+            (1e-300, 0.0),
+            (1e-39, 1e-39),
+        ] {
+            assert_eq!(enclosed(y), Some(want), "{y}");
+        }
+        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)] {
+            assert_eq!(enclosed(bad), None, "{bad}");
+        }
+    }
+
+    /// The SSE2 and portable column builders agree, element for element and on refusals.
+    #[test]
+    fn the_column_builders_agree() {
+        let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let x = f64::from_bits((state >> 12) | 0x3ff0_0000_0000_0000) - 1.5;
+            x * 10f64.powi((state % 9) as i32 - 4)
+        };
+        let specials = [0.0, -0.0, f64::INFINITY, f64::NAN, mid, 1e-40, 1e39];
+        for i in 0..20_000 {
+            let mut v = [next(), next(), next(), next(), next(), next(), next()];
+            if i % 7 == 0 {
+                v[i % 7 + (i / 7) % 6] = specials[(i / 42) % specials.len()];
+            }
+            let e = Estimates {
+                scale: v[0],
+                centre: [v[1], v[2]],
+                den: [v[3], v[4]],
+                depth: [v[5], v[6]],
+                depth_den: if i % 3 == 0 { 1.0 } else { v[2] - v[1] },
+                planes: [v[0].abs(), v[5] - v[6]],
+            };
+            let portable = nearest_columns_portable(e, Some).map(|m| m.to_cols_array());
+            assert_eq!(
+                nearest_columns_then(e, Some).map(|m| m.to_cols_array()),
+                portable,
+                "{e:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_exact_sign_sees_what_f64_sums_lose() {
+        assert_eq!(sign_of_sum(&mut [1.0, 1e-300, -1.0]), Ordering::Greater);
+        assert_eq!(sign_of_sum(&mut [1e300, -1e-300, -1e300]), Ordering::Less);
+        assert_eq!(sign_of_sum(&mut [0.5, 0.25, -0.75]), Ordering::Equal);
+    }
+
+    #[test]
+    fn ratios_round_to_nearest_with_ties_to_even() {
+        let one = [1.0];
+        // (1 + 2⁻²⁴)/1 is the midpoint between 1 and 1 + 2⁻²³: ties to even (1).
+        let tie = [1.0, 2f64.powi(-24)];
+        let r = Ratio {
+            num: &tie,
+            den: &one,
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), 1.0);
+        // Just above the tie: up.
+        let above = [1.0, 2f64.powi(-24), 2f64.powi(-80)];
+        let r = Ratio {
+            num: &above,
+            den: &one,
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), 1.0f32.next_up());
+        // 1/3 with a negative denominator, halved by the scale.
+        let r = Ratio {
+            num: &one,
+            den: &[-3.0],
+            scale: 2.0,
+        };
+        assert_eq!(nearest_of_ratio(r), (-1.0f64 / 6.0) as f32);
+        // Overflow threshold and a subnormal result.
+        let threshold = [f64::from(f32::MAX), 2f64.powi(103)];
+        let r = Ratio {
+            num: &threshold,
+            den: &one,
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), f32::INFINITY);
+        let tiny = [3.0 * 2f64.powi(-150)];
+        let r = Ratio {
+            num: &tiny,
+            den: &one,
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), 2.0 * 2f32.powi(-149)); // 1.5 ulp: tie to even, 2
+                                                                // A useless estimate (the f64 sum cancels to 0, 2·10⁸ f32 below the value) ends at
+                                                                // once, by bisection.
+        let cancelling = [1.0, 1e-30, -1.0];
+        let r = Ratio {
+            num: &cancelling,
+            den: &one,
+            scale: 1.0,
+        };
+        assert_eq!(nearest_of_ratio(r), 1e-30f64 as f32);
+    }
+}
