@@ -749,7 +749,10 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
 /// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
 ///
 /// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
-/// one plane at a time; a convex polygon stays convex (draw it as a fan).
+/// one plane at a time; a convex polygon stays convex (draw it as a fan). New vertices are
+/// `a + t·(b − a)` per coordinate, so a coordinate every vertex shares is kept exactly: a base
+/// facing the camera (every z equal) keeps its z, and with a decal of that z still qualifies for
+/// [`Scene::exact_depth`].
 ///
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;

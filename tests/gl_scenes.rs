@@ -213,7 +213,9 @@ impl Case {
             format,
             depth_range: [d1, d2],
             slope: self.slope(),
-            exact_depth: self.slope() == 0.0 && self.base_kind == BaseKind::Fitted,
+            // A facing plane's corners all have z = −d_a, and `clip_to_frustum` keeps that z
+            // exactly (a + t·(b − a) with a = b): fitted and cut bases share the decal's f32 z.
+            exact_depth: self.slope() == 0.0 && self.base_kind != BaseKind::Ground,
             depth_test: self.test,
             base: match self.base_kind {
                 BaseKind::Ground => Base::Clipped {
