@@ -51,7 +51,7 @@ fn main() {
         figures.float_resolvable
     );
     println!(
-        "facing decal over a shared-z base, GL_LESS (quanta; D32F: 2^-24; NaN not measured): [-1,1] {:?}, [0,1] {:?}",
-        p.facing_quanta, p.facing_quanta_zero_to_one
+        "facing decal over a shared-z base, GL_LESS (quanta; D32F: 2^-24; NaN not measured): [-1,1] {:?}, [0,1] {:?}; reversed D32F relative epsilon {:.2} x 2^-24",
+        p.facing_quanta, p.facing_quanta_zero_to_one, p.facing_reversed
     );
 }

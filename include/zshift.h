@@ -231,6 +231,13 @@ typedef struct {
    NAN or finite >= 0.
    */
   double facing_quanta_zero_to_one[4];
+  /*
+   Under reversed Z on D32F (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_GREATER): the
+   relative epsilon (element 14 scaled by 1 + epsilon), in units of 2^-24, that a facing
+   decal sharing its base's float z needs; used for such scenes under
+   ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
+   */
+  double facing_reversed;
 } ZshiftProfile;
 
 /*

@@ -101,6 +101,12 @@ pub struct RasterizerProfile {
     /// scenes under [`crate::projection::ClipDepth::ZeroToOne`]. NaN where not measured (no
     /// `glClipControl`, or D16).
     pub facing_quanta_zero_to_one: [f64; 4],
+    /// Under reversed Z on D32F (`glClipControl(GL_ZERO_TO_ONE)`, `GL_GREATER`): the relative
+    /// offset `ε` (element 14 scaled by `1 + ε`), in units of 2⁻²⁴, that a facing decal sharing
+    /// its base's f32 z needs, the largest over 256 depths (window depth 10⁻⁵ to 0.9); used for
+    /// such scenes under [`crate::projection::ClipDepth::ReversedZeroToOne`] with D32F. NaN
+    /// where not measured.
+    pub facing_reversed: f64,
     /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
     /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
@@ -125,6 +131,7 @@ impl RasterizerProfile {
             error_ulps: f64::NAN,
             facing_quanta: [f64::NAN; 4],
             facing_quanta_zero_to_one: [f64::NAN; 4],
+            facing_reversed: f64::NAN,
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

@@ -165,7 +165,9 @@
 //! ([`RasterizerProfile::facing_quanta`]: the offset the worst of 256 depth phases needs, 3 D24
 //! quanta on llvmpipe where `q + 2T` is about 7; under `[0, 1]`
 //! [`RasterizerProfile::facing_quanta_zero_to_one`]), and a measured profile uses that figure
-//! instead ([`ErrorTerms::facing`]; not under reversed Z, whose offset is relative).
+//! instead ([`ErrorTerms::facing`]). Under reversed Z the offset is relative (element 14), so the
+//! probe measures the relative `ε` on D32F ([`RasterizerProfile::facing_reversed`]), which
+//! replaces `reversed_epsilon`'s for such scenes.
 
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
@@ -553,6 +555,22 @@ fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
     k * unit
 }
 
+/// The profile's measured relative ε for a shared-z facing plane under reversed Z and a strict
+/// test on D32F ([`RasterizerProfile::facing_reversed`] times 2⁻²⁴), divided by `1 − u` for
+/// element 14's own rounding as [`reversed_epsilon`] is; `None` where not measured or not such a
+/// scene.
+fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
+    let p = scene.profile;
+    let k = p.facing_reversed;
+    (scene.exact_depth
+        && scene.depth_test.is_strict()
+        && scene.format == DepthFormat::Float32
+        && p.measured
+        && k.is_finite()
+        && k > 0.0)
+        .then(|| k * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF))
+}
+
 /// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
 pub(crate) fn profile_index(format: DepthFormat) -> usize {
     match format {
@@ -907,7 +925,10 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             crate::clip_offset::ndc_offset_projection(frustum, clip, c)?,
         )
     } else {
-        let eps = reversed_epsilon(scene, &mapping, &terms)?;
+        let eps = match measured_facing_reversed(scene) {
+            Some(eps) => eps,
+            None => reversed_epsilon(scene, &mapping, &terms)?,
+        };
         let b = scale(scene);
         let matrix = crate::clip_offset::relative_offset_projection(frustum, clip, eps)?;
         (0.0, eps, fits(eps * (b / d2))?, matrix)
@@ -1379,6 +1400,20 @@ mod tests {
         );
         let zero_to_one = recommend_clip(&measured, ClipDepth::ZeroToOne).unwrap();
         assert_eq!(zero_to_one.terms.facing, 0.0);
+        // Reversed Z, D32F: the measured relative ε, over 1 − u for element 14's rounding.
+        let reversed = Scene {
+            frustum: Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, f64::INFINITY).unwrap(),
+            format: DepthFormat::Float32,
+            depth_test: DepthTest::Greater,
+            profile: RasterizerProfile {
+                facing_reversed: 2.5,
+                ..measured.profile
+            },
+            ..measured
+        };
+        let r = recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).unwrap();
+        let want = 2.5 * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF);
+        assert_eq!(r.relative_epsilon, want);
         let unmeasured = Scene {
             profile: RasterizerProfile {
                 measured: false,

@@ -79,6 +79,18 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         // A facing decal over its shared-z base: a few f32 steps of element 10 on D24 (one step
         // is about a quantum); D16 is not measured (its quantum is hundreds of steps).
         assert!(p.facing_quanta[0].is_nan(), "{:?}", p.facing_quanta);
+        // Under [0, 1] a step of element 10 is two quanta; under reversed Z (D32F) a relative ε
+        // of a few 2^-24.
+        assert!(
+            (2.0..=8.0).contains(&p.facing_quanta_zero_to_one[1]),
+            "{:?}",
+            p.facing_quanta_zero_to_one
+        );
+        assert!(
+            p.facing_reversed > 0.0 && p.facing_reversed <= 8.0,
+            "{}",
+            p.facing_reversed
+        );
         assert!(
             (1.0..=4.0).contains(&p.facing_quanta[1]),
             "{:?}",

@@ -114,9 +114,10 @@ pub fn section(w: &mut String, profile: &RasterizerProfile, figures: &Figures) {
     }
     let _ = writeln!(
         w,
-        "\nerror_ulps {:.3}, plane_error_reversed {:.2}. The recommendation takes snapping, r, \
-         near-plane clipping and the facing figures from it (README, \"The rasterizer probe\").\n",
-        profile.error_ulps, profile.plane_error_reversed
+        "\nerror_ulps {:.3}, plane_error_reversed {:.2}, facing decal under reversed Z (D32F, \
+         relative ε in 2⁻²⁴) {:.2}. The recommendation takes snapping, r, near-plane clipping and \
+         the facing figures from it (README, \"The rasterizer probe\").\n",
+        profile.error_ulps, profile.plane_error_reversed, profile.facing_reversed
     );
     let _ = writeln!(
         w,

@@ -73,6 +73,11 @@ pub struct ZshiftProfile {
     /// not reversed), used for such scenes under ZSHIFT_CLIP_ZERO_TO_ONE. NAN where not measured.
     /// NAN or finite >= 0.
     pub facing_quanta_zero_to_one: [f64; 4],
+    /// Under reversed Z on D32F (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_GREATER): the
+    /// relative epsilon (element 14 scaled by 1 + epsilon), in units of 2^-24, that a facing
+    /// decal sharing its base's float z needs; used for such scenes under
+    /// ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
+    pub facing_reversed: f64,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -100,6 +105,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             error_ulps: p.error_ulps,
             facing_quanta: p.facing_quanta,
             facing_quanta_zero_to_one: p.facing_quanta_zero_to_one,
+            facing_reversed: p.facing_reversed,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -138,7 +144,11 @@ impl ZshiftProfile {
                 "a ZshiftProfile.resolvable entry is not finite and > 0",
             ));
         }
-        let errors = [self.plane_error_reversed, self.error_ulps];
+        let errors = [
+            self.plane_error_reversed,
+            self.error_ulps,
+            self.facing_reversed,
+        ];
         if self
             .plane_error
             .iter()
@@ -148,7 +158,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps or facing_quanta is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -161,6 +171,7 @@ impl ZshiftProfile {
             error_ulps: self.error_ulps,
             facing_quanta: self.facing_quanta,
             facing_quanta_zero_to_one: self.facing_quanta_zero_to_one,
+            facing_reversed: self.facing_reversed,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

@@ -48,7 +48,8 @@
 //!   plain `glFrustum` matrix and again with element 10 moved toward 0 by `k` f32 steps; for each
 //!   depth the smallest `k` whose stored depth is below the base's, as a window offset in quanta
 //!   (D32F: 2⁻²⁴); the largest over the depths (each its own phase between two stored values).
-//!   What a shared-z facing decal needs under `GL_LESS` (not measured on D16).
+//!   What a shared-z facing decal needs under `GL_LESS` (not measured on D16). Under reversed Z
+//!   (D32F only) the same with element 14 moved away from 0: `facing_reversed`, a relative ε.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -82,7 +83,7 @@
 //! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
 //!
 //! # Time
-//! 60–95 ms on Mesa llvmpipe on 2 cores (up to 140 ms while other builds load them;
+//! 70–100 ms on Mesa llvmpipe on 2 cores (up to 140 ms while other builds load them;
 //! `examples/probe.rs` prints it), most of it llvmpipe compiling a shader variant per depth
 //! format and polygon-offset state; the profile records its own run time in
 //! [`RasterizerProfile::probe_seconds`].
@@ -281,15 +282,21 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
-        if let Some(q) = facing_quanta(gl, o, format, false)? {
+        if let Some(q) = facing_quanta(gl, o, format, Facing::NegOneToOne)? {
             profile.facing_quanta[slot] = q;
         }
         if let Some(clip_control) = gl.ClipControl {
             clip_control(LOWER_LEFT, ZERO_TO_ONE);
-            let measured = facing_quanta(gl, o, format, true);
+            let zero_to_one = facing_quanta(gl, o, format, Facing::ZeroToOne);
+            let reversed =
+                zero_to_one.and_then(|z| Ok((z, facing_quanta(gl, o, format, Facing::Reversed)?)));
             clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
-            if let Some(q) = measured? {
+            let (zero_to_one, reversed) = reversed?;
+            if let Some(q) = zero_to_one {
                 profile.facing_quanta_zero_to_one[slot] = q;
+            }
+            if let (Some(q), Format::Float) = (reversed, format) {
+                profile.facing_reversed = q;
             }
         }
         let errors = plane_error(gl, o, format, false)?;
@@ -907,11 +914,20 @@ unsafe fn reversed_plane_error(gl: &Gl, o: &Objects) -> Result<Option<PlaneError
 // What a facing decal needs: the element-10 offset that always wins a strict depth test
 // ---------------------------------------------------------------------------------------------
 
-/// The view's `glFrustum` matrix, or under `zero_to_one` its `[0, 1]` form (`glClipControl`
+/// The depth conventions [`facing_quanta`] measures.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Facing {
+    NegOneToOne,
+    ZeroToOne,
+    Reversed,
+}
+
+/// The view's matrix (`glFrustum`'s, or its reversed form), or under [`Facing::ZeroToOne`] its
+/// `[0, 1]` form (`glClipControl`
 /// `GL_ZERO_TO_ONE`, standard depth): `m10 = −f/(f − n)`, `m14 = −fn/(f − n)`.
-fn facing_matrix(view: &View, zero_to_one: bool) -> [f32; 16] {
+fn facing_matrix(view: &View, mode: Facing) -> [f32; 16] {
     let mut m = view.matrix();
-    if zero_to_one {
+    if mode == Facing::ZeroToOne {
         let (n, f) = (view.n, view.f);
         m[10] = (-f / (f - n)) as f32;
         m[14] = (-f * n / (f - n)) as f32;
@@ -931,16 +947,17 @@ const FACING_MAX_STEPS: u32 = 16;
 /// values, so the largest is what the worst phase needs. `None` (not measured) on D16, whose
 /// quantum is hundreds of steps (its `q + 2T` is within a few percent of `q` anyway), or if some
 /// depth needs more than [`FACING_MAX_STEPS`].
-/// With `zero_to_one` the same under `glClipControl(GL_ZERO_TO_ONE)` (set by the caller) with
+/// With [`Facing::ZeroToOne`] the same under `glClipControl(GL_ZERO_TO_ONE)` (set by the caller) with
 /// the `[0, 1]` matrix (`m10 = −f/(f − n)`, `m14 = −fn/(f − n)`), where a step of element 10
 /// moves window depth by a whole `ulp(m10)`.
-unsafe fn facing_quanta(
-    gl: &Gl,
-    o: &Objects,
-    format: Format,
-    zero_to_one: bool,
-) -> Result<Option<f64>> {
-    if format == Format::Unorm(16) {
+///
+/// With [`Facing::Reversed`] (D32F only): reversed depth under `GL_ZERO_TO_ONE`, element 14
+/// moved away from 0 by `k` steps (the relative offset of `zshift_recommend_clip`), `GL_GREATER`,
+/// 256 window depths from 10⁻⁵ to 0.9 spaced by ratio; the figure is the relative ε
+/// `k·ulp(m14)/m14` in units of 2⁻²⁴.
+unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format, mode: Facing) -> Result<Option<f64>> {
+    let reversed = mode == Facing::Reversed;
+    if format == Format::Unorm(16) || (reversed && format != Format::Float) {
         return Ok(None);
     }
     let views = [
@@ -948,14 +965,14 @@ unsafe fn facing_quanta(
             e: 0.5,
             n: 0.1,
             f: 1e3,
-            reversed: false,
+            reversed,
             squash: 1.0,
         },
         View {
             e: 0.6,
             n: 1.0,
             f: 1e6,
-            reversed: false,
+            reversed,
             squash: 0.5625,
         },
     ];
@@ -966,7 +983,15 @@ unsafe fn facing_quanta(
         .iter()
         .flat_map(|&v| {
             let count = 4 * per_view;
-            (0..count).map(move |i| (v, 0.02 + (0.9995 - 0.02) * i as f64 / (count - 1) as f64))
+            (0..count).map(move |i| {
+                let x = i as f64 / (count - 1) as f64;
+                let w = if reversed {
+                    1e-5 * (0.9f64 / 1e-5).powf(x)
+                } else {
+                    0.02 + (0.9995 - 0.02) * x
+                };
+                (v, w)
+            })
         })
         .collect();
     const QUADRANTS: [(f64, f64); 4] = [(-0.5, -0.5), (0.5, -0.5), (-0.5, 0.5), (0.5, 0.5)];
@@ -989,8 +1014,12 @@ unsafe fn facing_quanta(
                     triangles.push(View::triangle([a, b, c]));
                     triangles.push(View::triangle([a, c, e]));
                 }
-                let mut matrix = facing_matrix(&view, zero_to_one);
-                matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
+                let mut matrix = facing_matrix(&view, mode);
+                if reversed {
+                    matrix[14] = f32::from_bits(matrix[14].to_bits() + k); // m14 > 0: away from 0
+                } else {
+                    matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
+                }
                 Scene { matrix, triangles }
             })
             .collect()
@@ -1015,7 +1044,8 @@ unsafe fn facing_quanta(
     for k in 1..=FACING_MAX_STEPS {
         let decal = read(draw_tiles(gl, o, format, &scenes(k))?);
         for (i, d) in decal.iter().enumerate() {
-            if needed[i].is_none() && *d < base[i] {
+            let wins = if reversed { *d > base[i] } else { *d < base[i] };
+            if needed[i].is_none() && wins {
                 needed[i] = Some(k);
             }
         }
@@ -1026,10 +1056,20 @@ unsafe fn facing_quanta(
     let mut worst = 0.0f64;
     for (&(view, w), k) in planes.iter().zip(&needed) {
         let Some(k) = k else { return Ok(None) };
-        let m10 = facing_matrix(&view, zero_to_one)[10];
-        let step = f64::from(m10).abs() - f64::from(f32::from_bits(m10.to_bits() - 1)).abs();
+        let m = facing_matrix(&view, mode);
+        if reversed {
+            let m14 = f64::from(m[14]);
+            let step = f64::from(f32::from_bits(m[14].to_bits() + 1)) - m14;
+            worst = worst.max(f64::from(*k) * step / m14 / F32_UNIT_ROUNDOFF);
+            continue;
+        }
+        let step = f64::from(m[10]).abs() - f64::from(f32::from_bits(m[10].to_bits() - 1)).abs();
         // Window depth moves by the NDC change, halved under [−1, 1].
-        let ulp = if zero_to_one { 2.0 * step } else { step };
+        let ulp = if mode == Facing::ZeroToOne {
+            2.0 * step
+        } else {
+            step
+        };
         // D32F in units of 2⁻²⁴ (the offset is a constant window depth), as `plane_error`.
         let unit = match format {
             Format::Float => F32_UNIT_ROUNDOFF,

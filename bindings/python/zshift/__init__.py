@@ -678,6 +678,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("probe_seconds", ctypes.c_double),
         ("facing_quanta", ctypes.c_double * 4),
         ("facing_quanta_zero_to_one", ctypes.c_double * 4),
+        ("facing_reversed", ctypes.c_double),
     ]
 
 
