@@ -6,7 +6,9 @@
  *   1. zshift_decal_matrix(proj, clip, &decal, out)     the decal's projection: your own matrix
  *        (the one the base is drawn with) with the offset that ends z-fighting on a real
  *        rasterizer, for what you know about the decal (ZshiftDecal: viewport, depth format,
- *        sub-pixel bits, its eye distances and slope). Only one element changes.
+ *        sub-pixel bits, its eye distances and slope; base_reach if the base crosses the near
+ *        plane; profile = NULL, or what zshift_probe measured once in your own GL context for
+ *        a tighter offset). Only one element changes.
  *   2. zshift_offset_matrix(proj, clip, delta, d, out)  the same, for an eye-space shift `delta`
  *        toward the camera at eye distance `d` that you choose (stacked decal layers, a known gap).
  *   3. zshift_last_error()                               when a call returns other than ZSHIFT_OK:
