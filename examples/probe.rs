@@ -50,4 +50,8 @@ fn main() {
         "D32F r per band (w ~ 0.45, w ~ 0.055): {:?}",
         figures.float_resolvable
     );
+    println!(
+        "facing decal over a shared-z base, GL_LESS (quanta; D32F: 2^-24; NaN not measured): [-1,1] {:?}, [0,1] {:?}; reversed D32F relative epsilon {:.2} x 2^-24",
+        p.facing_quanta, p.facing_quanta_zero_to_one, p.facing_reversed
+    );
 }

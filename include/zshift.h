@@ -6,7 +6,9 @@
  *   1. zshift_decal_matrix(proj, clip, &decal, out)     the decal's projection: your own matrix
  *        (the one the base is drawn with) with the offset that ends z-fighting on a real
  *        rasterizer, for what you know about the decal (ZshiftDecal: viewport, depth format,
- *        sub-pixel bits, its eye distances and slope). Only one element changes.
+ *        sub-pixel bits, its eye distances and slope; base_reach if the base crosses the near
+ *        plane; profile = NULL, or what zshift_probe measured once in your own GL context for
+ *        a tighter offset). Only one element changes.
  *   2. zshift_offset_matrix(proj, clip, delta, d, out)  the same, for an eye-space shift `delta`
  *        toward the camera at eye distance `d` that you choose (stacked decal layers, a known gap).
  *   3. zshift_last_error()                               when a call returns other than ZSHIFT_OK:
@@ -156,6 +158,91 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 typedef int32_t ZshiftStatus;
 
 /*
+ What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
+ or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
+ recommendation.
+
+ Arrays indexed by depth format are in the order D16, D24, D32, D32F
+ (GL_DEPTH_COMPONENT16, 24, 32, 32F).
+
+ A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
+ with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
+ */
+typedef struct {
+  /*
+   Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
+   */
+  uint32_t measured;
+  /*
+   How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
+   plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
+   positions are snapped to (2^-b pixel) first. The worst case is 8.
+   */
+  int32_t subpixel_bits;
+  /*
+   glPolygonOffset's minimum resolvable difference r per format, in units of the format's
+   quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
+   primitive's largest depth). Finite and > 0. The worst case is 1 (the smallest r known, so
+   the recommendation's polygon_offset_units suffice on every implementation).
+   */
+  double resolvable[4];
+  /*
+   The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
+   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
+   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
+   vertices times an f32 projection in the vertex shader), against the plane through the
+   vertices times the matrix in double: covers the f32 transform, division by w, viewport
+   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
+   */
+  double plane_error[4];
+  /*
+   plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
+   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
+   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
+   */
+  double plane_error_reversed;
+  /*
+   How the per-pixel error grows with a steep plane's window position: every measured pixel
+   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
+   D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
+   window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
+   where not measured. NAN or finite >= 0.
+   */
+  double error_ulps;
+  /*
+   How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
+   ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
+   */
+  int32_t near_clip;
+  /*
+   Seconds `zshift_probe` took (0 for the worst case). Informational.
+   */
+  double probe_seconds;
+  /*
+   The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
+   facing the camera needs to pass GL_LESS over its base when
+   every corner of both has the same float z and the matrices differ only in element 10:
+   the largest over 256 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+   test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
+   NAN or finite >= 0.
+   */
+  double facing_quanta[4];
+  /*
+   facing_quanta under [0, 1] depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), standard,
+   not reversed), used for such scenes under ZSHIFT_CLIP_ZERO_TO_ONE. NAN where not measured.
+   NAN or finite >= 0.
+   */
+  double facing_quanta_zero_to_one[4];
+  /*
+   Under reversed Z on D32F (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_GREATER): the
+   relative epsilon (element 14 scaled by 1 + epsilon), in units of 2^-24, that a facing
+   decal sharing its base's float z needs; used for such scenes under
+   ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
+   */
+  double facing_reversed;
+} ZshiftProfile;
+
+/*
  What an engine knows about a decal besides its projection matrix, for
  `zshift_recommend_for_matrix`. Fill every field: an all-zero ZshiftDecal is refused
  (viewport 0), and subpixel_bits = 0 is the most conservative value, not a default.
@@ -196,6 +283,19 @@ typedef struct {
    slope == 0).
    */
   uint32_t exact_depth;
+  /*
+   0 when every vertex of the base lies inside the view frustum (the rasterizer clips
+   nothing); when the base may cross the near plane or the screen's edges (a floor running
+   behind the camera), the largest |x|, |y| or |z| of its eye-space vertices, and the offset
+   gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
+   */
+  double base_reach;
+  /*
+   The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+   `subpixel_bits`. When not NULL it supplies every rasterizer fact, its snapping included,
+   and `subpixel_bits` is ignored (but must still lie in -1..=32).
+   */
+  const ZshiftProfile *profile;
 } ZshiftDecal;
 
 /*
@@ -215,7 +315,10 @@ typedef struct {
   double ndc_offset;
   /*
    The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
-   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
+   2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL; for a facing plane with exact_depth,
+   0 under GL_LEQUAL/GL_GEQUAL and, with a probed profile under GL_LESS, the profile's
+   facing_quanta ([-1, 1]) or facing_quanta_zero_to_one ([0, 1]) times the quantum (D32F:
+   2^-24).
    */
   double window_offset;
   /*
@@ -234,7 +337,9 @@ typedef struct {
    */
   double polygon_offset_factor;
   /*
-   The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+   The constant units of the equivalent glPolygonOffset(-factor, -units): the constant part
+   of the offset over r quanta, r the profile's `resolvable` for the format (1 without a
+   profile: the smallest r known, so the units suffice on every implementation).
    */
   double polygon_offset_units;
   /*
@@ -258,8 +363,7 @@ typedef struct {
    */
   double snap;
   /*
-   Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
-   or the measured plane_error where that is smaller.
+   Term E: the per-quad plane error the offset used: transform + vertex + interpolation.
    */
   double plane;
   /*
@@ -335,7 +439,8 @@ typedef struct {
    */
   uint32_t exact_depth;
   /*
-   GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+   GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1). Used only when
+   `profile` is NULL (a profile carries its own, measured snapping).
    */
   int32_t subpixel_bits;
   /*
@@ -355,74 +460,15 @@ typedef struct {
    */
   double base_reach;
   /*
-   The rasterizer's measured per-pixel plane error for this depth format, from the probe:
-   in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
-   GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
+   The rasterizer's profile, from `zshift_probe` (call it once per context and pass the
+   same record to every recommendation), or NULL: the worst case
+   (`zshift_profile_worst_case`) with this scene's `subpixel_bits`. When not NULL the
+   profile supplies every rasterizer fact, its snapping included, and `subpixel_bits` is
+   ignored; it is validated as `ZshiftProfile` documents (a zero-filled one is refused).
+   A zeroed ZshiftScene has NULL here.
    */
-  double plane_error;
+  const ZshiftProfile *profile;
 } ZshiftScene;
-
-/*
- What a rasterizer does that the offset model needs to know, as `zshift_probe` measures it
- or `zshift_profile_worst_case` assumes it. Plain data: copy it, store it, pass it to the
- recommendation.
-
- Arrays indexed by depth format are in the order D16, D24, D32, D32F
- (GL_DEPTH_COMPONENT16, 24, 32, 32F).
-
- A zero-filled record is refused (ZSHIFT_ERR_DOMAIN, `near_clip` 0 is no valid value): fill it
- with `zshift_probe` or `zshift_profile_worst_case`, then adjust fields if you know better.
- */
-typedef struct {
-  /*
-   Nonzero when `zshift_probe` measured this profile; 0 for the worst case.
-   */
-  uint32_t measured;
-  /*
-   How depth setup treats vertex positions: ZSHIFT_SUBPIXEL_UNSNAPPED (-1) when the depth
-   plane is set up from unsnapped float positions, else the sub-pixel bits b (0..=16) the
-   positions are snapped to (2^-b pixel) first. The worst case is 8.
-   */
-  int32_t subpixel_bits;
-  /*
-   glPolygonOffset's minimum resolvable difference r per format, in units of the format's
-   quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
-   primitive's largest depth). Finite and > 0. The worst case is 4.
-   */
-  double resolvable[4];
-  /*
-   The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
-   units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
-   not measured (the model's bound applies). Planes drawn as an engine draws them (f32
-   vertices times an f32 projection in the vertex shader), against the plane through the
-   vertices times the matrix in double: covers the f32 transform, division by w, viewport
-   transform, depth setup, interpolation and conversion to the format. NAN or finite >= 0.
-   */
-  double plane_error[4];
-  /*
-   plane_error of D32F under reversed Z (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE),
-   window depth n(f - d)/((f - n)d)), in units of the float spacing 2^(e - 23) at the
-   primitive's largest window depth; NAN where not measured. NAN or finite >= 0.
-   */
-  double plane_error_reversed;
-  /*
-   How the per-pixel error grows with a steep plane's window position: every measured pixel
-   kept |stored - exact| <= c + error_ulps * 2^-24 * (1 + M), where c is 1 quantum for
-   D16/D24/D32 and 0 for D32F, and M = |w0| + |dw/dx| * x + |dw/dy| * y (w0 the plane's
-   window depth extrapolated to window (0, 0), x, y the pixel's window coordinates). NAN
-   where not measured. NAN or finite >= 0.
-   */
-  double error_ulps;
-  /*
-   How a primitive crossing the near plane is clipped: ZSHIFT_NEAR_CLIP_CLIPPED_F32 or
-   ZSHIFT_NEAR_CLIP_PLANE_PRESERVING.
-   */
-  int32_t near_clip;
-  /*
-   Seconds `zshift_probe` took (0 for the worst case). Informational.
-   */
-  double probe_seconds;
-} ZshiftProfile;
 
 /*
  A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -565,7 +611,8 @@ ZshiftStatus zshift_offset_matrix_ndc(const float *m, ZshiftClip clip, double nd
  for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
  2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
  -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
- exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+ exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
+ (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
  zshift_last_error() names the field. `out` is untouched on error.
  */
 ZshiftStatus zshift_decal_matrix(const float *m,
@@ -597,8 +644,10 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
  Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
  or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
  viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
- negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
- ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+ negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
+ base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
+ `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
+ `*out` is untouched on error.
  */
 ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
 
@@ -1093,7 +1142,7 @@ ZshiftStatus zshift_range_offset(double n,
 
 /*
  Writes the worst-case profile to `out`: the recommendation's default assumptions (8
- sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+ sub-pixel bits, r = 1 quantum, per-pixel errors as the model bounds them, near-plane clipping
  in float), `measured` = 0.
 
  Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.

@@ -18,6 +18,24 @@ pub struct Decal {
     pub slope: f64,
     /// Every corner of base and decal has the same f32 eye-space z (requires `slope == 0`).
     pub exact_depth: bool,
-    /// How the rasterizer positions vertices before depth setup.
+    /// How the rasterizer positions vertices before depth setup (used when `profile` is `None`).
     pub snapping: Snapping,
+    /// What is known of the base's extent ([`crate::recommend::Base`]): a base the rasterizer
+    /// clips (a floor running behind the camera) adds the clipping term. Perspective only: the
+    /// orthographic model takes no base.
+    pub base: crate::recommend::Base,
+    /// The rasterizer's profile (from [`crate::probe::probe`]): when `Some`, it supplies every
+    /// rasterizer fact, its own snapping included, and `snapping` is ignored; `None` is
+    /// [`crate::recommend::RasterizerProfile::worst_case`] with `snapping`.
+    pub profile: Option<crate::recommend::RasterizerProfile>,
+}
+
+impl Decal {
+    /// The profile the model uses: `profile`, or the worst case with `snapping`.
+    pub fn rasterizer(&self) -> crate::recommend::RasterizerProfile {
+        self.profile.unwrap_or(crate::recommend::RasterizerProfile {
+            snapping: self.snapping,
+            ..crate::recommend::RasterizerProfile::worst_case()
+        })
+    }
 }

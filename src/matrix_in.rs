@@ -423,7 +423,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 /// the convention's strict depth test, a base inside the frustum, the worst-case profile with
 /// the decal's snapping.
 fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
-    use crate::recommend::{Base, DepthTest, RasterizerProfile};
+    use crate::recommend::DepthTest;
     Scene {
         frustum,
         viewport: decal.viewport,
@@ -436,10 +436,7 @@ fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
         } else {
             DepthTest::Less
         },
-        base: Base::InsideFrustum,
-        profile: RasterizerProfile {
-            snapping: decal.snapping,
-            ..RasterizerProfile::worst_case()
-        },
+        base: decal.base,
+        profile: decal.rasterizer(),
     }
 }

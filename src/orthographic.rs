@@ -306,7 +306,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
             U * (3.0 * w_max + 3.0 * (w_max - w_min)),
         )
     };
-    let snap = match scene.decal.snapping {
+    let snap = match scene.decal.rasterizer().snapping {
         Snapping::Unsnapped => 0.0,
         Snapping::SubpixelBits(b) => {
             let [width, height] = scene.decal.viewport.map(f64::from);
@@ -325,6 +325,8 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         plane: transform + vertex + interpolation,
         clip: 0.0,
         strict: true,
+        correlated: false,
+        facing: 0.0,
     })
 }
 
@@ -354,7 +356,7 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         -1.0
     };
     let delta = window_offset * span;
-    let factor = match scene.decal.snapping {
+    let factor = match scene.decal.rasterizer().snapping {
         Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
         Snapping::Unsnapped => 0.0,
     };
@@ -400,7 +402,7 @@ pub fn check(scene: &Scene) -> Result<()> {
                 .with_value("slope", scene.decal.slope),
         );
     }
-    if let Snapping::SubpixelBits(b) = scene.decal.snapping {
+    if let Snapping::SubpixelBits(b) = scene.decal.rasterizer().snapping {
         if b > 32 {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32")
                 .with_integer("subpixel_bits", i64::from(b)));

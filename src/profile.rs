@@ -35,49 +35,83 @@ pub enum NearClip {
     /// higher precision, or one that interpolates depth from the original vertices): ground
     /// planes with corners ±1000 behind and ahead of the camera, clipped by the rasterizer, err
     /// at most twice (plus 2 D24 quanta) what they do when clipped in f64 before drawing. The
-    /// model adds no clipping term; `plane_error` covers the clipped primitive too.
+    /// model's `C` is then that excess: the base's own `E + S` plus 2 D24 quanta.
     PlanePreserving,
 }
 
 /// The per-device facts the offset model needs. See the module docs.
+///
+/// Each field has one definition, here; [`crate::recommend`] says how each enters the model
+/// ("A measured profile"): `snapping` sets the term `S`, `resolvable` the `glPolygonOffset`
+/// equivalent, `near_clip` decides the term `C` of a base the rasterizer clips. `plane_error`,
+/// `plane_error_reversed` and `error_ulps` are the probe's summary figures (what the planes it
+/// drew did); the model does not use them: on llvmpipe, planes the probe does not draw exceed
+/// `error_ulps` (1.74 against 1.40, `tests/gl_scenes.rs`), so none is a bound on every scene.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RasterizerProfile {
     /// Whether vertex positions are snapped before depth setup.
     pub snapping: Snapping,
-    /// `glPolygonOffset`'s minimum resolvable difference `r` per format (D16, D24, D32, D32F), in
-    /// units of the format's quantum (for D32F, of `2^(e−23)`).
+    /// `glPolygonOffset`'s minimum resolvable difference `r` per format (D16, D24, D32, D32F):
+    /// what one unit of `glPolygonOffset(0, 1)` moves window depth by, in units of the format's
+    /// quantum (UNORM: `1/(2^m − 1)`; D32F: `2^(e−23)`, `e` the exponent of the primitive's
+    /// largest depth). Finite and > 0. The recommendation's `glPolygonOffset` units are its
+    /// constant offset over `r·q`; the worst case is 1 (the smallest `r` of any implementation
+    /// known: units computed against it are enough wherever `r` is larger). Measured on
+    /// llvmpipe: 2 on D16/D24/D32, 1 on D32F.
     pub resolvable: [f64; 4],
     /// The worst `|stored − exact|` window depth per pixel of a plane (facing to grazing), per
     /// format (D16, D24, D32, D32F), under the standard `[−1, 1]` mapping, in units of the
     /// format's quantum `1/(2^m − 1)`; for D32F in units of 2⁻²⁴ (float depth's error is mostly
-    /// absolute). NaN where not measured (the model's bound applies). The planes are drawn as
-    /// an engine draws them — f32 eye-space vertices times an f32 projection in the vertex
-    /// shader — and "exact" is the plane through the vertices times the matrix in f64, so the
-    /// figure covers the f32 transform, the division by `w`, the viewport transform, depth
-    /// setup, interpolation and the conversion to the format (rounding included): the model's
-    /// `T + I` and its quantization, not `V` (the rounding of the coordinates themselves). If
-    /// every pixel of two planes errs by at most `e` quanta, their stored order is the exact one
-    /// wherever the exact depths differ by more than `2e` quanta (no extra quantum needed).
+    /// absolute). NaN where not measured. The planes are drawn as an engine draws them — f32
+    /// eye-space vertices times an f32 projection in the vertex shader — and "exact" is the
+    /// plane through the vertices times the matrix in f64, so the figure covers the f32
+    /// transform, the division by `w`, the viewport transform, depth setup, interpolation and
+    /// the conversion to the format (rounding included), not the rounding of the coordinates
+    /// themselves. A summary for reports: the model uses `error_ulps`, which scales with each
+    /// scene's planes.
     pub plane_error: [f64; 4],
     /// D32F's `plane_error` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, window depth
     /// `n(f − d)/((f − n)d)`), in units of the f32 spacing `2^(e − 23)` at the primitive's
     /// largest window depth (errors there are relative); NaN where not measured (no
-    /// `glClipControl`).
+    /// `glClipControl`). A summary for reports, like `plane_error`.
     pub plane_error_reversed: f64,
-    /// How the per-pixel error grows with the window position of a steep plane, in f32 unit
-    /// roundoffs `u = 2⁻²⁴` of `1 + M`, `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` the magnitude of the
-    /// terms when the plane's window depth is evaluated from the window origin (`w₀` the plane's
-    /// depth extrapolated to window `(0, 0)`, `∂w/∂x`, `∂w/∂y` its window-depth gradients per
-    /// pixel, `x`, `y` the pixel's window coordinates; the 1 stands for the transform's and the
-    /// viewport mapping's own roundings): every measured pixel under `[−1, 1]` kept
-    /// `|stored − exact| ≤ c + error_ulps·u·(1 + M)`, `c` one quantum on UNORM, 0 on D32F. Use
-    /// it where `plane_error`'s scenes (64-pixel tiles within 512 pixels of the origin) do not
-    /// cover the engine's viewport: on llvmpipe a grazing plane's error grows with its distance
-    /// from the window origin. NaN where not measured.
+    /// The per-pixel error of the depth the rasterizer computes (before conversion to the
+    /// stored format), in f32 unit roundoffs `u = 2⁻²⁴` of `1 + M`: every measured pixel under
+    /// `[−1, 1]` kept `|computed − exact| ≤ error_ulps·u·(1 + M)`, with
+    /// `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` the magnitude of the terms when the plane's window
+    /// depth is evaluated from the window origin (`w₀` the plane's depth extrapolated to window
+    /// `(0, 0)`, `∂w/∂x`, `∂w/∂y` its window-depth gradients per pixel, `x`, `y` the pixel's
+    /// window coordinates; the 1 stands for the transform's and the viewport mapping's own
+    /// roundings). On D32F the stored depth is the computed one; on the UNORM formats the probe
+    /// takes the stored error less one quantum of conversion, and the figure is the largest over
+    /// the formats. "Exact" is the plane through the f32 vertices, as for `plane_error`. NaN
+    /// where not measured. A summary: not a bound on planes the probe does not draw.
     pub error_ulps: f64,
-    /// How primitives crossing the near plane are clipped.
+    /// The window-depth offset, per format (D16, D24, D32, D32F), in units of the format's
+    /// quantum `1/(2^m − 1)` (D32F: of 2⁻²⁴), that a decal facing the camera needs to pass
+    /// `GL_LESS` over its base when every corner of both has the same f32 z and the decal's
+    /// matrix differs from the base's only in element 10 (moved toward 0): measured at 256 depths
+    /// (each its own phase between two stored values, window depth 0.02 to 0.9995, two frusta)
+    /// under `[−1, 1]`, the largest. Replaces the model's `q + 2T` for such scenes
+    /// ([`crate::recommend::Scene::exact_depth`], strict test, `[−1, 1]`). NaN where not
+    /// measured (D16, whose quantum is hundreds of element-10 steps).
+    pub facing_quanta: [f64; 4],
+    /// `facing_quanta` under `[0, 1]` depth (`glClipControl(GL_ZERO_TO_ONE)`, standard, not
+    /// reversed), where one step of element 10 moves window depth twice as far; used for such
+    /// scenes under [`crate::projection::ClipDepth::ZeroToOne`]. NaN where not measured (no
+    /// `glClipControl`, or D16).
+    pub facing_quanta_zero_to_one: [f64; 4],
+    /// Under reversed Z on D32F (`glClipControl(GL_ZERO_TO_ONE)`, `GL_GREATER`): the relative
+    /// offset `ε` (element 14 scaled by `1 + ε`), in units of 2⁻²⁴, that a facing decal sharing
+    /// its base's f32 z needs, the largest over 256 depths (window depth 10⁻⁵ to 0.9); used for
+    /// such scenes under [`crate::projection::ClipDepth::ReversedZeroToOne`] with D32F. NaN
+    /// where not measured.
+    pub facing_reversed: f64,
+    /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
+    /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
+    /// The model uses `error_ulps` only from a measured profile; every other field always.
     pub measured: bool,
     /// How long the probe took to measure this profile, in seconds (0 for
     /// [`RasterizerProfile::worst_case`]). Informational: the model ignores it.
@@ -85,15 +119,19 @@ pub struct RasterizerProfile {
 }
 
 impl RasterizerProfile {
-    /// The profile that assumes the worst of every fact: 8 sub-pixel bits of snapping, `r` up to
-    /// 4 quanta, per-pixel errors as the model bounds them, clipping in f32.
+    /// The profile that assumes the worst of every fact: 8 sub-pixel bits of snapping, `r` of 1
+    /// quantum (the most `glPolygonOffset` units), per-pixel errors as the model bounds them,
+    /// clipping in f32.
     pub fn worst_case() -> Self {
         Self {
             snapping: Snapping::SubpixelBits(8),
-            resolvable: [4.0; 4],
+            resolvable: [1.0; 4],
             plane_error: [f64::NAN; 4],
             plane_error_reversed: f64::NAN,
             error_ulps: f64::NAN,
+            facing_quanta: [f64::NAN; 4],
+            facing_quanta_zero_to_one: [f64::NAN; 4],
+            facing_reversed: f64::NAN,
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

@@ -24,9 +24,8 @@
 //!   correction is this factor: one window step is `2/(2^m−1)` in NDC); for `GL_DEPTH_COMPONENT32F`
 //!   the spacing of f32 at `w(d₂)`, `2^(⌊log₂ w(d₂)⌋ − 23)` (2⁻²⁴ for `w ≥ ½`, which is why D32F
 //!   under the `[−1, 1]` mapping behaves as D24).
-//! * `E = T + V + I`, the **plane error** of one quad, or with a measured profile
-//!   ([`RasterizerProfile::measured`]) the probe's per-pixel `plane_error` where that is smaller
-//!   (see "A measured profile"):
+//! * `E = T + V + I`, the **plane error** of one quad, with any profile (see "A measured
+//!   profile" for why no probed figure replaces it):
 //!   * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
 //!     roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal
 //!     and product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding
@@ -125,24 +124,51 @@
 //! 10 steps where 2 work).
 //!
 //! # A measured profile
-//! [`Scene::profile`] is a [`RasterizerProfile`]; the default, [`RasterizerProfile::worst_case`],
-//! assumes 8 sub-pixel bits of snapping and uses the bounds above. A measured profile (from the
-//! probe, or built by hand) replaces `S` by 0 where the rasterizer is unsnapped and `T + V + I`
-//! by its `plane_error` — the largest `|computed − exact|` window depth of a plane the probe
-//! drew, in quanta (`1/(2^m − 1)`) for the UNORM formats and in units of 2⁻²⁴ for D32F (float
-//! depth's error is mostly absolute, `u·|m10|` from the transform, so it is no multiple of the
-//! spacing at small depths) — plus the two parts of the bound that depend on the scene's own
-//! geometry rather than on the rasterizer: `V` (which grows as the decal nears the near plane
-//! and with the slope) and the interpolation's span and extrapolation,
-//! `6u·max(w(d₂) − w(d₁), G)`: `E = min(T + V + I, plane_error + V + 6u·max(…))`. The figure is
-//! measured on well-conditioned planes (3n or more away, slope ≤ 1), where those terms are
-//! small. (A figure alone was not sound: a decal 1.06·n away on a slope of 3.8 lost 84 of 154
-//! pixels at 7.5 quanta.) The worst-case bound stays the ceiling, so a measured figure can only tighten
-//! the offset where it is below the rasterizer's worst case. The errors of base and decal are correlated only in sign on a facing
-//! plane with shared f32 z (every rounding step is monotone in element 10, so the decal's computed
-//! depth never exceeds the base's), not in size: the rounding of two different products is
-//! independent, and (R1) keeps `2E`.
+//! [`Scene::profile`] is a [`RasterizerProfile`] (each field defined once, in
+//! [`crate::profile`]); the default, [`RasterizerProfile::worst_case`], assumes 8 sub-pixel bits
+//! of snapping, `r` = 1 quantum and clipping in f32, and uses the bounds above. A profile the
+//! probe measured ([`crate::probe::probe`], in the engine's own context) enters the model field
+//! by field:
 //!
+//! * `snapping`: `S` as above, 0 where the rasterizer is unsnapped.
+//! * `error_ulps` and `plane_error`: **not used**. `error_ulps` `k` claims every pixel's computed
+//!   depth errs by at most `k·u·(1 + M)` (`M` the magnitude of the plane's terms evaluated from
+//!   the window origin); for a scene that would give `E = k·u·(1 + w(d₂) + 2G) + V`, far below
+//!   `T + V + I` on steep planes. But `tests/gl_scenes.rs` (`the_probed_error_bound_holds`) draws
+//!   804 planes the probe does not (steep planes just past the near plane, fitted to 64–320 px
+//!   viewports) and finds llvmpipe at 1.74 `u·(1 + M)` against the probed 1.40, and pixels
+//!   at 1.2× that `E`: the figure is not a bound on scenes the probe did not draw, and a
+//!   recommendation built on it would be a guess. `plane_error` (one worst figure per format)
+//!   cannot scale with the scene at all. `T + V + I` stays; the survey checks it holds (0.82 of
+//!   `E` at worst).
+//! * `near_clip`: [`NearClip::ClippedF32`] keeps `C` (above); [`NearClip::PlanePreserving`]
+//!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
+//!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
+//! * `resolvable` `r`: [`Recommendation::polygon_offset`]'s units are `(Δw − 2S)/(r·q)`.
+//! * `facing_quanta`, `facing_quanta_zero_to_one` (only from a measured profile, under `[−1, 1]`
+//!   and `[0, 1]`): the offset of a facing plane with shared f32 z under a strict test (see
+//!   "Correlated errors").
+//!
+//! # Correlated errors
+//! Base and decal errors are independent in size in general: the rounding of two different
+//! products is. One case is correlated in full: a plane facing the camera whose every corner
+//! (base and decal) has the same f32 z ([`Scene::exact_depth`]), drawn with the same program.
+//! Every vertex of both then has the same computed depth but for element 10, the plane is
+//! constant (zero gradients are exact), and every step of the chain — `m10·z`, `+ m14`, the
+//! division by `w`, the viewport map, the conversion — is monotone in element 10: the decal's
+//! stored depth is never behind the base's. Under `GL_LEQUAL`/`GL_GEQUAL` (a tie passes) that
+//! is enough, and the recommendation is no offset at all ([`ErrorTerms::correlated`]); the gap
+//! keeps the occluder's error. Under the strict tests the decal's depth must drop a whole
+//! quantum, and each rounding step can lose up to one unit of its own result whatever the
+//! correlation, so (R1) stands as a bound; but the whole chain is one function of element 10
+//! and the depth, the same for every such scene, so the probe measures it directly
+//! ([`RasterizerProfile::facing_quanta`]: the offset the worst of 256 depth phases needs, 3 D24
+//! quanta on llvmpipe where `q + 2T` is about 7; under `[0, 1]`
+//! [`RasterizerProfile::facing_quanta_zero_to_one`]), and a measured profile uses that figure
+//! instead ([`ErrorTerms::facing`]). Under reversed Z the offset is relative (element 14), so the
+//! probe measures the relative `ε` on D32F ([`RasterizerProfile::facing_reversed`]), which
+//! replaces `reversed_epsilon`'s for such scenes.
+
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
 //! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
@@ -177,8 +203,8 @@
 //! on screen, 97×211, 320×180 and 64×48 viewports, centred and off-centre frusta (one with the
 //! view axis off screen), f/n from 10 to 1e7 and ∞, D16/D24/D32F under all three conventions and
 //! both kinds of depth test, decals whose corners are not the base's, with the worst-case
-//! profile and a measured llvmpipe profile: no pixel lost at the recommendation, none bled at the
-//! gap, in every scene; the README ("Verified on a rasterizer") has the ratios per class.
+//! profile and the profile [`crate::probe::probe`] measures in the test's context: no pixel lost
+//! at the recommendation, none bled at the gap, in every scene; the README ("Verified on a rasterizer") has the ratios per class.
 //!
 //! # Relation to glPolygonOffset
 //! `glPolygonOffset(factor, units)` adds `factor·M + units·r` to window depth, `M` the polygon's
@@ -186,8 +212,9 @@
 //! is the same shape: `q`, `2E` and `C` are constants (`units = (Δw − 2S)/r`) and the snapping
 //! term `2S ≤ 2^-b·2M` is slope-scaled (`factor = 2^(1−b)`). The matrix offset is one constant
 //! for the whole decal, so zshift evaluates the slope term at the decal's worst depth instead of
-//! per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r` as
-//! [`crate::polygon_offset::resolvable_difference`] takes it for OpenGL (Mesa's `1/(2^m − 1)`).
+//! per polygon; [`Recommendation::polygon_offset`] gives the equivalent pair, with `r` the
+//! profile's [`RasterizerProfile::resolvable`] quanta (1 in the worst case, the smallest known;
+//! 2 measured on llvmpipe, whose `lp_state_setup.c` scales units by `2·mrd`).
 
 use crate::domain::{domain, finite, representable};
 use crate::error::Result;
@@ -330,25 +357,41 @@ pub struct ErrorTerms {
     pub interpolation: f64,
     /// `S`: sub-pixel snapping of a sloped plane (per quad; 0 unsnapped).
     pub snap: f64,
-    /// `E`, the per-quad plane error the offset uses: `T + V + I`, or the profile's measured
-    /// `plane_error·q` where that is smaller.
+    /// `E`, the per-quad plane error the offset uses: `T + V + I` (see "A measured profile" for
+    /// why no probed figure replaces it).
     pub plane: f64,
     /// `C`: the base's f32 clipping and far-vertex term (0 for [`Base::InsideFrustum`]).
     pub clip: f64,
     /// Whether the depth test is strict (`GL_LESS`/`GL_GREATER`): the offset then needs `q`.
     pub strict: bool,
+    /// Base and decal err alike (a facing plane with shared f32 z under an `…EQUAL` test, see
+    /// "Correlated errors"): the offset needs no budget for them.
+    pub correlated: bool,
+    /// The measured offset a facing plane with shared f32 z needs under a strict test
+    /// ([`RasterizerProfile::facing_quanta`] or, under `[0, 1]`,
+    /// [`RasterizerProfile::facing_quanta_zero_to_one`], times its unit), which replaces
+    /// `q + 2E` in (R1); 0 where not used.
+    pub facing: f64,
 }
 
 impl ErrorTerms {
-    /// The errors of base and decal together: `2(E + S) + C`.
+    /// The errors of base and decal together: `2(E + S) + C`, or 0 when they are correlated.
     pub fn budget(&self) -> f64 {
-        2.0 * (self.plane + self.snap) + self.clip
+        if self.correlated {
+            0.0
+        } else {
+            2.0 * (self.plane + self.snap) + self.clip
+        }
     }
 
     /// The window offset (R1): `q + 2(E + S) + C` under a strict test, `2(E + S) + C` under
     /// `GL_LEQUAL`/`GL_GEQUAL`.
     pub fn window_offset(&self) -> f64 {
-        self.strict_quantum() + self.budget()
+        if self.facing > 0.0 {
+            self.facing
+        } else {
+            self.strict_quantum() + self.budget()
+        }
     }
 
     /// The window-depth separation an occluder needs in front of the base (R2): the offset,
@@ -383,7 +426,8 @@ pub struct Recommendation {
     /// Occluders whose eye depth (`−z`) at the same pixel is smaller than the base's by at least
     /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
-    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, with `r` = the quantum.
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, `units` counted in the
+    /// profile's [`RasterizerProfile::resolvable`] quanta.
     pub polygon_offset: [f64; 2],
     /// The terms the offset was built from.
     pub terms: ErrorTerms,
@@ -418,7 +462,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
     let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
     check_useful(&terms, bleed_gap, d2)?;
-    let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+    let units = polygon_units(scene, &terms, window_offset);
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
     Ok(Recommendation {
@@ -456,6 +500,13 @@ pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
     Ok([gx, gy])
 }
 
+/// `glPolygonOffset`'s units equivalent to the constant part of the offset, `(Δw − 2S)/(r·q)`,
+/// `r` the profile's [`RasterizerProfile::resolvable`] for the format (quanta per unit).
+fn polygon_units(scene: &Scene, terms: &ErrorTerms, window_offset: f64) -> f64 {
+    let r = scene.profile.resolvable[profile_index(scene.format)];
+    (window_offset - 2.0 * terms.snap).max(0.0) / (r * terms.quantum)
+}
+
 /// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
 fn slope_factor(scene: &Scene) -> f64 {
     match scene.profile.snapping {
@@ -482,21 +533,42 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
 }
 
-/// The profile's measured per-pixel plane error for the scene's format, in window depth: the
-/// figure times the UNORM quantum, or for D32F times 2⁻²⁴ (the f32 spacing on `[½, 1)`: the
-/// error of computed float depth is mostly absolute, `u·|m10|` from the transform, so it is not
-/// a multiple of the spacing at small depths). `None` unless the profile is measured and has a
-/// finite, non-negative figure for the format.
-fn measured_plane_error(scene: &Scene) -> Option<f64> {
+/// The profile's measured offset for a shared-z facing plane under a strict test, in window
+/// depth: [`RasterizerProfile::facing_quanta`] (under `[0, 1]`
+/// [`RasterizerProfile::facing_quanta_zero_to_one`]) times the format's quantum (D32F: 2⁻²⁴),
+/// from a measured profile; 0 otherwise (and under reversed Z, where the probe does not measure
+/// it).
+fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
     let p = scene.profile;
-    let unit = match scene.format {
-        DepthFormat::Unorm16 => 1.0 / 65_535.0,
-        DepthFormat::Unorm24 => 1.0 / 16_777_215.0,
-        DepthFormat::Unorm32 => 1.0 / 4_294_967_295.0,
-        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
+    let k = match clip {
+        ClipDepth::NegOneToOne => p.facing_quanta[profile_index(scene.format)],
+        ClipDepth::ZeroToOne => p.facing_quanta_zero_to_one[profile_index(scene.format)],
+        ClipDepth::ReversedZeroToOne => f64::NAN,
     };
-    let e = p.plane_error[profile_index(scene.format)];
-    (p.measured && e.is_finite() && e >= 0.0).then_some(e * unit)
+    if !(p.measured && k.is_finite() && k > 0.0) {
+        return 0.0;
+    }
+    let unit = match scene.format {
+        DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
+        format => format.spacing_at(0.5).unwrap_or(0.0),
+    };
+    k * unit
+}
+
+/// The profile's measured relative ε for a shared-z facing plane under reversed Z and a strict
+/// test on D32F ([`RasterizerProfile::facing_reversed`] times 2⁻²⁴), divided by `1 − u` for
+/// element 14's own rounding as [`reversed_epsilon`] is; `None` where not measured or not such a
+/// scene.
+fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
+    let p = scene.profile;
+    let k = p.facing_reversed;
+    (scene.exact_depth
+        && scene.depth_test.is_strict()
+        && scene.format == DepthFormat::Float32
+        && p.measured
+        && k.is_finite()
+        && k > 0.0)
+        .then(|| k * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF))
 }
 
 /// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
@@ -664,6 +736,13 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
             return Err(domain("GL_SUBPIXEL_BITS must lie in 0..=32"));
         }
     }
+    let r = scene.profile.resolvable[profile_index(scene.format)];
+    if !(r.is_finite() && r > 0.0) {
+        return Err(
+            domain("the profile's resolvable r for this format must be finite and > 0")
+                .with_value("resolvable", r),
+        );
+    }
     let reversed = clip == ClipDepth::ReversedZeroToOne;
     if scene.depth_test.is_reversed() != reversed {
         return Err(domain(if reversed {
@@ -688,7 +767,10 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
 /// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
 ///
 /// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
-/// one plane at a time; a convex polygon stays convex (draw it as a fan).
+/// one plane at a time; a convex polygon stays convex (draw it as a fan). New vertices are
+/// `a + t·(b − a)` per coordinate, so a coordinate every vertex shares is kept exactly: a base
+/// facing the camera (every z equal) keeps its z, and with a decal of that z still qualifies for
+/// [`Scene::exact_depth`].
 ///
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
@@ -776,7 +858,7 @@ pub struct ClipRecommendation {
     /// so `ε = −c/m10`, negative) under `NegOneToOne` and `ZeroToOne`; [`Self::relative_epsilon`]
     /// (positive) under `ReversedZeroToOne`.
     pub epsilon: f64,
-    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum, as
+    /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, as
     /// [`Recommendation::polygon_offset`], under `NegOneToOne` and `ZeroToOne`; `[0, 0]` under
     /// reversed Z, where the offset is relative and no constant `units` matches it.
     pub polygon_offset: [f64; 2],
@@ -843,14 +925,17 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             crate::clip_offset::ndc_offset_projection(frustum, clip, c)?,
         )
     } else {
-        let eps = reversed_epsilon(scene, &mapping, &terms)?;
+        let eps = match measured_facing_reversed(scene) {
+            Some(eps) => eps,
+            None => reversed_epsilon(scene, &mapping, &terms)?,
+        };
         let b = scale(scene);
         let matrix = crate::clip_offset::relative_offset_projection(frustum, clip, eps)?;
         (0.0, eps, fits(eps * (b / d2))?, matrix)
     };
     // The window offset at d: constant, or ε·b/d under reversed Z.
     let offset_at = |d: f64| {
-        if relative_epsilon > 0.0 {
+        if clip == ClipDepth::ReversedZeroToOne {
             relative_epsilon * (scale(scene) / d)
         } else {
             window_offset
@@ -873,10 +958,10 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
         bleed_gap = bleed_gap.max(g);
     }
     check_useful(&terms, bleed_gap, d2)?;
-    let (epsilon, polygon_offset) = if relative_epsilon > 0.0 {
+    let (epsilon, polygon_offset) = if clip == ClipDepth::ReversedZeroToOne {
         (relative_epsilon, [0.0, 0.0])
     } else {
-        let units = (window_offset - 2.0 * terms.snap) / terms.quantum;
+        let units = polygon_units(scene, &terms, window_offset);
         (-ndc_offset / m[10], [slope_factor(scene), fits(units)?])
     };
     Ok(ClipRecommendation {
@@ -941,21 +1026,39 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    // A measured figure stands for what every plane has on this rasterizer (the transform and
-    // the plane's evaluation at a depth); the scene's own geometry adds its vertex rounding V
-    // (which grows toward the near plane and with the slope) and the interpolation across its
-    // depth span, which no probe plane can stand for.
-    let geometry = vertex + 6.0 * u * (w_max - w_min).max(extrapolated);
-    let plane = measured_plane_error(scene).map_or(bound, |e| (e + geometry).min(bound));
+    // The probe's error_ulps is not used: see "A measured profile" (llvmpipe exceeds it on
+    // planes the probe does not draw).
+    let plane = bound;
+    let snap = snap(scene)?;
+    let clip_term = match scene.profile.near_clip {
+        NearClip::ClippedF32 => clip_term(scene, clip, &mapping)?,
+        // The probe found clipped planes within twice the unclipped error plus 2 D24 quanta.
+        NearClip::PlanePreserving if matches!(scene.base, Base::Clipped { .. }) => {
+            plane + snap + 2.0 / 16_777_215.0
+        }
+        NearClip::PlanePreserving => 0.0,
+    };
+    // A facing plane whose every corner has the same f32 z (base and decal) is drawn at one
+    // depth, and each step of the depth chain is monotone in element 10: the decal's computed
+    // depth is never behind the base's, so under an …EQUAL test (a tie passes) no offset is
+    // needed. The budget of base and decal is then 0; the occluder's error stays in the gap.
+    let correlated = scene.exact_depth && !scene.depth_test.is_strict();
+    let facing = if scene.exact_depth && scene.depth_test.is_strict() {
+        measured_facing(scene, clip)
+    } else {
+        0.0
+    };
     Ok(ErrorTerms {
         quantum: q,
         transform,
         vertex,
         interpolation,
-        snap: snap(scene)?,
+        snap,
         plane,
-        clip: clip_term(scene, clip, &mapping)?,
+        clip: clip_term,
         strict: scene.depth_test.is_strict(),
+        correlated,
+        facing,
     })
 }
 
@@ -1220,30 +1323,147 @@ mod tests {
         );
     }
 
-    /// A measured plane error (plus the scene's own V and depth span) replaces T + V + I where it
-    /// is smaller, never where it is larger; an unmeasured profile (or NaN) keeps the bound.
+    /// The probe's summary figures (plane_error, error_ulps) change no term: they are not
+    /// bounds on the scenes the probe does not draw (module docs).
     #[test]
-    fn a_measured_plane_error_is_used_only_below_the_bound() {
-        let w = |d| crate::precision::window_depth(1.0, 1e3, d).unwrap();
+    fn measured_summary_figures_change_no_term() {
         let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
-        let with = |e: f64, measured: bool| Scene {
+        let measured = Scene {
             profile: RasterizerProfile {
-                plane_error: [e; 4],
-                measured,
+                error_ulps: 1.4,
+                plane_error: [0.5; 4],
+                measured: true,
                 ..worst.profile
             },
             ..worst
         };
-        let t = error_terms(&worst).unwrap();
-        let bound = t.transform + t.vertex + t.interpolation;
-        assert_eq!(t.plane, bound);
+        let (a, b) = (
+            error_terms(&worst).unwrap(),
+            error_terms(&measured).unwrap(),
+        );
+        assert_eq!(a, b);
+        assert_eq!(a.plane, a.transform + a.vertex + a.interpolation);
+    }
+
+    /// A facing plane with shared f32 z under GL_LEQUAL needs no offset (the chain is monotone in
+    /// element 10); under GL_LESS it keeps q + 2E; the gap keeps the occluder's error either way.
+    #[test]
+    fn correlated_facing_planes_need_no_offset_under_an_equal_test() {
+        let less = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Unorm24, 0.0, Snapping::Unsnapped)
+        };
+        let lequal = Scene {
+            depth_test: DepthTest::LessEqual,
+            ..less
+        };
+        let (a, b) = (recommend(&less).unwrap(), recommend(&lequal).unwrap());
+        assert!(!a.terms.correlated && b.terms.correlated);
+        assert_eq!((b.window_offset, b.epsilon), (0.0, 0.0));
+        assert!((a.window_offset - (a.terms.quantum + 2.0 * a.terms.plane)).abs() < 1e-20);
+        assert!(b.bleed_gap > 0.0);
+        let reversed = Scene {
+            frustum: Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, f64::INFINITY).unwrap(),
+            depth_test: DepthTest::GreaterEqual,
+            ..lequal
+        };
+        let r = recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).unwrap();
+        assert_eq!(r.relative_epsilon, 0.0);
+    }
+
+    /// A measured facing figure replaces q + 2E for shared-z facing planes under a strict test and
+    /// [−1, 1] only; never from the worst case, another convention or a sloped plane.
+    #[test]
+    fn a_measured_facing_offset_replaces_the_bound_where_measured() {
+        let less = Scene {
+            exact_depth: true,
+            ..scene(DepthFormat::Unorm24, 0.0, Snapping::Unsnapped)
+        };
+        let measured = Scene {
+            profile: RasterizerProfile {
+                facing_quanta: [f64::NAN, 3.0, f64::NAN, 3.0],
+                measured: true,
+                ..less.profile
+            },
+            ..less
+        };
         let q = 1.0 / 16_777_215.0;
-        let geometry = t.interpolation - 3.0 * F32_UNIT_ROUNDOFF * w(120.0) + t.vertex;
-        let measured = error_terms(&with(0.5, true)).unwrap().plane;
-        assert!((measured - (0.5 * q + geometry)).abs() <= 1e-12 * measured);
-        assert_eq!(error_terms(&with(1e6, true)).unwrap().plane, bound);
-        assert_eq!(error_terms(&with(0.5, false)).unwrap().plane, bound);
-        assert_eq!(error_terms(&with(f64::NAN, true)).unwrap().plane, bound);
+        let (a, b) = (recommend(&less).unwrap(), recommend(&measured).unwrap());
+        assert!((b.window_offset - 3.0 * q).abs() < 1e-20 && a.window_offset > b.window_offset);
+        let float = Scene {
+            format: DepthFormat::Float32,
+            ..measured
+        };
+        assert_eq!(
+            recommend(&float).unwrap().window_offset,
+            3.0 * F32_UNIT_ROUNDOFF
+        );
+        let zero_to_one = recommend_clip(&measured, ClipDepth::ZeroToOne).unwrap();
+        assert_eq!(zero_to_one.terms.facing, 0.0);
+        // Reversed Z, D32F: the measured relative ε, over 1 − u for element 14's rounding.
+        let reversed = Scene {
+            frustum: Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, f64::INFINITY).unwrap(),
+            format: DepthFormat::Float32,
+            depth_test: DepthTest::Greater,
+            profile: RasterizerProfile {
+                facing_reversed: 2.5,
+                ..measured.profile
+            },
+            ..measured
+        };
+        let r = recommend_clip(&reversed, ClipDepth::ReversedZeroToOne).unwrap();
+        let want = 2.5 * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF);
+        assert_eq!(r.relative_epsilon, want);
+        let unmeasured = Scene {
+            profile: RasterizerProfile {
+                measured: false,
+                ..measured.profile
+            },
+            ..measured
+        };
+        assert_eq!(
+            recommend(&unmeasured).unwrap().window_offset,
+            a.window_offset
+        );
+    }
+
+    /// A plane-preserving clipper replaces C by the base's own E + S plus 2 D24 quanta; the
+    /// polygon-offset units divide by the profile's r.
+    #[test]
+    fn near_clip_and_resolvable_enter_where_documented() {
+        let clipped = Scene {
+            base: Base::Clipped { reach: 1e3 },
+            ..scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped)
+        };
+        let preserving = Scene {
+            profile: RasterizerProfile {
+                near_clip: NearClip::PlanePreserving,
+                resolvable: [2.0; 4],
+                ..clipped.profile
+            },
+            ..clipped
+        };
+        let (f32c, kept) = (
+            error_terms(&clipped).unwrap(),
+            error_terms(&preserving).unwrap(),
+        );
+        assert!((kept.clip - (kept.plane + kept.snap + 2.0 / 16_777_215.0)).abs() < 1e-20);
+        assert!(kept.clip < f32c.clip);
+        let (a, b) = (
+            recommend(&clipped).unwrap(),
+            recommend(&preserving).unwrap(),
+        );
+        let units = |r: &Recommendation, per: f64| r.window_offset / (per * r.terms.quantum);
+        assert!((a.polygon_offset[1] - units(&a, 1.0)).abs() <= 1e-9 * a.polygon_offset[1]);
+        assert!((b.polygon_offset[1] - units(&b, 2.0)).abs() <= 1e-9 * b.polygon_offset[1]);
+        let zero_r = Scene {
+            profile: RasterizerProfile {
+                resolvable: [0.0; 4],
+                ..clipped.profile
+            },
+            ..clipped
+        };
+        assert_eq!(recommend(&zero_r).unwrap_err().kind(), ErrorKind::Domain);
     }
 
     /// The depth test must match the convention; `DepthTest` round-trips GL enums.

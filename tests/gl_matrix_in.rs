@@ -114,6 +114,8 @@ fn decal_of(gl: &Gl, s: &Setup) -> Decal {
         slope: s.slope,
         exact_depth: s.slope == 0.0,
         snapping: gl_common::snapping_of(gl),
+        base: zshift::recommend::Base::InsideFrustum,
+        profile: None,
     }
 }
 

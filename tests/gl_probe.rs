@@ -76,6 +76,26 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         assert!(p.probe_seconds > 0.0);
         // llvmpipe snaps coverage to GL_SUBPIXEL_BITS but sets the depth plane up from the float
         // positions (lp_setup_tri.c): unsnapped, and clearly so.
+        // A facing decal over its shared-z base: a few f32 steps of element 10 on D24 (one step
+        // is about a quantum); D16 is not measured (its quantum is hundreds of steps).
+        assert!(p.facing_quanta[0].is_nan(), "{:?}", p.facing_quanta);
+        // Under [0, 1] a step of element 10 is two quanta; under reversed Z (D32F) a relative ε
+        // of a few 2^-24.
+        assert!(
+            (2.0..=8.0).contains(&p.facing_quanta_zero_to_one[1]),
+            "{:?}",
+            p.facing_quanta_zero_to_one
+        );
+        assert!(
+            p.facing_reversed > 0.0 && p.facing_reversed <= 8.0,
+            "{}",
+            p.facing_reversed
+        );
+        assert!(
+            (1.0..=4.0).contains(&p.facing_quanta[1]),
+            "{:?}",
+            p.facing_quanta
+        );
         assert_eq!(p.snapping, Snapping::Unsnapped);
         assert!(
             figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2,
@@ -201,7 +221,7 @@ fn far_strip_error(gl: &mut Gl) -> (f64, f64) {
         1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1., 0., 0., 0., 0., 1.,
     ];
     // Dyadic corners: z is exactly affine in x on both triangles of the quad.
-    let (x0, x1, z0, z1) = (0.90625f32, 0.99218750f32, -0.875f32, 0.875f32);
+    let (x0, x1, z0, z1) = (0.90625f32, 0.9921875f32, -0.875f32, 0.875f32);
     let quad = Quad {
         corners: [[x0, -1.5, z0], [x1, -1.5, z1], [x1, 1.5, z1], [x0, 1.5, z0]],
     };

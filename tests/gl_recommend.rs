@@ -197,7 +197,7 @@ fn c_entry_points_match_the_rust_recommendation() {
         subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
         depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
-        plane_error: 0.0,
+        profile: std::ptr::null(),
     };
     let rust = zshift::recommend::recommend(&scene_of(&s, zshift::recommend::Snapping::Unsnapped))
         .unwrap();
@@ -286,7 +286,8 @@ fn the_polygon_offset_equivalent_loses_no_pixel() {
 
 /// The C scene's newer fields reach the model with their documented defaults: depth_func 0 is
 /// the convention's strict test, GL_LEQUAL gives one quantum less offset, base_reach > 0 adds
-/// the clipping term, plane_error > 0 is a measured figure, a reversed-Z test under `[−1, 1]`
+/// the clipping term, a profile (from the probe) supplies snapping and r, a zero-filled one is
+/// refused, a reversed-Z test under `[−1, 1]`
 /// is refused; zshift_clip_to_frustum gives the Rust cut.
 #[test]
 fn c_scene_fields_reach_the_model() {
@@ -311,7 +312,7 @@ fn c_scene_fields_reach_the_model() {
         subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
         depth_func: ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
-        plane_error: 0.0,
+        profile: std::ptr::null(),
     };
     let rec = |s: &ZshiftScene, clip: ZshiftClip| {
         let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
@@ -340,11 +341,27 @@ fn c_scene_fields_reach_the_model() {
     };
     let c = rec(&clipped, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap();
     assert!(c.clip > 0.0 && c.window_offset > plain.window_offset);
-    let measured = ZshiftScene {
-        plane_error: 0.5,
+    // A profile supplies every rasterizer fact: its snapping wins over subpixel_bits, its r
+    // divides the polygon-offset units.
+    let mut record = std::mem::MaybeUninit::<ZshiftProfile>::uninit();
+    assert_eq!(zshift_profile_worst_case(record.as_mut_ptr()), ZSHIFT_OK);
+    let mut profile = unsafe { record.assume_init() };
+    profile.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+    profile.resolvable = [2.0; 4];
+    let snapped = ZshiftScene {
+        subpixel_bits: 8,
         ..scene
     };
-    assert!(rec(&measured, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap().plane < plain.plane);
+    assert!(rec(&snapped, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap().snap > 0.0);
+    let profiled = ZshiftScene {
+        profile: &profile,
+        ..snapped
+    };
+    let p = rec(&profiled, ZSHIFT_CLIP_NEG_ONE_TO_ONE).1.unwrap();
+    assert_eq!((p.snap, p.window_offset), (0.0, plain.window_offset));
+    let units = plain.window_offset / (2.0 * plain.quantum);
+    assert!((p.polygon_offset_units - units).abs() <= 1e-9 * units);
+    let zeroed: ZshiftProfile = unsafe { std::mem::zeroed() };
     for (bad, status) in [
         (
             ZshiftScene {
@@ -362,10 +379,10 @@ fn c_scene_fields_reach_the_model() {
         ),
         (
             ZshiftScene {
-                plane_error: f64::NAN,
+                profile: &zeroed,
                 ..scene
             },
-            ZSHIFT_ERR_NOT_FINITE,
+            ZSHIFT_ERR_DOMAIN,
         ),
     ] {
         assert_eq!(rec(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE).0, status, "{bad:?}");

@@ -6,48 +6,44 @@
 //! view axis is off screen), f/n from 10 to 1e7 and infinite, D16/D24/D32F under `[−1, 1]`,
 //! `[0, 1]` and reversed Z, `GL_LESS`/`GL_LEQUAL` (`GL_GREATER`/`GL_GEQUAL` reversed), decals
 //! whose corners are not the base's. Every scene is checked with the worst-case profile (the
-//! default) and with a measured llvmpipe profile: 0 decal pixels lost at the recommendation,
-//! 0 pixels bled through an occluder at the documented gap. Then it prints, per class, the
+//! default) and with the profile `zshift::probe::probe` measures in this test's own context: 0
+//! decal pixels lost at the recommendation, 0 pixels bled through an occluder at the documented
+//! gap. Then it prints, per class, the
 //! recommended ÷ smallest working offset (bisection over f32 steps of the offset element).
 //!
 //! References are GL readbacks and this file's own f64 geometry, never zshift's numbers.
 //! Fails (never skips) without GL.
 //!
-//! CI runs a deterministic sample of the grid (`ZSHIFT_SCENES` unset: one scene in 12, about a
-//! minute on two cores); `ZSHIFT_SCENES=full` runs every scene of the grid, `ZSHIFT_SCENES=N`
+//! CI runs a deterministic sample of the grid (`ZSHIFT_SCENES` unset: one scene in 12, about 1000
+//! scenes in 5 s on two cores; the full grid 40 s); `ZSHIFT_SCENES=full` runs every scene of the grid, `ZSHIFT_SCENES=N`
 //! one in N. `cargo test --release --test gl_scenes -- --nocapture` prints the table;
 //! `ZSHIFT_SCENES_VERBOSE=1` also names every refused scene and the survey's worst planes,
 //! `ZSHIFT_SCENES_TERMS=1` every scene's error terms.
 
+use std::ffi::CStr;
+
+use zshift::probe::probe;
 use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::{
-    clip_to_frustum, recommend_clip, Base, ClipRecommendation, DepthTest, NearClip,
-    RasterizerProfile, Scene, Snapping,
+    clip_to_frustum, recommend_clip, Base, ClipRecommendation, DepthTest, RasterizerProfile, Scene,
 };
 use zshift_harness::coplanar::{BASE, CLEAR, DECAL, OCCLUDER};
 use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
-/// The llvmpipe profile built by hand until the probe lands: no snapping before depth setup,
-/// `r` = 1 quantum on UNORM formats (`1/(2^m − 1)`) and `2^(e−23)` on D32F, clipping in f32,
-/// and the per-pixel plane error measured by [`plane_error_survey`] (the largest
-/// `|computed − exact|` window depth of a plane, in quanta, over its 2160 well-conditioned planes: D32F read back
-/// gives llvmpipe's f32 depth before any conversion, so the UNORM figures are that error over
-/// the UNORM quantum). The survey is run by `the_measured_plane_error_holds` below, which fails
-/// if llvmpipe ever exceeds these figures.
-fn measured_llvmpipe() -> RasterizerProfile {
-    RasterizerProfile {
-        snapping: Snapping::Unsnapped,
-        resolvable: [1.0; 4],
-        plane_error: PLANE_ERROR,
-        near_clip: NearClip::ClippedF32,
-        measured: true,
-        ..RasterizerProfile::worst_case()
-    }
+/// The profile `zshift::probe::probe` measures in this test's own context (what an engine
+/// does once at start-up): on llvmpipe unsnapped, `r` = 2 quanta on UNORM, `error_ulps` ≈ 1.4,
+/// near-plane clipping in f32. `the_probed_error_bound_holds` checks its per-pixel bound
+/// against planes the probe never drew.
+fn probed(gl: &Gl) -> RasterizerProfile {
+    let loader = |name: &CStr| gl.proc_address(name.to_str().unwrap_or(""));
+    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
+    let profile = unsafe { probe(loader) }.unwrap_or_else(|e| panic!("probe failed: {e}"));
+    assert!(
+        profile.measured && profile.error_ulps.is_finite(),
+        "{profile:?}"
+    );
+    profile
 }
-
-/// The plane error figures of [`measured_llvmpipe`]: D16, D24, D32 in quanta, D32F in units of
-/// 2⁻²⁴ (3.95 measured on D24/D32F by the survey, 2026-11-23, Mesa 22.3.6).
-const PLANE_ERROR: [f64; 4] = [0.016, 4.0, 1010.0, 4.0];
 
 // ---------------------------------------------------------------------------------------------
 // Geometry, in f64, independent of zshift.
@@ -217,7 +213,9 @@ impl Case {
             format,
             depth_range: [d1, d2],
             slope: self.slope(),
-            exact_depth: self.slope() == 0.0 && self.base_kind == BaseKind::Fitted,
+            // A facing plane's corners all have z = −d_a, and `clip_to_frustum` keeps that z
+            // exactly (a + t·(b − a) with a = b): fitted and cut bases share the decal's f32 z.
+            exact_depth: self.slope() == 0.0 && self.base_kind != BaseKind::Ground,
             depth_test: self.test,
             base: match self.base_kind {
                 BaseKind::Ground => Base::Clipped {
@@ -386,7 +384,7 @@ fn build(
 /// The grid, sampled one in `every` (deterministically).
 fn grid(every: usize) -> Vec<Case> {
     let mut rng = Lcg(0x2026_1123);
-    let mut sample = Lcg(0x5A3D_1E);
+    let mut sample = Lcg(0x005A_3D1E);
     let mut cases = Vec::new();
     let kinds = [
         (ClipDepth::NegOneToOne, DepthFormat::D16),
@@ -705,13 +703,10 @@ fn outcome(bench: &mut Bench, rec: ClipRecommendation) -> Result<Outcome, String
     })
 }
 
-fn measure(gl: &mut Gl, case: Case) -> Result<Option<Row>, String> {
+fn measure(gl: &mut Gl, case: Case, probed: RasterizerProfile) -> Result<Option<Row>, String> {
     let label = case.label();
     let rec = |p: RasterizerProfile| recommend_clip(&case.scene(p), case.clip);
-    let (rd, rm) = match (
-        rec(RasterizerProfile::worst_case()),
-        rec(measured_llvmpipe()),
-    ) {
+    let (rd, rm) = match (rec(RasterizerProfile::worst_case()), rec(probed)) {
         (Ok(a), Ok(b)) => (a, b),
         (a, b) => {
             // Refused (the clipping term of a clipped base made the offset useless): say so.
@@ -768,13 +763,15 @@ fn ratio(o: &Outcome, k_min: u32) -> f64 {
 fn the_recommendation_holds_on_every_scene() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let profile = probed(&gl);
+    println!("probed profile: {profile:?}");
     let cases = grid(every());
     let total = cases.len();
     let mut rows = Vec::new();
     let (mut refused, mut refused_clipped) = (0, 0);
     for c in cases {
         let clipped = c.base_kind == BaseKind::Ground;
-        match measure(&mut gl, c).unwrap_or_else(|e| panic!("GL: {e}")) {
+        match measure(&mut gl, c, profile).unwrap_or_else(|e| panic!("GL: {e}")) {
             Some(r) => rows.push(r),
             None if clipped => refused_clipped += 1,
             None => refused += 1,
@@ -876,146 +873,175 @@ fn print_classes(rows: &[Row]) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The measured plane error of the hand-built llvmpipe profile.
+// The probed per-pixel bound, on planes the probe never drew.
 // ---------------------------------------------------------------------------------------------
 
-/// The largest `|read − exact|` window depth over the pixels of planes drawn into D32F, in
-/// units of the D16/D24/D32 quantum and, for D32F, of 2⁻²⁴ (the f32 spacing on `[½, 1)`, the
-/// unit `RasterizerProfile::plane_error` takes for float depth: the error is mostly absolute,
-/// from the transform's `u·|m10|`, so the spacing at small depths would not bound it): planes
-/// (f/n 10 to 1e7 and ∞, `[−1, 1]`, `[0, 1]` and reversed Z, slopes 0 to 10, two viewports).
-fn plane_error_survey(gl: &mut Gl) -> Result<[f64; 4], String> {
-    let mut worst = 0.0f64; // in window depth, for UNORM
-    let mut worst_rel = 0.0f64; // in f32 spacing at the exact depth
-    let mut rng = Lcg(0xDEC0_DE);
-    // Four times over the grid, each time with other plane depths and tilt directions.
+/// The largest `(|read − exact| − V)⁺ / (2⁻²⁴·(1 + M))` over the pixels of planes drawn into
+/// D32F (which stores the computed depth) under `[−1, 1]`: the figure `error_ulps` claims to
+/// bound, `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y` from this file's own f64 plane, `V` the model's
+/// bound on the rounding of the coordinates at the pixel's depth (the probe's exact plane runs
+/// through the f32 vertices, this file's through the f64 ones). Planes: f/n 10 to 1e7
+/// and ∞, slopes 0 to 10 in random directions (horizons on screen), three viewports, three
+/// frusta, decal distances from 1.5·n deep into the range, four times over with other depths.
+fn error_growth_survey(
+    gl: &mut Gl,
+    profile: RasterizerProfile,
+) -> Result<(f64, f64, usize), String> {
+    let (mut worst, mut model, mut planes) = (0.0f64, 0.0f64, 0);
+    let mut rng = Lcg(0x00DE_C0DE);
     for size in [(97u32, 211u32), (320, 180), (64, 48)].repeat(4) {
         let aspect = f64::from(size.0) / f64::from(size.1);
         for frustum_kind in ["centred", "off-centre", "axis-off"] {
-            for clip in [
-                ClipDepth::NegOneToOne,
-                ClipDepth::ZeroToOne,
-                ClipDepth::ReversedZeroToOne,
-            ] {
-                for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
-                    for slope in [0.0, 0.3, 0.6, 1.0] {
-                        let n = 0.1;
-                        let t = n * 0.5774;
-                        let (l, r, b, tt) = match frustum_kind {
-                            "centred" => (-t * aspect, t * aspect, -t, t),
-                            "off-centre" => {
-                                (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t)
-                            }
-                            _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
-                        };
-                        let f = if ratio.is_finite() {
-                            n * ratio
-                        } else {
-                            f64::INFINITY
-                        };
-                        let cam = Cam {
-                            l,
-                            r,
-                            b,
-                            t: tt,
-                            n,
-                            f,
-                        };
-                        let span = if ratio.is_finite() { ratio } else { 1e4 };
-                        // Well-conditioned planes (at least 3n away, slope at most 1), where
-                        // the model's geometry terms (V, the extrapolation across the viewport)
-                        // are small: the figure stands for the transform and the evaluation, and
-                        // the model adds each scene's own geometry terms to it.
-                        let dc = n * span.powf(0.9 * rng.next()).max(3.0);
-                        let a = rng.next() * std::f64::consts::TAU;
-                        let (sx, sy) = (slope * a.cos() * 0.3, -slope);
-                        let Some(case) = build(
-                            cam,
-                            frustum_kind,
-                            size,
-                            (clip, DepthFormat::D32F),
-                            DepthTest::Less,
-                            (sx, sy),
-                            (0.0, 0.0, 0.2, dc),
-                            BaseKind::Fitted,
-                        ) else {
-                            continue;
-                        };
-                        let (e, r) = plane_error(gl, &case)?;
-                        if e > worst && std::env::var_os("ZSHIFT_SCENES_VERBOSE").is_some() {
-                            println!(
-                                "survey: {:.2} quanta of D24 on {}",
-                                e * 16_777_215.0,
-                                case.label()
-                            );
-                        }
-                        worst = worst.max(e);
-                        worst_rel = worst_rel.max(r);
+            for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
+                for slope in [0.0, 0.3, 1.0, 3.0, 10.0] {
+                    let n = 0.1;
+                    let t = n * 0.5774;
+                    let (l, r, b, tt) = match frustum_kind {
+                        "centred" => (-t * aspect, t * aspect, -t, t),
+                        "off-centre" => (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t),
+                        _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
+                    };
+                    let f = if ratio.is_finite() {
+                        n * ratio
+                    } else {
+                        f64::INFINITY
+                    };
+                    let cam = Cam {
+                        l,
+                        r,
+                        b,
+                        t: tt,
+                        n,
+                        f,
+                    };
+                    let span = if ratio.is_finite() { ratio } else { 1e4 };
+                    let dc = n * span.powf(0.9 * rng.next()).max(1.5);
+                    let a = rng.next() * std::f64::consts::TAU;
+                    let (sx, sy) = (slope * a.cos(), slope * a.sin());
+                    let Some(case) = build(
+                        cam,
+                        frustum_kind,
+                        size,
+                        (ClipDepth::NegOneToOne, DepthFormat::D32F),
+                        DepthTest::Less,
+                        (sx, sy),
+                        (rng.next() - 0.5, rng.next() - 0.5, 0.2, dc),
+                        BaseKind::Fitted,
+                    ) else {
+                        continue;
+                    };
+                    let (e, against_model) = error_growth(gl, &case, profile)?;
+                    if against_model > model && std::env::var_os("ZSHIFT_SCENES_VERBOSE").is_some()
+                    {
+                        println!(
+                            "survey: {e:.2}, {against_model:.3} of E on {}",
+                            case.label()
+                        );
                     }
+                    worst = worst.max(e);
+                    model = model.max(against_model);
+                    planes += 1;
                 }
             }
         }
     }
-    let q = |m: i32| 1.0 / (2f64.powi(m) - 1.0);
-    println!("largest error over the f32 spacing at the exact depth: {worst_rel:.1}");
-    assert!(worst_rel > 0.0, "the survey saw no error: it cannot fail");
-    Ok([
-        worst / q(16),
-        worst / q(24),
-        worst / q(32),
-        worst / 2f64.powi(-24),
-    ])
+    Ok((worst, model, planes))
 }
 
-/// Draws the case's base (fitted, inside the frustum) into D32F and returns the largest
-/// `|read − exact|` window depth over its pixels, absolute and over the f32 spacing there.
-fn plane_error(gl: &mut Gl, case: &Case) -> Result<(f64, f64), String> {
+/// Draws the case's (fitted) base into D32F and returns its pixels' largest
+/// `|read − exact| / (2⁻²⁴·(1 + M))`. The exact window depth is affine in window `(x, y)` (it
+/// is affine in `1/d`, and `1/d` is affine on the screen), so `w₀` and the gradients come from
+/// the plane extended over the window, in front of the eye or not.
+fn error_growth(
+    gl: &mut Gl,
+    case: &Case,
+    profile: RasterizerProfile,
+) -> Result<(f64, f64), String> {
+    let terms = zshift::recommend::clip_error_terms(&case.scene(profile), case.clip)
+        .map_err(|e| e.to_string())?;
+    let (d1, d2) = case.depth_range();
+    let mut against_model = 0.0f64;
     let mut bench = Bench::new(gl, case)?;
     bench.clear()?;
     bench.draw_base()?;
     let depth = bench.gl.read_depth()?;
     let (w, h) = (case.size.0 as usize, case.size.1 as usize);
-    let cleared = if case.reversed() { 0.0 } else { 1.0 };
-    let (mut worst, mut worst_rel) = (0.0f64, 0.0f64);
+    let (fw, fh) = (w as f64, h as f64);
+    let p = case.plane;
+    let window_at = |x: f64, y: f64| {
+        let (kx, ky) = case.cam.ray(2.0 * x / fw - 1.0, 2.0 * y / fh - 1.0);
+        let inv_d = (1.0 + p.sx * kx + p.sy * ky) / p.da;
+        case.cam.window(1.0 / inv_d, case.clip)
+    };
+    let u = 2f64.powi(-24);
+    let c = case.cam;
+    let b = if c.f.is_finite() {
+        c.f * c.n / (c.f - c.n)
+    } else {
+        c.n
+    };
+    let e = [c.l, c.r, c.b, c.t]
+        .iter()
+        .fold(0.0f64, |a, x| a.max(x.abs()))
+        / c.n;
+    let w0 = window_at(0.0, 0.0);
+    let gx = ((window_at(fw, 0.0) - w0) / fw).abs();
+    let gy = ((window_at(0.0, fh) - w0) / fh).abs();
+    let mut worst = 0.0f64;
     for (i, &read) in depth.iter().enumerate() {
-        if read == cleared {
-            continue;
+        let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
+        if read == 1.0 || (2.0 * x / fw - 1.0).abs() > 0.85 || (2.0 * y / fh - 1.0).abs() > 0.85 {
+            continue; // cleared, or near the base's edges (a centre may lie just outside)
         }
-        let x = 2.0 * ((i % w) as f64 + 0.5) / w as f64 - 1.0;
-        let y = 2.0 * ((i / w) as f64 + 0.5) / h as f64 - 1.0;
-        // Stay off the base's edges, where a pixel's centre may lie just outside the polygon.
-        if x.abs() > 0.85 || y.abs() > 0.85 {
-            continue;
-        }
-        let Some(d) = case.plane.depth_on_ray(case.cam.ray(x, y)) else {
+        let Some(d) = p.depth_on_ray(case.cam.ray(2.0 * x / fw - 1.0, 2.0 * y / fh - 1.0)) else {
             continue;
         };
-        let exact = case.cam.window(d, case.clip);
-        let err = (f64::from(read) - exact).abs();
-        let spacing = 2f64.powi(exact.log2().floor() as i32 - 23);
-        worst = worst.max(err);
-        worst_rel = worst_rel.max(err / spacing);
+        let m = w0.abs() + gx * x + gy * y;
+        let err = (f64::from(read) - case.cam.window(d, case.clip)).abs();
+        // The probe's "exact" is the plane through the f32 vertices; this file's is the f64
+        // plane, so the rounding of the coordinates (the model's V at this depth) is allowed.
+        let vertex = u * (b / d) * (1.0 + case.slope() * e);
+        worst = worst.max((err - vertex).max(0.0) / (u * (1.0 + m)));
+        if (d1..=d2).contains(&d) {
+            against_model = against_model.max(err / terms.plane);
+        }
     }
-    Ok((worst, worst_rel))
+    Ok((worst, against_model))
 }
 
-/// llvmpipe's per-pixel plane error stays within the figures of the hand-built profile (so the
-/// measured profile the sweep uses is what this rasterizer does), and the survey can fail: it
-/// sees a nonzero error.
+/// llvmpipe's per-pixel error on planes the probe never drew (steeper, nearer the near plane,
+/// other frusta and viewports), at the pixels of each plane within its decal's depth range,
+/// stays within the per-quad error `E` the model takes from the probed profile, and the survey
+/// can fail: it sees a nonzero error. It also prints the raw growth figure against the probed
+/// `error_ulps` (on llvmpipe 1.74 against 1.40: steep planes just past the near plane, drawn as
+/// large fitted triangles, exceed the probe's own planes; the model's `E` still holds, by the
+/// margin of its `M ≤ w(d₂) + 2G` bound over the pixels' own `M`).
 #[test]
-fn the_measured_plane_error_holds() {
+fn the_probed_error_bound_holds() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
-    let survey = plane_error_survey(&mut gl).unwrap_or_else(|e| panic!("GL: {e}"));
-    println!("plane error survey (D16, D24, D32 quanta; D32F in units of 2^-24): {survey:?}");
-    for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
-        assert!(
-            survey[i] <= PLANE_ERROR[i],
-            "{name}: llvmpipe's plane error {} quanta exceeds the profile's {}",
-            survey[i],
-            PLANE_ERROR[i]
-        );
-    }
+    let profile = if std::env::var_os("ZSHIFT_SURVEY_WORST").is_some() {
+        RasterizerProfile {
+            snapping: zshift::recommend::Snapping::Unsnapped,
+            ..RasterizerProfile::worst_case()
+        }
+    } else {
+        probed(&gl)
+    };
+    let (worst, model, planes) =
+        error_growth_survey(&mut gl, profile).unwrap_or_else(|e| panic!("GL: {e}"));
+    println!(
+        "over {planes} planes: error growth {worst:.3} u(1 + M) (probed error_ulps {:.3}); largest error over the model's E {model:.3}",
+        profile.error_ulps
+    );
+    assert!(
+        planes > 500 && worst > 0.0,
+        "the survey saw no error: it cannot fail"
+    );
+    assert!(
+        model <= 1.0,
+        "llvmpipe's per-pixel error reaches {model:.3} times the model's E from the probed profile"
+    );
 }
 
 /// `clip_to_frustum` keeps a polygon's plane and cuts it inside the frustum: every output
@@ -1106,7 +1132,8 @@ fn explicit(
 
 /// The GL_LEQUAL bleed of the issue: D16, 320×180, glFrustum(±0.1, ±0.05625, 0.1, 100), a
 /// facing plane at d = 0.5. At the GL_LESS gap an occluder stores the decal's value and
-/// GL_LEQUAL lets the decal through; at the GL_LEQUAL gap (one quantum wider) none bleeds.
+/// GL_LEQUAL lets the decal through; at the GL_LEQUAL gap (one quantum wider) none bleeds. The
+/// plane's corners share their f32 z, so under GL_LEQUAL the decal needs no offset at all.
 #[test]
 fn lequal_needs_one_more_quantum_of_gap() {
     let mut gl = Gl::new(Profile::Core)
@@ -1143,12 +1170,15 @@ fn lequal_needs_one_more_quantum_of_gap() {
     let profile = RasterizerProfile::worst_case();
     let rec_lequal = recommend_clip(&case.scene(profile), case.clip).unwrap();
     let rec_less = recommend_clip(&less.scene(profile), less.clip).unwrap();
-    let q = rec_less.terms.quantum;
-    assert!(
-        (rec_less.window_offset - rec_lequal.window_offset - q).abs() <= 1e-9 * q,
-        "GL_LEQUAL needs exactly one quantum less offset"
+    // A facing plane with shared f32 z: under GL_LEQUAL no offset at all (the depth chain is
+    // monotone in element 10, so the decal is never behind the base), and none is lost.
+    assert!(rec_less.window_offset > 0.0);
+    assert_eq!(
+        rec_lequal.window_offset, 0.0,
+        "correlated: no offset under GL_LEQUAL"
     );
     let mut bench = Bench::new(&mut gl, &case).unwrap();
+    assert_eq!(bench.lost(&rec_lequal.matrix).unwrap().hit, 0);
     let at_lequal_gap = bench
         .bleed(&rec_lequal.matrix, rec_lequal.bleed_gap)
         .unwrap();
@@ -1189,6 +1219,7 @@ fn lequal_needs_one_more_quantum_of_gap() {
 fn the_issues_near_clipped_ground_holds() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
+    let profile = probed(&gl);
     let cam = Cam {
         l: -0.1,
         r: 0.1,
@@ -1220,7 +1251,7 @@ fn the_issues_near_clipped_ground_holds() {
                 1000.0,
                 base_kind,
             );
-            let row = measure(&mut gl, case.clone())
+            let row = measure(&mut gl, case.clone(), profile)
                 .unwrap()
                 .unwrap_or_else(|| panic!("{}: refused or empty", case.label()));
             for (name, o) in [("default", &row.default), ("measured", &row.measured)] {

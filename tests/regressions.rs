@@ -129,7 +129,7 @@ fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
         subpixel_bits: -1,
         depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
-        plane_error: 0.0,
+        profile: std::ptr::null(),
     };
     let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
     let status = zshift_recommend(&scene, out.as_mut_ptr());
@@ -167,7 +167,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             subpixel_bits: -1,
             depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
             base_reach: 0.0,
-            plane_error: 0.0,
+            profile: std::ptr::null(),
         },
         ZshiftScene {
             l: -7.645722780061472,
@@ -186,7 +186,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             subpixel_bits: -1,
             depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
             base_reach: 0.0,
-            plane_error: 0.0,
+            profile: std::ptr::null(),
         },
     ];
     for scene in scenes {
@@ -233,7 +233,7 @@ fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
         subpixel_bits: -1,
         depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
-        plane_error: 0.0,
+        profile: std::ptr::null(),
     };
     let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
     let status = zshift::ffi::zshift_recommend_clip(

@@ -166,14 +166,15 @@ using Recommendation = ZshiftRecommendation;
 inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
 
 /// A Scene from its fields, in declaration order; usable in constant expressions. depth_func,
-/// base_reach and plane_error take their documented defaults (0: the convention's strict test,
-/// a base inside the frustum, no measured plane error); set them on the result.
+/// base_reach and profile take their documented defaults (0: the convention's strict test, a
+/// base inside the frustum; nullptr: the worst-case profile with subpixel_bits); set them on
+/// the result, or pass a probed Profile to recommend(scene, profile).
 constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
                            std::uint32_t viewport_width, std::uint32_t viewport_height,
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
-               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, 0.0};
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, nullptr};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
@@ -551,6 +552,38 @@ Profile probe_with(GetProc &&get_proc) {
     return reinterpret_cast<ZshiftGlProc>(get(name));
   };
   return probe(trampoline, static_cast<void *>(&get_proc));
+}
+
+/// recommend() with the rasterizer's profile (from probe(), once per context): the profile
+/// supplies every rasterizer fact, its snapping included (scene.subpixel_bits is then ignored).
+inline Recommendation recommend(Scene scene, const Profile &profile) {
+  scene.profile = &profile;
+  return recommend(scene);
+}
+
+/// recommend_clip() with the rasterizer's profile, as recommend(scene, profile).
+inline Recommendation recommend_clip(Scene scene, Clip clip, const Profile &profile) {
+  scene.profile = &profile;
+  return recommend_clip(scene, clip);
+}
+
+/// recommend_clip_matrix() with the rasterizer's profile, as recommend(scene, profile).
+inline Matrix recommend_clip_matrix(Scene scene, Clip clip, const Profile &profile) {
+  scene.profile = &profile;
+  return recommend_clip_matrix(scene, clip);
+}
+
+/// decal_matrix() with the rasterizer's profile (Decal::profile; decal.subpixel_bits is then
+/// ignored) and the base's reach (Decal::base_reach, 0 when it lies inside the frustum).
+inline Matrix decal_matrix(const float *m, Clip clip, Decal decal, const Profile &profile) {
+  decal.profile = &profile;
+  return decal_matrix(m, clip, decal);
+}
+
+/// recommend_for_matrix() with the rasterizer's profile, as decal_matrix(m, clip, decal, profile).
+inline Recommendation recommend_for_matrix(const float *m, Clip clip, Decal decal, const Profile &profile) {
+  decal.profile = &profile;
+  return recommend_for_matrix(m, clip, decal);
 }
 
 }  // namespace zshift

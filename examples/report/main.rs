@@ -10,6 +10,7 @@ mod cpu;
 mod gpu;
 mod numeric;
 mod plots;
+mod profile;
 mod steps;
 
 use std::fmt::Write as _;
@@ -65,6 +66,7 @@ fn run() -> Result<(), String> {
     drop(mesa);
 
     let mut gl = Gl::new(Profile::Core).map_err(|e| format!("no core GL context: {e}"))?;
+    let (probed, figures) = profile::measure(&gl)?;
     let scenes = gpu::scenes();
     let methods = gpu::methods(&KS);
     let bar = progress(
@@ -113,6 +115,7 @@ fn run() -> Result<(), String> {
         outcomes: &outcomes,
         summary: &summary,
         curves: &curves,
+        probed: (&probed, &figures),
     });
     std::fs::write(docs.join("report.md"), md).map_err(|e| format!("writing report.md: {e}"))?;
     println!(
@@ -271,6 +274,11 @@ struct Report<'a> {
     outcomes: &'a [gpu::Outcome],
     summary: &'a [plots::MethodPoint],
     curves: &'a [steps::Curve],
+    /// The probe's profile of this context, with its figures.
+    probed: (
+        &'a zshift::recommend::RasterizerProfile,
+        &'a zshift::probe::Figures,
+    ),
 }
 
 fn find<'a>(t: &'a [cpu::Timing], prefix: &str) -> Option<&'a cpu::Timing> {
@@ -299,6 +307,7 @@ fn markdown(r: &Report) -> String {
     numeric_table(w, r);
     numeric_by_planes(w, r);
     gpu_tables(w, r);
+    profile::section(w, r.probed.0, r.probed.1);
     depth_step_table(w, r);
     s
 }

@@ -108,6 +108,15 @@ pub struct ZshiftDecal {
     /// Nonzero when every corner of base and decal has the same float eye-space z (requires
     /// slope == 0).
     pub exact_depth: u32,
+    /// 0 when every vertex of the base lies inside the view frustum (the rasterizer clips
+    /// nothing); when the base may cross the near plane or the screen's edges (a floor running
+    /// behind the camera), the largest |x|, |y| or |z| of its eye-space vertices, and the offset
+    /// gains the clipping term (as ZshiftScene.base_reach; perspective matrices only).
+    pub base_reach: f64,
+    /// The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+    /// `subpixel_bits`. When not NULL it supplies every rasterizer fact, its snapping included,
+    /// and `subpixel_bits` is ignored (but must still lie in -1..=32).
+    pub profile: *const super::probe::ZshiftProfile,
 }
 
 fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
@@ -137,8 +146,15 @@ fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
         ("decal_near", d.decal_near),
         ("decal_far", d.decal_far),
         ("slope", d.slope),
+        ("base_reach", d.base_reach),
     ] {
         finite(x, "a ZshiftDecal field is NaN or infinite").map_err(|e| e.with_value(name, x))?;
+    }
+    if d.base_reach < 0.0 {
+        return Err(
+            domain("ZshiftDecal.base_reach must be >= 0 (0: a base inside the frustum)")
+                .with_value("base_reach", d.base_reach),
+        );
     }
     Ok(Decal {
         viewport: [d.viewport_width, d.viewport_height],
@@ -147,6 +163,18 @@ fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
         slope: d.slope,
         exact_depth: d.exact_depth != 0,
         snapping,
+        base: if d.base_reach == 0.0 {
+            crate::recommend::Base::InsideFrustum
+        } else {
+            crate::recommend::Base::Clipped {
+                reach: d.base_reach,
+            }
+        },
+        profile: if d.profile.is_null() {
+            None
+        } else {
+            Some(super::probe::profile_or_worst(d.profile, snapping)?)
+        },
     })
 }
 
@@ -200,7 +228,8 @@ fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
 /// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
 /// 2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
 /// -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
-/// exact_depth with a nonzero slope; ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+/// exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
+/// (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
 /// zshift_last_error() names the field. `out` is untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_decal_matrix(

@@ -37,7 +37,8 @@ pub struct ZshiftProfile {
     pub subpixel_bits: i32,
     /// glPolygonOffset's minimum resolvable difference r per format, in units of the format's
     /// quantum: 1/(2^m - 1) for D16/D24/D32, 2^(e - 23) for D32F (e the exponent of the
-    /// primitive's largest depth). Finite and > 0. The worst case is 4.
+    /// primitive's largest depth). Finite and > 0. The worst case is 1 (the smallest r known, so
+    /// the recommendation's polygon_offset_units suffice on every implementation).
     pub resolvable: [f64; 4],
     /// The largest |stored - exact| window depth of a pixel of a sloped plane, per format, in
     /// units of the format's quantum (for D32F, of 2^-24), under the [-1, 1] mapping; NAN where
@@ -61,6 +62,22 @@ pub struct ZshiftProfile {
     pub near_clip: i32,
     /// Seconds `zshift_probe` took (0 for the worst case). Informational.
     pub probe_seconds: f64,
+    /// The window-depth offset, per format, in quanta (D32F: in units of 2^-24), that a decal
+    /// facing the camera needs to pass GL_LESS over its base when
+    /// every corner of both has the same float z and the matrices differ only in element 10:
+    /// the largest over 256 depths under [-1, 1]. Used for such scenes (exact_depth, strict
+    /// test, [-1, 1]) in place of the bound q + 2T. NAN where not measured (the worst case).
+    /// NAN or finite >= 0.
+    pub facing_quanta: [f64; 4],
+    /// facing_quanta under [0, 1] depth (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), standard,
+    /// not reversed), used for such scenes under ZSHIFT_CLIP_ZERO_TO_ONE. NAN where not measured.
+    /// NAN or finite >= 0.
+    pub facing_quanta_zero_to_one: [f64; 4],
+    /// Under reversed Z on D32F (glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), GL_GREATER): the
+    /// relative epsilon (element 14 scaled by 1 + epsilon), in units of 2^-24, that a facing
+    /// decal sharing its base's float z needs; used for such scenes under
+    /// ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
+    pub facing_reversed: f64,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -86,6 +103,9 @@ impl From<RasterizerProfile> for ZshiftProfile {
             plane_error: p.plane_error,
             plane_error_reversed: p.plane_error_reversed,
             error_ulps: p.error_ulps,
+            facing_quanta: p.facing_quanta,
+            facing_quanta_zero_to_one: p.facing_quanta_zero_to_one,
+            facing_reversed: p.facing_reversed,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -124,15 +144,21 @@ impl ZshiftProfile {
                 "a ZshiftProfile.resolvable entry is not finite and > 0",
             ));
         }
-        let errors = [self.plane_error_reversed, self.error_ulps];
+        let errors = [
+            self.plane_error_reversed,
+            self.error_ulps,
+            self.facing_reversed,
+        ];
         if self
             .plane_error
             .iter()
             .chain(&errors)
+            .chain(&self.facing_quanta)
+            .chain(&self.facing_quanta_zero_to_one)
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed or error_ulps is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -143,6 +169,9 @@ impl ZshiftProfile {
             plane_error: self.plane_error,
             plane_error_reversed: self.plane_error_reversed,
             error_ulps: self.error_ulps,
+            facing_quanta: self.facing_quanta,
+            facing_quanta_zero_to_one: self.facing_quanta_zero_to_one,
+            facing_reversed: self.facing_reversed,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {
@@ -155,7 +184,7 @@ impl ZshiftProfile {
 }
 
 /// Writes the worst-case profile to `out`: the recommendation's default assumptions (8
-/// sub-pixel bits, r = 4 quanta, per-pixel errors as the model bounds them, near-plane clipping
+/// sub-pixel bits, r = 1 quantum, per-pixel errors as the model bounds them, near-plane clipping
 /// in float), `measured` = 0.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `out` is NULL.
@@ -216,4 +245,22 @@ pub unsafe extern "C" fn zshift_probe(
 fn write(out: *mut ZshiftProfile, value: ZshiftProfile) {
     // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftProfile.
     unsafe { out.write_unaligned(value) }
+}
+
+/// The profile a recommendation entry point uses: the caller's `ZshiftProfile` when `profile`
+/// is not NULL (validated; it supplies every rasterizer fact, snapping included), else the
+/// worst case with `snapping` (from the scene's own `subpixel_bits`).
+pub(super) fn profile_or_worst(
+    profile: *const ZshiftProfile,
+    snapping: Snapping,
+) -> Result<RasterizerProfile> {
+    if profile.is_null() {
+        return Ok(RasterizerProfile {
+            snapping,
+            ..RasterizerProfile::worst_case()
+        });
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftProfile; read_unaligned needs no
+    // alignment and the struct is plain data.
+    unsafe { profile.read_unaligned() }.to_profile()
 }

@@ -53,7 +53,8 @@ pub struct ZshiftScene {
     /// Nonzero when every corner of base and decal has the same float eye-space z (a plane
     /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
     pub exact_depth: u32,
-    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1).
+    /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1). Used only when
+    /// `profile` is NULL (a profile carries its own, measured snapping).
     pub subpixel_bits: i32,
     /// The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
     /// reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL. Value 0 (a zeroed
@@ -67,10 +68,13 @@ pub struct ZshiftScene {
     /// offset gains the clipping term C (README, "Verified on a rasterizer": it is large; cut
     /// the base instead where you can).
     pub base_reach: f64,
-    /// The rasterizer's measured per-pixel plane error for this depth format, from the probe:
-    /// in quanta (1/(2^m - 1)) for the UNORM formats, in units of 2^-24 for
-    /// GL_DEPTH_COMPONENT32F. 0: not measured, the worst-case bounds apply.
-    pub plane_error: f64,
+    /// The rasterizer's profile, from `zshift_probe` (call it once per context and pass the
+    /// same record to every recommendation), or NULL: the worst case
+    /// (`zshift_profile_worst_case`) with this scene's `subpixel_bits`. When not NULL the
+    /// profile supplies every rasterizer fact, its snapping included, and `subpixel_bits` is
+    /// ignored; it is validated as `ZshiftProfile` documents (a zero-filled one is refused).
+    /// A zeroed ZshiftScene has NULL here.
+    pub profile: *const super::probe::ZshiftProfile,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -85,7 +89,10 @@ pub struct ZshiftRecommendation {
     /// The NDC depth offset -epsilon * m10 (= 2 * window_offset).
     pub ndc_offset: f64,
     /// The window-depth offset: quantum + 2 * (plane + snap) + clip under GL_LESS/GL_GREATER,
-    /// 2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL.
+    /// 2 * (plane + snap) + clip under GL_LEQUAL/GL_GEQUAL; for a facing plane with exact_depth,
+    /// 0 under GL_LEQUAL/GL_GEQUAL and, with a probed profile under GL_LESS, the profile's
+    /// facing_quanta ([-1, 1]) or facing_quanta_zero_to_one ([0, 1]) times the quantum (D32F:
+    /// 2^-24).
     pub window_offset: f64,
     /// The eye-space shift toward the camera at pz = -decal_far giving the same epsilon
     /// (eq. 4.1.7), for `zshift_load_offset_matrix(l, r, b, t, n, f, delta_at_far, -decal_far, m)`.
@@ -96,7 +103,9 @@ pub struct ZshiftRecommendation {
     /// The slope factor of the equivalent glPolygonOffset(-factor, -units): 2^(1 - subpixel bits),
     /// 0 when unsnapped.
     pub polygon_offset_factor: f64,
-    /// The constant units of the equivalent glPolygonOffset(-factor, -units), with r = quantum.
+    /// The constant units of the equivalent glPolygonOffset(-factor, -units): the constant part
+    /// of the offset over r quanta, r the profile's `resolvable` for the format (1 without a
+    /// profile: the smallest r known, so the units suffice on every implementation).
     pub polygon_offset_units: f64,
     /// Term q: the smallest difference the stored format keeps (window depth).
     pub quantum: f64,
@@ -108,8 +117,7 @@ pub struct ZshiftRecommendation {
     pub interpolation: f64,
     /// Term S: sub-pixel snapping of a sloped plane before depth setup.
     pub snap: f64,
-    /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation,
-    /// or the measured plane_error where that is smaller.
+    /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation.
     pub plane: f64,
     /// Term C: the rasterizer's float clipping of a base that reaches outside the frustum
     /// (0 when base_reach is 0).
@@ -168,7 +176,7 @@ fn checked_record(
 }
 
 fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
-    use crate::recommend::{Base, DepthTest, RasterizerProfile, Scene, Snapping};
+    use crate::recommend::{Base, DepthTest, Scene, Snapping};
     let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
         ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
@@ -191,21 +199,7 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
             reach: s.base_reach,
         }
     };
-    let mut profile = RasterizerProfile {
-        snapping,
-        ..RasterizerProfile::worst_case()
-    };
-    if s.plane_error != 0.0 {
-        crate::domain::finite(s.plane_error, "plane_error is NaN or infinite")?;
-        if s.plane_error < 0.0 {
-            return Err(
-                crate::domain::domain("plane_error must be >= 0 (0: not measured)")
-                    .with_value("plane_error", s.plane_error),
-            );
-        }
-        profile.plane_error[crate::recommend::profile_index(format)] = s.plane_error;
-        profile.measured = true;
-    }
+    let profile = super::probe::profile_or_worst(s.profile, snapping)?;
     Ok(Scene {
         frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
         viewport: [s.viewport_width, s.viewport_height],
@@ -229,8 +223,10 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `scene` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE for NaN
 /// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
 /// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
-/// negative slope, exact_depth with a nonzero slope, or subpixel_bits < -1 or > 32;
-/// ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is untouched on error.
+/// negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
+/// base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
+/// `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
+/// `*out` is untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_recommend(
     scene: *const ZshiftScene,

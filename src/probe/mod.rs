@@ -1,6 +1,6 @@
 //! Measures a [`RasterizerProfile`] in the caller's own OpenGL context.
 //!
-//! [`probe`] draws about 250 triangles into a framebuffer of its own (512×512, in 64×64 tiles,
+//! [`probe`] draws a few thousand triangles into a framebuffer of its own (512×512, in 64×64 tiles,
 //! one depth format at a time), reads the stored depth back with `glReadPixels` and compares it,
 //! pixel by pixel, with the exact depth of the plane each triangle lies in, computed in f64 from
 //! the very f32 values the GPU was given. It reaches GL only through the function loader the
@@ -43,6 +43,13 @@
 //!   by `2⁻²⁴·(1 + M)`, `M` the magnitude of the terms of the plane evaluated from the window
 //!   origin (see the field): how the error of a steep plane grows with its distance from the
 //!   origin, for viewports larger than the tiles.
+//! * **`facing_quanta`** (per format, and `facing_quanta_zero_to_one` under
+//!   `glClipControl(GL_ZERO_TO_ONE)`): facing quads at 256 depths (four per tile), drawn with the
+//!   plain `glFrustum` matrix and again with element 10 moved toward 0 by `k` f32 steps; for each
+//!   depth the smallest `k` whose stored depth is below the base's, as a window offset in quanta
+//!   (D32F: 2⁻²⁴); the largest over the depths (each its own phase between two stored values).
+//!   What a shared-z facing decal needs under `GL_LESS` (not measured on D16). Under reversed Z
+//!   (D32F only) the same with element 14 moved away from 0: `facing_reversed`, a relative ε.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -76,7 +83,7 @@
 //! required; D32 is optional and keeps the worst case when refused), or a GL error during a step.
 //!
 //! # Time
-//! 40–60 ms on Mesa llvmpipe on 2 cores (up to 120 ms while other builds load them;
+//! 70–100 ms on Mesa llvmpipe on 2 cores (up to 140 ms while other builds load them;
 //! `examples/probe.rs` prints it), most of it llvmpipe compiling a shader variant per depth
 //! format and polygon-offset state; the profile records its own run time in
 //! [`RasterizerProfile::probe_seconds`].
@@ -274,6 +281,23 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         profile.resolvable[slot] = bands.iter().copied().fold(0.0, f64::max);
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
+        }
+        if let Some(q) = facing_quanta(gl, o, format, Facing::NegOneToOne)? {
+            profile.facing_quanta[slot] = q;
+        }
+        if let Some(clip_control) = gl.ClipControl {
+            clip_control(LOWER_LEFT, ZERO_TO_ONE);
+            let zero_to_one = facing_quanta(gl, o, format, Facing::ZeroToOne);
+            let reversed =
+                zero_to_one.and_then(|z| Ok((z, facing_quanta(gl, o, format, Facing::Reversed)?)));
+            clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
+            let (zero_to_one, reversed) = reversed?;
+            if let Some(q) = zero_to_one {
+                profile.facing_quanta_zero_to_one[slot] = q;
+            }
+            if let (Some(q), Format::Float) = (reversed, format) {
+                profile.facing_reversed = q;
+            }
         }
         let errors = plane_error(gl, o, format, false)?;
         profile.plane_error[slot] = errors.worst;
@@ -884,6 +908,176 @@ unsafe fn reversed_plane_error(gl: &Gl, o: &Objects) -> Result<Option<PlaneError
     let result = plane_error(gl, o, Format::Float, true);
     clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
     result.map(Some)
+}
+
+// ---------------------------------------------------------------------------------------------
+// What a facing decal needs: the element-10 offset that always wins a strict depth test
+// ---------------------------------------------------------------------------------------------
+
+/// The depth conventions [`facing_quanta`] measures.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Facing {
+    NegOneToOne,
+    ZeroToOne,
+    Reversed,
+}
+
+/// The view's matrix (`glFrustum`'s, or its reversed form), or under [`Facing::ZeroToOne`] its
+/// `[0, 1]` form (`glClipControl`
+/// `GL_ZERO_TO_ONE`, standard depth): `m10 = −f/(f − n)`, `m14 = −fn/(f − n)`.
+fn facing_matrix(view: &View, mode: Facing) -> [f32; 16] {
+    let mut m = view.matrix();
+    if mode == Facing::ZeroToOne {
+        let (n, f) = (view.n, view.f);
+        m[10] = (-f / (f - n)) as f32;
+        m[14] = (-f * n / (f - n)) as f32;
+    }
+    m
+}
+
+/// The most f32 steps of element 10 the search tries (a D24 quantum is one or two).
+const FACING_MAX_STEPS: u32 = 16;
+
+/// The window-depth offset, in quanta of `format`, that a decal facing the camera needs to pass
+/// `GL_LESS` over its base when both share one f32 z and the decal's element 10 moves toward 0
+/// by `k` f32 steps (the rest of the matrix unchanged, as `zshift_recommend_matrix` draws it):
+/// for each of 256 depths (window depth 0.02 to 0.9995, two frusta, a tile quadrant each), the smallest
+/// `k` whose stored depth is below the base's, its exact window offset `k·ulp(m10)/2` over the
+/// quantum (D32F: over 2⁻²⁴); the largest over the depths. Each depth has its own phase between two stored
+/// values, so the largest is what the worst phase needs. `None` (not measured) on D16, whose
+/// quantum is hundreds of steps (its `q + 2T` is within a few percent of `q` anyway), or if some
+/// depth needs more than [`FACING_MAX_STEPS`].
+/// With [`Facing::ZeroToOne`] the same under `glClipControl(GL_ZERO_TO_ONE)` (set by the caller) with
+/// the `[0, 1]` matrix (`m10 = −f/(f − n)`, `m14 = −fn/(f − n)`), where a step of element 10
+/// moves window depth by a whole `ulp(m10)`.
+///
+/// With [`Facing::Reversed`] (D32F only): reversed depth under `GL_ZERO_TO_ONE`, element 14
+/// moved away from 0 by `k` steps (the relative offset of `zshift_recommend_clip`), `GL_GREATER`,
+/// 256 window depths from 10⁻⁵ to 0.9 spaced by ratio; the figure is the relative ε
+/// `k·ulp(m14)/m14` in units of 2⁻²⁴.
+unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format, mode: Facing) -> Result<Option<f64>> {
+    let reversed = mode == Facing::Reversed;
+    if format == Format::Unorm(16) || (reversed && format != Format::Float) {
+        return Ok(None);
+    }
+    let views = [
+        View {
+            e: 0.5,
+            n: 0.1,
+            f: 1e3,
+            reversed,
+            squash: 1.0,
+        },
+        View {
+            e: 0.6,
+            n: 1.0,
+            f: 1e6,
+            reversed,
+            squash: 0.5625,
+        },
+    ];
+    // Four planes per tile, one per quadrant (the tile's matrix is its view's): 128 depths per
+    // view for the cost of 32 tiles.
+    let per_view = TILES * TILES / 2;
+    let planes: Vec<(View, f64)> = views
+        .iter()
+        .flat_map(|&v| {
+            let count = 4 * per_view;
+            (0..count).map(move |i| {
+                let x = i as f64 / (count - 1) as f64;
+                let w = if reversed {
+                    1e-5 * (0.9f64 / 1e-5).powf(x)
+                } else {
+                    0.02 + (0.9995 - 0.02) * x
+                };
+                (v, w)
+            })
+        })
+        .collect();
+    const QUADRANTS: [(f64, f64); 4] = [(-0.5, -0.5), (0.5, -0.5), (-0.5, 0.5), (0.5, 0.5)];
+    let scenes = |k: u32| -> Vec<Scene> {
+        planes
+            .chunks(4)
+            .map(|four| {
+                let view = four[0].0;
+                let ey = view.e * view.squash;
+                let mut triangles = Vec::new();
+                for (&(_, w), (cx, cy)) in four.iter().zip(QUADRANTS) {
+                    let d = view.distance_at_depth(w);
+                    let at = |xn: f64, yn: f64| [(cx + xn) * view.e * d, (cy + yn) * ey * d, -d];
+                    let (a, b, c, e) = (
+                        at(-0.45, -0.45),
+                        at(0.45, -0.45),
+                        at(0.45, 0.45),
+                        at(-0.45, 0.45),
+                    );
+                    triangles.push(View::triangle([a, b, c]));
+                    triangles.push(View::triangle([a, c, e]));
+                }
+                let mut matrix = facing_matrix(&view, mode);
+                if reversed {
+                    matrix[14] = f32::from_bits(matrix[14].to_bits() + k); // m14 > 0: away from 0
+                } else {
+                    matrix[10] = f32::from_bits(matrix[10].to_bits() - k); // m10 < 0: toward 0
+                }
+                Scene { matrix, triangles }
+            })
+            .collect()
+    };
+    // The stored depth at each quadrant's centre, plane by plane.
+    let read = |tiles: Vec<Vec<f64>>| -> Vec<f64> {
+        tiles
+            .iter()
+            .flat_map(|t| {
+                QUADRANTS.map(|(cx, cy)| {
+                    let (px, py) = (
+                        (cx + 1.0) * 0.5 * SIZE as f64,
+                        (cy + 1.0) * 0.5 * SIZE as f64,
+                    );
+                    t[py as usize * SIZE + px as usize]
+                })
+            })
+            .collect()
+    };
+    let base = read(draw_tiles(gl, o, format, &scenes(0))?);
+    let mut needed = vec![None; planes.len()];
+    for k in 1..=FACING_MAX_STEPS {
+        let decal = read(draw_tiles(gl, o, format, &scenes(k))?);
+        for (i, d) in decal.iter().enumerate() {
+            let wins = if reversed { *d > base[i] } else { *d < base[i] };
+            if needed[i].is_none() && wins {
+                needed[i] = Some(k);
+            }
+        }
+        if needed.iter().all(Option::is_some) {
+            break;
+        }
+    }
+    let mut worst = 0.0f64;
+    for (&(view, w), k) in planes.iter().zip(&needed) {
+        let Some(k) = k else { return Ok(None) };
+        let m = facing_matrix(&view, mode);
+        if reversed {
+            let m14 = f64::from(m[14]);
+            let step = f64::from(f32::from_bits(m[14].to_bits() + 1)) - m14;
+            worst = worst.max(f64::from(*k) * step / m14 / F32_UNIT_ROUNDOFF);
+            continue;
+        }
+        let step = f64::from(m[10]).abs() - f64::from(f32::from_bits(m[10].to_bits() - 1)).abs();
+        // Window depth moves by the NDC change, halved under [−1, 1].
+        let ulp = if mode == Facing::ZeroToOne {
+            2.0 * step
+        } else {
+            step
+        };
+        // D32F in units of 2⁻²⁴ (the offset is a constant window depth), as `plane_error`.
+        let unit = match format {
+            Format::Float => F32_UNIT_ROUNDOFF,
+            _ => format.quantum(w),
+        };
+        worst = worst.max(f64::from(*k) * ulp / 2.0 / unit);
+    }
+    Ok(Some(worst))
 }
 
 // ---------------------------------------------------------------------------------------------

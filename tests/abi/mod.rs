@@ -76,6 +76,11 @@ const VALID_MATRIX: Matrix = Matrix([
     0.0,
 ]);
 
+// SAFETY: the only pointers in the inputs are the scenes' and decals' `profile` fields, NULL
+// in every input (no shared data behind them), so sharing the inputs between threads is sound.
+unsafe impl Send for Inputs {}
+unsafe impl Sync for Inputs {}
+
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
     viewport_width: 1920,
     viewport_height: 1080,
@@ -85,6 +90,8 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
     decal_far: 51.0,
     slope: 0.5,
     exact_depth: 0,
+    base_reach: 0.0,
+    profile: std::ptr::null(),
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
@@ -104,7 +111,7 @@ const VALID_SCENE: ZshiftScene = ZshiftScene {
     subpixel_bits: 8,
     depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
     base_reach: 0.0,
-    plane_error: 0.0,
+    profile: std::ptr::null(),
 };
 
 impl Inputs {
@@ -748,7 +755,7 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         subpixel_bits: src.below(14) as i32 - 1,
         depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
-        plane_error: 0.0,
+        profile: std::ptr::null(),
     };
     i
 }

@@ -582,6 +582,18 @@ static void test_recommend(void) {
   t = s;
   t.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
   unsnapped = recommend_ok(&t, "unsnapped");
+  {
+    /* The same through a profile: ZshiftScene.profile wins over subpixel_bits (still 8 in s). */
+    ZshiftProfile profile;
+    ZshiftRecommendation profiled;
+    CHECK_STATUS(zshift_profile_worst_case(&profile), ZSHIFT_OK);
+    profile.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+    t = s;
+    t.profile = &profile;
+    profiled = recommend_ok(&t, "unsnapped through a profile");
+    CHECK(profiled.window_offset == unsnapped.window_offset && profiled.snap == 0,
+          "profile: offset %.17g, unsnapped scene %.17g", profiled.window_offset, unsnapped.window_offset);
+  }
   check_recommendation_consistent(&t, &unsnapped, "unsnapped");
   CHECK(unsnapped.snap == 0 && unsnapped.polygon_offset_factor == 0 && unsnapped.window_offset < snapped.window_offset,
         "unsnapped: snap %g factor %g offset %g (snapped %g)", unsnapped.snap, unsnapped.polygon_offset_factor,
@@ -879,6 +891,36 @@ static void test_front_door(void) {
         rec.window_offset);
   CHECK_STATUS(zshift_decal_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_OK);
   CHECK(only_element_changed(ortho, out, 14), "zshift_decal_matrix (orthographic): more than element 14");
+  {
+    /* A profile (here the worst case, told it is unsnapped with r = 2) supplies snapping and r;
+       subpixel_bits is then ignored. base_reach adds the clipping term; a zeroed profile is
+       refused. */
+    ZshiftProfile profile, zeroed;
+    ZshiftRecommendation profiled, clipped;
+    CHECK_STATUS(zshift_profile_worst_case(&profile), ZSHIFT_OK);
+    profile.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+    for (i = 0; i < 4; i++) profile.resolvable[i] = 2.0;
+    decal.profile = &profile;
+    CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &profiled), ZSHIFT_OK);
+    CHECK(profiled.snap == 0 && rec.snap > 0 && profiled.window_offset < rec.window_offset,
+          "a profile's snapping wins over subpixel_bits: snap %g (without %g)", profiled.snap, rec.snap);
+    CHECK(relative_error(profiled.polygon_offset_units, profiled.window_offset / (2 * profiled.quantum)) < 1e-12,
+          "units %g are not the offset over r = 2 quanta", profiled.polygon_offset_units);
+    decal.base_reach = 1000.0;
+    CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &clipped), ZSHIFT_OK);
+    CHECK(clipped.clip > 0 && clipped.window_offset > profiled.window_offset, "base_reach: clip term %g",
+          clipped.clip);
+    decal.base_reach = -1.0;
+    CHECK_STATUS(zshift_decal_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+    expect_detail("negative base_reach", "base_reach");
+    decal.base_reach = 1000.0;
+    memset(&zeroed, 0, sizeof zeroed);
+    decal.profile = &zeroed;
+    CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+    expect_detail("zero-filled profile", "near_clip");
+    decal.profile = NULL;
+    decal.base_reach = 0.0;
+  }
   /* Refusals, each with its detail; outputs untouched. */
   memset(out, PATTERN, sizeof out);
   CHECK_STATUS(zshift_offset_matrix(rev, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0.25, 37.0, out), ZSHIFT_ERR_DOMAIN);

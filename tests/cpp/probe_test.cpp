@@ -57,7 +57,23 @@ int main() {
   expect(p.near_clip == static_cast<std::int32_t>(zshift::NearClip::clipped_f32), "llvmpipe clips in float");
 
   zshift::Profile worst = zshift::profile_worst_case();
-  expect(worst.measured == 0 && worst.subpixel_bits == 8 && worst.resolvable[0] == 4.0, "worst case");
+  expect(worst.measured == 0 && worst.subpixel_bits == 8 && worst.resolvable[0] == 1.0, "worst case");
+
+  // The probed profile in the recommendation: unsnapped (no snap term, though the scene says 8
+  // bits), and the polygon-offset units counted in llvmpipe's r = 2 quanta.
+  zshift::Scene scene = zshift::make_scene(-0.1, 0.1, -0.075, 0.075, 0.1, 1000, 256, 192, 0x81A6, 40, 60, 1.0,
+                                           false, 8);
+  zshift::Recommendation plain = zshift::recommend(scene), probed = zshift::recommend(scene, p);
+  expect(plain.snap > 0 && probed.snap == 0 && probed.window_offset < plain.window_offset,
+         "a probed profile's snapping wins over subpixel_bits");
+  expect(std::fabs(probed.polygon_offset_units * 2 * probed.quantum / probed.window_offset - 1) < 1e-12,
+         "units in r = 2 quanta");
+  zshift::Decal decal = zshift::make_decal(256, 192, zshift::Format::unorm24, 8, 40, 60, 1.0);
+  decal.base_reach = 1000;
+  float m[16] = {};
+  m[0] = 1.0f, m[5] = 4.0f / 3, m[10] = -1.0002f, m[11] = -1, m[14] = -0.20002f;
+  zshift::Recommendation clipped = zshift::recommend_for_matrix(m, zshift::Clip::neg_one_to_one, decal, p);
+  expect(clipped.snap == 0 && clipped.clip > 0, "the front door takes the profile and the base's reach");
 
   bool threw = false;
   try {

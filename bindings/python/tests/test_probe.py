@@ -61,8 +61,36 @@ class ProbeTest(unittest.TestCase):
         self.assertAlmostEqual(p.resolvable[1], 2.0, delta=0.01)
         self.assertAlmostEqual(p.resolvable[3], 1.0, delta=0.01)
         self.assertLess(p.plane_error[0], 1.0)
+        # A facing decal with shared z needs a few element-10 steps on D24 (not measured on D16).
+        self.assertTrue(math.isnan(p.facing_quanta[0]))
+        self.assertTrue(1.0 <= p.facing_quanta[1] <= 4.0, p.facing_quanta)
         self.assertEqual(p.near_clip, zshift.NEAR_CLIP_CLIPPED_F32)
         self.assertGreater(p.probe_seconds, 0.0)
+
+    def test_the_recommendation_takes_the_probed_profile(self):
+        p = zshift.probe(self.get_proc_address)
+        args = dict(frustum=(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0), viewport=(256, 192),
+                    depth_format=0x81A6, decal_depths=(40.0, 60.0), slope=1.0, subpixel_bits=8)
+        plain = zshift.recommend(**args)
+        probed = zshift.recommend(profile=p, **args)
+        # The profile's snapping (unsnapped) wins over subpixel_bits = 8; units count r = 2 quanta.
+        self.assertGreater(plain.snap, 0.0)
+        self.assertEqual(probed.snap, 0.0)
+        self.assertLess(probed.window_offset, plain.window_offset)
+        self.assertAlmostEqual(probed.polygon_offset_units * 2 * probed.quantum / probed.window_offset, 1.0, places=12)
+        m = zshift.frustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0)
+        front = dict(viewport=(256, 192), depth_format=zshift.Format.UNORM24, decal_depths=(40.0, 60.0), slope=1.0,
+                     subpixel_bits=8)
+        inside = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, profile=p, **front)
+        clipped = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, profile=p, base_reach=1000.0, **front)
+        self.assertEqual((inside.snap, inside.clip), (0.0, 0.0))
+        self.assertGreater(clipped.clip, 0.0)
+        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4, (0.0,) * 4, 0.0]))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.recommend(profile=zeroed, **args)
+        self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
+        with self.assertRaises(TypeError):
+            zshift.recommend(profile=(1, 2), **args)
 
     def test_a_missing_entry_point_is_a_gl_error(self):
         def without_read_pixels(name):
@@ -84,8 +112,9 @@ class ProbeTest(unittest.TestCase):
     def test_worst_case(self):
         p = zshift.profile_worst_case()
         self.assertEqual((p.measured, p.subpixel_bits, p.near_clip), (0, 8, zshift.NEAR_CLIP_CLIPPED_F32))
-        self.assertEqual(p.resolvable, (4.0, 4.0, 4.0, 4.0))
+        self.assertEqual(p.resolvable, (1.0, 1.0, 1.0, 1.0))
         self.assertTrue(all(math.isnan(e) for e in p.plane_error))
+        self.assertTrue(all(math.isnan(e) for e in p.facing_quanta))
 
 
 if __name__ == "__main__":

@@ -229,7 +229,8 @@ def depth_resolution(n, f, bits, d):
     return _scalar(lambda out: _lib().zshift_depth_resolution(n, f, _bits(bits), d, out))
 
 
-def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits,
+           profile=None, base_reach=0.0):
     l, r, b, t, n, f = frustum
     width, height = viewport
     near, far = decal_depths
@@ -240,12 +241,30 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
         # ctypes would wrap out-of-range integers silently.
         if not isinstance(value, int) or not low <= value < high:
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
-    return _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
-                                1 if exact_depth else 0, subpixel_bits)
+    scene = _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
+                                 1 if exact_depth else 0, subpixel_bits)
+    scene.base_reach = base_reach
+    _attach_profile(scene, profile)
+    return scene
+
+
+def _attach_profile(record, profile):
+    """Points ``record.profile`` at a C copy of ``profile`` (a :data:`Profile` from :func:`probe`
+    or :func:`profile_worst_case`), kept alive by the record; ``None`` leaves it NULL."""
+    if profile is None:
+        return
+    if not isinstance(profile, Profile):
+        raise TypeError(f"profile must be a zshift.Profile (from zshift.probe), not {type(profile).__name__}")
+    c_profile = _ZshiftProfile()
+    for name, ctype in _ZshiftProfile._fields_:
+        value = getattr(profile, name)
+        setattr(c_profile, name, ctype(*value) if isinstance(value, tuple) else value)
+    record._profile_keepalive = c_profile
+    record.profile = ctypes.cast(ctypes.pointer(c_profile), ctypes.c_void_p)
 
 
 def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-              subpixel_bits=SUBPIXEL_UNSNAPPED):
+              subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
     between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
     interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
@@ -258,21 +277,31 @@ def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_de
     :data:`SUBPIXEL_UNSNAPPED`. Use ``delta_at_far`` with :func:`load_offset_matrix` at
     ``pz = -farthest``, or :func:`recommend_matrix`.
 
+    ``profile`` is the rasterizer's :data:`Profile` from :func:`probe` (call it once per context
+    and pass it to every recommendation); ``None`` is the worst case with ``subpixel_bits``. A
+    profile supplies every rasterizer fact, its snapping included, so ``subpixel_bits`` is then
+    ignored. ``base_reach`` is 0 for a base inside the frustum, else the largest ``|x|``,
+    ``|y|``, ``|z|`` of its eye-space vertices (a floor running behind the camera, which the
+    rasterizer clips: the offset gains the clipping term). The other recommendation functions
+    take both keywords alike.
+
     Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad frustum, zero viewport, unknown
     format, decal depths outside [n, f] or decreasing, negative slope, ``exact_depth`` with a
     slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
     """
-    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
+                   base_reach)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend(ctypes.byref(scene), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                     subpixel_bits=SUBPIXEL_UNSNAPPED):
+                     subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
-    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
+                   base_reach)
     return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))
 
 
@@ -464,7 +493,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
 
 
 def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                   subpixel_bits=SUBPIXEL_UNSNAPPED):
+                   subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
     :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
     :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
@@ -475,18 +504,20 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
 
     Raises :class:`ZshiftError`: as :func:`recommend`; ``DOMAIN`` for an unknown clip.
     """
-    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
+                   base_reach)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip, Clip), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                          subpixel_bits=SUBPIXEL_UNSNAPPED):
+                          subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
-    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
+                   base_reach)
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
 
 
@@ -501,6 +532,8 @@ class _Decal(ctypes.Structure):
         ("format", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
         ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
         ("exact_depth", ctypes.c_uint32),
+        ("base_reach", ctypes.c_double),
+        ("profile", ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
     ]
 
 
@@ -542,7 +575,7 @@ def _engine_matrix(m):
     return _FLOAT16(*values)
 
 
-def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits):
+def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile=None, base_reach=0.0):
     width, height = viewport
     near, far = decal_depths
     fmt = _enum(depth_format, Format)
@@ -552,7 +585,10 @@ def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bi
     ):
         if not isinstance(value, int) or not low <= value < high:
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
-    return _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0)
+    decal = _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0,
+                   base_reach)
+    _attach_profile(decal, profile)
+    return decal
 
 
 def offset_matrix(m, clip, delta, d):
@@ -579,22 +615,22 @@ def offset_matrix_ndc(m, clip, ndc):
 
 
 def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                 subpixel_bits=SUBPIXEL_UNSNAPPED):
+                 subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """The decal's matrix for the engine's own projection ``m``: the recommended offset
     (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
     ``m``'s own offset element, every other element bit-identical. The engine never restates its
     frustum. Arguments as :func:`recommend`, with ``depth_format`` a :class:`Format` (or its GL
     enum). Raises :class:`ZshiftError` naming the element or field."""
     mat = _engine_matrix(m)
-    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach)
     return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), out))
 
 
 def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                         subpixel_bits=SUBPIXEL_UNSNAPPED):
+                         subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
     """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
     mat = _engine_matrix(m)
-    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach)
     out = _library.ZshiftRecommendation()
     _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
@@ -640,6 +676,9 @@ class _ZshiftProfile(ctypes.Structure):
         ("error_ulps", ctypes.c_double),
         ("near_clip", ctypes.c_int32),
         ("probe_seconds", ctypes.c_double),
+        ("facing_quanta", ctypes.c_double * 4),
+        ("facing_quanta_zero_to_one", ctypes.c_double * 4),
+        ("facing_reversed", ctypes.c_double),
     ]
 
 

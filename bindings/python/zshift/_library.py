@@ -100,7 +100,9 @@ class ZshiftScene(ctypes.Structure):
         ("depth_format", ctypes.c_uint32),
         ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
         ("exact_depth", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
-        ("depth_func", ctypes.c_uint32), ("base_reach", ctypes.c_double), ("plane_error", ctypes.c_double),
+        ("depth_func", ctypes.c_uint32), ("base_reach", ctypes.c_double),
+        # const ZshiftProfile *: NULL for the worst case (zshift.profile_worst_case()).
+        ("profile", ctypes.c_void_p),
     ]
 
 

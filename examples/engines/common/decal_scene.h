@@ -167,11 +167,32 @@ inline ZshiftFormat unorm_format(int bits) {
   return bits == 16 ? ZSHIFT_FORMAT_UNORM16 : bits == 24 ? ZSHIFT_FORMAT_UNORM24 : ZSHIFT_FORMAT_UNORM32;
 }
 
+// What the engine knows about its ground, for zshift: 0 when the rasterizer clips nothing of it,
+// else the largest |x|, |y| or |z| of its eye-space vertices (`view` column-major, world
+// z mirrored when z_sign < 0). The single ground quad runs behind the camera and is clipped at
+// the near plane in float, which zshift must be told (ZshiftDecal::base_reach); the tiled ground
+// is left at 0: its tiles are short, and the README's engine section reports what it does.
+inline double ground_reach(const double view[16], double z_sign, const View &v) {
+  if (v.ground_tile != 0.0) return 0.0;
+  float c[4][3];
+  corners(kGround, z_sign, c);
+  double reach = 0.0;
+  for (int i = 0; i < 4; i++) {
+    for (int row = 0; row < 3; row++) {
+      double e = view[row] * c[i][0] + view[4 + row] * c[i][1] + view[8 + row] * c[i][2] + view[12 + row];
+      reach = std::fmax(reach, std::fabs(e));
+    }
+  }
+  return reach;
+}
+
 // [quickstart-engines-decal]
 // What the engine knows about its decal, for zshift: the viewport, the depth buffer's format and
-// the rasterizer's glGetIntegerv(GL_SUBPIXEL_BITS) (queried once), and the decal's nearest and
-// farthest eye distance and plane tilt (decal_extent, from the view matrix).
-inline ZshiftDecal describe_decal(ZshiftFormat format, int subpixel_bits, const DecalExtent &e) {
+// the rasterizer's glGetIntegerv(GL_SUBPIXEL_BITS) (queried once), the decal's nearest and
+// farthest eye distance and plane tilt (decal_extent, from the view matrix), and the reach of a
+// base the rasterizer clips (ground_reach; 0 for one inside the frustum).
+inline ZshiftDecal describe_decal(ZshiftFormat format, int subpixel_bits, const DecalExtent &e,
+                                  double base_reach = 0.0) {
   ZshiftDecal decal = {};
   decal.viewport_width = kWidth;
   decal.viewport_height = kHeight;
@@ -181,6 +202,7 @@ inline ZshiftDecal describe_decal(ZshiftFormat format, int subpixel_bits, const 
   decal.decal_far = e.farthest;
   decal.slope = e.slope;  // |dz/dx| + |dz/dy| of its plane in eye space
   decal.exact_depth = 0;  // its corners are not the ground's
+  decal.base_reach = base_reach;  // the ground crosses the near plane: the clipper's float error
   return decal;
 }
 // [/quickstart-engines-decal]

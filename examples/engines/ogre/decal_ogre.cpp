@@ -193,7 +193,8 @@ int main(int argc, char **argv) {
       float decal_corners[4][3];
       corners(kDecal, 1.0, decal_corners);
       DecalExtent ext = decal_extent(view_matrix, decal_corners, -1.0);
-      ZshiftDecal decal_info = describe_decal(unorm_format(depth_bits), subpixel_bits, ext);
+      ZshiftDecal decal_info =
+          describe_decal(unorm_format(depth_bits), subpixel_bits, ext, ground_reach(view_matrix, 1.0, view));
       if (!zshift_decal_projection(*camera, decal_info, zshift_projection)) return 1;
       float m[16], z[16], over[16];
       for (int i = 0; i < 16; i++) {

@@ -244,7 +244,8 @@ int main(int argc, char **argv) {
     float decal_corners[4][3];
     corners(kDecal, 1.0, decal_corners);
     DecalExtent ext = decal_extent(camera->getViewMatrix().ptr(), decal_corners, -1.0);
-    ZshiftDecal decal = describe_decal(format, subpixel_bits, ext);
+    ZshiftDecal decal =
+        describe_decal(format, subpixel_bits, ext, ground_reach(camera->getViewMatrix().ptr(), 1.0, view));
     if (!zshift_decal_projection(projection, clip, decal, zshift_projection)) return 1;
     float m[16], z[16], over[16];
     for (int i = 0; i < 16; i++) {
