@@ -4,7 +4,6 @@
 //! (`f32::next_up`), never numbers taken from the code under test.
 
 use num_bigint::BigInt;
-use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use zshift::clip_offset::{
     ndc_offset_matrix, ndc_offset_of_shift, offset_projection, relative_epsilon,
@@ -20,25 +19,8 @@ use zshift::projection::{
 };
 use zshift::{ErrorKind, Frustum, Planes};
 
-type Q = BigRational;
-
-fn q(x: f64) -> Q {
-    Q::from_float(x).expect("finite")
-}
-fn q32(x: f32) -> Q {
-    q(f64::from(x))
-}
-fn int(i: i64) -> Q {
-    Q::from_integer(BigInt::from(i))
-}
-fn pow2(e: i32) -> Q {
-    let p = Q::from_integer(BigInt::one() << e.unsigned_abs());
-    if e >= 0 {
-        p
-    } else {
-        p.recip()
-    }
-}
+mod rational;
+use rational::{int, pow2, q, q32, Q};
 fn rel_err(x: f64, exact: &Q) -> f64 {
     if exact.is_zero() {
         return x.abs();
@@ -559,7 +541,7 @@ fn polygon_offset_units_convert_exactly_and_back() {
                     &(&d - q(delta)),
                 ) - exact_window(&Mapping::Proj(0.1, 1000.0, ClipDepth::NegOneToOne), &d);
                 let r = match (format.is_unorm(), api) {
-                    (true, BiasApi::Vulkan) => pow2(-(format.bits() as i32)),
+                    (true, BiasApi::Vulkan) => pow2(-i64::from(format.bits())),
                     (true, _) => Q::one() / Q::from_integer((BigInt::one() << format.bits()) - 1),
                     (false, _) => q(f32_spacing(
                         exact_window(&Mapping::Proj(0.1, 1000.0, ClipDepth::NegOneToOne), &d)

@@ -18,7 +18,6 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use num_bigint::BigInt;
-use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 use zshift::clip_offset::{
     ndc_offset_of_shift, offset_projection, offset_projection_exact, offset_projection_fast,
@@ -34,25 +33,8 @@ use zshift::projection::{
 };
 use zshift::{epsilon_matrix, offset_matrix, Frustum};
 
-type Q = BigRational;
-
-fn q(x: f64) -> Q {
-    Q::from_float(x).expect("finite")
-}
-fn q32(x: f32) -> Q {
-    q(f64::from(x))
-}
-fn int(i: i64) -> Q {
-    Q::from_integer(BigInt::from(i))
-}
-fn pow2(e: i64) -> Q {
-    let p = Q::from_integer(BigInt::one() << e.unsigned_abs());
-    if e >= 0 {
-        p
-    } else {
-        p.recip()
-    }
-}
+mod rational;
+use rational::{int, pow2, q, q32, Q};
 
 /// `floor(log2 |x|)` for a nonzero rational, from the bit lengths, corrected by comparison.
 fn floor_log2(x: &Q) -> i64 {
