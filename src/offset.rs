@@ -183,10 +183,13 @@ pub(crate) fn offset_fast(
         return None;
     }
     let planes = Planes::from_checked(n, f);
-    let (estimate, _) = ndc_offset_of_shift(&planes, delta, pz);
+    let estimate = shift_estimate(&planes, delta, pz);
+    // Divide before the frustum's enclosure test, not after it: the quotient (the same f64,
+    // since `x/1` is exact) then overlaps the frustum's own divisions.
+    let offset = Ratio(estimate.value(), 1.0);
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
     crate::projection::fast_then(l, r, b, t, n, f, depth, |m10| {
-        outward_of_ratio(m10, estimate, 8.0)
+        outward_of_ratio(m10, offset, 8.0)
     })
 }
 
@@ -299,10 +302,7 @@ fn ndc_offset_of_shift(
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
     let far = (!planes.is_infinite()).then_some(planes.far() * s);
-    let estimate = match far {
-        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
-        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
-    };
+    let estimate = scaled_shift_estimate(n, far, delta, pz);
     let exact = move || {
         let two_n_delta = DoubleDouble::product(2.0 * n, delta);
         let depth_product = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
@@ -314,6 +314,24 @@ fn ndc_offset_of_shift(
         }
     };
     (estimate, exact)
+}
+
+/// The f64 estimate of [`ndc_offset_of_shift`] alone, inlined into the fast path (returning
+/// the double-double closure too keeps the estimate in memory, behind a call).
+#[inline(always)]
+fn shift_estimate(planes: &Planes, delta: f64, pz: f64) -> Ratio {
+    let s = unit_scale(pz);
+    let far = (!planes.is_infinite()).then_some(planes.far() * s);
+    scaled_shift_estimate(planes.near() * s, far, delta * s, pz * s)
+}
+
+/// `o`'s numerator and denominator from inputs already scaled by a power of two.
+#[inline(always)]
+fn scaled_shift_estimate(n: f64, far: Option<f64>, delta: f64, pz: f64) -> Ratio {
+    match far {
+        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
+        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
+    }
 }
 
 /// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate of its numerator (two
@@ -357,6 +375,12 @@ impl Ratio {
 /// no f32 lies within the estimate's error of `plain + o`, every value in that interval rounds
 /// outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32 are farther
 /// still); that fails for an f32 within about `1e-15` relative (offsets that land on one).
+///
+/// The target is `plain + o`, not `m10·(1 + ε) = m10 + o`: rounding that one fraction outward
+/// from `m10` would skip the rounding of `plain` itself, and loses offsets below the gap
+/// `|plain − m10|` (up to half an ulp). For `n = 0.1`, `f = 1000`, `Pz = −50`,
+/// `δ = −8.240355720867853e-5` (`m10 = plain + 0.11 ulp`, `o = −0.055 ulp`), `m10 + o` rounds
+/// down to `plain` itself, no offset at all, where `plain + o` rounds to the f32 below it.
 #[inline(always)]
 pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
     let estimate = o.value();
