@@ -14,7 +14,10 @@ mod gl_common;
 use zshift::projection::{projection, ClipDepth};
 use zshift::recommend::{recommend_clip, ClipRecommendation, Scene};
 use zshift::Frustum;
-use zshift_harness::coplanar::{Count, Setup, BASE, CLEAR, DECAL, OCCLUDER};
+use zshift_harness::coplanar::{
+    bisect_smallest_passing, stepped_toward_camera, steps_between, Count, Setup, BASE, CLEAR,
+    DECAL, OCCLUDER,
+};
 use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
 /// Viewport size of the CI grid (small: llvmpipe on two shared cores); the sweep uses 256².
@@ -224,11 +227,7 @@ impl<'a> Bench<'a> {
         let plain = self.plain;
         self.gl.draw_quad(&s.base(), &plain, BASE, &state).unwrap();
         self.gl.draw_quad(&s.decal(), decal, DECAL, &state).unwrap();
-        let image = self.gl.read_color().unwrap();
-        Count {
-            hit: image.count_not_in_mask(&self.mask, rgba8(DECAL)),
-            of: self.mask.iter().filter(|&&m| m).count(),
-        }
+        Count::decal_missing(&self.gl.read_color().unwrap(), &self.mask)
     }
 
     /// Decal pixels drawn over an occluder `gap` nearer than the base at every pixel.
@@ -249,60 +248,23 @@ impl<'a> Bench<'a> {
             .draw_quad(&occluder, &plain, OCCLUDER, &state)
             .unwrap();
         self.gl.draw_quad(&s.decal(), decal, DECAL, &state).unwrap();
-        let image = self.gl.read_color().unwrap();
-        let red = rgba8(DECAL);
-        Count {
-            hit: image
-                .pixels
-                .iter()
-                .zip(&both)
-                .filter(|(p, &m)| m && p[..3] == red[..3])
-                .count(),
-            of: both.iter().filter(|&&m| m).count(),
-        }
+        Count::decal_shown(&self.gl.read_color().unwrap(), &both)
     }
 
-    /// The element this convention offsets: 14 (reversed Z, scaled up) or 10 (lowered).
-    fn element(&self) -> usize {
-        if self.case.reversed() {
-            14
-        } else {
-            10
-        }
-    }
-
-    /// The plain matrix with the offset element moved `k` f32 steps toward the camera: element
-    /// 14 (> 0) up, or element 10 (< 0) toward 0.
+    /// The plain matrix with the offset element moved `k` f32 steps toward the camera.
     fn stepped(&self, k: u32) -> [f32; 16] {
-        let mut m = self.plain;
-        let i = self.element();
-        let bits = m[i].to_bits();
-        m[i] = f32::from_bits(if self.case.reversed() {
-            bits + k
-        } else {
-            bits - k
-        });
-        m
+        stepped_toward_camera(&self.plain, self.case.reversed(), k)
     }
 
     /// f32 steps between the plain element and the recommended matrix's.
     fn steps_of(&self, m: &[f32; 16]) -> u32 {
-        let i = self.element();
-        m[i].to_bits().abs_diff(self.plain[i].to_bits())
+        steps_between(&self.plain, m, self.case.reversed())
     }
 
     /// The smallest k in 1..=hi that loses no pixel, by bisection (`hi` must work).
     fn smallest_working(&mut self, hi: u32) -> u32 {
-        let (mut lo, mut hi) = (0u32, hi);
-        while hi - lo > 1 {
-            let mid = lo + (hi - lo) / 2;
-            if self.lost(&self.stepped(mid)).hit == 0 {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        hi
+        bisect_smallest_passing(0, hi, |k| Ok(self.lost(&self.stepped(k)).hit == 0))
+            .expect("the bisection's test cannot fail")
     }
 }
 

@@ -27,7 +27,10 @@ use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::{
     clip_to_frustum, recommend_clip, Base, ClipRecommendation, DepthTest, RasterizerProfile, Scene,
 };
-use zshift_harness::coplanar::{BASE, CLEAR, DECAL, OCCLUDER};
+use zshift_harness::coplanar::{
+    bisect_smallest_passing, stepped_toward_camera, steps_between, Count, BASE, CLEAR, DECAL,
+    OCCLUDER,
+};
 use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
 /// The profile `zshift::probe::probe` measures in this test's own context (what an engine
@@ -61,6 +64,32 @@ struct Cam {
 }
 
 impl Cam {
+    /// The sweep's frustum of `kind` ("centred", "off-centre", or "axis-off": the view axis
+    /// left of and below the screen) for a viewport `aspect`, with n = 0.1 and f = n·`ratio`
+    /// (infinite for an infinite ratio).
+    fn of_kind(kind: &str, aspect: f64, ratio: f64) -> Self {
+        let n = 0.1;
+        let t = n * 0.5774;
+        let (l, r, b, tt) = match kind {
+            "centred" => (-t * aspect, t * aspect, -t, t),
+            "off-centre" => (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t),
+            _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
+        };
+        let f = if ratio.is_finite() {
+            n * ratio
+        } else {
+            f64::INFINITY
+        };
+        Cam {
+            l,
+            r,
+            b,
+            t: tt,
+            n,
+            f,
+        }
+    }
+
     /// The eye ray `(kₓ, k_y)` (eye x/d, y/d) through NDC `(x, y)`.
     fn ray(&self, x: f64, y: f64) -> (f64, f64) {
         let kx = (self.l + 0.5 * (x + 1.0) * (self.r - self.l)) / self.n;
@@ -401,27 +430,7 @@ fn grid(every: usize) -> Vec<Case> {
         let aspect = f64::from(size.0) / f64::from(size.1);
         for frustum_kind in ["centred", "off-centre", "axis-off"] {
             for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
-                let n = 0.1;
-                let t = n * 0.5774;
-                let (l, r, b, tt) = match frustum_kind {
-                    "centred" => (-t * aspect, t * aspect, -t, t),
-                    "off-centre" => (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t),
-                    // The view axis (x = y = 0) is left of and below the screen.
-                    _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
-                };
-                let f = if ratio.is_finite() {
-                    n * ratio
-                } else {
-                    f64::INFINITY
-                };
-                let cam = Cam {
-                    l,
-                    r,
-                    b,
-                    t: tt,
-                    n,
-                    f,
-                };
+                let cam = Cam::of_kind(frustum_kind, aspect, ratio);
                 for kind in kinds {
                     for slope in [0.0, 0.3, 1.0, 3.0, 10.0] {
                         for base_kind in [BaseKind::Fitted, BaseKind::Ground, BaseKind::Split] {
@@ -450,7 +459,7 @@ fn grid(every: usize) -> Vec<Case> {
                                 let span = if ratio.is_finite() { ratio } else { 1e4 };
                                 for _attempt in 0..8 {
                                     let p = 0.15 + 0.8 * rng.next();
-                                    let dc = n * span.powf(p).max(1.5);
+                                    let dc = cam.n * span.powf(p).max(1.5);
                                     let (cx, cy) = (rng.next() - 0.5, rng.next() - 0.5);
                                     let hs = 0.08 + 0.2 * rng.next();
                                     if let Some(c) = build(
@@ -480,13 +489,6 @@ fn grid(every: usize) -> Vec<Case> {
 // ---------------------------------------------------------------------------------------------
 // Rendering.
 // ---------------------------------------------------------------------------------------------
-
-/// Pixels counted: `hit` of `of`.
-#[derive(Debug, Clone, Copy, Default)]
-struct Count {
-    hit: usize,
-    of: usize,
-}
 
 struct Bench<'a> {
     gl: &'a mut Gl,
@@ -574,11 +576,7 @@ impl<'a> Bench<'a> {
         self.draw_base()?;
         let (q, state) = (self.decal, self.decal_state());
         self.gl.draw_quad(&q, decal, DECAL, &state)?;
-        let image = self.gl.read_color()?;
-        Ok(Count {
-            hit: image.count_not_in_mask(&self.mask, rgba8(DECAL)),
-            of: self.mask.iter().filter(|&&m| m).count(),
-        })
+        Ok(Count::decal_missing(&self.gl.read_color()?, &self.mask))
     }
 
     /// Decal pixels drawn over an occluder whose eye depth (−z) at every pixel is at least `gap`
@@ -616,44 +614,16 @@ impl<'a> Bench<'a> {
         self.gl.draw_quad(&occluder, &plain, OCCLUDER, &opaque)?;
         let q = self.decal;
         self.gl.draw_quad(&q, decal, DECAL, &state)?;
-        let image = self.gl.read_color()?;
-        let red = rgba8(DECAL);
-        Ok(Count {
-            hit: image
-                .pixels
-                .iter()
-                .zip(&both)
-                .filter(|(px, &m)| m && px[..3] == red[..3])
-                .count(),
-            of: both.iter().filter(|&&m| m).count(),
-        })
-    }
-
-    fn element(&self) -> usize {
-        if self.case.reversed() {
-            14
-        } else {
-            10
-        }
+        Ok(Count::decal_shown(&self.gl.read_color()?, &both))
     }
 
     /// The plain matrix with the offset element moved `k` f32 steps toward the camera.
     fn stepped(&self, k: u32) -> [f32; 16] {
-        let mut m = self.plain;
-        let i = self.element();
-        let bits = m[i].to_bits();
-        // Element 14 (> 0) grows under reversed Z; element 10 (< 0) moves toward 0 otherwise.
-        m[i] = f32::from_bits(if self.case.reversed() {
-            bits + k
-        } else {
-            bits - k
-        });
-        m
+        stepped_toward_camera(&self.plain, self.case.reversed(), k)
     }
 
     fn steps_of(&self, m: &[f32; 16]) -> u32 {
-        let i = self.element();
-        m[i].to_bits().abs_diff(self.plain[i].to_bits())
+        steps_between(&self.plain, m, self.case.reversed())
     }
 
     /// The smallest k in 0..=hi that loses no pixel, by bisection (`hi` must work).
@@ -661,16 +631,7 @@ impl<'a> Bench<'a> {
         if self.lost(&self.stepped(0))?.hit == 0 {
             return Ok(0);
         }
-        let (mut lo, mut hi) = (0u32, hi);
-        while hi - lo > 1 {
-            let mid = lo + (hi - lo) / 2;
-            if self.lost(&self.stepped(mid))?.hit == 0 {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        Ok(hi)
+        bisect_smallest_passing(0, hi, |k| Ok(self.lost(&self.stepped(k))?.hit == 0))
     }
 }
 
@@ -894,28 +855,9 @@ fn error_growth_survey(
         for frustum_kind in ["centred", "off-centre", "axis-off"] {
             for ratio in [10.0, 1e3, 1e5, 1e7, f64::INFINITY] {
                 for slope in [0.0, 0.3, 1.0, 3.0, 10.0] {
-                    let n = 0.1;
-                    let t = n * 0.5774;
-                    let (l, r, b, tt) = match frustum_kind {
-                        "centred" => (-t * aspect, t * aspect, -t, t),
-                        "off-centre" => (-0.4 * t * aspect, 1.3 * t * aspect, -1.2 * t, 0.6 * t),
-                        _ => (0.15 * t * aspect, 1.6 * t * aspect, 0.1 * t, 1.1 * t),
-                    };
-                    let f = if ratio.is_finite() {
-                        n * ratio
-                    } else {
-                        f64::INFINITY
-                    };
-                    let cam = Cam {
-                        l,
-                        r,
-                        b,
-                        t: tt,
-                        n,
-                        f,
-                    };
+                    let cam = Cam::of_kind(frustum_kind, aspect, ratio);
                     let span = if ratio.is_finite() { ratio } else { 1e4 };
-                    let dc = n * span.powf(0.9 * rng.next()).max(1.5);
+                    let dc = cam.n * span.powf(0.9 * rng.next()).max(1.5);
                     let a = rng.next() * std::f64::consts::TAU;
                     let (sx, sy) = (slope * a.cos(), slope * a.sin());
                     let Some(case) = build(

@@ -153,11 +153,10 @@ pub struct Bench<'a> {
     setup: Setup,
     plain: [f32; 16],
     mask: Vec<bool>,
-    covered: usize,
 }
 
 /// Counts from one render: `hit` of `of` pixels (lost decal pixels, or bled ones).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Count {
     /// Pixels counted (lost, or bled).
     pub hit: usize,
@@ -166,6 +165,28 @@ pub struct Count {
 }
 
 impl Count {
+    /// The pixels of `mask` (the decal's coverage) where `image` does not show the decal: lost.
+    pub fn decal_missing(image: &Image, mask: &[bool]) -> Self {
+        Self {
+            hit: image.count_not_in_mask(mask, crate::rgba8(DECAL)),
+            of: mask.iter().filter(|&&m| m).count(),
+        }
+    }
+
+    /// The pixels of `mask` (decal ∩ occluder) where `image` shows the decal: bled.
+    pub fn decal_shown(image: &Image, mask: &[bool]) -> Self {
+        let red = crate::rgba8(DECAL);
+        Self {
+            hit: image
+                .pixels
+                .iter()
+                .zip(mask)
+                .filter(|(p, &m)| m && p[..3] == red[..3])
+                .count(),
+            of: mask.iter().filter(|&&m| m).count(),
+        }
+    }
+
     /// `hit / of` (0 when `of` is 0).
     pub fn fraction(&self) -> f64 {
         if self.of == 0 {
@@ -189,11 +210,9 @@ impl<'a> Bench<'a> {
             setup,
             plain,
             mask: Vec::new(),
-            covered: 0,
         };
         bench.mask = bench.coverage(&setup.decal())?;
-        bench.covered = bench.mask.iter().filter(|&&m| m).count();
-        if bench.covered == 0 {
+        if !bench.mask.contains(&true) {
             return Err(format!("{}: the decal covers no pixel", setup.label()));
         }
         Ok(bench)
@@ -226,12 +245,7 @@ impl<'a> Bench<'a> {
         self.gl
             .draw_quad(&s.base(), &self.plain, BASE, &DrawState::default())?;
         self.gl.draw_quad(&s.decal(), decal_proj, DECAL, state)?;
-        let image = self.gl.read_color()?;
-        let hit = image.count_not_in_mask(&self.mask, crate::rgba8(DECAL));
-        Ok(Count {
-            hit,
-            of: self.covered,
-        })
+        Ok(Count::decal_missing(&self.gl.read_color()?, &self.mask))
     }
 
     /// Decal pixels drawn over an occluder at least `gap` eye-space units nearer than the base at
@@ -256,18 +270,7 @@ impl<'a> Bench<'a> {
             .draw_quad(&occluder, &self.plain, OCCLUDER, &DrawState::default())?;
         self.gl
             .draw_quad(&s.decal(), decal_proj, DECAL, &DrawState::default())?;
-        let image = self.gl.read_color()?;
-        let red = crate::rgba8(DECAL);
-        let hit = image
-            .pixels
-            .iter()
-            .zip(&both)
-            .filter(|(p, &m)| m && p[..3] == red[..3])
-            .count();
-        Ok(Count {
-            hit,
-            of: both.iter().filter(|&&m| m).count(),
-        })
+        Ok(Count::decal_shown(&self.gl.read_color()?, &both))
     }
 
     fn coverage(&mut self, quad: &Quad) -> Result<Vec<bool>, String> {
@@ -282,18 +285,63 @@ impl<'a> Bench<'a> {
     }
 }
 
-/// Element 10 moved `k` f32 steps toward zero (the decal toward the camera by `k` ulps of
-/// element 10 in NDC): the finest offset a projection matrix can carry.
-pub fn with_ulps_toward_camera(plain: &[f32; 16], k: u32) -> [f32; 16] {
+/// The projection element that carries the decal's offset: 14 under reversed Z (scaled up, a
+/// relative offset), 10 otherwise (moved toward 0, a constant NDC offset).
+pub fn offset_element(reversed: bool) -> usize {
+    if reversed {
+        14
+    } else {
+        10
+    }
+}
+
+/// `plain` with its offset element ([`offset_element`]) moved `k` f32 steps toward the camera:
+/// element 14 (> 0) up under reversed Z, element 10 (< 0) toward 0 otherwise. The finest
+/// offset a projection matrix can carry is one step.
+pub fn stepped_toward_camera(plain: &[f32; 16], reversed: bool, k: u32) -> [f32; 16] {
     let mut m = *plain;
-    // m10 < 0; stepping its bits down moves it toward 0, which lowers NDC depth by the step.
-    let bits = m[10].to_bits();
+    let i = offset_element(reversed);
+    let bits = m[i].to_bits();
+    m[i] = f32::from_bits(if reversed { bits + k } else { bits - k });
+    m
+}
+
+/// The f32 steps between the offset elements ([`offset_element`]) of `plain` and `m`.
+pub fn steps_between(plain: &[f32; 16], m: &[f32; 16], reversed: bool) -> u32 {
+    let i = offset_element(reversed);
+    m[i].to_bits().abs_diff(plain[i].to_bits())
+}
+
+/// The smallest `k` in `lo + 1..=hi` that passes, by bisection, given that `lo` fails and `hi`
+/// passes (assumes passing is monotone in `k`).
+///
+/// # Errors
+/// Whatever `passes` returns.
+pub fn bisect_smallest_passing(
+    lo: u32,
+    hi: u32,
+    mut passes: impl FnMut(u32) -> Result<bool, String>,
+) -> Result<u32, String> {
+    let (mut lo, mut hi) = (lo, hi);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if passes(mid)? {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(hi)
+}
+
+/// Element 10 moved `k` f32 steps toward zero (the decal toward the camera by `k` ulps of
+/// element 10 in NDC): [`stepped_toward_camera`] for the `[−1, 1]` and `[0, 1]` conventions.
+pub fn with_ulps_toward_camera(plain: &[f32; 16], k: u32) -> [f32; 16] {
     assert!(
-        m[10] < 0.0 && k < bits & 0x7FFF_FFFF,
+        plain[10] < 0.0 && k < plain[10].to_bits() & 0x7FFF_FFFF,
         "element 10 must be negative and k small"
     );
-    m[10] = f32::from_bits(bits - k);
-    m
+    stepped_toward_camera(plain, false, k)
 }
 
 /// The smallest `k` (see [`with_ulps_toward_camera`]) in `1..=max_k` at which no decal pixel is
@@ -307,16 +355,11 @@ pub fn smallest_working_ulps(bench: &mut Bench, max_k: u32) -> Result<Option<u32
     if bench.lost(&with_ulps_toward_camera(&plain, max_k))?.hit > 0 {
         return Ok(None);
     }
-    let (mut lo, mut hi) = (0u32, max_k); // lo fails (k = 0 is no offset), hi works
-    while hi - lo > 1 {
-        let mid = lo + (hi - lo) / 2;
-        if bench.lost(&with_ulps_toward_camera(&plain, mid))?.hit == 0 {
-            hi = mid;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok(Some(hi))
+    // k = 0 (no offset) is taken to fail; max_k works.
+    bisect_smallest_passing(0, max_k, |k| {
+        Ok(bench.lost(&with_ulps_toward_camera(&plain, k))?.hit == 0)
+    })
+    .map(Some)
 }
 
 /// The smallest `k` such that every offset from `k` up to `k_hi` steps (see
