@@ -173,14 +173,11 @@ fn no_bleed_through_beyond_the_documented_gap() {
     );
 }
 
-/// The C entry points give the Rust recommendation and its matrix bit for bit.
-#[test]
-fn c_entry_points_match_the_rust_recommendation() {
-    use zshift::ffi::*;
-    let s = setup(DepthFormat::D24, 1e4, 0.5, 1.0, SIZE);
+/// The C scene of `s` (D24, slope 1, unsnapped, every newer field at its default).
+fn c_scene_of(s: &zshift_harness::coplanar::Setup) -> zshift::ffi::ZshiftScene {
     let (l, r, b, t, n, f) = s.frustum();
     let (d1, d2) = s.decal_depth_range();
-    let scene = ZshiftScene {
+    zshift::ffi::ZshiftScene {
         l,
         r,
         b,
@@ -194,11 +191,19 @@ fn c_entry_points_match_the_rust_recommendation() {
         decal_far: d2,
         slope: 1.0,
         exact_depth: 0,
-        subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
+        subpixel_bits: zshift::ffi::ZSHIFT_SUBPIXEL_UNSNAPPED,
         depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
         base_reach: 0.0,
         profile: std::ptr::null(),
-    };
+    }
+}
+
+/// The C entry points give the Rust recommendation and its matrix bit for bit.
+#[test]
+fn c_entry_points_match_the_rust_recommendation() {
+    use zshift::ffi::*;
+    let s = setup(DepthFormat::D24, 1e4, 0.5, 1.0, SIZE);
+    let scene = c_scene_of(&s);
     let rust = zshift::recommend::recommend(&scene_of(&s, zshift::recommend::Snapping::Unsnapped))
         .unwrap();
     let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
@@ -293,27 +298,7 @@ fn the_polygon_offset_equivalent_loses_no_pixel() {
 fn c_scene_fields_reach_the_model() {
     use zshift::ffi::*;
     let s = setup(DepthFormat::D24, 1e4, 0.5, 1.0, SIZE);
-    let (l, r, b, t, n, f) = s.frustum();
-    let (d1, d2) = s.decal_depth_range();
-    let scene = ZshiftScene {
-        l,
-        r,
-        b,
-        t,
-        n,
-        f,
-        viewport_width: SIZE,
-        viewport_height: SIZE,
-        depth_format: 0x81A6,
-        decal_near: d1,
-        decal_far: d2,
-        slope: 1.0,
-        exact_depth: 0,
-        subpixel_bits: ZSHIFT_SUBPIXEL_UNSNAPPED,
-        depth_func: ZshiftDepthTest { value: 0 },
-        base_reach: 0.0,
-        profile: std::ptr::null(),
-    };
+    let scene = c_scene_of(&s);
     let rec = |s: &ZshiftScene, clip: ZshiftClip| {
         let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::uninit();
         let status = zshift_recommend_clip(s, clip, out.as_mut_ptr());
@@ -408,6 +393,7 @@ fn c_scene_fields_reach_the_model() {
         [1e3, 1e3, -510.0],
         [-1e3, 1e3, -510.0],
     ];
+    let (l, r, b, t, n, f) = s.frustum();
     let frustum = zshift::Frustum::new(l, r, b, t, n, f).unwrap();
     let want = zshift::recommend::clip_to_frustum(&frustum, &quad).unwrap();
     let flat: Vec<f64> = quad.iter().flatten().copied().collect();
