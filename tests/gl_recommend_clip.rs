@@ -15,10 +15,10 @@ use zshift::projection::{projection, ClipDepth};
 use zshift::recommend::{recommend_clip, ClipRecommendation, Scene};
 use zshift::Frustum;
 use zshift_harness::coplanar::{
-    bisect_smallest_passing, stepped_toward_camera, steps_between, Count, Setup, BASE, CLEAR,
-    DECAL, OCCLUDER,
+    bisect_smallest_passing, coverage, stepped_toward_camera, steps_between, Count, Setup, BASE,
+    CLEAR, DECAL, OCCLUDER,
 };
-use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
+use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
 /// Viewport size of the CI grid (small: llvmpipe on two shared cores); the sweep uses 256².
 const SIZE: u32 = 96;
@@ -208,15 +208,7 @@ impl<'a> Bench<'a> {
     }
 
     fn coverage(&mut self, quad: &Quad) -> Vec<bool> {
-        self.clear();
-        let always = DrawState {
-            depth_func: glow::ALWAYS,
-            ..DrawState::default()
-        };
-        self.gl
-            .draw_quad(quad, &self.plain, DECAL, &always)
-            .expect("draw");
-        self.gl.read_color().expect("read").mask_of(rgba8(DECAL))
+        coverage(self.gl, quad, &self.plain).expect("draw the decal alone")
     }
 
     /// Decal pixels lost to the base with the decal drawn through `decal`.

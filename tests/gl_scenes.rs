@@ -28,10 +28,10 @@ use zshift::recommend::{
     clip_to_frustum, recommend_clip, Base, ClipRecommendation, DepthTest, RasterizerProfile, Scene,
 };
 use zshift_harness::coplanar::{
-    bisect_smallest_passing, stepped_toward_camera, steps_between, Count, BASE, CLEAR, DECAL,
-    OCCLUDER,
+    bisect_smallest_passing, coverage, stepped_toward_camera, steps_between, Count, BASE, CLEAR,
+    DECAL, OCCLUDER,
 };
-use zshift_harness::{rgba8, ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
+use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Quad};
 
 /// The profile `zshift::probe::probe` measures in this test's own context (what an engine
 /// does once at start-up): on llvmpipe unsnapped, `r` = 2 quanta on UNORM, `error_ulps` ≈ 1.4,
@@ -552,14 +552,7 @@ impl<'a> Bench<'a> {
     }
 
     fn coverage(&mut self, quad: &Quad) -> Result<Vec<bool>, String> {
-        self.clear()?;
-        let always = DrawState {
-            depth_func: glow::ALWAYS,
-            ..DrawState::default()
-        };
-        let plain = self.plain;
-        self.gl.draw_quad(quad, &plain, DECAL, &always)?;
-        Ok(self.gl.read_color()?.mask_of(rgba8(DECAL)))
+        coverage(self.gl, quad, &self.plain)
     }
 
     fn draw_base(&mut self) -> Result<(), String> {

@@ -274,15 +274,23 @@ impl<'a> Bench<'a> {
     }
 
     fn coverage(&mut self, quad: &Quad) -> Result<Vec<bool>, String> {
-        self.gl.clear(CLEAR, 1.0)?;
-        let state = DrawState {
-            depth_func: glow::ALWAYS,
-            ..DrawState::default()
-        };
-        self.gl.draw_quad(quad, &self.plain, DECAL, &state)?;
-        let image: Image = self.gl.read_color()?;
-        Ok(image.mask_of(crate::rgba8(DECAL)))
+        coverage(self.gl, quad, &self.plain)
     }
+}
+
+/// The pixels `quad` covers when drawn alone through `proj` (depth test `GL_ALWAYS`, so any
+/// offset or clear depth gives the same mask). Leaves the target dirty: clear before drawing.
+///
+/// # Errors
+/// GL failures.
+pub fn coverage(gl: &mut Gl, quad: &Quad, proj: &[f32; 16]) -> Result<Vec<bool>, String> {
+    gl.clear(CLEAR, 1.0)?;
+    let state = DrawState {
+        depth_func: glow::ALWAYS,
+        ..DrawState::default()
+    };
+    gl.draw_quad(quad, proj, DECAL, &state)?;
+    Ok(gl.read_color()?.mask_of(crate::rgba8(DECAL)))
 }
 
 /// The projection element that carries the decal's offset: 14 under reversed Z (scaled up, a
