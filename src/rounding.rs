@@ -100,19 +100,24 @@ pub(crate) struct Estimates {
     pub depth: [f64; 2],
     /// Their denominator: `f − n`, or 1 where the row is a product (infinite, tweaked).
     pub depth_den: f64,
-    /// `n` and `f − n`, checked here too: `0 < n < ∞`, `f − n > 0` (NaN fails).
+    /// `n` and `f − n`, checked here too: both `> 0` (NaN fails). `scale = 2n` must hold: the
+    /// rest of `Frustum::new`'s checks follow from it (see [`nearest_columns_then`]).
     pub planes: [f64; 2],
 }
 
-/// The projection's columns, each element the nearest f32 of its exact value, when the
-/// enclosure test decides all six and every element is finite, and both denominators are finite
-/// and nonzero (the zero estimates' proof needs that); `None` otherwise.
+/// The projection's columns, each element the nearest f32 of its exact value, with element 10
+/// replaced by `element_10(m10)` (an offset rounded outward) before the columns are assembled,
+/// so the matrix leaves in four registers. `None` unless the enclosure test decides all six
+/// elements, every element is finite, elements 0 and 5 are nonzero, and `n`, `f − n > 0`.
 ///
-/// The enclosure's ends are computed as `(numerator·(1/denominator))·(1 ∓ ρ)`, the estimate
-/// once for both ends. On x86_64 the whole decision is a dozen SSE2 instructions (part of the baseline, so
+/// Those few tests validate the frustum as `Frustum::new` does: `n < ∞` because `2n = ∞`
+/// makes element 0 infinite or NaN; `r − l` and `t − b` nonzero because a zero one makes
+/// element 0 or 5 infinite (`2n > 0`); finite because an infinite one (an overflowed
+/// difference of finite extents) makes it `2n·0 = 0`, refused (a true zero element 0 or 5,
+/// below `2⁻¹⁵⁰`, only takes the exact path). The enclosure's ends are computed as
+/// `(numerator·(1/denominator))·(1 ∓ ρ)`, the estimate once for both ends. On x86_64 the
+/// whole decision is a few SSE2 instructions and one branch (SSE2 is part of the baseline, so
 /// no detection); elsewhere the same arithmetic lane by lane.
-/// The projection's columns, as [`nearest_columns_portable`] describes, with element 10 replaced by `element_10(m10)` (an offset rounded
-/// outward) before the columns are assembled, so the matrix still leaves in four registers.
 #[inline(always)]
 pub(crate) fn nearest_columns_then(
     e: Estimates,
@@ -161,10 +166,8 @@ pub(crate) fn nearest_columns_portable(
         good &= (lo == hi) & (lo.abs() < f32::INFINITY);
         m[i] = lo;
     }
-    for d in e.den {
-        good &= (d.abs() < f64::INFINITY) & (d != 0.0);
-    }
-    good &= (e.planes[0] > 0.0) & (e.planes[0] < f64::INFINITY) & (e.planes[1] > 0.0);
+    good &= (m[0] != 0.0) & (m[1] != 0.0);
+    good &= (e.planes[0] > 0.0) & (e.planes[1] > 0.0);
     if !good {
         return None;
     }
@@ -213,20 +216,17 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32
             let finite = _mm_cmplt_ps(_mm_and_ps(lo, magnitude), infinity);
             _mm_and_ps(_mm_cmpeq_ps(lo, hi), finite)
         };
-        let all = _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z));
-        // n in (0, ∞); f − n > 0; r − l, t − b finite and nonzero. A finite denominator is one
-        // whose reciprocal is nonzero (NaN fails the comparison); a zero one has an infinite
-        // reciprocal, which makes element 0 or 5 (2n·(1/D), 2n > 0) infinite and fails the
-        // enclosure's finiteness test above.
-        let zero = _mm_setzero_pd();
+        // The validation of `Estimates::planes` (n > 0, f − n > 0; a 64-bit lane mask covers
+        // two f32 lanes) and of elements 0 and 5 (nonzero; NaN ≠ 0 holds in lanes 2 and 3),
+        // joined to the enclosure's in one test.
         let planes = _mm_set_pd(e.planes[1], e.planes[0]);
-        let near_finite = _mm_cmplt_pd(_mm_set_sd(e.planes[0]), _mm_set1_pd(f64::INFINITY));
-        let inv_nonzero = _mm_cmpgt_pd(_mm_andnot_pd(_mm_set1_pd(-0.0), inv), zero);
-        let den_ok = _mm_and_pd(
-            _mm_and_pd(_mm_cmpgt_pd(planes, zero), near_finite),
-            inv_nonzero,
+        let positive = _mm_castpd_ps(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
+        let scale_nonzero = _mm_cmpneq_ps(lo_xy, _mm_set_ps(f32::NAN, f32::NAN, 0.0, 0.0));
+        let all = _mm_and_ps(
+            _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z)),
+            _mm_and_ps(positive, scale_nonzero),
         );
-        if (_mm_movemask_ps(all) != 0xf) | (_mm_movemask_pd(den_ok) != 0x3) {
+        if _mm_movemask_ps(all) != 0xf {
             return None;
         }
         let lo_z = _mm_move_ss(lo_z, _mm_set_ss(element_10(_mm_cvtss_f32(lo_z))?));
