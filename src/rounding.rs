@@ -11,41 +11,46 @@
 //! from the inputs (`r + l`, `2n·f`, `f − n`, …), the reciprocal `1/D`, and the product. With
 //! `u = 2⁻⁵³`, each correctly rounded operation returns `(a ∘ b)(1 + θ)`, `|θ| ≤ u`, as long as
 //! its result is a normal f64, and exact operations (×2, `1/1`, negation) count for nothing.
-//! Counting every rounding, no element takes more than `k = 5`:
+//! Counting every rounding, no element takes more than `k = 4`:
 //!
 //! | elements | roundings |
 //! |---|---|
-//! | 0, 5: `2n·(1/(r − l))` | `r − l`, `1/·`, product, and the `(1 ∓ ρ)` below: 4 |
-//! | 8, 9: `(r + l)·(1/(r − l))` | 5 |
-//! | 10, 14, finite `f`: `−(f + n)`, `−2n·f`, `−f`, `−n·f`, `n`, `n·f` times `1/(f − n)` | at most 5 |
-//! | 10, 14, `f = ∞`: `−1`, `−2n`, `−n`, `0`, `n` (exact) | 1 |
-//! | 10, 14, tweaked: `ε − 1`, `(ε − 2)·n` | at most 3 |
+//! | 0, 5: `2n·(1/(r − l))` | `r − l`, `1/·`, product: 3 |
+//! | 8, 9: `(r + l)·(1/(r − l))` | 4 |
+//! | 10, 14, finite `f`: `−(f + n)`, `−2n·f`, `−f`, `−n·f`, `n`, `n·f` times `1/(f − n)` | at most 4 |
+//! | 10, 14, `f = ∞`: `−1`, `−2n`, `−n`, `0`, `n` (exact) | 0 |
+//! | 10, 14, tweaked: `ε − 1`, `(ε − 2)·n` | at most 2 |
 //!
 //! (`gluPerspective`'s elements are those of the f64 frustum `t = n·tan(fovy/2)`,
-//! `r = t·aspect` it describes, so they count as `glFrustum`'s.) Each rounding multiplies the
-//! result by a factor in `[1/(1 + u), 1/(1 − u)] ⊂ [1 − u, 1 + u + 2u²]`, wherever it sits in the
-//! chain.
+//! `r = t·aspect` it describes, so they count as `glFrustum`'s; `glOrtho`'s take at most three.)
+//! A reciprocal `1/D` with `D > 2¹⁰²²` is f64-subnormal, but still within `2⁻⁵¹ = 4u` (relative)
+//! of `1/D`, since `D < 2¹⁰²⁴`. So `|y − x| ≤ ((1 + u)³(1 + 4u) − 1)·|x| < 7.01u·|x|`: less than
+//! 8 f64 ulps of `y` (an ulp of `y`'s binade `[2ᵉ, 2ᵉ⁺¹)` is `2ᵉ⁻⁵²`, and `7.01u·|x| < 7.02·2ᵉ⁻⁵²`).
 //!
-//! ## The test (an enclosure, rounded twice)
-//! With `ρ = 16u = 2⁻⁴⁹` the builders compute `lo = fl(fl(N·fl(1/D))·(1 − ρ))` and `hi` with
-//! `1 + ρ` (both factors are exact f64; the estimate `N·(1/D)` is computed once for both). By the bound, `lo ≤ x·(1 − ρ)(1 − u)⁻⁵ < x` and
-//! `hi ≥ x·(1 + ρ)(1 − u)⁵ > x` for `x > 0` (mirrored for `x < 0`), so `x` lies between them.
-//! Rounding to the nearest f32 is monotone, so when `lo as f32 == hi as f32` every value
-//! between them, `x` included, has that nearest f32. This holds across binades, among f32
-//! subnormals and at zero alike; only an enclosure containing an f32 rounding boundary fails
-//! it, which happens when the element is within about 16 f64 ulps of a boundary: about one
-//! element in 16 million (`2·16/2²⁹`) of evenly spread inputs. Two multiplications, two
-//! conversions and a comparison per element, done two (f64) or four (f32) at a time with SSE2
-//! (`nearest_columns_then`), so the whole test costs less than one division.
+//! ## The test (no rounding boundary within 16 ulps)
+//! Within a binade `2ᵉ ≤ |y| < 2ᵉ⁺¹` of the normal f32 range (`−126 ≤ e ≤ 126`), the f32 are the
+//! multiples of `2ᵉ⁻²³` and the rounding boundaries the odd multiples of `2ᵉ⁻²⁴`: in units of
+//! `y`'s ulp, the f64 whose low 29 significand bits are exactly `2²⁸`. So when those bits of `y`
+//! differ from `2²⁸` by at least [`SLACK`]` = 16` (mod `2²⁹`), no boundary lies within 16 ulps of
+//! `y` (the nearest boundaries across a power of two are `2²⁶` ulps away or more), `x` lies
+//! within 8 by the bound, and `x` and `y` have the same nearest f32: the conversion `y as f32`.
+//! The test is two integer additions and masks and three comparisons on the bits of `y` (its
+//! binade from the high word, the pattern from the low one), done two elements at a time with
+//! SSE2 (`nearest_columns_then`): no multiplication, and only the conversions that produce the
+//! result. It fails for about one element in 16 million (`2·16/2²⁹`) of evenly spread inputs,
+//! which go to the exact decision.
 //!
-//! A zero or f64-subnormal result passes too, and is right: with both denominators checked
-//! nonzero and finite and the numerators finite, `lo = hi = ±0` is either an exact zero (`a + b`
-//! rounds to 0 only when `a = −b`) or a product that underflowed below `2⁻¹⁰⁷⁴`, and an
-//! f64-subnormal `lo` comes from a last operation whose exact result is below `2⁻¹⁰²²`; in
-//! both cases `|x| < 2⁻¹⁵⁰` (the earlier operations are normal, so their relative bound holds)
-//! and `x` rounds to a zero of the same sign. An intermediate that overflows gives `±∞` or NaN,
-//! which fail the test (NaN ≠ NaN) or its finiteness check and go to the exact decision, which
-//! also explains the overflow.
+//! Outside that range: `|y| ≥ 2¹²⁷` (f32 overflow, or nearly) and f32-subnormal results
+//! (`2⁻¹⁵¹ ≤ |y| < 2⁻¹²⁶`, where boundaries sit elsewhere) always go to the exact decision. A
+//! tiny `|y| < 2⁻¹⁵¹` (zero included) passes, and is right: `y as f32` is a zero of `y`'s sign,
+//! and `|x| < 2⁻¹⁵⁰` rounds to the same zero. For a normal `y` that is the bound; a zero or
+//! f64-subnormal `y` (with both denominators finite and nonzero, as the builders check) is an
+//! exact zero (`a + b` rounds to 0 only when `a = −b`) or a product whose exact value (of
+//! accurate factors) is below `2⁻¹⁰²²`. An intermediate product that underflows (`2n·f` below
+//! `2⁻¹⁰²²`, so `n < 2⁻⁵¹¹`) cannot pass wrongly: with an f32-sized element 14 it needs
+//! `1/(f − n) > 2⁸⁷³`, which makes element 10 (`≥ 2n/(f − n)`) exceed `2¹²⁷`. An intermediate
+//! that overflows gives `±∞` or NaN, whose binade fails the test, and the exact decision
+//! explains the overflow.
 //!
 //! ## The exact decision
 //! `nearest_of_ratio` takes `x` as a ratio `N/D` whose numerator and denominator are
@@ -65,24 +70,46 @@
 //! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves. An
 //! offset whose estimate, grown by its error bound, stays below the step to the next f32 is
 //! decided as that next f32; a larger one when the f64 target lies farther from every f32 than
-//! its error bound, as the enclosure does; otherwise double-double decides.
+//! its error bound (the test above, with the f32 values as boundaries); otherwise double-double
+//! decides.
 
 use std::cmp::Ordering;
 
 use glam::{Mat4, Vec4};
 
-/// The relative half-width `ρ = 2⁻⁴⁹ = 16u` of the enclosure (module docs: it exceeds the
-/// five roundings of any estimate with room to spare).
-pub(crate) const ENCLOSURE: f64 = 1.0 / 562_949_953_421_312.0;
+/// How far (in f64 ulps of `y`'s binade) an estimate `y` must be from every f32 rounding
+/// boundary to decide it: twice the 8-ulp bound of the module docs.
+const SLACK: i32 = 16;
+/// Added to the low word of `y`'s bits: a boundary (low 29 bits `2²⁸`) maps to `SLACK`.
+const MIDPOINT_SHIFT: i32 = SLACK - (1 << 28);
+/// The low 29 bits of the significand: the bits an f32 drops.
+const LOW_29: i32 = (1 << 29) - 1;
+/// `|y|`'s high word from `2⁻¹²⁶` (the least normal f32) on …
+const NORMAL_LOW: i32 = 0x3810_0000;
+/// … and below `2¹²⁷` (so `y as f32` is finite).
+const NORMAL_HIGH: i32 = 0x47e0_0000;
+/// `|y|`'s high word below `2⁻¹⁵¹`: tiny, rounding to zero.
+const TINY: i32 = 0x3680_0000;
 
-/// The nearest f32 of every value within a relative [`ENCLOSURE`]`/2` of `y`, if it is one f32
-/// (else `None`): the enclosure test of the module docs, for one estimate (of at most five
-/// roundings, on normal intermediates).
+/// Whether the nearest f32 of `y` is that of every value within [`SLACK`] ulps of `y` (so of
+/// the exact value it estimates, module docs), `tiny` values below `2⁻¹⁵¹` included if asked.
+/// The scalar form of the lane test in [`nearest_columns_then`], with the same answers.
+#[inline(always)]
+fn decided(y: f64, tiny: bool) -> bool {
+    let bits = y.to_bits();
+    let low = bits as u32 as i32;
+    let high = (bits >> 32) as u32 as i32 & 0x7fff_ffff;
+    let far = (low.wrapping_add(MIDPOINT_SHIFT) & LOW_29) >= 2 * SLACK;
+    let binade = (NORMAL_LOW..NORMAL_HIGH).contains(&high) | (tiny & (high < TINY));
+    far & binade
+}
+
+/// The nearest f32 of every value within a few ulps of `y` (of the exact value an estimate of
+/// at most four roundings on normal intermediates stands for, module docs), if [`decided`]
+/// shows it is one f32; `None` otherwise. A tiny `y` (below `2⁻¹⁵¹`) gives a zero.
 #[inline(always)]
 pub(crate) fn enclosed(y: f64) -> Option<f32> {
-    let lo = (y * (1.0 - ENCLOSURE)) as f32;
-    let hi = (y * (1.0 + ENCLOSURE)) as f32;
-    (lo == hi && lo.abs() < f32::INFINITY).then_some(lo)
+    decided(y, true).then_some(y as f32)
 }
 
 /// A projection's six varying elements as ratios of f64 values the builders compute:
@@ -107,17 +134,16 @@ pub(crate) struct Estimates {
 
 /// The projection's columns, each element the nearest f32 of its exact value, with element 10
 /// replaced by `element_10(m10)` (an offset rounded outward) before the columns are assembled,
-/// so the matrix leaves in four registers. `None` unless the enclosure test decides all six
-/// elements, every element is finite, elements 0 and 5 are nonzero, and `n`, `f − n > 0`.
+/// so the matrix leaves in four registers. `None` unless the test of the module docs decides
+/// all six elements (elements 0 and 5 not tiny) and `n`, `f − n > 0`.
 ///
 /// Those few tests validate the frustum as `Frustum::new` does: `n < ∞` because `2n = ∞`
 /// makes element 0 infinite or NaN; `r − l` and `t − b` nonzero because a zero one makes
 /// element 0 or 5 infinite (`2n > 0`); finite because an infinite one (an overflowed
-/// difference of finite extents) makes it `2n·0 = 0`, refused (a true zero element 0 or 5,
-/// below `2⁻¹⁵⁰`, only takes the exact path). The enclosure's ends are computed as
-/// `(numerator·(1/denominator))·(1 ∓ ρ)`, the estimate once for both ends. On x86_64 the
-/// whole decision is a few SSE2 instructions and one branch (SSE2 is part of the baseline, so
-/// no detection); elsewhere the same arithmetic lane by lane.
+/// difference of finite extents) makes it `2n·0 = 0`, refused as tiny (a true element 0 or 5
+/// below `2⁻¹²⁶` only takes the exact path). On x86_64 the whole decision is a few SSE2
+/// instructions and one branch (SSE2 is part of the baseline, so no detection); elsewhere the
+/// same arithmetic lane by lane.
 #[inline(always)]
 pub(crate) fn nearest_columns_then(
     e: Estimates,
@@ -158,16 +184,12 @@ pub(crate) fn nearest_columns_portable(
         e.depth[1],
     ];
     let mut m = [0.0f32; 6];
-    let mut good = true;
+    let mut good = (e.planes[0] > 0.0) & (e.planes[1] > 0.0);
     for i in 0..6 {
         let y = num[i] * inv[i];
-        let lo = (y * (1.0 - ENCLOSURE)) as f32;
-        let hi = (y * (1.0 + ENCLOSURE)) as f32;
-        good &= (lo == hi) & (lo.abs() < f32::INFINITY);
-        m[i] = lo;
+        good &= decided(y, i >= 2); // elements 0 and 5 must not be tiny
+        m[i] = y as f32;
     }
-    good &= (m[0] != 0.0) & (m[1] != 0.0);
-    good &= (e.planes[0] > 0.0) & (e.planes[1] > 0.0);
     if !good {
         return None;
     }
@@ -192,41 +214,35 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32
         let den = _mm_set_pd(e.den[1], e.den[0]);
         let inv = _mm_div_pd(_mm_set1_pd(1.0), den); // [1/(r − l), 1/(t − b)]
         let inv_z = _mm_set1_pd(1.0 / e.depth_den);
-        let down = _mm_set1_pd(1.0 - ENCLOSURE);
-        let up = _mm_set1_pd(1.0 + ENCLOSURE);
         let scale = _mm_set1_pd(e.scale);
         let centre = _mm_set_pd(e.centre[1], e.centre[0]);
         let depth = _mm_set_pd(e.depth[1], e.depth[0]);
-        // The estimates numerator·reciprocal, then each times (1 ∓ ρ), narrowed to f32:
-        // [m0 m5 m8 m9] and [m10 m14 0 0].
+        // The estimates numerator·reciprocal, [m0 m5], [m8 m9], [m10 m14], and their nearest
+        // f32: [m0 m5 m8 m9] and [m10 m14 0 0].
         let (y_scale, y_centre) = (_mm_mul_pd(scale, inv), _mm_mul_pd(centre, inv));
         let y_depth = _mm_mul_pd(depth, inv_z);
-        let end = |factor: __m128d| {
-            let xy = _mm_movelh_ps(
-                _mm_cvtpd_ps(_mm_mul_pd(y_scale, factor)),
-                _mm_cvtpd_ps(_mm_mul_pd(y_centre, factor)),
-            );
-            (xy, _mm_cvtpd_ps(_mm_mul_pd(y_depth, factor)))
+        let lo_xy = _mm_movelh_ps(_mm_cvtpd_ps(y_scale), _mm_cvtpd_ps(y_centre));
+        let lo_z = _mm_cvtpd_ps(y_depth);
+        // `decided` for two estimates, as four 32-bit lanes [low, high, low, high]: the low
+        // words shifted and masked to the pattern (compared with 2·SLACK), the high words
+        // masked to |y|'s (compared with the binade's bounds, and TINY where allowed).
+        let decided = |y: __m128d, tiny: i32| {
+            let v = _mm_castpd_si128(y);
+            let v = _mm_add_epi32(v, _mm_set_epi32(0, MIDPOINT_SHIFT, 0, MIDPOINT_SHIFT));
+            let v = _mm_and_si128(v, _mm_set_epi32(i32::MAX, LOW_29, i32::MAX, LOW_29));
+            let low = _mm_set_epi32(NORMAL_LOW - 1, 2 * SLACK - 1, NORMAL_LOW - 1, 2 * SLACK - 1);
+            let above = _mm_cmpgt_epi32(v, low); // far from a boundary; normal
+            let small = _mm_cmpgt_epi32(_mm_set_epi32(tiny, 0, tiny, 0), v); // —; tiny
+            let high = _mm_set_epi32(NORMAL_HIGH, i32::MAX, NORMAL_HIGH, i32::MAX);
+            _mm_and_si128(_mm_or_si128(above, small), _mm_cmpgt_epi32(high, v))
         };
-        let (lo_xy, lo_z) = end(down);
-        let (hi_xy, hi_z) = end(up);
-        let magnitude = _mm_castsi128_ps(_mm_set1_epi32(0x7fff_ffff));
-        let infinity = _mm_set1_ps(f32::INFINITY);
-        let decided = |lo: __m128, hi: __m128| {
-            let finite = _mm_cmplt_ps(_mm_and_ps(lo, magnitude), infinity);
-            _mm_and_ps(_mm_cmpeq_ps(lo, hi), finite)
-        };
-        // The validation of `Estimates::planes` (n > 0, f − n > 0; a 64-bit lane mask covers
-        // two f32 lanes) and of elements 0 and 5 (nonzero; NaN ≠ 0 holds in lanes 2 and 3),
-        // joined to the enclosure's in one test.
         let planes = _mm_set_pd(e.planes[1], e.planes[0]);
-        let positive = _mm_castpd_ps(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
-        let scale_nonzero = _mm_cmpneq_ps(lo_xy, _mm_set_ps(f32::NAN, f32::NAN, 0.0, 0.0));
-        let all = _mm_and_ps(
-            _mm_and_ps(decided(lo_xy, hi_xy), decided(lo_z, hi_z)),
-            _mm_and_ps(positive, scale_nonzero),
+        let positive = _mm_castpd_si128(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
+        let all = _mm_and_si128(
+            _mm_and_si128(decided(y_scale, 0), decided(y_centre, TINY)),
+            _mm_and_si128(decided(y_depth, TINY), positive),
         );
-        if _mm_movemask_ps(all) != 0xf {
+        if _mm_movemask_epi8(all) != 0xffff {
             return None;
         }
         let lo_z = _mm_move_ss(lo_z, _mm_set_ss(element_10(_mm_cvtss_f32(lo_z))?));
@@ -421,24 +437,32 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_enclosure_refuses_midpoints_and_accepts_f32_values() {
+    fn the_test_refuses_near_midpoints_and_accepts_f32_values() {
         let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
         let ulps = |k: i64| f64::from_bits((mid.to_bits() as i64 + k) as u64);
         assert_eq!(enclosed(mid), None);
         assert_eq!(enclosed(ulps(7)), None);
         assert_eq!(enclosed(ulps(-7)), None);
+        assert_eq!(enclosed(ulps(15)), None); // SLACK − 1 ulps
+        assert_eq!(enclosed(ulps(-15)), None);
+        assert_eq!(enclosed(ulps(16)), Some(1.0 + f32::EPSILON));
         assert_eq!(enclosed(ulps(40)), Some(1.0 + f32::EPSILON));
         assert_eq!(enclosed(ulps(-40)), Some(1.0));
         for (y, want) in [
             (1.0, 1.0f32),
             (-3.5, -3.5),
             (0.0, 0.0),
+            (-0.0, -0.0),
             (1e-300, 0.0),
-            (1e-39, 1e-39),
+            (2f64.powi(-126), f32::MIN_POSITIVE),
+            (-1.5 * 2f64.powi(126), -1.5 * 2f32.powi(126)),
         ] {
-            assert_eq!(enclosed(y), Some(want), "{y}");
+            assert_eq!(enclosed(y).map(f32::to_bits), Some(want.to_bits()), "{y}");
         }
-        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)] {
+        // f32 subnormals, the band below them where an f32 boundary (2⁻¹⁵⁰) lies, and values
+        // from 2¹²⁷ on go to the exact decision.
+        let subnormal_band = [1e-39, 2f64.powi(-150), 2f64.powi(-151), 2f64.powi(127)];
+        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)].into_iter().chain(subnormal_band) {
             assert_eq!(enclosed(bad), None, "{bad}");
         }
     }

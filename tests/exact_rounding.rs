@@ -334,6 +334,57 @@ fn every_projection_element_is_the_nearest_f32_near_rounding_boundaries() {
     println!("{near} of 6000 constructed frustums sent an element to the exact decision");
 }
 
+/// Elements at the edges of the fast test's range (module docs of `zshift::rounding`): tiny
+/// values around `2⁻¹⁵⁰` (an f32 boundary between 0 and the least subnormal, where the fast
+/// path may only pass values below `2⁻¹⁵¹`), f32 subnormals and the least normals, and values
+/// around `2¹²⁷` and the overflow threshold. Each matrix, fast path or not, is the nearest one.
+#[test]
+fn elements_at_the_edges_of_the_fast_range_are_the_nearest_f32() {
+    let mut fast = 0;
+    let mut checked = 0;
+    let mut near = |frustum: Frustum, clip: ClipDepth| {
+        let (_, _, _, _, n, f) = frustum.parameters();
+        match projection(&frustum, clip) {
+            Ok(m) => {
+                assert!(m.iter().all(|x| x.is_finite()), "{m:?} for {frustum:?}");
+                assert_nearest(&m, &frustum, exact_row(n, f, clip), "edge");
+                checked += 1;
+                fast += usize::from(projection_fast(&frustum, clip).is_some());
+            }
+            Err(e) => assert_eq!(e.kind(), zshift::ErrorKind::Overflow, "{frustum:?}"),
+        }
+    };
+    let ulps = [-40, -16, -15, -1, 0, 1, 15, 16, 40];
+    for e in [-153, -152, -151, -150, -149, -148, -127, -126, -125] {
+        // Normal f32 midpoints (1 + 2⁻²⁴) and, below 2⁻¹²⁶, subnormal ones (1 + 2⁻²³ at 2⁻¹²⁷).
+        let epsilon = f64::from(f32::EPSILON);
+        for mantissa in [1.0, 1.5, 1.75, 1.0 + epsilon / 2.0, 1.0 + epsilon] {
+            for k in ulps {
+                // Reversed Z: elements 10 and 14 are about n; [−1, 1]: element 14 about −2n.
+                let n = nudge(mantissa * 2f64.powi(e), k);
+                // A window as narrow as n, so that elements 0 and 5 stay normal.
+                let w = n * 3.0;
+                for f in [1.0, 1e10, f64::INFINITY] {
+                    let frustum = Frustum::new(-w, w, -w, w, n, f).expect("valid");
+                    near(frustum, ClipDepth::ReversedZeroToOne);
+                    near(frustum, ClipDepth::NegOneToOne);
+                }
+            }
+        }
+    }
+    for e in [125, 126, 127, 128] {
+        for mantissa in [1.0, 1.5, 2.0 - f64::from(f32::EPSILON) / 2.0] {
+            for k in ulps {
+                // Element 0 = 2n/(r − l) about 2^e.
+                let width = nudge(2.0 / (mantissa * 2f64.powi(e)), k);
+                let frustum = Frustum::new(0.0, width, -1.0, 1.0, 1.0, 2.0).expect("valid");
+                near(frustum, ClipDepth::NegOneToOne);
+            }
+        }
+    }
+    assert!(checked > 1000 && fast > 100, "{checked} checked, {fast} fast");
+}
+
 #[test]
 fn the_double_rounding_example_of_the_issue_is_fixed() {
     let (l, r, b, t, n, f) = (-0.15, 0.15, -1.0, 1.0, 0.15435080230236053, 100.0);
