@@ -179,17 +179,15 @@ pub(crate) fn offset_fast(
 ) -> Option<Mat4> {
     let shifted = pz + delta;
     let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
-    if !(good & (shifted < 0.0) & (delta.abs() < f64::INFINITY)) {
-        return None;
-    }
+    let good = good & (shifted < 0.0) & (delta.abs() < f64::INFINITY);
     let planes = Planes::from_checked(n, f);
-    let estimate = shift_estimate(&planes, delta, pz);
-    // Divide before the frustum's enclosure test, not after it: the quotient (the same f64,
-    // since `x/1` is exact) then overlaps the frustum's own divisions.
-    let offset = Ratio(estimate.value(), 1.0);
+    // The offset's quotient is computed here, before the frustum's test, so that it overlaps
+    // the frustum's own divisions; invalid inputs give a meaningless one, refused by `good`.
+    let offset = shift_estimate(&planes, delta, pz).value();
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
     crate::projection::fast_then(l, r, b, t, n, f, depth, |m10| {
-        outward_of_ratio(m10, offset, 8.0)
+        let (x, decided) = outward_decided(m10, offset, 8.0);
+        (x, decided & good)
     })
 }
 
@@ -368,13 +366,26 @@ impl Ratio {
 /// `rounds·2⁻⁵³`: the f64 operations that computed it, on inputs scaled into the normal range).
 /// `None` (use the double-double value) when the estimate cannot decide it, and for a zero or
 /// non-finite one.
+#[inline(always)]
+pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
+    let (x, decided) = outward_decided(plain, o.value(), rounds);
+    decided.then_some(x)
+}
+
+/// [`outward_of_ratio`] for the offset's f64 estimate, without a branch: the f32 and whether
+/// it is decided (if not, the f32 is meaningless).
 ///
-/// Two cases decide it, both computed and one chosen without a branch. An offset whose magnitude
-/// (with the doubled error bound) is below the step from `plain` to the next f32 outward (the
-/// usual one: a few depth steps or less) rounds outward to that next f32. A larger one: when
-/// no f32 lies within the estimate's error of `plain + o`, every value in that interval rounds
-/// outward to the same f32 (`|gap| ≤` half an f32 spacing, so the other f32 are farther
-/// still); that fails for an f32 within about `1e-15` relative (offsets that land on one).
+/// Two cases decide it, both computed and one chosen. An offset below `|plain|·2⁻²⁴` (with
+/// twice its error bound and a margin for this test's own rounding), at most the step from
+/// `plain` to the next f32 outward (the usual one: a few depth steps or less), rounds outward
+/// to that next f32. A larger one: the f64 target `t = plain + o` (one more rounding) is
+/// within `rounds·u·|o| + u·|t|` of the exact one, under 32 ulps of `t` when
+/// `rounds·|o| < 30·|t|`; when no f32 lies within 32 ulps of `t` (its low 29 significand
+/// bits, the bits an f32 drops, are at least 32 from a multiple of `2²⁹`, as in
+/// [`crate::rounding`]) in the normal f32 range, the exact target lies strictly between the
+/// same two f32, and its outward rounding is `t`'s: `t` truncated to f32 by its bits, plus one
+/// f32 step when the offset points away from zero. That fails for an f32 within about
+/// `3.6e-15` relative (offsets that land on one).
 ///
 /// The target is `plain + o`, not `m10·(1 + ε) = m10 + o`: rounding that one fraction outward
 /// from `m10` would skip the rounding of `plain` itself, and loses offsets below the gap
@@ -382,38 +393,34 @@ impl Ratio {
 /// `δ = −8.240355720867853e-5` (`m10 = plain + 0.11 ulp`, `o = −0.055 ulp`), `m10 + o` rounds
 /// down to `plain` itself, no offset at all, where `plain + o` rounds to the f32 below it.
 #[inline(always)]
-pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32> {
-    let estimate = o.value();
-    let bound = rounds * f64::EPSILON;
+pub(crate) fn outward_decided(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
+    const SLACK: u32 = 32;
+    const LOW_29: u32 = (1 << 29) - 1;
     let up = estimate > 0.0;
-    // One f32 outward from `v` (nonzero, finite): one unit of its bit pattern, away from zero
-    // when the direction agrees with its sign.
-    let outward = |v: f32| {
-        let bits = v.to_bits();
-        f32::from_bits(if up == (v > 0.0) {
-            bits.wrapping_add(1)
-        } else {
-            bits.wrapping_sub(1)
-        })
-    };
-    let next = outward(plain);
-    let step = (f64::from(next) - f64::from(plain)).abs();
-    let small = estimate.abs() * (1.0 + bound) < step;
+    // One f32 outward from `plain`: one unit of its bit pattern, away from zero when the
+    // direction agrees with its sign (nonzero `plain`; zero is never `small`).
+    let plain_bits = plain.to_bits();
+    let next = f32::from_bits(if up == (plain > 0.0) {
+        plain_bits.wrapping_add(1)
+    } else {
+        plain_bits.wrapping_sub(1)
+    });
+    let margin = 1.0 + (rounds + 2.0) * f64::EPSILON;
+    let small = estimate.abs() * (margin * 16_777_216.0) < f64::from(plain).abs();
     let target = f64::from(plain) + estimate;
-    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = bound * estimate.abs() + f64::EPSILON * target.abs();
-    let nearest = target as f32;
-    let gap = f64::from(nearest) - target; // exact
-    let beyond = if up { gap < 0.0 } else { gap > 0.0 };
-    let x = match (small, beyond) {
-        (true, _) => next,
-        (false, true) => outward(nearest),
-        (false, false) => nearest,
-    };
-    let nonzero_finite = |v: f32| (v != 0.0) & (v.abs() < f32::INFINITY);
-    let decided = small | (gap.abs() > error);
-    let usable = nonzero_finite(plain) & nonzero_finite(nearest) & (x.abs() < f32::INFINITY);
-    (decided & usable & (estimate != 0.0)).then_some(x)
+    let bits = target.to_bits();
+    let magnitude = bits & !(1 << 63);
+    let far = ((bits as u32).wrapping_add(SLACK) & LOW_29) >= 2 * SLACK;
+    // |t| in [2⁻¹²⁶, 2¹²⁷): a normal f32 binade, and one step beyond stays finite.
+    let normal = (0x3810_0000..0x47e0_0000).contains(&((magnitude >> 32) as u32));
+    let accurate = estimate.abs() * rounds < 30.0 * target.abs();
+    let truncated = (magnitude >> 29).wrapping_sub(896 << 23) as u32; // exponent bias 1023 → 127
+    let away = u32::from((bits ^ estimate.to_bits()) >> 63 == 0);
+    let sign = (bits >> 32) as u32 & 0x8000_0000;
+    let directed = f32::from_bits((truncated + away) | sign);
+    let x = if small { next } else { directed };
+    let decided = small | (far & normal & accurate);
+    (x, decided & (estimate != 0.0) & (x.abs() < f32::INFINITY))
 }
 
 /// [`outward_of_ratio`], falling back to the double-double `exact` offset.

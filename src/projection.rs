@@ -459,11 +459,12 @@ pub(crate) fn fast(
     f: f64,
     depth: DepthRow,
 ) -> Option<Mat4> {
-    fast_then(l, r, b, t, n, f, depth, Some)
+    fast_then(l, r, b, t, n, f, depth, |m10| (m10, true))
 }
 
 /// [`fast`] with element 10 replaced by `element_10(m10)` before the columns are assembled
-/// (the offset builders round their offset element outward there).
+/// (the offset builders round their offset element outward there, and say whether that was
+/// decided; computed before the one test, so it must not panic).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn fast_then(
@@ -474,7 +475,7 @@ pub(crate) fn fast_then(
     n: f64,
     f: f64,
     depth: DepthRow,
-    element_10: impl FnOnce(f32) -> Option<f32>,
+    element_10: impl FnOnce(f32) -> (f32, bool),
 ) -> Option<Mat4> {
     let mut good = true;
     let two_n = 2.0 * n;
@@ -495,9 +496,6 @@ pub(crate) fn fast_then(
             ClipDepth::ReversedZeroToOne => ([n, n * f], span),
         },
     };
-    if !good {
-        return None;
-    }
     nearest_columns_then(
         Estimates {
             scale: two_n,
@@ -507,7 +505,10 @@ pub(crate) fn fast_then(
             depth_den,
             planes: [n, span],
         },
-        element_10,
+        |m10| {
+            let (x, decided) = element_10(m10);
+            (x, decided & good)
+        },
     )
 }
 

@@ -133,9 +133,10 @@ pub(crate) struct Estimates {
 }
 
 /// The projection's columns, each element the nearest f32 of its exact value, with element 10
-/// replaced by `element_10(m10)` (an offset rounded outward) before the columns are assembled,
-/// so the matrix leaves in four registers. `None` unless the test of the module docs decides
-/// all six elements (elements 0 and 5 not tiny) and `n`, `f − n > 0`.
+/// replaced by `element_10(m10)` (an offset rounded outward, and whether that was decided)
+/// before the columns are assembled, so the matrix leaves in four registers. `None` unless
+/// the test of the module docs decides all six elements (elements 0 and 5 not tiny),
+/// `element_10` decided, and `n`, `f − n > 0`: one branch for all.
 ///
 /// Those few tests validate the frustum as `Frustum::new` does: `n < ∞` because `2n = ∞`
 /// makes element 0 infinite or NaN; `r − l` and `t − b` nonzero because a zero one makes
@@ -147,7 +148,7 @@ pub(crate) struct Estimates {
 #[inline(always)]
 pub(crate) fn nearest_columns_then(
     e: Estimates,
-    element_10: impl FnOnce(f32) -> Option<f32>,
+    element_10: impl FnOnce(f32) -> (f32, bool),
 ) -> Option<Mat4> {
     #[cfg(target_arch = "x86_64")]
     {
@@ -164,7 +165,7 @@ pub(crate) fn nearest_columns_then(
 #[inline(always)]
 pub(crate) fn nearest_columns_portable(
     e: Estimates,
-    element_10: impl FnOnce(f32) -> Option<f32>,
+    element_10: impl FnOnce(f32) -> (f32, bool),
 ) -> Option<Mat4> {
     let inv_z = 1.0 / e.depth_den;
     let inv = [
@@ -190,10 +191,11 @@ pub(crate) fn nearest_columns_portable(
         good &= decided(y, i >= 2); // elements 0 and 5 must not be tiny
         m[i] = y as f32;
     }
-    if !good {
+    let decided_10;
+    (m[4], decided_10) = element_10(m[4]);
+    if !(good & decided_10) {
         return None;
     }
-    m[4] = element_10(m[4])?;
     Some(Mat4::from_cols(
         Vec4::new(m[0], 0.0, 0.0, 0.0),
         Vec4::new(0.0, m[1], 0.0, 0.0),
@@ -207,7 +209,7 @@ pub(crate) fn nearest_columns_portable(
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
-fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32>) -> Option<Mat4> {
+fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> (f32, bool)) -> Option<Mat4> {
     use std::arch::x86_64::*;
     // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
     unsafe {
@@ -242,10 +244,11 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> Option<f32
             _mm_and_si128(decided(y_scale, 0), decided(y_centre, TINY)),
             _mm_and_si128(decided(y_depth, TINY), positive),
         );
-        if _mm_movemask_epi8(all) != 0xffff {
+        let (m10, decided_10) = element_10(_mm_cvtss_f32(lo_z));
+        if (_mm_movemask_epi8(all) != 0xffff) | !decided_10 {
             return None;
         }
-        let lo_z = _mm_move_ss(lo_z, _mm_set_ss(element_10(_mm_cvtss_f32(lo_z))?));
+        let lo_z = _mm_move_ss(lo_z, _mm_set_ss(m10));
         let col0 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, 0, -1)));
         let col1 = _mm_and_ps(lo_xy, _mm_castsi128_ps(_mm_set_epi32(0, 0, -1, 0)));
         let z_and_w = _mm_unpacklo_ps(lo_z, _mm_set1_ps(-1.0)); // [m10 −1 m14 −1]
@@ -493,9 +496,9 @@ mod tests {
                 depth_den: if i % 3 == 0 { 1.0 } else { v[2] - v[1] },
                 planes: [v[0].abs(), v[5] - v[6]],
             };
-            let portable = nearest_columns_portable(e, Some).map(|m| m.to_cols_array());
+            let portable = nearest_columns_portable(e, |m| (m, true)).map(|m| m.to_cols_array());
             assert_eq!(
-                nearest_columns_then(e, Some).map(|m| m.to_cols_array()),
+                nearest_columns_then(e, |m| (m, true)).map(|m| m.to_cols_array()),
                 portable,
                 "{e:?}"
             );
