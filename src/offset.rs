@@ -178,7 +178,8 @@ pub(crate) fn offset_fast(
     pz: f64,
 ) -> Option<Mat4> {
     let shifted = pz + delta;
-    let good = (pz <= -n) & (pz >= -f) & (pz > f64::NEG_INFINITY);
+    // |pz| in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) as well, for `shift_estimate`'s scale.
+    let good = (pz <= -n) & (pz >= -f) & (pz > -BIG_DEPTH) & (pz <= -1.0 / BIG_DEPTH);
     let good = good & (shifted < 0.0) & (delta.abs() < f64::INFINITY);
     let planes = Planes::from_checked(n, f);
     // The offset's quotient is computed here, before the frustum's test, so that it overlaps
@@ -190,6 +191,9 @@ pub(crate) fn offset_fast(
         (x, decided & good)
     })
 }
+
+/// `2¹⁰⁰⁰`: the fast path takes `|Pz|` in `[2⁻¹⁰⁰⁰, 2¹⁰⁰⁰)`.
+const BIG_DEPTH: f64 = 1.0715086071862673e301;
 
 #[allow(clippy::too_many_arguments)]
 #[cold]
@@ -318,9 +322,13 @@ fn ndc_offset_of_shift(
 /// the double-double closure too keeps the estimate in memory, behind a call).
 #[inline(always)]
 fn shift_estimate(planes: &Planes, delta: f64, pz: f64) -> Ratio {
-    let s = unit_scale(pz);
-    let far = (!planes.is_infinite()).then_some(planes.far() * s);
-    scaled_shift_estimate(planes.near() * s, far, delta * s, pz * s)
+    // 1/2^e for |pz| in [2^e, 2^(e+1)), from its exponent bits: `unit_scale` without its
+    // branches, for the `|pz|` in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) that `offset_fast` accepts.
+    let s = f64::from_bits(2046u64.wrapping_sub(pz.to_bits() >> 52 & 0x7ff) << 52);
+    let (n, f) = (planes.near(), planes.far());
+    let f = crate::projection::far_for_estimates(n, f) * s;
+    let (n, delta, pz) = (n * s, delta * s, pz * s);
+    Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n))
 }
 
 /// `o`'s numerator and denominator from inputs already scaled by a power of two.
@@ -375,17 +383,20 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 /// [`outward_of_ratio`] for the offset's f64 estimate, without a branch: the f32 and whether
 /// it is decided (if not, the f32 is meaningless).
 ///
-/// Two cases decide it, both computed and one chosen. An offset below `|plain|·2⁻²⁴` (with
-/// twice its error bound and a margin for this test's own rounding), at most the step from
-/// `plain` to the next f32 outward (the usual one: a few depth steps or less), rounds outward
-/// to that next f32. A larger one: the f64 target `t = plain + o` (one more rounding) is
-/// within `rounds·u·|o| + u·|t|` of the exact one, under 32 ulps of `t` when
-/// `rounds·|o| < 30·|t|`; when no f32 lies within 32 ulps of `t` (its low 29 significand
-/// bits, the bits an f32 drops, are at least 32 from a multiple of `2²⁹`, as in
-/// [`crate::rounding`]) in the normal f32 range, the exact target lies strictly between the
-/// same two f32, and its outward rounding is `t`'s: `t` truncated to f32 by its bits, plus one
-/// f32 step when the offset points away from zero. That fails for an f32 within about
-/// `3.6e-15` relative (offsets that land on one).
+/// The f64 target `t = plain + o` (one more rounding) is rounded outward by its bits: its
+/// magnitude truncated to f32, plus one f32 step when the offset points away from zero, else
+/// after stepping one f64 ulp toward zero (so that a `t` equal to an f32 goes to the one
+/// below). That is the outward rounding of the exact target when both lie strictly between
+/// the same two f32, or `t = plain` and the exact target lies within one f32 step of it, in a
+/// normal f32 binade (`2⁻¹²⁶ ≤ |t| < 2¹²⁷`, so the step stays finite). Two cases show it:
+///
+/// - a small offset, below `|plain|·2⁻²⁴/(1 + 2⁻¹⁴)` (with twice its error bound): at most the
+///   step from `plain` to the next f32 outward, less a margin far wider than `t`'s rounding,
+///   so `t` is `plain` or on the offset's side of it, short of the next f32 (the usual offset:
+///   a few depth steps or less);
+/// - a larger one: `t` is within `rounds·u·|o| + u·|t|` of the exact target, and no f32 is
+///   when the nearest f32 of `t` (round to nearest) is farther than that (the difference is
+///   exact). That fails for an f32 within about `1e-15` relative (offsets that land on one).
 ///
 /// The target is `plain + o`, not `m10·(1 + ε) = m10 + o`: rounding that one fraction outward
 /// from `m10` would skip the rounding of `plain` itself, and loses offsets below the gap
@@ -394,33 +405,23 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 /// down to `plain` itself, no offset at all, where `plain + o` rounds to the f32 below it.
 #[inline(always)]
 pub(crate) fn outward_decided(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
-    const SLACK: u32 = 32;
-    const LOW_29: u32 = (1 << 29) - 1;
-    let up = estimate > 0.0;
-    // One f32 outward from `plain`: one unit of its bit pattern, away from zero when the
-    // direction agrees with its sign (nonzero `plain`; zero is never `small`).
-    let plain_bits = plain.to_bits();
-    let next = f32::from_bits(if up == (plain > 0.0) {
-        plain_bits.wrapping_add(1)
-    } else {
-        plain_bits.wrapping_sub(1)
-    });
-    let margin = 1.0 + (rounds + 2.0) * f64::EPSILON;
-    let small = estimate.abs() * (margin * 16_777_216.0) < f64::from(plain).abs();
-    let target = f64::from(plain) + estimate;
+    let plain = f64::from(plain);
+    let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
+    let small = estimate.abs() * (margin * 16_777_216.0) < plain.abs();
+    let target = plain + estimate;
+    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
+    let error = (rounds * estimate.abs() + target.abs()) * (f64::EPSILON / 2.0);
+    let gap = f64::from(target as f32) - target; // exact
     let bits = target.to_bits();
     let magnitude = bits & !(1 << 63);
-    let far = ((bits as u32).wrapping_add(SLACK) & LOW_29) >= 2 * SLACK;
-    // |t| in [2⁻¹²⁶, 2¹²⁷): a normal f32 binade, and one step beyond stays finite.
-    let normal = (0x3810_0000..0x47e0_0000).contains(&((magnitude >> 32) as u32));
-    let accurate = estimate.abs() * rounds < 30.0 * target.abs();
-    let truncated = (magnitude >> 29).wrapping_sub(896 << 23) as u32; // exponent bias 1023 → 127
-    let away = u32::from((bits ^ estimate.to_bits()) >> 63 == 0);
-    let sign = (bits >> 32) as u32 & 0x8000_0000;
-    let directed = f32::from_bits((truncated + away) | sign);
-    let x = if small { next } else { directed };
-    let decided = small | (far & normal & accurate);
-    (x, decided & (estimate != 0.0) & (x.abs() < f32::INFINITY))
+    // |t| in [2⁻¹²⁶, 2¹²⁷): its high word.
+    let normal = (0x3810_0000..0x47e0_0000).contains(&(magnitude >> 32));
+    let away = u64::from((bits ^ estimate.to_bits()) >> 63 == 0);
+    // Truncated to f32 by its bits (exponent bias 1023 → 127), after the f64 step toward zero.
+    let truncated = (magnitude.wrapping_sub(1 - away) >> 29).wrapping_sub(896 << 23);
+    let x = f32::from_bits(truncated.wrapping_add(away) as u32 | (bits >> 32) as u32 & 0x8000_0000);
+    let decided = normal & (small | (gap.abs() > error)) & (estimate != 0.0);
+    (x, decided)
 }
 
 /// [`outward_of_ratio`], falling back to the double-double `exact` offset.

@@ -512,6 +512,26 @@ pub(crate) fn fast_then(
     )
 }
 
+/// The far plane the fast paths compute with: `f`, or `2⁶⁰⁰·n` for a farther one (`f = +∞`
+/// included), so that one branch-free formula serves both. The elements (and Lengyel's offset)
+/// depend on `f` through `n/(f − n)`, which moves by less than `2⁻⁵⁹⁸` relative: far inside
+/// the fast test's slack (`crate::rounding`), and an element whose limit is `0` (reversed
+/// depth's `n/(f − n)`) stays below `2⁻¹⁵¹`, where the test passes zero. NaN is not clamped
+/// away here (`f64::min` would drop it): callers check `f − n > 0` on the unclamped `f`.
+#[inline(always)]
+pub(crate) fn far_for_estimates(n: f64, f: f64) -> f64 {
+    let clamp = n * FAR_CLAMP;
+    // Not `f64::min`, whose NaN handling costs a blend: this is one `minsd`.
+    if f < clamp {
+        f
+    } else {
+        clamp
+    }
+}
+
+/// `2⁶⁰⁰`: see [`far_for_estimates`].
+const FAR_CLAMP: f64 = 4.149515568880993e180;
+
 /// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],
 /// then decides every element with [`nearest_of_ratio`] on inputs scaled by powers of two.
 ///
