@@ -39,6 +39,7 @@ pub mod domain;
 mod double_double;
 pub mod error;
 pub mod ffi;
+pub mod footprint;
 pub mod matrix_in;
 pub mod median;
 pub mod offset;

@@ -425,6 +425,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
     use crate::recommend::DepthTest;
     Scene {
+        footprint: None,
         frustum,
         viewport: decal.viewport,
         format: decal.format,

@@ -232,6 +232,9 @@ const CLIP_STAGES: f64 = 6.0;
 /// half a pixel of any viewport up to 2¹⁵ pixels wide.
 const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 
+/// The decal's window-space geometry (see [`crate::footprint`]).
+pub use crate::footprint::{decal_shape, DecalShape, Footprint};
+
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
 
@@ -341,6 +344,11 @@ pub struct Scene {
     pub base: Base,
     /// What the rasterizer does ([`RasterizerProfile::worst_case`] unless measured).
     pub profile: RasterizerProfile,
+    /// The decal's window-space geometry, when known ([`crate::footprint::decal_shape`] computes
+    /// it, with `depth_range` and `slope`, from the decal's eye-space corners): its exact window
+    /// gradients and screen position replace the bounds over every plane of that slope and every
+    /// pixel of the viewport in `I` and `S` (see "The footprint"). `None`: those bounds.
+    pub footprint: Option<Footprint>,
 }
 
 /// The error of the two quads' computed window depths, term by term (window-depth units),
@@ -518,6 +526,10 @@ fn slope_factor(scene: &Scene) -> f64 {
 fn snap(scene: &Scene) -> Result<f64> {
     match scene.profile.snapping {
         Snapping::Unsnapped => Ok(0.0),
+        Snapping::SubpixelBits(b) if scene.footprint.is_some() => {
+            let [gx, gy] = scene.footprint.map_or([0.0; 2], |f| f.gradient);
+            Ok(2f64.powi(-(b as i32) - 1) * (gx.abs() + gy.abs()))
+        }
         Snapping::SubpixelBits(b) => {
             // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
@@ -531,6 +543,31 @@ fn snap(scene: &Scene) -> Result<f64> {
 /// for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
+}
+
+/// The largest `|m10|` of the planes the probe measures `error_ulps` on (its views have
+/// f/n ≥ 10 under `[−1, 1]`: `|m10| = (f + n)/(f − n) ≤ 11/9`).
+const PROBED_M10: f64 = 11.0 / 9.0;
+
+/// The per-quad error `T + I` from a measured profile ("A measured profile"): the probe found
+/// every pixel's computed depth within `error_ulps·u·(1 + M)` under `[−1, 1]`, the 1 standing
+/// for the transform's own roundings at `|m10| ≤ 11/9`. A larger `|m10|` (f close to n) adds
+/// its excess `u·(|m10| − 11/9)/2` (the product `m10·z`, halved by the viewport map); under
+/// `[0, 1]` nothing halves the transform's roundings, so the 1 becomes 2 and the excess is
+/// whole. `None` for the worst-case profile, an unmeasured figure, or reversed Z (whose errors
+/// are relative to small depths: the bound `T + I` stays).
+fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64) -> Option<f64> {
+    let k = scene.profile.error_ulps;
+    if !(scene.profile.measured && k.is_finite() && k > 0.0) {
+        return None;
+    }
+    let u = F32_UNIT_ROUNDOFF;
+    let excess = (m10.abs() - PROBED_M10).max(0.0);
+    match clip {
+        ClipDepth::NegOneToOne => Some(k * u * (1.0 + magnitude) + u * excess / 2.0),
+        ClipDepth::ZeroToOne => Some(k * u * (2.0 + magnitude) + u * excess),
+        ClipDepth::ReversedZeroToOne => None,
+    }
 }
 
 /// The profile's measured offset for a shared-z facing plane under a strict test, in window
@@ -1008,10 +1045,15 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
     // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·W + |g_y|·H is at most the
     // larger of the two with the whole slope.
-    let extrapolated = {
-        let [gx, gy] = window_gradient(scene, d1)?;
-        let [width, height] = scene.viewport.map(f64::from);
-        (gx * width).max(gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+    // With the decal's footprint, the exact run from the origin to its farthest pixel.
+    let extrapolated = match scene.footprint {
+        Some(footprint) => footprint.extrapolation(),
+        None => {
+            let [gx, gy] = window_gradient(scene, d1)?;
+            let [width, height] = scene.viewport.map(f64::from);
+            (gx * width).max(gy * height)
+                * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+        }
     };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
@@ -1026,9 +1068,16 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    // The probe's error_ulps is not used: see "A measured profile" (llvmpipe exceeds it on
-    // planes the probe does not draw).
-    let plane = bound;
+    // M, the largest magnitude of the plane's terms from the window origin over the decal's
+    // pixels: |w₀| + |gₓ|·x + |g_y|·y ≤ w + 2(|gₓ|·x + |g_y|·y) without the footprint.
+    let magnitude = match scene.footprint {
+        Some(footprint) => footprint.magnitude(),
+        None => w_max + 2.0 * extrapolated,
+    };
+    let plane = match measured_plane_error(scene, clip, m10, magnitude) {
+        Some(measured) => (measured + vertex).min(bound),
+        None => bound,
+    };
     let snap = snap(scene)?;
     let clip_term = match scene.profile.near_clip {
         NearClip::ClippedF32 => clip_term(scene, clip, &mapping)?,
@@ -1118,6 +1167,7 @@ mod tests {
         };
         let e = 0.577_350_269_189_625_7;
         Scene {
+            footprint: None,
             frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
             viewport: [256, 256],
             format,
@@ -1323,26 +1373,37 @@ mod tests {
         );
     }
 
-    /// The probe's summary figures (plane_error, error_ulps) change no term: they are not
-    /// bounds on the scenes the probe does not draw (module docs).
+    /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a
+    /// footprint): the part above `V` doubles with `k`, stays below the bound, and the summary
+    /// `plane_error` changes nothing.
     #[test]
-    fn measured_summary_figures_change_no_term() {
+    fn measured_error_ulps_scales_the_plane_error() {
         let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
-        let measured = Scene {
+        let with = |k: f64, plane_error: f64| Scene {
             profile: RasterizerProfile {
-                error_ulps: 1.4,
-                plane_error: [0.5; 4],
+                error_ulps: k,
+                plane_error: [plane_error; 4],
                 measured: true,
                 ..worst.profile
             },
             ..worst
         };
-        let (a, b) = (
-            error_terms(&worst).unwrap(),
-            error_terms(&measured).unwrap(),
+        let bound = error_terms(&worst).unwrap();
+        let a = error_terms(&with(1.4, f64::NAN)).unwrap();
+        let b = error_terms(&with(2.8, f64::NAN)).unwrap();
+        assert_eq!(
+            bound.plane,
+            bound.transform + bound.vertex + bound.interpolation
         );
-        assert_eq!(a, b);
-        assert_eq!(a.plane, a.transform + a.vertex + a.interpolation);
+        assert!(a.plane < bound.plane, "{a:?} vs {bound:?}");
+        let above = |t: &ErrorTerms| t.plane - t.vertex;
+        assert!((above(&b) - 2.0 * above(&a)).abs() <= 1e-12 * above(&b));
+        assert_eq!(a, error_terms(&with(1.4, 0.5)).unwrap());
+        // A huge figure never exceeds the bound.
+        assert_eq!(
+            error_terms(&with(1e6, f64::NAN)).unwrap().plane,
+            bound.plane
+        );
     }
 
     /// A facing plane with shared f32 z under GL_LEQUAL needs no offset (the chain is monotone in

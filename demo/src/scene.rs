@@ -273,6 +273,7 @@ pub fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendati
     let nearest = depths.iter().copied().fold(f64::INFINITY, f64::min);
     let farthest = depths.iter().copied().fold(0.0, f64::max);
     let model = RecommendScene {
+        footprint: None,
         frustum: Frustum::new(-h, h, -h, h, n, f).map_err(|e| e.to_string())?,
         viewport: [SIZE, SIZE],
         format: RecommendFormat::from_gl_internal_format(DEPTH.gl_enum())

@@ -53,6 +53,7 @@ fn floors(probed: &RasterizerProfile) -> Vec<Floor> {
                 ("probed", *probed),
             ] {
                 let scene = Scene {
+                    footprint: None,
                     frustum,
                     viewport: [256, 144],
                     format,

@@ -201,6 +201,7 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
     };
     let profile = super::probe::profile_or_worst(s.profile, snapping)?;
     Ok(Scene {
+        footprint: None,
         frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
         viewport: [s.viewport_width, s.viewport_height],
         format,

@@ -831,6 +831,57 @@ fn plane_scenes(reversed: bool) -> Vec<Scene> {
     out
 }
 
+/// Sloped planes in every direction, as engines draw them: the fixed scenes of
+/// [`plane_scenes`] cover a few slopes and views; these add 256 more, deterministic
+/// pseudo-random (f/n from 10² to 10⁹, aspect 1/1.6 to 1.6, slope 0.3 to 10 in any direction,
+/// axis depths log-spread over the range, triangles on screen or reaching up to half a viewport
+/// past it). A rounding maximum grows with the number of planes it is taken over, and the
+/// figure must hold for planes the probe does not draw: on llvmpipe the fixed scenes alone found
+/// 1.40, these 256 more 1.54, and a survey of 804 other planes reaches 1.74 (`tests/gl_scenes.rs`).
+fn varied_plane_scenes() -> Vec<Scene> {
+    let mut state: u64 = 0x5EED_2026_1123;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let ratios = [1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e9];
+    let slopes = [0.3, 1.0, 3.0, 10.0];
+    let mut out = Vec::new();
+    for i in 0..TILES * TILES * 16 {
+        if out.len() == 4 * TILES * TILES {
+            break;
+        }
+        let ratio = ratios[i % ratios.len()];
+        let n = if next() < 0.5 { 0.1 } else { 1.0 };
+        let view = View {
+            e: 0.35 + 0.4 * next(),
+            n,
+            f: n * ratio,
+            reversed: false,
+            squash: 0.625 + next(),
+        };
+        let slope = slopes[(i / ratios.len()) % slopes.len()];
+        let angle = std::f64::consts::TAU * next();
+        let (sx, sy) = (slope * angle.cos(), slope * angle.sin());
+        let d = n * ratio.powf(0.9 * next()).max(1.5);
+        let corners: [[f64; 2]; 3] =
+            std::array::from_fn(|_| [3.0 * next() - 1.5, 3.0 * next() - 1.5]);
+        let t: Option<Vec<[f64; 3]>> = corners
+            .iter()
+            .map(|&[xn, yn]| view.on_plane(xn, yn, d, sx, sy))
+            .collect();
+        if let Some(t) = t {
+            out.push(Scene {
+                matrix: view.matrix(),
+                triangles: vec![View::triangle([t[0], t[1], t[2]])],
+            });
+        }
+    }
+    out
+}
+
 /// The figures of [`plane_error`] for one format and mapping.
 struct PlaneErrors {
     /// The worst error in quanta (D32F: 2⁻²⁴ under `[−1, 1]`, the spacing at the primitive's
@@ -852,7 +903,12 @@ unsafe fn plane_error(gl: &Gl, o: &Objects, format: Format, reversed: bool) -> R
         local: 0.0,
         error_ulps: 0.0,
     };
-    let scenes = plane_scenes(reversed);
+    let mut scenes = plane_scenes(reversed);
+    if format == Format::Float && !reversed {
+        // D32F stores the computed depth as is: error_ulps comes from it (the UNORM formats'
+        // conversion hides a quantum), so the varied planes are drawn there only.
+        scenes.extend(varied_plane_scenes());
+    }
     let mut stored_tiles = Vec::new();
     for batch in scenes.chunks(TILES * TILES) {
         stored_tiles.extend(draw_tiles(gl, o, format, batch)?);
