@@ -19,8 +19,7 @@ use glam::Vec3;
 
 use crate::domain::{domain, finite};
 use crate::error::Result;
-use crate::precision::DepthMapping;
-use crate::projection::{ClipDepth, Frustum};
+use crate::projection::{projection_f64, ClipDepth, Frustum};
 
 /// The window-space geometry of a decal: its depth plane and the rectangle it covers.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,18 +67,48 @@ const PLANAR_TOLERANCE: f64 = 1.0 / 65_536.0;
 /// The depth range, slope and [`Footprint`] of a planar decal from its eye-space corners
 /// (right-handed, looking down −z: the positions the decal's vertices have after the
 /// model-view transform), seen through `frustum` under `clip` in a `viewport` of `[W, H]` pixels.
+/// [`decal_shape_for_matrix`] does the same for any projection matrix.
 ///
-/// The plane is fitted by Newell's method in f64; its window depth `w = α ± b/d` is affine in
-/// `1/d`, and `1/d` is affine in window `(x, y)` along the rays of the frustum, so the window
-/// plane is exact up to f64 rounding.
+/// # Errors
+/// As [`decal_shape_for_matrix`], and [`crate::ErrorKind::Domain`] for a corner outside the
+/// depth range `[n, f]` (the corner is named).
+pub fn decal_shape(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    viewport: [u32; 2],
+    corners: &[Vec3],
+) -> Result<DecalShape> {
+    let (.., n, f) = frustum.parameters();
+    for (i, c) in corners.iter().enumerate() {
+        let d = -f64::from(c.z);
+        if d < n || d > f {
+            return Err(domain(
+                "every decal corner's eye depth -z must lie within the frustum's [n, f]",
+            )
+            .with_integer("decal corner", i as i64));
+        }
+    }
+    decal_shape_for_matrix(&projection_f64(frustum, clip)?, clip, viewport, corners)
+}
+
+/// The depth range, slope and [`Footprint`] of a planar decal from its eye-space `corners`, seen
+/// through the projection `m` (column-major, in f64: any perspective matrix, left- or
+/// right-handed, flipped or not) under `clip` in a `viewport` of `[W, H]` pixels at the
+/// framebuffer's origin.
+///
+/// Each corner is projected in f64 to window `(x, y)` and window depth (`½·ndc + ½` under
+/// `[−1, 1]`, `ndc` otherwise); a planar polygon's window depth is affine in window `(x, y)`
+/// (`ndc` is affine in `1/w`, and `1/w` is affine on the screen), so the footprint's plane is
+/// the plane through those points (Newell's normal, exact up to f64 rounding). The eye depth of
+/// a corner is its clip `w` (`−z` right-handed, `z` left-handed); the slope is
+/// `(|n_x| + |n_y|)/|n_z|` of the eye-space plane.
 ///
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate; [`crate::ErrorKind::Domain`]
-/// for fewer than 3 corners, a zero viewport, a corner outside the depth range `[n, f]` (the
-/// corner is named), corners that do not span a plane or are not coplanar, or a plane edge-on to
-/// the view direction (infinite slope).
-pub fn decal_shape(
-    frustum: &Frustum,
+/// for fewer than 3 corners, a zero viewport, a corner at or behind the eye (named), corners that
+/// do not span a plane or are not coplanar, or a plane edge-on to the view direction.
+pub fn decal_shape_for_matrix(
+    m: &[f64; 16],
     clip: ClipDepth,
     viewport: [u32; 2],
     corners: &[Vec3],
@@ -90,62 +119,55 @@ pub fn decal_shape(
     if viewport[0] == 0 || viewport[1] == 0 {
         return Err(domain("the viewport must be at least 1×1 pixel"));
     }
-    let (l, r, b, t, n, f) = frustum.parameters();
-    let points: Vec<[f64; 3]> = corners
+    let eye: Vec<[f64; 3]> = corners
         .iter()
         .map(|c| [f64::from(c.x), f64::from(c.y), f64::from(c.z)])
         .collect();
-    let mut depth_range = [f64::INFINITY, 0.0f64];
-    for (i, p) in points.iter().enumerate() {
+    for p in &eye {
         for &c in p {
-            finite(c, "a decal corner is not finite")?;
+            finite(c, "a decal corner is not finite").map_err(|e| e.with_value("coordinate", c))?;
         }
-        let d = -p[2];
-        if !(d >= n && d <= f) {
-            return Err(domain(
-                "every decal corner's eye depth -z must lie within the frustum's [n, f]",
-            )
-            .with_integer("decal corner", i as i64));
-        }
-        depth_range = [depth_range[0].min(d), depth_range[1].max(d)];
     }
-    let (normal, offset) = plane_through(&points)?;
-    let [nx, ny, nz] = normal;
-    if nz == 0.0 {
+    let (normal, _) = plane_through(&eye)?;
+    if normal[2] == 0.0 {
         return Err(domain(
             "the decal's plane is edge-on to the view direction (infinite slope)",
         ));
     }
-    let slope = (nx.abs() + ny.abs()) / nz.abs();
+    let slope = (normal[0].abs() + normal[1].abs()) / normal[2].abs();
     let [w, h] = viewport.map(f64::from);
-    // A point at depth d on the ray (kx, ky) is d·(kx, ky, −1); on the plane N·p = h0:
-    // 1/d = (nx·kx + ny·ky − nz)/h0, with kx = (l + x·(r − l)/W)/n (window x from the left edge).
-    let inv_d = |x: f64, y: f64| {
-        let kx = (l + x * (r - l) / w) / n;
-        let ky = (b + y * (t - b) / h) / n;
-        (nx * kx + ny * ky - nz) / offset
-    };
-    let (alpha, beta) = window_line(n, f, clip)?;
-    let at = |x: f64, y: f64| alpha + beta * inv_d(x, y);
-    let origin_depth = at(0.0, 0.0);
-    let gradient = [
-        beta * (nx * (r - l) / (w * n)) / offset,
-        beta * (ny * (t - b) / (h * n)) / offset,
-    ];
-    let mut far_corner = [0.0f64, 0.0f64];
-    for p in &points {
-        let d = -p[2];
-        let x = ((p[0] / d * n - l) / (r - l) * w).clamp(0.0, w);
-        let y = ((p[1] / d * n - b) / (t - b) * h).clamp(0.0, h);
-        far_corner = [far_corner[0].max(x), far_corner[1].max(y)];
+    let row = |r: usize, p: &[f64; 3]| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+    let mut window = Vec::with_capacity(eye.len());
+    let mut depth_range = [f64::INFINITY, 0.0f64];
+    for (i, p) in eye.iter().enumerate() {
+        let cw = row(3, p);
+        if cw.is_nan() || cw <= 0.0 {
+            return Err(
+                domain("every decal corner must lie in front of the eye (clip w > 0)")
+                    .with_integer("decal corner", i as i64),
+            );
+        }
+        depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
+        let ndc_z = row(2, p) / cw;
+        let depth = if clip == ClipDepth::NegOneToOne {
+            0.5 * ndc_z + 0.5
+        } else {
+            ndc_z
+        };
+        let x = (0.5 * row(0, p) / cw + 0.5) * w;
+        let y = (0.5 * row(1, p) / cw + 0.5) * h;
+        window.push([x, y, depth]);
+    }
+    let (plane, offset) = plane_through(&window)?;
+    if plane[2] == 0.0 {
+        return Err(domain("the decal is seen edge-on: it covers no pixel"));
     }
     let footprint = Footprint {
-        origin_depth: finite(origin_depth, "the decal's window plane is not finite")?,
-        gradient: [
-            finite(gradient[0], "the decal's window plane is not finite")?,
-            finite(gradient[1], "the decal's window plane is not finite")?,
-        ],
-        far_corner,
+        origin_depth: finite(offset / plane[2], "the decal's window plane is not finite")?,
+        gradient: [-plane[0] / plane[2], -plane[1] / plane[2]],
+        far_corner: window.iter().fold([0.0f64, 0.0f64], |a, p| {
+            [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
+        }),
     };
     Ok(DecalShape {
         depth_range,
@@ -192,20 +214,7 @@ fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
         )
         .with_value("the largest distance of a corner from their plane", bent));
     }
-    if offset == 0.0 {
-        return Err(domain("the decal's plane passes through the eye"));
-    }
     Ok((normal, offset))
-}
-
-/// `(α, β)` with window depth `w = α + β/d` under `clip` (every `glFrustum`-family mapping is
-/// affine in `1/d`), from the mapping at two depths.
-fn window_line(n: f64, f: f64, clip: ClipDepth) -> Result<(f64, f64)> {
-    let mapping = DepthMapping::projection(n, f, clip)?;
-    let d2 = if f.is_finite() { f } else { 2.0 * n };
-    let (w1, w2) = (mapping.window_depth(n)?, mapping.window_depth(d2)?);
-    let beta = (w1 - w2) / (1.0 / n - 1.0 / d2);
-    Ok((w1 - beta / n, beta))
 }
 
 #[cfg(test)]

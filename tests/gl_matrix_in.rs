@@ -108,6 +108,7 @@ fn engines() -> Vec<Engine> {
 fn decal_of(gl: &Gl, s: &Setup) -> Decal {
     let (d1, d2) = s.decal_depth_range();
     Decal {
+        footprint: None,
         viewport: [s.size, s.size],
         format: gl_common::format_of(s.format),
         depth_range: [d1, d2],
