@@ -240,6 +240,12 @@ typedef struct {
    ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
    */
   double facing_reversed;
+  /*
+   error_ulps under reversed Z on D32F: every measured pixel kept |computed - exact| <=
+   error_ulps_reversed * 2^-24 * (|m10| + M), |m10| = n/(f - n). NAN where not measured.
+   NAN or finite >= 0.
+   */
+  double error_ulps_reversed;
 } ZshiftProfile;
 
 /*

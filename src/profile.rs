@@ -87,6 +87,13 @@ pub struct RasterizerProfile {
     /// the formats. "Exact" is the plane through the f32 vertices, as for `plane_error`. NaN
     /// where not measured. A summary: not a bound on planes the probe does not draw.
     pub error_ulps: f64,
+    /// `error_ulps` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, D32F, window depth
+    /// `n(f − d)/((f − n)d)`): every measured pixel kept `|computed − exact| ≤
+    /// error_ulps_reversed·u·(|m10| + M)`, `M` as for `error_ulps` and `|m10| = n/(f − n)` the
+    /// transform's constant part (the product `m10·z`; the sum and the division are relative to
+    /// the depth, which `M` covers). NaN where not measured (no `glClipControl`). A sampled
+    /// maximum, like `error_ulps`.
+    pub error_ulps_reversed: f64,
     /// The window-depth offset, per format (D16, D24, D32, D32F), in units of the format's
     /// quantum `1/(2^m − 1)` (D32F: of 2⁻²⁴), that a decal facing the camera needs to pass
     /// `GL_LESS` over its base when every corner of both has the same f32 z and the decal's
@@ -129,6 +136,7 @@ impl RasterizerProfile {
             plane_error: [f64::NAN; 4],
             plane_error_reversed: f64::NAN,
             error_ulps: f64::NAN,
+            error_ulps_reversed: f64::NAN,
             facing_quanta: [f64::NAN; 4],
             facing_quanta_zero_to_one: [f64::NAN; 4],
             facing_reversed: f64::NAN,

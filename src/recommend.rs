@@ -554,20 +554,26 @@ const PROBED_M10: f64 = 11.0 / 9.0;
 /// for the transform's own roundings at `|m10| ≤ 11/9`. A larger `|m10|` (f close to n) adds
 /// its excess `u·(|m10| − 11/9)/2` (the product `m10·z`, halved by the viewport map); under
 /// `[0, 1]` nothing halves the transform's roundings, so the 1 becomes 2 and the excess is
-/// whole. `None` for the worst-case profile, an unmeasured figure, or reversed Z (whose errors
-/// are relative to small depths: the bound `T + I` stays).
+/// whole. Under reversed Z the probe measures `error_ulps_reversed` against `|m10| + M` (its
+/// errors are relative to the small depths: no constant 1). `None` for the worst-case profile
+/// or an unmeasured figure.
 fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64) -> Option<f64> {
-    let k = scene.profile.error_ulps;
-    if !(scene.profile.measured && k.is_finite() && k > 0.0) {
+    let p = &scene.profile;
+    let k = if clip == ClipDepth::ReversedZeroToOne {
+        p.error_ulps_reversed
+    } else {
+        p.error_ulps
+    };
+    if !(p.measured && k.is_finite() && k > 0.0) {
         return None;
     }
     let u = F32_UNIT_ROUNDOFF;
     let excess = (m10.abs() - PROBED_M10).max(0.0);
-    match clip {
-        ClipDepth::NegOneToOne => Some(k * u * (1.0 + magnitude) + u * excess / 2.0),
-        ClipDepth::ZeroToOne => Some(k * u * (2.0 + magnitude) + u * excess),
-        ClipDepth::ReversedZeroToOne => None,
-    }
+    Some(match clip {
+        ClipDepth::NegOneToOne => k * u * (1.0 + magnitude) + u * excess / 2.0,
+        ClipDepth::ZeroToOne => k * u * (2.0 + magnitude) + u * excess,
+        ClipDepth::ReversedZeroToOne => k * u * (m10.abs() + magnitude),
+    })
 }
 
 /// The profile's measured offset for a shared-z facing plane under a strict test, in window

@@ -897,7 +897,11 @@ struct Survey {
     planes: usize,
 }
 
-fn error_growth_survey(gl: &mut Gl, profile: RasterizerProfile) -> Result<Survey, String> {
+fn error_growth_survey(
+    gl: &mut Gl,
+    profile: RasterizerProfile,
+    clip: ClipDepth,
+) -> Result<Survey, String> {
     let mut survey = Survey::default();
     let mut rng = Lcg(0x00DE_C0DE);
     for size in [(97u32, 211u32), (320, 180), (64, 48)].repeat(4) {
@@ -914,8 +918,12 @@ fn error_growth_survey(gl: &mut Gl, profile: RasterizerProfile) -> Result<Survey
                         cam,
                         frustum_kind,
                         size,
-                        (ClipDepth::NegOneToOne, DepthFormat::D32F),
-                        DepthTest::Less,
+                        (clip, DepthFormat::D32F),
+                        if clip == ClipDepth::ReversedZeroToOne {
+                            DepthTest::Greater
+                        } else {
+                            DepthTest::Less
+                        },
                         (sx, sy),
                         (rng.next() - 0.5, rng.next() - 0.5, 0.2, dc),
                         BaseKind::Fitted,
@@ -984,10 +992,23 @@ fn error_growth(
     let w0 = window_at(0.0, 0.0);
     let gx = ((window_at(fw, 0.0) - w0) / fw).abs();
     let gy = ((window_at(0.0, fh) - w0) / fh).abs();
+    // The transform's constant part in the probe's normalisation: 1 under [−1, 1] (its own
+    // roundings), |m10| = n/(f − n) under reversed Z.
+    let constant = if case.reversed() {
+        if c.f.is_finite() {
+            c.n / (c.f - c.n)
+        } else {
+            0.0
+        }
+    } else {
+        1.0
+    };
     let mut worst = 0.0f64;
     for (i, &read) in depth.iter().enumerate() {
         let (x, y) = ((i % w) as f64 + 0.5, (i / w) as f64 + 0.5);
-        if read == 1.0 || (2.0 * x / fw - 1.0).abs() > 0.85 || (2.0 * y / fh - 1.0).abs() > 0.85 {
+        let cleared = if case.reversed() { 0.0 } else { 1.0 };
+        if read == cleared || (2.0 * x / fw - 1.0).abs() > 0.85 || (2.0 * y / fh - 1.0).abs() > 0.85
+        {
             continue; // cleared, or near the base's edges (a centre may lie just outside)
         }
         let Some(d) = p.depth_on_ray(case.cam.ray(2.0 * x / fw - 1.0, 2.0 * y / fh - 1.0)) else {
@@ -998,7 +1019,7 @@ fn error_growth(
         // The probe's "exact" is the plane through the f32 vertices; this file's is the f64
         // plane, so the rounding of the coordinates (the model's V at this depth) is allowed.
         let vertex = u * (b / d) * (1.0 + case.slope() * e);
-        worst = worst.max((err - vertex).max(0.0) / (u * (1.0 + m)));
+        worst = worst.max((err - vertex).max(0.0) / (u * (constant + m)));
         if (d1..=d2).contains(&d) {
             against_model = against_model.max(err / measured);
             against_bound = against_bound.max(err / bound);
@@ -1020,11 +1041,21 @@ fn the_probed_error_bound_holds() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
     let profile = probed(&gl);
-    let survey = error_growth_survey(&mut gl, profile).unwrap_or_else(|e| panic!("GL: {e}"));
-    println!(
-        "over {} planes: error growth {:.3} u(1 + M) (probed error_ulps {:.3}); largest error over the measured E {:.3}, over the worst-case E {:.3}",
-        survey.planes, survey.growth, profile.error_ulps, survey.measured, survey.bound
-    );
+    for (clip, probed_figure) in [
+        (ClipDepth::NegOneToOne, profile.error_ulps),
+        (ClipDepth::ReversedZeroToOne, profile.error_ulps_reversed),
+    ] {
+        let survey =
+            error_growth_survey(&mut gl, profile, clip).unwrap_or_else(|e| panic!("GL: {e}"));
+        println!(
+            "{clip:?} D32F, over {} planes: error growth {:.3} u(c + M) (probed {probed_figure:.3}); largest error over the measured E {:.3}, over the worst-case E {:.3}",
+            survey.planes, survey.growth, survey.measured, survey.bound
+        );
+        check_survey(&survey);
+    }
+}
+
+fn check_survey(survey: &Survey) {
     assert!(
         survey.planes > 500 && survey.growth > 0.0,
         "the survey saw no error: it cannot fail"

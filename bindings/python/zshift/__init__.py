@@ -716,6 +716,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("facing_quanta", ctypes.c_double * 4),
         ("facing_quanta_zero_to_one", ctypes.c_double * 4),
         ("facing_reversed", ctypes.c_double),
+        ("error_ulps_reversed", ctypes.c_double),
     ]
 
 
