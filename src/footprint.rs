@@ -32,6 +32,11 @@ pub struct Footprint {
     /// The largest window `x` and `y` (pixels) of the decal, clamped to the viewport: the
     /// corner of its bounding rectangle farthest from the origin.
     pub far_corner: [f64; 2],
+    /// The largest `(|w₀| + |∂w/∂x|·x + |∂w/∂y|·y)·d` over the decal's corners (`d` a corner's
+    /// eye depth): under reversed Z, where the offset is relative and an error counts as
+    /// `error·d`, the worst pixel's `M·d` (a ratio of affine functions of the window position,
+    /// largest at a corner of the decal's convex hull; pixels off screen only lower it).
+    pub magnitude_depth: f64,
 }
 
 impl Footprint {
@@ -162,12 +167,20 @@ pub fn decal_shape_for_matrix(
     if plane[2] == 0.0 {
         return Err(domain("the decal is seen edge-on: it covers no pixel"));
     }
+    let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
+    let gradient = [-plane[0] / plane[2], -plane[1] / plane[2]];
+    let depths = eye.iter().map(|p| row(3, p));
+    let magnitude_depth = window.iter().zip(depths).fold(0.0f64, |a, (p, d)| {
+        let magnitude = origin_depth.abs() + gradient[0].abs() * p[0] + gradient[1].abs() * p[1];
+        a.max(magnitude * d)
+    });
     let footprint = Footprint {
-        origin_depth: finite(offset / plane[2], "the decal's window plane is not finite")?,
-        gradient: [-plane[0] / plane[2], -plane[1] / plane[2]],
+        origin_depth,
+        gradient,
         far_corner: window.iter().fold([0.0f64, 0.0f64], |a, p| {
             [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
         }),
+        magnitude_depth,
     };
     Ok(DecalShape {
         depth_range,

@@ -43,10 +43,10 @@ pub enum NearClip {
 ///
 /// Each field has one definition, here; [`crate::recommend`] says how each enters the model
 /// ("A measured profile"): `snapping` sets the term `S`, `resolvable` the `glPolygonOffset`
-/// equivalent, `near_clip` decides the term `C` of a base the rasterizer clips. `plane_error`,
-/// `plane_error_reversed` and `error_ulps` are the probe's summary figures (what the planes it
-/// drew did); the model does not use them: on llvmpipe, planes the probe does not draw exceed
-/// `error_ulps` (1.74 against 1.40, `tests/gl_scenes.rs`), so none is a bound on every scene.
+/// equivalent, `near_clip` decides the term `C` of a base the rasterizer clips, `error_ulps`
+/// (`error_ulps_reversed` under reversed Z) replaces the per-quad bound `T + I` by the measured
+/// `k·u·(c + M)`, and the facing figures replace `q + 2T` for facing planes with shared f32 z.
+/// `plane_error` and `plane_error_reversed` are summaries for reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RasterizerProfile {
     /// Whether vertex positions are snapped before depth setup.
@@ -85,7 +85,9 @@ pub struct RasterizerProfile {
     /// roundings). On D32F the stored depth is the computed one; on the UNORM formats the probe
     /// takes the stored error less one quantum of conversion, and the figure is the largest over
     /// the formats. "Exact" is the plane through the f32 vertices, as for `plane_error`. NaN
-    /// where not measured. A summary: not a bound on planes the probe does not draw.
+    /// where not measured. A sampled maximum (over about 300 planes), not a proof: the model
+    /// uses it for `T + I` (see [`crate::recommend`], "A measured profile", for how far other
+    /// planes were checked).
     pub error_ulps: f64,
     /// `error_ulps` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, D32F, window depth
     /// `n(f − d)/((f − n)d)`): every measured pixel kept `|computed − exact| ≤

@@ -131,16 +131,25 @@
 //! by field:
 //!
 //! * `snapping`: `S` as above, 0 where the rasterizer is unsnapped.
-//! * `error_ulps` and `plane_error`: **not used**. `error_ulps` `k` claims every pixel's computed
-//!   depth errs by at most `k·u·(1 + M)` (`M` the magnitude of the plane's terms evaluated from
-//!   the window origin); for a scene that would give `E = k·u·(1 + w(d₂) + 2G) + V`, far below
-//!   `T + V + I` on steep planes. But `tests/gl_scenes.rs` (`the_probed_error_bound_holds`) draws
-//!   804 planes the probe does not (steep planes just past the near plane, fitted to 64–320 px
-//!   viewports) and finds llvmpipe at 1.74 `u·(1 + M)` against the probed 1.40, and pixels
-//!   at 1.2× that `E`: the figure is not a bound on scenes the probe did not draw, and a
-//!   recommendation built on it would be a guess. `plane_error` (one worst figure per format)
-//!   cannot scale with the scene at all. `T + V + I` stays; the survey checks it holds (0.82 of
-//!   `E` at worst).
+//! * `error_ulps` `k` (and `error_ulps_reversed` under reversed Z) **replaces `T + I`**: the probe
+//!   found every pixel it drew within `k·u·(c + M)` of the plane through its f32 vertices,
+//!   `M = |w₀| + |gₓ|·x + |g_y|·y` the magnitude of the plane's terms from the window origin and
+//!   `c` the transform's constant part (1 under `[−1, 1]`, 2 under `[0, 1]` where the viewport map
+//!   halves nothing, `|m10| = n/(f − n)` under reversed Z). So `E = min(k·u·(c + M) + V, T + V + I)`
+//!   (plus `u·(|m10| − 11/9)⁺/2`, the transform's excess where `f` is closer to `n` than the
+//!   probe's views). `M` is the decal's own with a footprint, else bounded by `w(d₂) + 2G`.
+//!   **This is a measured figure, not a proof**: a maximum of roundings over the planes the probe
+//!   drew (about 300, among them 256 in random directions and frusta). On llvmpipe the probe
+//!   finds 1.54 (`[−1, 1]`) and 3.15 (reversed); `tests/gl_scenes.rs`
+//!   (`the_probed_error_bound_holds`) draws 804 other planes per convention and finds single
+//!   pixels at up to 1.09× that `E` (the largest of more roundings is larger), never more than the
+//!   `2E` the offset reserves for base and decal together; the sweep's pairs of base and decal,
+//!   the quantity that decides a lost pixel, stay inside (0 lost in every scene). `plane_error`
+//!   (one worst figure per format) is a summary for reports and changes nothing.
+//! * The footprint ([`Scene::footprint`], from the decal's corners): replaces the extrapolation
+//!   bound `G` in `I` and `S` by the run to the decal's farthest pixel with its exact gradients,
+//!   and `M` by its value there; under reversed Z each term of the budget is carried to the
+//!   relative offset at its own worst depth ([`Footprint::magnitude_depth`]).
 //! * `near_clip`: [`NearClip::ClippedF32`] keeps `C` (above); [`NearClip::PlanePreserving`]
 //!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
 //!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
@@ -347,7 +356,7 @@ pub struct Scene {
     /// The decal's window-space geometry, when known ([`crate::footprint::decal_shape`] computes
     /// it, with `depth_range` and `slope`, from the decal's eye-space corners): its exact window
     /// gradients and screen position replace the bounds over every plane of that slope and every
-    /// pixel of the viewport in `I` and `S` (see "The footprint"). `None`: those bounds.
+    /// pixel of the viewport in `I`, `S` and `M` (see "A measured profile"). `None`: those bounds.
     pub footprint: Option<Footprint>,
 }
 
@@ -1129,6 +1138,27 @@ fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
     DepthMapping::projection(planes.near(), planes.far(), clip)
 }
 
+/// Under reversed Z with the decal's footprint and a measured `error_ulps_reversed` `k`: a bound
+/// on `budget·d/b` over every pixel of the decal, from each term's own largest product with the
+/// depth: `2k·u·(|m10|·d₂ + max M·d)` ([`Footprint::magnitude_depth`]), `2V·d = 2u·b·(1 + s·e)`
+/// (the vertex term is `u·(b/d)(1 + s·e)` at depth `d`), `(2S + C)·d₂`; over `b`. The budget
+/// evaluated at its worst pixel and carried to the farthest one (`budget·d₂/b`) overstates it by
+/// up to `d₂/d₁`. `None` without a footprint, a measured figure, or when the errors are
+/// correlated.
+fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Option<f64> {
+    let footprint = scene.footprint?;
+    let k = scene.profile.error_ulps_reversed;
+    if terms.correlated || !(scene.profile.measured && k.is_finite() && k > 0.0) {
+        return None;
+    }
+    let [d1, d2] = scene.depth_range;
+    let (m10, _) =
+        crate::projection::depth_row(&scene.frustum.planes(), ClipDepth::ReversedZeroToOne);
+    let u = F32_UNIT_ROUNDOFF;
+    let plane = k * u * (m10.abs() * d2 + footprint.magnitude_depth) + terms.vertex * d1;
+    Some((2.0 * plane + (2.0 * terms.snap + terms.clip) * d2) / b)
+}
+
 /// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
 /// reach `q(w(d)) + budget` (strict test) or `budget` at every `d` of the decal. The budget
 /// part is largest at `d₂`; the quantum part `q(w)·d/b` peaks, within each binade of float
@@ -1139,9 +1169,10 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
     let [d1, d2] = scene.depth_range;
     let budget = terms.budget();
     let strict = if terms.strict { 1.0 } else { 0.0 };
+    let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
         let q = quantum(scene.format, mapping.window_depth(d)?)?;
-        Ok((strict * q + budget) * (d / b))
+        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
     };
     let mut eps = need(d1)?.max(need(d2)?);
     let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
@@ -1151,7 +1182,9 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
         let mut p = (w_lo.log2().floor() + 1.0).exp2();
         while p > 0.0 && p <= w_hi {
             let d = mapping.distance_at_window(p)?;
-            eps = eps.max((strict * p * 2f64.powi(-23) + budget) * (d / b));
+            eps = eps.max(
+                strict * p * 2f64.powi(-23) * (d / b) + (budget * (d / b)).min(relative_budget),
+            );
             p *= 2.0;
         }
     }
