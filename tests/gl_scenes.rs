@@ -839,8 +839,9 @@ fn print_classes(rows: &[Row]) {
     classes.sort();
     classes.dedup();
     println!(
-        "class                           | scenes  no-offset | rec/min median / max: {} | worst ({})",
+        "class                           | scenes  no-offset | rec/min median / max: {} | {} within target, smallest | worst ({})",
         DESCRIPTIONS.join(" | "),
+        DESCRIPTIONS[3],
         DESCRIPTIONS[3]
     );
     for class in classes {
@@ -860,16 +861,22 @@ fn print_classes(rows: &[Row]) {
                 format!("{:>7.1} / {:<8.1}", v[v.len() / 2], v[v.len() - 1])
             })
             .collect();
-        let tightest = |r: &&&Row| ratio(&r.outcomes[3], r.k_min);
+        let tightest = |r: &&Row| ratio(&r.outcomes[3], r.k_min);
+        // The tightest description's share of scenes within the target (2× facing, 4×
+        // sloped) and its smallest ratio (how close to the edge the safe answer came).
+        let target = if class.contains("facing") { 2.0 } else { 4.0 };
+        let within = of.iter().filter(|r| tightest(r) <= target).count();
+        let closest = of.iter().map(tightest).fold(f64::INFINITY, f64::min);
         let worst = of
             .iter()
             .max_by(|a, b| tightest(a).total_cmp(&tightest(b)))
             .map(|r| r.case.label())
             .unwrap_or_default();
         println!(
-            "{class} | {all:>6} {:>10} | {} | {worst}",
+            "{class} | {all:>6} {:>10} | {} | {:>5.1}% ≤{target}×, min {closest:.2} | {worst}",
             all - of.len(),
-            columns.join(" | ")
+            columns.join(" | "),
+            100.0 * within as f64 / of.len() as f64
         );
     }
 }
