@@ -105,6 +105,7 @@ fn main() {
             Box::new(|| {
                 batch(|| {
                     let scene = zshift::recommend::Scene {
+                        footprint: None,
                         frustum: black_box(frustum),
                         viewport: [1920, 1080],
                         format: zshift::recommend::DepthFormat::Unorm24,

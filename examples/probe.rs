@@ -1,7 +1,9 @@
 //! Measures the rasterizer profile of a headless OpenGL context (EGL surfaceless, Mesa llvmpipe
 //! unless another EGL driver is installed) and prints it with the figures it was decided from.
 //!
-//! `cargo run --release --example probe` (`-- compat` for a compatibility-profile context).
+//! `cargo run --release --example probe` (`-- compat` for a compatibility-profile context;
+//! `ZSHIFT_PROBE_RUNS=N` probes N times in the same context and prints each run time: the first
+//! includes the driver's shader compilation, as an engine's one call at start-up does).
 //! The probe itself needs only the context's function loader: an engine calls
 //! `zshift::probe::probe(|name| get_proc_address(name))` with its own context current.
 
@@ -17,6 +19,29 @@ fn main() {
     // SAFETY: the harness's context is current on this thread; EGL returns its entry points.
     let (p, figures) = unsafe { zshift::probe::probe_with_figures(loader) }
         .unwrap_or_else(|e| panic!("probe failed: {e}"));
+    let runs: usize = std::env::var("ZSHIFT_PROBE_RUNS")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(1);
+    let mut times = vec![p.probe_seconds * 1e3];
+    for _ in 1..runs {
+        // SAFETY: as above.
+        let again =
+            unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe failed: {e}"));
+        times.push(again.probe_seconds * 1e3);
+    }
+    if runs > 1 {
+        let mut later = times[1..].to_vec();
+        later.sort_by(f64::total_cmp);
+        println!(
+            "run times      first {:.1} ms, later median {:.1} ms (min {:.1}, max {:.1}) over {}",
+            times[0],
+            later[later.len() / 2],
+            later[0],
+            later[later.len() - 1],
+            later.len()
+        );
+    }
     println!("renderer       {} ({})", figures.renderer, figures.version);
     println!("run time       {:.1} ms", p.probe_seconds * 1e3);
     println!(
@@ -39,8 +64,8 @@ fn main() {
         );
     }
     println!(
-        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; error_ulps {:.3}",
-        p.plane_error_reversed, figures.reversed_pixels, p.error_ulps
+        "D32F reversed Z: plane_error {:.4} quanta over {} pixels; error_ulps_reversed {:.3} (u*(|m10| + M))",
+        p.plane_error_reversed, figures.reversed_pixels, p.error_ulps_reversed
     );
     println!(
         "D32F plane error in quanta at each pixel's own depth: [-1,1] {:.2}, reversed {:.2}",

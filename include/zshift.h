@@ -240,6 +240,12 @@ typedef struct {
    ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
    */
   double facing_reversed;
+  /*
+   error_ulps under reversed Z on D32F: every measured pixel kept |computed - exact| <=
+   error_ulps_reversed * 2^-24 * (|m10| + M), |m10| = n/(f - n). NAN where not measured.
+   NAN or finite >= 0.
+   */
+  double error_ulps_reversed;
 } ZshiftProfile;
 
 /*
@@ -296,6 +302,20 @@ typedef struct {
    and `subpixel_bits` is ignored (but must still lie in -1..=32).
    */
   const ZshiftProfile *profile;
+  /*
+   The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
+   positions its vertices have after the model-view transform), or NULL. With corners the
+   recommendation knows the decal's exact depth plane and where it lies on the screen,
+   which makes it far tighter on sloped planes (README, "Scenes engines draw"); perspective matrices only; the
+   corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
+   derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
+   Projected through the matrix given (any handedness or flip). The viewport must sit at the framebuffer's origin.
+   */
+  const float *decal_corners;
+  /*
+   How many corners `decal_corners` holds (3 to 64; 0 with NULL).
+   */
+  uint32_t decal_corner_count;
 } ZshiftDecal;
 
 /*
@@ -468,6 +488,20 @@ typedef struct {
    A zeroed ZshiftScene has NULL here.
    */
   const ZshiftProfile *profile;
+  /*
+   The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
+   positions its vertices have after the model-view transform), or NULL. With corners the
+   recommendation knows the decal's exact depth plane and where it lies on the screen,
+   which makes it far tighter on sloped planes (README, "Scenes engines draw"); the
+   corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
+   derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
+   The viewport must sit at the framebuffer's origin.
+   */
+  const float *decal_corners;
+  /*
+   How many corners `decal_corners` holds (3 to 64; 0 with NULL).
+   */
+  uint32_t decal_corner_count;
 } ZshiftScene;
 
 /*

@@ -28,6 +28,11 @@ pub struct Decal {
     /// rasterizer fact, its own snapping included, and `snapping` is ignored; `None` is
     /// [`crate::recommend::RasterizerProfile::worst_case`] with `snapping`.
     pub profile: Option<crate::recommend::RasterizerProfile>,
+    /// The decal's window-space geometry from its corners
+    /// ([`crate::matrix_in::decal_shape`] computes it with `depth_range` and `slope` from the
+    /// engine's matrix), or `None`: the model's bounds over every plane of that slope and every
+    /// pixel of the viewport. Perspective only: the orthographic model does not use it.
+    pub footprint: Option<crate::footprint::Footprint>,
 }
 
 impl Decal {

@@ -39,6 +39,7 @@ pub mod domain;
 mod double_double;
 pub mod error;
 pub mod ffi;
+pub mod footprint;
 pub mod matrix_in;
 pub mod median;
 pub mod offset;
@@ -54,6 +55,9 @@ pub mod rounding;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};
+/// The glam version this crate's API speaks (`Mat4`, `Vec3`), re-exported so callers need no
+/// second, mismatched copy.
+pub use glam;
 pub use offset::{
     epsilon, epsilon_matrix, load_offset_matrix, max_delta_away, min_delta_toward, min_epsilon,
     offset_matrix,

@@ -358,6 +358,22 @@ fn frustum_of(m: &[f32; 16], r: &Recognized, handedness: f64) -> Result<Frustum>
     Frustum::new(l, rt, b, t, n, r.far)
 }
 
+/// The depth range, slope and footprint of a planar decal from its eye-space `corners`, seen
+/// through the engine's own matrix `m` under `clip` in a `viewport` at the framebuffer's origin:
+/// [`crate::footprint::decal_shape_for_matrix`] on `m` widened to f64. Fill a [`Decal`]'s
+/// `depth_range`, `slope` and `footprint` from it.
+///
+/// # Errors
+/// As [`crate::footprint::decal_shape_for_matrix`].
+pub fn decal_shape(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    viewport: [u32; 2],
+    corners: &[glam::Vec3],
+) -> Result<crate::footprint::DecalShape> {
+    crate::footprint::decal_shape_for_matrix(&m.map(f64::from), clip, viewport, corners)
+}
+
 /// The recommended offset for a decal drawn with the engine's own matrix `m` under `clip`, and
 /// the decal's matrix: `m` with the recommendation applied to its own offset element, rounded
 /// outward, every other element bit-identical (the recommendation's `matrix` field).
@@ -425,6 +441,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
     use crate::recommend::DepthTest;
     Scene {
+        footprint: decal.footprint,
         frustum,
         viewport: decal.viewport,
         format: decal.format,

@@ -43,10 +43,10 @@ pub enum NearClip {
 ///
 /// Each field has one definition, here; [`crate::recommend`] says how each enters the model
 /// ("A measured profile"): `snapping` sets the term `S`, `resolvable` the `glPolygonOffset`
-/// equivalent, `near_clip` decides the term `C` of a base the rasterizer clips. `plane_error`,
-/// `plane_error_reversed` and `error_ulps` are the probe's summary figures (what the planes it
-/// drew did); the model does not use them: on llvmpipe, planes the probe does not draw exceed
-/// `error_ulps` (1.74 against 1.40, `tests/gl_scenes.rs`), so none is a bound on every scene.
+/// equivalent, `near_clip` decides the term `C` of a base the rasterizer clips, `error_ulps`
+/// (`error_ulps_reversed` under reversed Z) replaces the per-quad bound `T + I` by the measured
+/// `k·u·(c + M)`, and the facing figures replace `q + 2T` for facing planes with shared f32 z.
+/// `plane_error` and `plane_error_reversed` are summaries for reports.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RasterizerProfile {
     /// Whether vertex positions are snapped before depth setup.
@@ -85,8 +85,17 @@ pub struct RasterizerProfile {
     /// roundings). On D32F the stored depth is the computed one; on the UNORM formats the probe
     /// takes the stored error less one quantum of conversion, and the figure is the largest over
     /// the formats. "Exact" is the plane through the f32 vertices, as for `plane_error`. NaN
-    /// where not measured. A summary: not a bound on planes the probe does not draw.
+    /// where not measured. A sampled maximum (over about 300 planes), not a proof: the model
+    /// uses it for `T + I` (see [`crate::recommend`], "A measured profile", for how far other
+    /// planes were checked).
     pub error_ulps: f64,
+    /// `error_ulps` under reversed Z (`glClipControl(GL_ZERO_TO_ONE)`, D32F, window depth
+    /// `n(f − d)/((f − n)d)`): every measured pixel kept `|computed − exact| ≤
+    /// error_ulps_reversed·u·(|m10| + M)`, `M` as for `error_ulps` and `|m10| = n/(f − n)` the
+    /// transform's constant part (the product `m10·z`; the sum and the division are relative to
+    /// the depth, which `M` covers). NaN where not measured (no `glClipControl`). A sampled
+    /// maximum, like `error_ulps`.
+    pub error_ulps_reversed: f64,
     /// The window-depth offset, per format (D16, D24, D32, D32F), in units of the format's
     /// quantum `1/(2^m − 1)` (D32F: of 2⁻²⁴), that a decal facing the camera needs to pass
     /// `GL_LESS` over its base when every corner of both has the same f32 z and the decal's
@@ -129,6 +138,7 @@ impl RasterizerProfile {
             plane_error: [f64::NAN; 4],
             plane_error_reversed: f64::NAN,
             error_ulps: f64::NAN,
+            error_ulps_reversed: f64::NAN,
             facing_quanta: [f64::NAN; 4],
             facing_quanta_zero_to_one: [f64::NAN; 4],
             facing_reversed: f64::NAN,

@@ -131,16 +131,25 @@
 //! by field:
 //!
 //! * `snapping`: `S` as above, 0 where the rasterizer is unsnapped.
-//! * `error_ulps` and `plane_error`: **not used**. `error_ulps` `k` claims every pixel's computed
-//!   depth errs by at most `k·u·(1 + M)` (`M` the magnitude of the plane's terms evaluated from
-//!   the window origin); for a scene that would give `E = k·u·(1 + w(d₂) + 2G) + V`, far below
-//!   `T + V + I` on steep planes. But `tests/gl_scenes.rs` (`the_probed_error_bound_holds`) draws
-//!   804 planes the probe does not (steep planes just past the near plane, fitted to 64–320 px
-//!   viewports) and finds llvmpipe at 1.74 `u·(1 + M)` against the probed 1.40, and pixels
-//!   at 1.2× that `E`: the figure is not a bound on scenes the probe did not draw, and a
-//!   recommendation built on it would be a guess. `plane_error` (one worst figure per format)
-//!   cannot scale with the scene at all. `T + V + I` stays; the survey checks it holds (0.82 of
-//!   `E` at worst).
+//! * `error_ulps` `k` (and `error_ulps_reversed` under reversed Z) **replaces `T + I`**: the probe
+//!   found every pixel it drew within `k·u·(c + M)` of the plane through its f32 vertices,
+//!   `M = |w₀| + |gₓ|·x + |g_y|·y` the magnitude of the plane's terms from the window origin and
+//!   `c` the transform's constant part (1 under `[−1, 1]`, 2 under `[0, 1]` where the viewport map
+//!   halves nothing, `|m10| = n/(f − n)` under reversed Z). So `E = min(k·u·(c + M) + V, T + V + I)`
+//!   (plus `u·(|m10| − 11/9)⁺/2`, the transform's excess where `f` is closer to `n` than the
+//!   probe's views). `M` is the decal's own with a footprint, else bounded by `w(d₂) + 2G`.
+//!   **This is a measured figure, not a proof**: a maximum of roundings over the planes the probe
+//!   drew (about 300, among them 256 in random directions and frusta). On llvmpipe the probe
+//!   finds 1.54 (`[−1, 1]`) and 3.15 (reversed); `tests/gl_scenes.rs`
+//!   (`the_probed_error_bound_holds`) draws 804 other planes per convention and finds single
+//!   pixels at up to 1.09× that `E` (the largest of more roundings is larger), never more than the
+//!   `2E` the offset reserves for base and decal together; the sweep's pairs of base and decal,
+//!   the quantity that decides a lost pixel, stay inside (0 lost in every scene). `plane_error`
+//!   (one worst figure per format) is a summary for reports and changes nothing.
+//! * The footprint ([`Scene::footprint`], from the decal's corners): replaces the extrapolation
+//!   bound `G` in `I` and `S` by the run to the decal's farthest pixel with its exact gradients,
+//!   and `M` by its value there; under reversed Z each term of the budget is carried to the
+//!   relative offset at its own worst depth ([`Footprint::magnitude_depth`]).
 //! * `near_clip`: [`NearClip::ClippedF32`] keeps `C` (above); [`NearClip::PlanePreserving`]
 //!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
 //!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
@@ -231,6 +240,9 @@ const CLIP_STAGES: f64 = 6.0;
 /// The inward margin of [`clip_to_frustum`], relative: far above f32 rounding (2⁻²⁴), far below
 /// half a pixel of any viewport up to 2¹⁵ pixels wide.
 const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
+
+/// The decal's window-space geometry (see [`crate::footprint`]).
+pub use crate::footprint::{decal_shape, DecalShape, Footprint};
 
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
@@ -341,6 +353,11 @@ pub struct Scene {
     pub base: Base,
     /// What the rasterizer does ([`RasterizerProfile::worst_case`] unless measured).
     pub profile: RasterizerProfile,
+    /// The decal's window-space geometry, when known ([`crate::footprint::decal_shape`] computes
+    /// it, with `depth_range` and `slope`, from the decal's eye-space corners): its exact window
+    /// gradients and screen position replace the bounds over every plane of that slope and every
+    /// pixel of the viewport in `I`, `S` and `M` (see "A measured profile"). `None`: those bounds.
+    pub footprint: Option<Footprint>,
 }
 
 /// The error of the two quads' computed window depths, term by term (window-depth units),
@@ -518,6 +535,10 @@ fn slope_factor(scene: &Scene) -> f64 {
 fn snap(scene: &Scene) -> Result<f64> {
     match scene.profile.snapping {
         Snapping::Unsnapped => Ok(0.0),
+        Snapping::SubpixelBits(b) if scene.footprint.is_some() => {
+            let [gx, gy] = scene.footprint.map_or([0.0; 2], |f| f.gradient);
+            Ok(2f64.powi(-(b as i32) - 1) * (gx.abs() + gy.abs()))
+        }
         Snapping::SubpixelBits(b) => {
             // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
@@ -531,6 +552,37 @@ fn snap(scene: &Scene) -> Result<f64> {
 /// for `GL_DEPTH_COMPONENT32F`.
 fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
     format.spacing_at(w.clamp(0.0, 1.0))
+}
+
+/// The largest `|m10|` of the planes the probe measures `error_ulps` on (its views have
+/// f/n ≥ 10 under `[−1, 1]`: `|m10| = (f + n)/(f − n) ≤ 11/9`).
+const PROBED_M10: f64 = 11.0 / 9.0;
+
+/// The per-quad error `T + I` from a measured profile ("A measured profile"): the probe found
+/// every pixel's computed depth within `error_ulps·u·(1 + M)` under `[−1, 1]`, the 1 standing
+/// for the transform's own roundings at `|m10| ≤ 11/9`. A larger `|m10|` (f close to n) adds
+/// its excess `u·(|m10| − 11/9)/2` (the product `m10·z`, halved by the viewport map); under
+/// `[0, 1]` nothing halves the transform's roundings, so the 1 becomes 2 and the excess is
+/// whole. Under reversed Z the probe measures `error_ulps_reversed` against `|m10| + M` (its
+/// errors are relative to the small depths: no constant 1). `None` for the worst-case profile
+/// or an unmeasured figure.
+fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64) -> Option<f64> {
+    let p = &scene.profile;
+    let k = if clip == ClipDepth::ReversedZeroToOne {
+        p.error_ulps_reversed
+    } else {
+        p.error_ulps
+    };
+    if !(p.measured && k.is_finite() && k > 0.0) {
+        return None;
+    }
+    let u = F32_UNIT_ROUNDOFF;
+    let excess = (m10.abs() - PROBED_M10).max(0.0);
+    Some(match clip {
+        ClipDepth::NegOneToOne => k * u * (1.0 + magnitude) + u * excess / 2.0,
+        ClipDepth::ZeroToOne => k * u * (2.0 + magnitude) + u * excess,
+        ClipDepth::ReversedZeroToOne => k * u * (m10.abs() + magnitude),
+    })
 }
 
 /// The profile's measured offset for a shared-z facing plane under a strict test, in window
@@ -1008,10 +1060,15 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
     // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·W + |g_y|·H is at most the
     // larger of the two with the whole slope.
-    let extrapolated = {
-        let [gx, gy] = window_gradient(scene, d1)?;
-        let [width, height] = scene.viewport.map(f64::from);
-        (gx * width).max(gy * height) * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+    // With the decal's footprint, the exact run from the origin to its farthest pixel.
+    let extrapolated = match scene.footprint {
+        Some(footprint) => footprint.extrapolation(),
+        None => {
+            let [gx, gy] = window_gradient(scene, d1)?;
+            let [width, height] = scene.viewport.map(f64::from);
+            (gx * width).max(gy * height)
+                * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+        }
     };
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
@@ -1026,9 +1083,16 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     let q = quantum(scene.format, far_w)?;
     let bound = transform + vertex + interpolation;
-    // The probe's error_ulps is not used: see "A measured profile" (llvmpipe exceeds it on
-    // planes the probe does not draw).
-    let plane = bound;
+    // M, the largest magnitude of the plane's terms from the window origin over the decal's
+    // pixels: |w₀| + |gₓ|·x + |g_y|·y ≤ w + 2(|gₓ|·x + |g_y|·y) without the footprint.
+    let magnitude = match scene.footprint {
+        Some(footprint) => footprint.magnitude(),
+        None => w_max + 2.0 * extrapolated,
+    };
+    let plane = match measured_plane_error(scene, clip, m10, magnitude) {
+        Some(measured) => (measured + vertex).min(bound),
+        None => bound,
+    };
     let snap = snap(scene)?;
     let clip_term = match scene.profile.near_clip {
         NearClip::ClippedF32 => clip_term(scene, clip, &mapping)?,
@@ -1074,6 +1138,27 @@ fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
     DepthMapping::projection(planes.near(), planes.far(), clip)
 }
 
+/// Under reversed Z with the decal's footprint and a measured `error_ulps_reversed` `k`: a bound
+/// on `budget·d/b` over every pixel of the decal, from each term's own largest product with the
+/// depth: `2k·u·(|m10|·d₂ + max M·d)` ([`Footprint::magnitude_depth`]), `2V·d = 2u·b·(1 + s·e)`
+/// (the vertex term is `u·(b/d)(1 + s·e)` at depth `d`), `(2S + C)·d₂`; over `b`. The budget
+/// evaluated at its worst pixel and carried to the farthest one (`budget·d₂/b`) overstates it by
+/// up to `d₂/d₁`. `None` without a footprint, a measured figure, or when the errors are
+/// correlated.
+fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Option<f64> {
+    let footprint = scene.footprint?;
+    let k = scene.profile.error_ulps_reversed;
+    if terms.correlated || !(scene.profile.measured && k.is_finite() && k > 0.0) {
+        return None;
+    }
+    let [d1, d2] = scene.depth_range;
+    let (m10, _) =
+        crate::projection::depth_row(&scene.frustum.planes(), ClipDepth::ReversedZeroToOne);
+    let u = F32_UNIT_ROUNDOFF;
+    let plane = k * u * (m10.abs() * d2 + footprint.magnitude_depth) + terms.vertex * d1;
+    Some((2.0 * plane + (2.0 * terms.snap + terms.clip) * d2) / b)
+}
+
 /// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must
 /// reach `q(w(d)) + budget` (strict test) or `budget` at every `d` of the decal. The budget
 /// part is largest at `d₂`; the quantum part `q(w)·d/b` peaks, within each binade of float
@@ -1084,9 +1169,10 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
     let [d1, d2] = scene.depth_range;
     let budget = terms.budget();
     let strict = if terms.strict { 1.0 } else { 0.0 };
+    let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
         let q = quantum(scene.format, mapping.window_depth(d)?)?;
-        Ok((strict * q + budget) * (d / b))
+        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
     };
     let mut eps = need(d1)?.max(need(d2)?);
     let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
@@ -1096,7 +1182,9 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
         let mut p = (w_lo.log2().floor() + 1.0).exp2();
         while p > 0.0 && p <= w_hi {
             let d = mapping.distance_at_window(p)?;
-            eps = eps.max((strict * p * 2f64.powi(-23) + budget) * (d / b));
+            eps = eps.max(
+                strict * p * 2f64.powi(-23) * (d / b) + (budget * (d / b)).min(relative_budget),
+            );
             p *= 2.0;
         }
     }
@@ -1118,6 +1206,7 @@ mod tests {
         };
         let e = 0.577_350_269_189_625_7;
         Scene {
+            footprint: None,
             frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
             viewport: [256, 256],
             format,
@@ -1323,26 +1412,37 @@ mod tests {
         );
     }
 
-    /// The probe's summary figures (plane_error, error_ulps) change no term: they are not
-    /// bounds on the scenes the probe does not draw (module docs).
+    /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a
+    /// footprint): the part above `V` doubles with `k`, stays below the bound, and the summary
+    /// `plane_error` changes nothing.
     #[test]
-    fn measured_summary_figures_change_no_term() {
+    fn measured_error_ulps_scales_the_plane_error() {
         let worst = scene(DepthFormat::Unorm24, 1.0, Snapping::Unsnapped);
-        let measured = Scene {
+        let with = |k: f64, plane_error: f64| Scene {
             profile: RasterizerProfile {
-                error_ulps: 1.4,
-                plane_error: [0.5; 4],
+                error_ulps: k,
+                plane_error: [plane_error; 4],
                 measured: true,
                 ..worst.profile
             },
             ..worst
         };
-        let (a, b) = (
-            error_terms(&worst).unwrap(),
-            error_terms(&measured).unwrap(),
+        let bound = error_terms(&worst).unwrap();
+        let a = error_terms(&with(1.4, f64::NAN)).unwrap();
+        let b = error_terms(&with(2.8, f64::NAN)).unwrap();
+        assert_eq!(
+            bound.plane,
+            bound.transform + bound.vertex + bound.interpolation
         );
-        assert_eq!(a, b);
-        assert_eq!(a.plane, a.transform + a.vertex + a.interpolation);
+        assert!(a.plane < bound.plane, "{a:?} vs {bound:?}");
+        let above = |t: &ErrorTerms| t.plane - t.vertex;
+        assert!((above(&b) - 2.0 * above(&a)).abs() <= 1e-12 * above(&b));
+        assert_eq!(a, error_terms(&with(1.4, 0.5)).unwrap());
+        // A huge figure never exceeds the bound.
+        assert_eq!(
+            error_terms(&with(1e6, f64::NAN)).unwrap().plane,
+            bound.plane
+        );
     }
 
     /// A facing plane with shared f32 z under GL_LEQUAL needs no offset (the chain is monotone in

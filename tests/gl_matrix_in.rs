@@ -2,7 +2,8 @@
 //! drawn with the engine's own matrix, built by glam (OpenGL `[−1, 1]`, Direct3D `[0, 1]`,
 //! Vulkan's y flip, reversed infinite, orthographic) or by the tweaked-infinite formula, and the
 //! decal with the matrix zshift derives from it (the recommendation, and an eye shift of the
-//! recommendation's `delta_at_far`). No decal pixel may be lost to the base. A control
+//! recommendation's `delta_at_far`, and the recommendation from the probed profile with the
+//! decal's corners projected through the engine's matrix). No decal pixel may be lost to the base. A control
 //! draws the decal with the base's own matrix and must lose pixels on the sloped planes, so the
 //! experiment can fail. Fails (never skips) without GL.
 
@@ -108,6 +109,7 @@ fn engines() -> Vec<Engine> {
 fn decal_of(gl: &Gl, s: &Setup) -> Decal {
     let (d1, d2) = s.decal_depth_range();
     Decal {
+        footprint: None,
         viewport: [s.size, s.size],
         format: gl_common::format_of(s.format),
         depth_range: [d1, d2],
@@ -122,6 +124,10 @@ fn decal_of(gl: &Gl, s: &Setup) -> Decal {
 #[test]
 fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
     let mut gl = context();
+    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
+    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
+    let probed = unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe: {e}"));
+    let mut tighter = 0;
     let mut control_lost = 0;
     let mut rows = 0;
     for e in engines() {
@@ -151,6 +157,27 @@ fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
                         hit, 0,
                         "{label}: eye shift delta_at_far lost {hit} of {of} pixels"
                     );
+                    // The tightest description: the probed profile and the decal's corners,
+                    // projected through the engine's own matrix (y flip and reversed included).
+                    let corners = s.decal().corners.map(|[x, y, z]| glam::Vec3::new(x, y, z));
+                    let shape =
+                        zshift::matrix_in::decal_shape(&base, e.clip, [s.size, s.size], &corners)
+                            .unwrap_or_else(|err| panic!("{label}: decal_shape: {err}"));
+                    let tight = Decal {
+                        depth_range: shape.depth_range,
+                        slope: shape.slope,
+                        footprint: Some(shape.footprint),
+                        profile: Some(probed),
+                        ..decal_of(&gl, &s)
+                    };
+                    let rec_tight = recommend(&base, e.clip, &tight)
+                        .unwrap_or_else(|err| panic!("{label}: {err}"));
+                    let (hit, of) = lost(&mut gl, &s, e.clip, &base, &rec_tight.matrix);
+                    assert_eq!(
+                        hit, 0,
+                        "{label}: the probed profile with corners lost {hit} of {of} pixels"
+                    );
+                    tighter += usize::from(rec_tight.window_offset < rec.window_offset);
                     if slope > 0.0 {
                         control_lost += lost(&mut gl, &s, e.clip, &base, &base).0;
                     }
@@ -160,6 +187,10 @@ fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
         }
     }
     assert!(rows >= 30, "{rows} configurations");
+    assert!(
+        tighter * 2 > rows,
+        "the probed profile with corners was tighter in only {tighter} of {rows}"
+    );
     assert!(
         control_lost > 0,
         "no z-fighting without an offset: the experiment cannot fail"

@@ -119,6 +119,7 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
         };
         cases += 1;
         let scene = Scene {
+            footprint: None,
             frustum,
             viewport: [WIDTH, HEIGHT],
             format: gl_common::format_of(format),

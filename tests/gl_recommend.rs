@@ -178,6 +178,8 @@ fn c_scene_of(s: &zshift_harness::coplanar::Setup) -> zshift::ffi::ZshiftScene {
     let (l, r, b, t, n, f) = s.frustum();
     let (d1, d2) = s.decal_depth_range();
     zshift::ffi::ZshiftScene {
+        decal_corners: std::ptr::null(),
+        decal_corner_count: 0,
         l,
         r,
         b,

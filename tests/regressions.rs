@@ -113,6 +113,8 @@ fn range_offset_that_overflows_is_an_error() {
 fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
     // The input the sweep found (a wide, off-centre frustum; decal out to 1e300).
     let scene = ZshiftScene {
+        decal_corners: std::ptr::null(),
+        decal_corner_count: 0,
         l: -1e-300,
         r: -2.2250738585072014e-308,
         b: -4.486800777063599e-12,
@@ -151,6 +153,8 @@ mod abi;
 fn recommend_never_returns_an_infinite_polygon_offset() {
     let scenes = [
         ZshiftScene {
+            decal_corners: std::ptr::null(),
+            decal_corner_count: 0,
             l: -2464271192.763489,
             r: -1.7976931348623157e308,
             b: -24752007585.897285,
@@ -170,6 +174,8 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             profile: std::ptr::null(),
         },
         ZshiftScene {
+            decal_corners: std::ptr::null(),
+            decal_corner_count: 0,
             l: -7.645722780061472,
             r: 3.0931043469988655,
             b: -0.00017595535455433751,
@@ -217,6 +223,8 @@ fn window_depth_at_the_top_of_f64_is_one() {
 #[test]
 fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
     let scene = ZshiftScene {
+        decal_corners: std::ptr::null(),
+        decal_corner_count: 0,
         l: -1e-300,
         r: 1e-300,
         b: -1e-300,

@@ -174,7 +174,8 @@ constexpr Scene make_scene(double l, double r, double b, double t, double n, dou
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
-               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, nullptr};
+               decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, nullptr,
+               nullptr, 0u};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
@@ -439,6 +440,26 @@ inline Decal make_decal(std::uint32_t viewport_width, std::uint32_t viewport_hei
   d.slope = slope;
   d.exact_depth = exact_depth ? 1u : 0u;
   return d;
+}
+
+/// `scene` described by the decal's eye-space corners (`count` of them, 3 floats each, kept
+/// alive by the caller until the call that uses the scene returns) instead of decal_near,
+/// decal_far and slope, which become 0: the library derives them and the decal's place on the
+/// screen, which makes the offset far tighter on sloped planes.
+inline Scene with_corners(Scene scene, const float *corners, std::uint32_t count) noexcept {
+  scene.decal_near = scene.decal_far = scene.slope = 0.0;
+  scene.decal_corners = corners;
+  scene.decal_corner_count = count;
+  return scene;
+}
+
+/// `decal` described by its eye-space corners, as with_corners(Scene, ...); projected through
+/// the matrix passed with it (perspective only).
+inline Decal with_corners(Decal decal, const float *corners, std::uint32_t count) noexcept {
+  decal.decal_near = decal.decal_far = decal.slope = 0.0;
+  decal.decal_corners = corners;
+  decal.decal_corner_count = count;
+  return decal;
 }
 
 /// The decal's matrix: the engine's own projection `m` (16 floats, column-major, e.g.

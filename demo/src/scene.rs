@@ -264,21 +264,33 @@ pub fn snapping_of(gl: &impl Canvas) -> Snapping {
 }
 
 /// zshift's recommendation for the decal (`zshift::recommend`): what the engine knows of the
-/// scene — frustum, viewport, depth format, the decal's nearest and farthest distance, the
-/// plane's slope, the rasterizer's snapping — in, the offset that its error model guarantees
-/// out; also the decal's farthest distance d₂, where the recommended δ applies.
+/// scene — frustum, viewport, depth format, the decal's eye-space corners (from which
+/// `decal_shape` finds its depths, slope and place on the screen), the rasterizer's snapping —
+/// in, the offset that its error model guarantees out; also the decal's farthest distance d₂,
+/// where the recommended δ applies.
 pub fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendation, f64), String> {
     let (h, n, f) = (scene.half, scene.n, scene.f);
-    let depths = scene.decal().corners.map(|[_, _, z]| -f64::from(z));
-    let nearest = depths.iter().copied().fold(f64::INFINITY, f64::min);
-    let farthest = depths.iter().copied().fold(0.0, f64::max);
+    let frustum = Frustum::new(-h, h, -h, h, n, f).map_err(|e| e.to_string())?;
+    let corners = scene
+        .decal()
+        .corners
+        .map(|[x, y, z]| zshift::glam::Vec3::new(x, y, z));
+    let shape = zshift::recommend::decal_shape(
+        &frustum,
+        zshift::projection::ClipDepth::NegOneToOne,
+        [SIZE, SIZE],
+        &corners,
+    )
+    .map_err(|e| format!("zshift::recommend::decal_shape: {e}"))?;
+    let farthest = shape.depth_range[1];
     let model = RecommendScene {
-        frustum: Frustum::new(-h, h, -h, h, n, f).map_err(|e| e.to_string())?,
+        footprint: Some(shape.footprint),
+        frustum,
         viewport: [SIZE, SIZE],
         format: RecommendFormat::from_gl_internal_format(DEPTH.gl_enum())
             .map_err(|e| e.to_string())?,
-        depth_range: [nearest, farthest],
-        slope: scene.slope.abs(),
+        depth_range: shape.depth_range,
+        slope: shape.slope,
         exact_depth: false,
         depth_test: zshift::recommend::DepthTest::Less,
         base: zshift::recommend::Base::InsideFrustum,

@@ -402,6 +402,7 @@ fn recommendation(
     let format =
         RecFormat::from_gl_internal_format(scene.format.gl_enum()).expect("a GL depth format");
     recommend(&RecScene {
+        footprint: None,
         frustum: *frustum,
         viewport: [SIZE, SIZE],
         format,

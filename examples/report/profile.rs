@@ -6,7 +6,9 @@ use std::fmt::Write as _;
 
 use zshift::probe::{probe_with_figures, Figures};
 use zshift::projection::{projection, ClipDepth, Frustum};
-use zshift::recommend::{recommend_clip, Base, DepthFormat, DepthTest, RasterizerProfile, Scene};
+use zshift::recommend::{
+    decal_shape, recommend_clip, Base, DepthFormat, DepthTest, RasterizerProfile, Scene,
+};
 use zshift_harness::Gl;
 
 /// The probe run in the report's own core context.
@@ -48,11 +50,13 @@ fn floors(probed: &RasterizerProfile) -> Vec<Floor> {
             ("clipped by the rasterizer", Base::Clipped { reach }),
             ("cut by clip_to_frustum", Base::InsideFrustum),
         ] {
-            for (profile_name, profile) in [
-                ("worst case", RasterizerProfile::worst_case()),
-                ("probed", *probed),
+            for (profile_name, profile, corners) in [
+                ("worst case", RasterizerProfile::worst_case(), false),
+                ("probed", *probed, false),
+                ("probed, decal corners", *probed, true),
             ] {
-                let scene = Scene {
+                let mut scene = Scene {
+                    footprint: None,
                     frustum,
                     viewport: [256, 144],
                     format,
@@ -63,6 +67,16 @@ fn floors(probed: &RasterizerProfile) -> Vec<Floor> {
                     base,
                     profile,
                 };
+                if corners {
+                    // The decal of tests/gl_scenes.rs: x from −0.6 to 0.5, y from −4 to 6.
+                    let decal = [(-0.6f32, -4.0f32), (0.5, -4.0), (0.5, 6.0), (-0.6, 6.0)]
+                        .map(|(x, y)| glam::Vec3::new(x, y, -10.0 - 0.5 * y));
+                    let shape = decal_shape(&frustum, clip, scene.viewport, &decal)
+                        .expect("the floor's decal");
+                    scene.depth_range = shape.depth_range;
+                    scene.slope = shape.slope;
+                    scene.footprint = Some(shape.footprint);
+                }
                 let steps = recommend_clip(&scene, clip)
                     .map_err(|e| e.to_string())
                     .and_then(|r| {
@@ -114,10 +128,14 @@ pub fn section(w: &mut String, profile: &RasterizerProfile, figures: &Figures) {
     }
     let _ = writeln!(
         w,
-        "\nerror_ulps {:.3}, plane_error_reversed {:.2}, facing decal under reversed Z (D32F, \
-         relative ε in 2⁻²⁴) {:.2}. The recommendation takes snapping, r, near-plane clipping and \
-         the facing figures from it (README, \"The rasterizer probe\").\n",
-        profile.error_ulps, profile.plane_error_reversed, profile.facing_reversed
+        "\nerror_ulps {:.3} (reversed Z {:.3}), plane_error_reversed {:.2}, facing decal under \
+         reversed Z (D32F, relative ε in 2⁻²⁴) {:.2}; D32 (UNORM) is not measured (NaN: the \
+         worst case). The recommendation takes snapping, r, near-plane clipping, error_ulps (its \
+         per-quad error) and the facing figures from it (README, \"The rasterizer probe\").\n",
+        profile.error_ulps,
+        profile.error_ulps_reversed,
+        profile.plane_error_reversed,
+        profile.facing_reversed
     );
     let _ = writeln!(
         w,

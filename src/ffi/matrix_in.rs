@@ -3,11 +3,12 @@
 
 use super::{
     checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftFormat,
-    ZshiftRecommendation, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_SUBPIXEL_UNSNAPPED,
+    ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
 use crate::error::Result;
 use crate::matrix_in::Decal;
+use crate::projection::ClipDepth;
 use crate::recommend::Snapping;
 
 /// Reads the caller's 16 floats (NULL refused, no alignment needed).
@@ -117,9 +118,19 @@ pub struct ZshiftDecal {
     /// `subpixel_bits`. When not NULL it supplies every rasterizer fact, its snapping included,
     /// and `subpixel_bits` is ignored (but must still lie in -1..=32).
     pub profile: *const super::probe::ZshiftProfile,
+    /// The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
+    /// positions its vertices have after the model-view transform), or NULL. With corners the
+    /// recommendation knows the decal's exact depth plane and where it lies on the screen,
+    /// which makes it far tighter on sloped planes (README, "Scenes engines draw"); perspective matrices only; the
+    /// corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
+    /// derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
+    /// Projected through the matrix given (any handedness or flip). The viewport must sit at the framebuffer's origin.
+    pub decal_corners: *const f32,
+    /// How many corners `decal_corners` holds (3 to 64; 0 with NULL).
+    pub decal_corner_count: u32,
 }
 
-fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
+fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal> {
     if d.viewport_width == 0 || d.viewport_height == 0 {
         return Err(domain(
             "ZshiftDecal.viewport_width and viewport_height must be nonzero (an all-zero ZshiftDecal is refused)",
@@ -156,11 +167,18 @@ fn decal_from_c(d: &ZshiftDecal) -> Result<Decal> {
                 .with_value("base_reach", d.base_reach),
         );
     }
+    let viewport = [d.viewport_width, d.viewport_height];
+    let fields = [d.decal_near, d.decal_far, d.slope];
+    let shape =
+        super::recommend::decal_shape_from_c(d.decal_corners, d.decal_corner_count, fields, |c| {
+            crate::matrix_in::decal_shape(m, clip, viewport, c)
+        })?;
     Ok(Decal {
-        viewport: [d.viewport_width, d.viewport_height],
+        viewport,
         format: format_named(d.format.value, "format")?,
-        depth_range: [d.decal_near, d.decal_far],
-        slope: d.slope,
+        depth_range: shape.map_or([d.decal_near, d.decal_far], |s| s.depth_range),
+        slope: shape.map_or(d.slope, |s| s.slope),
+        footprint: shape.map(|s| s.footprint),
         exact_depth: d.exact_depth != 0,
         snapping,
         base: if d.base_reach == 0.0 {
@@ -185,8 +203,9 @@ fn recommend_for(
     clip: ZshiftClip,
     decal: ZshiftDecal,
 ) -> Result<([f32; 16], ZshiftRecommendation)> {
-    let r = crate::matrix_in::recommend(&m, clip_of(clip)?, &decal_from_c(&decal)?)?;
-    let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
+    let clip = clip_of(clip)?;
+    let r = crate::matrix_in::recommend(&m, clip, &decal_from_c(&m, clip, &decal)?)?;
+    let per_ndc = if clip == ClipDepth::NegOneToOne {
         0.5
     } else {
         1.0

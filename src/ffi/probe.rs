@@ -78,6 +78,10 @@ pub struct ZshiftProfile {
     /// decal sharing its base's float z needs; used for such scenes under
     /// ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE with D32F. NAN where not measured. NAN or finite >= 0.
     pub facing_reversed: f64,
+    /// error_ulps under reversed Z on D32F: every measured pixel kept |computed - exact| <=
+    /// error_ulps_reversed * 2^-24 * (|m10| + M), |m10| = n/(f - n). NAN where not measured.
+    /// NAN or finite >= 0.
+    pub error_ulps_reversed: f64,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -106,6 +110,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             facing_quanta: p.facing_quanta,
             facing_quanta_zero_to_one: p.facing_quanta_zero_to_one,
             facing_reversed: p.facing_reversed,
+            error_ulps_reversed: p.error_ulps_reversed,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -148,6 +153,7 @@ impl ZshiftProfile {
             self.plane_error_reversed,
             self.error_ulps,
             self.facing_reversed,
+            self.error_ulps_reversed,
         ];
         if self
             .plane_error
@@ -158,7 +164,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -172,6 +178,7 @@ impl ZshiftProfile {
             facing_quanta: self.facing_quanta,
             facing_quanta_zero_to_one: self.facing_quanta_zero_to_one,
             facing_reversed: self.facing_reversed,
+            error_ulps_reversed: self.error_ulps_reversed,
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

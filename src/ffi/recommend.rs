@@ -75,6 +75,16 @@ pub struct ZshiftScene {
     /// ignored; it is validated as `ZshiftProfile` documents (a zero-filled one is refused).
     /// A zeroed ZshiftScene has NULL here.
     pub profile: *const super::probe::ZshiftProfile,
+    /// The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
+    /// positions its vertices have after the model-view transform), or NULL. With corners the
+    /// recommendation knows the decal's exact depth plane and where it lies on the screen,
+    /// which makes it far tighter on sloped planes (README, "Scenes engines draw"); the
+    /// corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
+    /// derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
+    /// The viewport must sit at the framebuffer's origin.
+    pub decal_corners: *const f32,
+    /// How many corners `decal_corners` holds (3 to 64; 0 with NULL).
+    pub decal_corner_count: u32,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -175,6 +185,54 @@ fn checked_record(
     checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
 }
 
+/// The most corners a decal may have: a decal is a quad, a few more for a clipped one.
+const MAX_DECAL_CORNERS: u32 = 64;
+
+/// Reads `count` eye-space corners (3 floats each) from `corners` and computes the decal's
+/// shape with `shape`; `Ok(None)` for NULL with count 0. With corners, `fields`
+/// (decal_near, decal_far, slope) must be 0: the corners define the decal.
+pub(super) fn decal_shape_from_c(
+    corners: *const f32,
+    count: u32,
+    fields: [f64; 3],
+    shape: impl FnOnce(&[glam::Vec3]) -> Result<crate::footprint::DecalShape>,
+) -> Result<Option<crate::footprint::DecalShape>> {
+    use crate::domain::domain;
+    if corners.is_null() {
+        return if count == 0 {
+            Ok(None)
+        } else {
+            Err(
+                domain("decal_corner_count must be 0 when decal_corners is NULL")
+                    .with_integer("decal_corner_count", i64::from(count)),
+            )
+        };
+    }
+    if !(3..=MAX_DECAL_CORNERS).contains(&count) {
+        return Err(
+            domain("decal_corner_count must lie in 3..=64 when decal_corners is given")
+                .with_integer("decal_corner_count", i64::from(count)),
+        );
+    }
+    for (name, x) in ["decal_near", "decal_far", "slope"].into_iter().zip(fields) {
+        if x != 0.0 {
+            return Err(domain(
+                "with decal_corners, decal_near, decal_far and slope must be 0: the corners define the decal",
+            )
+            .with_value(name, x));
+        }
+    }
+    // SAFETY: not NULL; the caller promises `count` corners of 3 floats each, readable; f32 has
+    // no invalid bit patterns, and read_unaligned needs no alignment.
+    let corners: Vec<glam::Vec3> = (0..count as usize)
+        .map(|i| {
+            let at = |k: usize| unsafe { corners.add(3 * i + k).read_unaligned() };
+            glam::Vec3::new(at(0), at(1), at(2))
+        })
+        .collect();
+    shape(&corners).map(Some)
+}
+
 fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
     use crate::recommend::{Base, DepthTest, Scene, Snapping};
     let format = format_named(s.depth_format, "depth_format")?;
@@ -200,12 +258,19 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
         }
     };
     let profile = super::probe::profile_or_worst(s.profile, snapping)?;
+    let frustum = Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?;
+    let viewport = [s.viewport_width, s.viewport_height];
+    let fields = [s.decal_near, s.decal_far, s.slope];
+    let shape = decal_shape_from_c(s.decal_corners, s.decal_corner_count, fields, |c| {
+        crate::footprint::decal_shape(&frustum, clip, viewport, c)
+    })?;
     Ok(Scene {
-        frustum: Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?,
-        viewport: [s.viewport_width, s.viewport_height],
+        footprint: shape.map(|d| d.footprint),
+        frustum,
+        viewport,
         format,
-        depth_range: [s.decal_near, s.decal_far],
-        slope: s.slope,
+        depth_range: shape.map_or([s.decal_near, s.decal_far], |d| d.depth_range),
+        slope: shape.map_or(s.slope, |d| d.slope),
         exact_depth: s.exact_depth != 0,
         depth_test,
         base,

@@ -52,7 +52,6 @@ pub(crate) const PACK_SKIP_IMAGES: Enum = 0x806B;
 pub(crate) const PACK_IMAGE_HEIGHT: Enum = 0x806C;
 pub(crate) const DEPTH_COMPONENT16: Enum = 0x81A5;
 pub(crate) const DEPTH_COMPONENT24: Enum = 0x81A6;
-pub(crate) const DEPTH_COMPONENT32: Enum = 0x81A7;
 pub(crate) const MAJOR_VERSION: Enum = 0x821B;
 pub(crate) const MINOR_VERSION: Enum = 0x821C;
 pub(crate) const MAX_VIEWPORTS: Enum = 0x825B;

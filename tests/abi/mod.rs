@@ -82,6 +82,8 @@ unsafe impl Send for Inputs {}
 unsafe impl Sync for Inputs {}
 
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    decal_corners: std::ptr::null(),
+    decal_corner_count: 0,
     viewport_width: 1920,
     viewport_height: 1080,
     format: ZshiftFormat { value: 0x81A6 },
@@ -95,6 +97,8 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
+    decal_corners: std::ptr::null(),
+    decal_corner_count: 0,
     l: -0.1,
     r: 0.1,
     b: -0.075,
@@ -739,6 +743,8 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
+        decal_corners: std::ptr::null(),
+        decal_corner_count: 0,
         l: i.l,
         r: i.r,
         b: i.b,

@@ -943,9 +943,65 @@ static void test_front_door(void) {
   expect_detail("ortho f = n", "(f = 5)");
 }
 
+/* A decal given by its eye-space corners: the library derives its depths and slope and where it
+   lies on the screen. The derived depths and slope are checked against this file's own (the
+   recommendation with corners is at most the one from the same depths and slope, which bounds
+   every plane of that slope anywhere on the screen); a left-handed matrix with the corners
+   mirrored in z gives the same offset; misuse is refused with its detail, outputs untouched. */
+static void test_decal_corners(void) {
+  float m[16], lh[16], out[16];
+  /* A steep square (z = -20 - 2y) below the view axis, 2 units wide, and its mirror in z. */
+  const float corners[12] = {-1.0f, -3.0f, -14.0f, 1.0f, -3.0f, -14.0f, 1.0f, -1.0f, -18.0f, -1.0f, -1.0f, -18.0f};
+  float mirrored[12];
+  ZshiftDecal decal;
+  ZshiftRecommendation with, without, left;
+  int i;
+  engine_perspective(1.0471976f, 1.5f, 0.1f, 1000.0f, m);
+  memcpy(lh, m, sizeof lh);
+  for (i = 8; i < 12; i++) lh[i] = -m[i];
+  for (i = 0; i < 12; i++) mirrored[i] = i % 3 == 2 ? -corners[i] : corners[i];
+  memset(&decal, 0, sizeof decal);
+  decal.viewport_width = 1280;
+  decal.viewport_height = 720;
+  decal.format = ZSHIFT_FORMAT_UNORM24;
+  decal.subpixel_bits = 8;
+  decal.decal_near = 14.0;
+  decal.decal_far = 18.0;
+  decal.slope = 2.0;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &without), ZSHIFT_OK);
+  decal.decal_corners = corners;
+  decal.decal_corner_count = 4;
+  memset(out, PATTERN, sizeof out);
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("corners with decal_near", "decal_near");
+  decal.decal_near = decal.decal_far = decal.slope = 0.0;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &with), ZSHIFT_OK);
+  CHECK(with.window_offset <= without.window_offset && with.snap < without.snap && with.interpolation <= without.interpolation,
+        "corners: window offset %g (snap %g) against %g (snap %g) from the depths and slope", with.window_offset,
+        with.snap, without.window_offset, without.snap);
+  CHECK(relative_error(with.vertex, without.vertex) < 1e-9 && with.quantum == without.quantum,
+        "corners: the derived depths and slope differ (vertex term %g, want %g)", with.vertex, without.vertex);
+  decal.decal_corners = mirrored;
+  CHECK_STATUS(zshift_recommend_for_matrix(lh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &left), ZSHIFT_OK);
+  CHECK(relative_error(left.window_offset, with.window_offset) < 1e-9,
+        "left-handed: window offset %g, right-handed %g", left.window_offset, with.window_offset);
+  decal.decal_corner_count = 2;
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("two corners", "decal_corner_count");
+  decal.decal_corners = NULL;
+  decal.decal_corner_count = 4;
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("NULL corners with a count", "decal_corner_count");
+  decal.decal_corners = mirrored; /* +z: behind a right-handed eye */
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("corners behind the eye", "decal corner");
+  CHECK(untouched(out, sizeof out), "a refused call with corners wrote its output");
+}
+
 int main(void) {
   test_last_error();
   test_front_door();
+  test_decal_corners();
   test_frustum();
   test_load_offset_matrix();
   test_epsilon();

@@ -130,6 +130,22 @@ static void test_recommend() {
   bad = floor_decal;
   bad.slope = std::nan("");
   check_throws("recommend(NaN slope)", zshift::Status::not_finite, [&] { zshift::recommend(bad); });
+  // with_corners: the decal's eye-space corners replace decal_near, decal_far and slope (zeroed),
+  // and equal the C record's call with the same fields set by hand.
+  const float corners[12] = {-1.0f, -3.0f, -14.0f, 1.0f, -3.0f, -14.0f, 1.0f, -1.0f, -18.0f, -1.0f, -1.0f, -18.0f};
+  zshift::Scene cornered = zshift::with_corners(floor_decal, corners, 4);
+  CHECK(cornered.decal_near == 0.0 && cornered.decal_far == 0.0 && cornered.slope == 0.0 &&
+            cornered.decal_corners == corners && cornered.decal_corner_count == 4u,
+        "with_corners() did not set the corner fields");
+  zshift::Scene by_hand = floor_decal;
+  by_hand.decal_near = by_hand.decal_far = by_hand.slope = 0.0;
+  by_hand.decal_corners = corners;
+  by_hand.decal_corner_count = 4;
+  CHECK(zshift_recommend(&by_hand, &c) == ZSHIFT_OK, "C zshift_recommend with corners failed");
+  r = zshift::recommend(cornered);
+  CHECK(std::memcmp(&r, &c, sizeof c) == 0, "recommend(with_corners()) differs from the C call");
+  check_throws("recommend(two corners)", zshift::Status::domain,
+               [&] { zshift::recommend(zshift::with_corners(floor_decal, corners, 2)); });
 }
 
 // Each wrapper of the clip-convention, median, bias and planning entry points returns exactly

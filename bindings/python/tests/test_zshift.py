@@ -519,6 +519,29 @@ class FrontDoor(unittest.TestCase):
         decal = zshift.decal_matrix(o, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24, (40.0, 60.0))
         self.assertEqual([i for i in range(16) if decal[i] != o[i]], [14])
 
+    def test_corners_describe_the_decal(self):
+        # A steep square (z = -20 - 2y) below the view axis: its corners give the depths (14, 18) and the
+        # slope (2) this test computes itself, and its place on the screen, which can only tighten the offset.
+        m = self.perspective(1.0, 16 / 9, 0.1, 1000.0)
+        corners = [(-1.0, -3.0, -14.0), (1.0, -3.0, -14.0), (1.0, -1.0, -18.0), (-1.0, -1.0, -18.0)]
+        args = (m, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24)
+        without = zshift.recommend_for_matrix(*args, (14.0, 18.0), slope=2.0, subpixel_bits=8)
+        with_corners = zshift.recommend_for_matrix(*args, None, subpixel_bits=8, corners=corners)
+        self.assertAlmostEqual(with_corners.vertex, without.vertex, delta=1e-9 * without.vertex)
+        self.assertLess(with_corners.snap, without.snap)
+        self.assertLessEqual(with_corners.window_offset, without.window_offset)
+        decal = zshift.decal_matrix(*args, None, subpixel_bits=8, corners=corners)
+        self.assertEqual([i for i in range(16) if decal[i] != m[i]], [10])
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.decal_matrix(*args, (14.0, 18.0), corners=corners)
+        self.assertIn("corners", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.decal_matrix(*args, None, corners=corners[:2])
+        self.assertIn("decal_corner_count", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.decal_matrix(*args, None, corners=[(x, y, -z) for x, y, z in corners])
+        self.assertIn("decal corner", str(caught.exception))
+
     def test_mismatch_and_bad_matrices_are_refused_with_a_reason(self):
         reversed_m = self.perspective(1.0, 1.5, 0.1, 1000.0, True, True)
         with self.assertRaises(zshift.ZshiftError) as caught:

@@ -229,11 +229,33 @@ def depth_resolution(n, f, bits, d):
     return _scalar(lambda out: _lib().zshift_depth_resolution(n, f, _bits(bits), d, out))
 
 
+def _corner_fields(decal_depths, slope, corners):
+    """``(near, far, slope, pointer, count, keepalive)``: with ``corners`` (eye-space ``(x, y, z)``
+    triples) the C record gets them and zeros for the fields they replace; ``decal_depths`` must
+    then be ``None`` and ``slope`` 0."""
+    if corners is None:
+        near, far = decal_depths
+        return near, far, slope, None, 0, None
+    if decal_depths is not None or slope != 0.0:
+        raise ZshiftError(Status.DOMAIN, "with corners, pass decal_depths=None and slope=0: the corners define the decal")
+    flat = [float(c) for corner in corners for c in corner]
+    if len(flat) % 3:
+        raise TypeError("corners must be (x, y, z) triples")
+    array = (ctypes.c_float * max(len(flat), 1))(*flat)
+    return 0.0, 0.0, 0.0, ctypes.cast(array, ctypes.c_void_p), len(flat) // 3, array
+
+
+def _attach_corners(record, pointer, count, keepalive):
+    record.decal_corners = pointer
+    record.decal_corner_count = count
+    record._corners_keepalive = keepalive
+
+
 def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits,
-           profile=None, base_reach=0.0):
+           profile=None, base_reach=0.0, corners=None):
     l, r, b, t, n, f = frustum
     width, height = viewport
-    near, far = decal_depths
+    near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
     for name, value, low, high in (
         ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
         ("depth_format", depth_format, 0, 2**32), ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
@@ -245,6 +267,7 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
                                  1 if exact_depth else 0, subpixel_bits)
     scene.base_reach = base_reach
     _attach_profile(scene, profile)
+    _attach_corners(scene, pointer, count, keepalive)
     return scene
 
 
@@ -264,7 +287,8 @@ def _attach_profile(record, profile):
 
 
 def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-              subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+              subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
     between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
     interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
@@ -282,26 +306,30 @@ def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_de
     profile supplies every rasterizer fact, its snapping included, so ``subpixel_bits`` is then
     ignored. ``base_reach`` is 0 for a base inside the frustum, else the largest ``|x|``,
     ``|y|``, ``|z|`` of its eye-space vertices (a floor running behind the camera, which the
-    rasterizer clips: the offset gains the clipping term). The other recommendation functions
-    take both keywords alike.
+    rasterizer clips: the offset gains the clipping term). ``corners`` are the decal's eye-space
+    ``(x, y, z)`` corners (3 to 64): with them pass ``decal_depths=None`` and ``slope=0``; the
+    corners give the depths, the slope and where the decal lies on the screen, which makes the
+    offset far tighter on sloped planes. The other recommendation functions take these keywords
+    alike.
 
     Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad frustum, zero viewport, unknown
     format, decal depths outside [n, f] or decreasing, negative slope, ``exact_depth`` with a
     slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach)
+                   base_reach, corners)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend(ctypes.byref(scene), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                     subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+                     subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach)
+                   base_reach, corners)
     return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))
 
 
@@ -493,7 +521,8 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
 
 
 def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                   subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+                   subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
     :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
     :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
@@ -505,19 +534,20 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     Raises :class:`ZshiftError`: as :func:`recommend`; ``DOMAIN`` for an unknown clip.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach)
+                   base_reach, corners)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip, Clip), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                          subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+                          subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach)
+                   base_reach, corners)
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
 
 
@@ -534,6 +564,7 @@ class _Decal(ctypes.Structure):
         ("exact_depth", ctypes.c_uint32),
         ("base_reach", ctypes.c_double),
         ("profile", ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
+        ("decal_corners", ctypes.c_void_p), ("decal_corner_count", ctypes.c_uint32),  # const float *
     ]
 
 
@@ -575,9 +606,10 @@ def _engine_matrix(m):
     return _FLOAT16(*values)
 
 
-def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile=None, base_reach=0.0):
+def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile=None, base_reach=0.0,
+           corners=None):
     width, height = viewport
-    near, far = decal_depths
+    near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
     fmt = _enum(depth_format, Format)
     for name, value, low, high in (
         ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
@@ -588,6 +620,7 @@ def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bi
     decal = _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0,
                    base_reach)
     _attach_profile(decal, profile)
+    _attach_corners(decal, pointer, count, keepalive)
     return decal
 
 
@@ -615,22 +648,26 @@ def offset_matrix_ndc(m, clip, ndc):
 
 
 def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                 subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+                 subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """The decal's matrix for the engine's own projection ``m``: the recommended offset
     (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
     ``m``'s own offset element, every other element bit-identical. The engine never restates its
     frustum. Arguments as :func:`recommend`, with ``depth_format`` a :class:`Format` (or its GL
     enum). Raises :class:`ZshiftError` naming the element or field."""
     mat = _engine_matrix(m)
-    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
+                   corners)
     return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), out))
 
 
 def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                         subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0):
+                         subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
+        corners=None):
     """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
     mat = _engine_matrix(m)
-    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach)
+    decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
+                   corners)
     out = _library.ZshiftRecommendation()
     _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
@@ -679,6 +716,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("facing_quanta", ctypes.c_double * 4),
         ("facing_quanta_zero_to_one", ctypes.c_double * 4),
         ("facing_reversed", ctypes.c_double),
+        ("error_ulps_reversed", ctypes.c_double),
     ]
 
 

@@ -103,6 +103,8 @@ class ZshiftScene(ctypes.Structure):
         ("depth_func", ctypes.c_uint32), ("base_reach", ctypes.c_double),
         # const ZshiftProfile *: NULL for the worst case (zshift.profile_worst_case()).
         ("profile", ctypes.c_void_p),
+        # const float *: the decal's eye-space corners (3 floats each), or NULL.
+        ("decal_corners", ctypes.c_void_p), ("decal_corner_count", ctypes.c_uint32),
     ]
 
 

@@ -1,0 +1,331 @@
+//! Where a decal lies on the screen and how its depth runs across it: the exact window-space
+//! geometry that lets the recommendation drop its worst-case bounds on a plane's extrapolation.
+//!
+//! The rasterizer sets a triangle's depth plane up relative to the framebuffer origin and
+//! evaluates `w₀ + ∂w/∂x·x + ∂w/∂y·y` at each pixel (Mesa llvmpipe's `a0`), so its f32 roundings
+//! scale with `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y`, the magnitude of those terms. Knowing only a
+//! decal's depth range and slope, [`crate::recommend`] must bound the gradients over every plane
+//! of that slope (the plane's axis crossing is unknown, a factor `1 + s·e`) and every pixel of
+//! the viewport; on steep planes that bound is hundreds of times the real `M`. A [`Footprint`]
+//! is the real thing: the window-depth plane of the decal (`w₀`, `∂w/∂x`, `∂w/∂y`, exact in f64
+//! from the decal's eye-space corners) and the window rectangle it covers. [`decal_shape`]
+//! computes it, with the depth range and slope, from the corners an engine already has.
+//!
+//! Window coordinates are GL's: pixels from the lower-left corner of the viewport, which must
+//! sit at the framebuffer's origin (`glViewport(0, 0, W, H)`) for `M` to be measured from the
+//! rasterizer's origin.
+
+use glam::Vec3;
+
+use crate::domain::{domain, finite};
+use crate::error::Result;
+use crate::projection::{projection_f64, ClipDepth, Frustum};
+
+/// The window-space geometry of a decal: its depth plane and the rectangle it covers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Footprint {
+    /// The plane's window depth extrapolated to window `(0, 0)`, `w₀` (under the clip
+    /// convention the footprint was computed for).
+    pub origin_depth: f64,
+    /// The window-depth gradient per pixel, `(∂w/∂x, ∂w/∂y)`.
+    pub gradient: [f64; 2],
+    /// The largest window `x` and `y` (pixels) of the decal, clamped to the viewport: the
+    /// corner of its bounding rectangle farthest from the origin.
+    pub far_corner: [f64; 2],
+    /// The largest `(|w₀| + |∂w/∂x|·x + |∂w/∂y|·y)·d` over the decal's corners (`d` a corner's
+    /// eye depth): under reversed Z, where the offset is relative and an error counts as
+    /// `error·d`, the worst pixel's `M·d` (a ratio of affine functions of the window position,
+    /// largest at a corner of the decal's convex hull; pixels off screen only lower it).
+    pub magnitude_depth: f64,
+}
+
+impl Footprint {
+    /// `|∂w/∂x|·x + |∂w/∂y|·y` at the far corner: the largest run of the plane's depth from the
+    /// window origin to a pixel of the decal.
+    pub fn extrapolation(&self) -> f64 {
+        self.gradient[0].abs() * self.far_corner[0] + self.gradient[1].abs() * self.far_corner[1]
+    }
+
+    /// `M = |w₀| + |∂w/∂x|·x + |∂w/∂y|·y`, its largest value over the decal's pixels.
+    pub fn magnitude(&self) -> f64 {
+        self.origin_depth.abs() + self.extrapolation()
+    }
+}
+
+/// What [`decal_shape`] finds from a decal's corners: everything a
+/// [`crate::recommend::Scene`] needs to know about the decal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DecalShape {
+    /// The nearest and farthest eye depth (`−z`) of the corners.
+    pub depth_range: [f64; 2],
+    /// The plane's eye-space slope `|∂z/∂x| + |∂z/∂y|`.
+    pub slope: f64,
+    /// The window-space geometry.
+    pub footprint: Footprint,
+}
+
+/// The largest distance of a corner from the plane through the others, relative to the decal's
+/// size, that still counts as planar: far above f32 rounding of the corners (2⁻²⁴), far below
+/// any decal that is really bent.
+const PLANAR_TOLERANCE: f64 = 1.0 / 65_536.0;
+
+/// The depth range, slope and [`Footprint`] of a planar decal from its eye-space corners
+/// (right-handed, looking down −z: the positions the decal's vertices have after the
+/// model-view transform), seen through `frustum` under `clip` in a `viewport` of `[W, H]` pixels.
+/// [`decal_shape_for_matrix`] does the same for any projection matrix.
+///
+/// # Errors
+/// As [`decal_shape_for_matrix`], and [`crate::ErrorKind::Domain`] for a corner outside the
+/// depth range `[n, f]` (the corner is named).
+pub fn decal_shape(
+    frustum: &Frustum,
+    clip: ClipDepth,
+    viewport: [u32; 2],
+    corners: &[Vec3],
+) -> Result<DecalShape> {
+    let (.., n, f) = frustum.parameters();
+    for (i, c) in corners.iter().enumerate() {
+        let d = -f64::from(c.z);
+        if d < n || d > f {
+            return Err(domain(
+                "every decal corner's eye depth -z must lie within the frustum's [n, f]",
+            )
+            .with_integer("decal corner", i as i64));
+        }
+    }
+    decal_shape_for_matrix(&projection_f64(frustum, clip)?, clip, viewport, corners)
+}
+
+/// The depth range, slope and [`Footprint`] of a planar decal from its eye-space `corners`, seen
+/// through the projection `m` (column-major, in f64: any perspective matrix, left- or
+/// right-handed, flipped or not) under `clip` in a `viewport` of `[W, H]` pixels at the
+/// framebuffer's origin.
+///
+/// Each corner is projected in f64 to window `(x, y)` and window depth (`½·ndc + ½` under
+/// `[−1, 1]`, `ndc` otherwise); a planar polygon's window depth is affine in window `(x, y)`
+/// (`ndc` is affine in `1/w`, and `1/w` is affine on the screen), so the footprint's plane is
+/// the plane through those points (Newell's normal, exact up to f64 rounding). The eye depth of
+/// a corner is its clip `w` (`−z` right-handed, `z` left-handed); the slope is
+/// `(|n_x| + |n_y|)/|n_z|` of the eye-space plane.
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate; [`crate::ErrorKind::Domain`]
+/// for fewer than 3 corners, a zero viewport, a corner at or behind the eye (named), corners that
+/// do not span a plane or are not coplanar, or a plane edge-on to the view direction.
+pub fn decal_shape_for_matrix(
+    m: &[f64; 16],
+    clip: ClipDepth,
+    viewport: [u32; 2],
+    corners: &[Vec3],
+) -> Result<DecalShape> {
+    if corners.len() < 3 {
+        return Err(domain("a decal needs at least 3 corners"));
+    }
+    if viewport[0] == 0 || viewport[1] == 0 {
+        return Err(domain("the viewport must be at least 1×1 pixel"));
+    }
+    let eye: Vec<[f64; 3]> = corners
+        .iter()
+        .map(|c| [f64::from(c.x), f64::from(c.y), f64::from(c.z)])
+        .collect();
+    for p in &eye {
+        for &c in p {
+            finite(c, "a decal corner is not finite").map_err(|e| e.with_value("coordinate", c))?;
+        }
+    }
+    let (normal, _) = plane_through(&eye)?;
+    if normal[2] == 0.0 {
+        return Err(domain(
+            "the decal's plane is edge-on to the view direction (infinite slope)",
+        ));
+    }
+    let slope = (normal[0].abs() + normal[1].abs()) / normal[2].abs();
+    let [w, h] = viewport.map(f64::from);
+    let row = |r: usize, p: &[f64; 3]| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+    let mut window = Vec::with_capacity(eye.len());
+    let mut depth_range = [f64::INFINITY, 0.0f64];
+    for (i, p) in eye.iter().enumerate() {
+        let cw = row(3, p);
+        if cw.is_nan() || cw <= 0.0 {
+            return Err(
+                domain("every decal corner must lie in front of the eye (clip w > 0)")
+                    .with_integer("decal corner", i as i64),
+            );
+        }
+        depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
+        let ndc_z = row(2, p) / cw;
+        let depth = if clip == ClipDepth::NegOneToOne {
+            0.5 * ndc_z + 0.5
+        } else {
+            ndc_z
+        };
+        let x = (0.5 * row(0, p) / cw + 0.5) * w;
+        let y = (0.5 * row(1, p) / cw + 0.5) * h;
+        window.push([x, y, depth]);
+    }
+    let (plane, offset) = plane_through(&window)?;
+    if plane[2] == 0.0 {
+        return Err(domain("the decal is seen edge-on: it covers no pixel"));
+    }
+    let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
+    let gradient = [-plane[0] / plane[2], -plane[1] / plane[2]];
+    let depths = eye.iter().map(|p| row(3, p));
+    let magnitude_depth = window.iter().zip(depths).fold(0.0f64, |a, (p, d)| {
+        let magnitude = origin_depth.abs() + gradient[0].abs() * p[0] + gradient[1].abs() * p[1];
+        a.max(magnitude * d)
+    });
+    let footprint = Footprint {
+        origin_depth,
+        gradient,
+        far_corner: window.iter().fold([0.0f64, 0.0f64], |a, p| {
+            [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
+        }),
+        magnitude_depth,
+    };
+    Ok(DecalShape {
+        depth_range,
+        slope,
+        footprint,
+    })
+}
+
+/// The plane `N·p = h₀` through `points` (Newell's normal, the centroid), checked for flatness.
+fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
+    let mut normal = [0.0f64; 3];
+    let mut centre = [0.0f64; 3];
+    for (i, a) in points.iter().enumerate() {
+        let c = points[(i + 1) % points.len()];
+        normal[0] += (a[1] - c[1]) * (a[2] + c[2]);
+        normal[1] += (a[2] - c[2]) * (a[0] + c[0]);
+        normal[2] += (a[0] - c[0]) * (a[1] + c[1]);
+        for k in 0..3 {
+            centre[k] += a[k] / points.len() as f64;
+        }
+    }
+    let length = normal.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let size = points
+        .iter()
+        .map(|p| {
+            (0..3)
+                .map(|k| (p[k] - centre[k]).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
+        .fold(0.0, f64::max);
+    if length.is_nan() || size.is_nan() || length <= 1e-12 * size * size {
+        return Err(domain("the decal's corners do not span a plane"));
+    }
+    let normal = normal.map(|v| v / length);
+    let offset: f64 = (0..3).map(|k| normal[k] * centre[k]).sum();
+    let bent = points
+        .iter()
+        .map(|p| ((0..3).map(|k| normal[k] * p[k]).sum::<f64>() - offset).abs())
+        .fold(0.0, f64::max);
+    if bent > PLANAR_TOLERANCE * size {
+        return Err(domain(
+            "the decal's corners must be coplanar (within 2^-16 of the decal's size)",
+        )
+        .with_value("the largest distance of a corner from their plane", bent));
+    }
+    Ok((normal, offset))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `glFrustum(−0.8, 1.2, −0.5, 0.7, 1, 50)`, a 200×120 viewport.
+    fn frustum() -> Frustum {
+        Frustum::new(-0.8, 1.2, -0.5, 0.7, 1.0, 50.0).unwrap()
+    }
+
+    /// The window depth of the plane `z = −da + sx·x + sy·y` seen through window pixel `(x, y)`,
+    /// by intersecting the pixel's ray with the plane (`[−1, 1]`, `glDepthRange(0, 1)`).
+    fn window_through(x: f64, y: f64, (sx, sy, da): (f64, f64, f64)) -> f64 {
+        let (l, r, b, t, n, f) = (-0.8, 1.2, -0.5, 0.7, 1.0, 50.0);
+        let kx = (l + x / 200.0 * (r - l)) / n;
+        let ky = (b + y / 120.0 * (t - b)) / n;
+        let d = da / (1.0 + sx * kx + sy * ky);
+        0.5 * ((f + n) / (f - n) - 2.0 * f * n / ((f - n) * d)) + 0.5
+    }
+
+    fn on_plane(x: f32, y: f32, (sx, sy, da): (f64, f64, f64)) -> Vec3 {
+        let z = -da + sx * f64::from(x) + sy * f64::from(y);
+        Vec3::new(x, y, z as f32)
+    }
+
+    #[test]
+    fn the_window_plane_matches_the_rays_through_the_pixels() {
+        let plane = (0.3, -0.6, 8.0);
+        let corners: Vec<Vec3> = [(-1.0, -1.0), (2.0, -1.0), (2.0, 1.5), (-1.0, 1.5)]
+            .iter()
+            .map(|&(x, y)| on_plane(x, y, plane))
+            .collect();
+        let shape = decal_shape(&frustum(), ClipDepth::NegOneToOne, [200, 120], &corners).unwrap();
+        let fp = shape.footprint;
+        // The window depth is affine in window (x, y): the footprint's plane reproduces the
+        // rays' depths (to the f32 rounding of the corners' z, 2⁻²⁴ relative).
+        for (x, y) in [(0.0, 0.0), (50.0, 30.0), (199.0, 7.0), (13.0, 119.0)] {
+            let plane_w = fp.origin_depth + fp.gradient[0] * x + fp.gradient[1] * y;
+            assert!(
+                (plane_w - window_through(x, y, plane)).abs() < 1e-6,
+                "({x}, {y})"
+            );
+        }
+        let depths: Vec<f64> = corners.iter().map(|c| -f64::from(c.z)).collect();
+        let (lo, hi) = (
+            depths.iter().copied().fold(f64::INFINITY, f64::min),
+            depths.iter().copied().fold(0.0, f64::max),
+        );
+        assert_eq!(shape.depth_range, [lo, hi]);
+        assert!((shape.slope - 0.9).abs() < 1e-5, "{}", shape.slope);
+        // The far corner: the largest projected window x and y of the corners, clamped.
+        let window_x = |c: &Vec3| {
+            let d = -f64::from(c.z);
+            ((f64::from(c.x) / d + 0.8) / 2.0 * 200.0).clamp(0.0, 200.0)
+        };
+        let largest = corners.iter().map(window_x).fold(0.0, f64::max);
+        assert!((fp.far_corner[0] - largest).abs() < 1e-9);
+        assert_eq!(fp.magnitude(), fp.origin_depth.abs() + fp.extrapolation());
+    }
+
+    #[test]
+    fn a_facing_decal_has_no_gradient() {
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0)].map(|(x, y)| Vec3::new(x, y, -5.0));
+        let shape = decal_shape(&frustum(), ClipDepth::NegOneToOne, [200, 120], &corners).unwrap();
+        assert_eq!(shape.slope, 0.0);
+        assert!(shape.footprint.gradient.iter().all(|g| g.abs() < 1e-15));
+        assert!(
+            (shape.footprint.origin_depth - window_through(0.0, 0.0, (0.0, 0.0, 5.0))).abs()
+                < 1e-12
+        );
+    }
+
+    #[test]
+    fn bad_decals_are_refused_with_the_reason() {
+        let f = frustum();
+        let square = |z: f32| {
+            [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| Vec3::new(x, y, z))
+        };
+        let refuse = |c: &[Vec3]| {
+            decal_shape(&f, ClipDepth::NegOneToOne, [200, 120], c)
+                .unwrap_err()
+                .to_string()
+        };
+        assert!(refuse(&square(-0.5)).contains("[n, f]"));
+        assert!(refuse(&square(-5.0)[..2]).contains("at least 3"));
+        let mut bent = square(-5.0);
+        bent[2].z = -5.5;
+        assert!(refuse(&bent).contains("coplanar"));
+        let line = [
+            Vec3::new(0.0, 0.0, -2.0),
+            Vec3::new(1.0, 0.0, -3.0),
+            Vec3::new(2.0, 0.0, -4.0),
+        ];
+        assert!(refuse(&line).contains("span a plane"));
+        let mut nan = square(-5.0);
+        nan[0].x = f32::NAN;
+        assert!(refuse(&nan).contains("not finite"));
+        assert!(decal_shape(&f, ClipDepth::NegOneToOne, [0, 120], &square(-5.0)).is_err());
+    }
+}
