@@ -108,6 +108,12 @@ impl Planes {
     }
 }
 
+/// `2ᵏ` for `−1022 ≤ k ≤ 1023`, exactly, from its bits (`powi` is a library call).
+pub(crate) fn power_of_two(k: i32) -> f64 {
+    debug_assert!((-1022..=1023).contains(&k));
+    f64::from_bits(((1023 + k) as u64) << 52)
+}
+
 /// `(a + b) / (a − b)` for `a > b ≥ 0`, halving both first if `a + b` would overflow.
 pub(crate) fn sum_over_difference(a: f64, b: f64) -> f64 {
     let (a, b) = halved_if_huge(a, b);

@@ -195,6 +195,10 @@ impl DepthFormat {
     }
 }
 
+/// The relative error bound `2⁻⁵⁰` of [`DepthMapping::window_depth_estimate`]: its five
+/// roundings (and the correctly rounded value's half ulp) stay below `5.6·2⁻⁵³ < 8·2⁻⁵³`.
+pub(crate) const WINDOW_ESTIMATE_ERROR: f64 = 1.0 / 1_125_899_906_842_624.0;
+
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Shape {
     Projection(Planes, ClipDepth),
@@ -320,6 +324,22 @@ impl DepthMapping {
     /// mapping's range.
     pub fn window_depth(&self, d: f64) -> Result<f64> {
         self.check_distance(d)?;
+        self.depth_with(d, |planes| window_depth(planes.near(), planes.far(), d))
+    }
+
+    /// [`Self::window_depth`] in plain f64, for a `d` already checked to lie in the mapping's
+    /// range: within [`WINDOW_ESTIMATE_ERROR`] (relative) of it. Walker's `f(d)` is
+    /// `((d − n)/d)·(f/(f − n))` in five roundings (`d − n` exact when `d ≤ 2n`) instead of
+    /// double-double arithmetic; the other shapes are computed as there. For bounds that are
+    /// f64 evaluations anyway, such as the recommendation's error terms.
+    pub(crate) fn window_depth_estimate(&self, d: f64) -> f64 {
+        let walker = |planes: Planes| Ok(((d - planes.near()) / d) * planes.far_over_span());
+        self.depth_with(d, walker).unwrap_or(f64::NAN)
+    }
+
+    /// The window depth at `d` of the table on [`DepthMapping`], with Walker's `f(d)` (NDC
+    /// `[−1, 1]` and `[0, 1]` store the same window depth) from `walker`, clamped to `[0, 1]`.
+    fn depth_with(&self, d: f64, walker: impl FnOnce(Planes) -> Result<f64>) -> Result<f64> {
         let w = match self.shape {
             Shape::Projection(planes, clip) => {
                 let n = planes.near();
@@ -328,14 +348,33 @@ impl DepthMapping {
                     ClipDepth::ReversedZeroToOne => {
                         (n / d) * ((planes.far() - d) / (planes.far() - n))
                     }
-                    // NDC [−1, 1] and [0, 1] store the same window depth: Walker's f(d).
-                    _ => window_depth(n, planes.far(), d)?,
+                    _ => walker(planes)?,
                 }
             }
             Shape::Tweaked { near, tweak } => (1.0 - 0.5 * tweak) * ((d - near) / d),
             Shape::Median { median } => d / (d + median),
         };
         Ok(w.clamp(0.0, 1.0))
+    }
+
+    /// `format`'s spacing ([`DepthFormat::spacing_at`]) at the window depth of `d` (checked to
+    /// lie in the mapping's range), given `w` from [`Self::window_depth_estimate`]: from `w`
+    /// when every window depth within its error has the same spacing (the spacing is monotone
+    /// in `w`, so both ends of the interval decide), else from the exact [`Self::window_depth`]
+    /// (float depth within `2⁻⁵⁰` of an f32 binade's rounding edge).
+    ///
+    /// # Errors
+    /// As [`DepthFormat::spacing_at`] and [`Self::window_depth`].
+    pub(crate) fn spacing_at_estimate(&self, format: DepthFormat, d: f64, w: f64) -> Result<f64> {
+        if format.is_unorm() {
+            return format.spacing_at(w);
+        }
+        let end = |factor: f64| format.spacing_at((w * factor).clamp(0.0, 1.0));
+        let spacing = end(1.0 - WINDOW_ESTIMATE_ERROR)?;
+        if end(1.0 + WINDOW_ESTIMATE_ERROR)? == spacing {
+            return Ok(spacing);
+        }
+        format.spacing_at(self.window_depth(d)?)
     }
 
     /// The exact size of one stored-depth step at eye distance `d`: the shift toward the camera
@@ -518,5 +557,66 @@ impl DepthMapping {
             Shape::Tweaked { tweak, .. } => 1.0 - 0.5 * tweak,
             Shape::Median { .. } => 1.0,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The f64 estimate stays within its bound of the double-double window depth, and the
+    /// spacing taken from it is the exact one, also where float depth crosses a binade.
+    #[test]
+    fn window_depth_estimates_keep_their_bound_and_the_spacing() {
+        let clips = [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ];
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut edges = 0;
+        for i in 0..30_000 {
+            let n = 10f64.powf(-4.0 + 6.0 * next());
+            let f = if i % 5 == 0 {
+                f64::INFINITY
+            } else {
+                n * 10f64.powf(0.001 + 8.0 * next())
+            };
+            let mapping = DepthMapping::projection(n, f, clips[i % 3]).unwrap();
+            let d = if i % 2 == 0 {
+                n * (f.min(n * 1e9) / n).powf(next())
+            } else {
+                // Near an f32 rounding edge of float depth (w just below a power of two).
+                let w = 2f64.powi(-((next() * 20.0) as i32)) * (1.0 - 2f64.powi(-25));
+                let w = w * (1.0 + (next() - 0.5) * 2f64.powi(-45));
+                match mapping.distance_at_window(w) {
+                    Ok(d) if d >= n && d <= f => d,
+                    _ => continue,
+                }
+            };
+            let exact = mapping.window_depth(d).unwrap();
+            let estimate = mapping.window_depth_estimate(d);
+            assert!(
+                (estimate - exact).abs() <= WINDOW_ESTIMATE_ERROR * exact,
+                "{n} {f} {d}: {estimate} vs {exact}"
+            );
+            for format in [DepthFormat::Unorm24, DepthFormat::Float32] {
+                let spacing = mapping.spacing_at_estimate(format, d, estimate).unwrap();
+                assert_eq!(spacing, format.spacing_at(exact).unwrap(), "{n} {f} {d}");
+            }
+            let f32_edge =
+                |w: f64| (w * (1.0 - 2f64.powi(-48))) as f32 != (w * (1.0 + 2f64.powi(-48))) as f32;
+            edges += usize::from(f32_edge(exact));
+        }
+        assert!(
+            edges > 100,
+            "only {edges} window depths near an f32 rounding edge"
+        );
     }
 }

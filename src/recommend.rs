@@ -225,9 +225,9 @@
 //! profile's [`RasterizerProfile::resolvable`] quanta (1 in the worst case, the smallest known;
 //! 2 measured on llvmpipe, whose `lp_state_setup.c` scales units by `2·mrd`).
 
-use crate::domain::{domain, finite, representable};
+use crate::domain::{domain, finite, power_of_two, representable};
 use crate::error::Result;
-use crate::precision::DepthMapping;
+use crate::precision::{DepthMapping, WINDOW_ESTIMATE_ERROR};
 use crate::projection::{ClipDepth, Frustum};
 
 /// The unit roundoff of f32: half an ulp of 1.
@@ -527,7 +527,7 @@ fn polygon_units(scene: &Scene, terms: &ErrorTerms, window_offset: f64) -> f64 {
 /// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
 fn slope_factor(scene: &Scene) -> f64 {
     match scene.profile.snapping {
-        Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
+        Snapping::SubpixelBits(b) => power_of_two(1 - b as i32),
         Snapping::Unsnapped => 0.0,
     }
 }
@@ -537,13 +537,13 @@ fn snap(scene: &Scene) -> Result<f64> {
         Snapping::Unsnapped => Ok(0.0),
         Snapping::SubpixelBits(b) if scene.footprint.is_some() => {
             let [gx, gy] = scene.footprint.map_or([0.0; 2], |f| f.gradient);
-            Ok(2f64.powi(-(b as i32) - 1) * (gx.abs() + gy.abs()))
+            Ok(power_of_two(-(b as i32) - 1) * (gx.abs() + gy.abs()))
         }
         Snapping::SubpixelBits(b) => {
             // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
             let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
             let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
-            Ok(2f64.powi(-(b as i32) - 1) * (gx + gy) * tilt)
+            Ok(power_of_two(-(b as i32) - 1) * (gx + gy) * tilt)
         }
     }
 }
@@ -635,10 +635,10 @@ pub(crate) fn profile_index(format: DepthFormat) -> usize {
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
 fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
-    let m = frustum.to_cols_array_f64()?;
-    let ex = (m[8].abs() + 1.0) / m[0].abs();
-    let ey = (m[9].abs() + 1.0) / m[5].abs();
-    Ok(ex.max(ey))
+    // (|r + l|/|r − l| + 1)/(2n/|r − l|) = (|r + l| + |r − l|)/(2n) = max(|l|, |r|)/n: the
+    // same value from the parameters, without building the matrix.
+    let (l, r, b, t, n, _) = frustum.parameters();
+    Ok(l.abs().max(r.abs()).max(b.abs()).max(t.abs()) / n)
 }
 
 /// The term `C` of a base the rasterizer clips (module docs, "The base"): every rasterizer-made
@@ -706,11 +706,20 @@ fn check_useful(terms: &ErrorTerms, bleed_gap: f64, d2: f64) -> Result<()> {
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
 /// which happens when the clipping term `C` of a large clipped base dwarfs the decal's depth.
 fn check_in_range(mapping: &DepthMapping, d1: f64, offset_at_d1: f64) -> Result<()> {
-    let w1 = mapping.window_depth(d1)?;
-    let moved = if mapping.is_reversed() {
-        w1 + offset_at_d1
+    let moved_from = |w1: f64| {
+        if mapping.is_reversed() {
+            w1 + offset_at_d1
+        } else {
+            w1 - offset_at_d1
+        }
+    };
+    // The f64 estimate decides unless its error could cross an end of [0, 1].
+    let estimate = moved_from(mapping.window_depth_estimate(d1));
+    let margin = 4.0 * WINDOW_ESTIMATE_ERROR;
+    let moved = if (margin..=1.0 - margin).contains(&estimate) {
+        estimate
     } else {
-        w1 - offset_at_d1
+        moved_from(mapping.window_depth(d1)?)
     };
     if (0.0..=1.0).contains(&moved) {
         Ok(())
@@ -1041,7 +1050,12 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let mapping = mapping_of(scene, clip)?;
     let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
     let [d1, d2] = scene.depth_range;
-    let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
+    // In plain f64 (d₁, d₂ are checked): within 2⁻⁵⁰ of the correctly rounded window depths,
+    // as close as the f64 evaluation of the terms below is to their formulas.
+    let (w1, w2) = (
+        mapping.window_depth_estimate(d1),
+        mapping.window_depth_estimate(d2),
+    );
     let (w_min, w_max) = (w1.min(w2), w1.max(w2));
     let transform = if clip == ClipDepth::NegOneToOne {
         // m10·z and + m14 round relative to |m10|·d and |clip_z| ≤ d (halved by the viewport
@@ -1081,7 +1095,8 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
     // its smallest.
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
-    let q = quantum(scene.format, far_w)?;
+    // That point is d₂ either way; the estimate decides the spacing unless near a binade edge.
+    let q = mapping.spacing_at_estimate(scene.format, d2, far_w)?;
     let bound = transform + vertex + interpolation;
     // M, the largest magnitude of the plane's terms from the window origin over the decal's
     // pixels: |w₀| + |gₓ|·x + |g_y|·y ≤ w + 2(|gₓ|·x + |g_y|·y) without the footprint.

@@ -465,7 +465,10 @@ mod tests {
         // f32 subnormals, the band below them where an f32 boundary (2⁻¹⁵⁰) lies, and values
         // from 2¹²⁷ on go to the exact decision.
         let subnormal_band = [1e-39, 2f64.powi(-150), 2f64.powi(-151), 2f64.powi(127)];
-        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)].into_iter().chain(subnormal_band) {
+        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)]
+            .into_iter()
+            .chain(subnormal_band)
+        {
             assert_eq!(enclosed(bad), None, "{bad}");
         }
     }

@@ -382,7 +382,10 @@ fn elements_at_the_edges_of_the_fast_range_are_the_nearest_f32() {
             }
         }
     }
-    assert!(checked > 1000 && fast > 100, "{checked} checked, {fast} fast");
+    assert!(
+        checked > 1000 && fast > 100,
+        "{checked} checked, {fast} fast"
+    );
 }
 
 #[test]
