@@ -633,7 +633,7 @@ pub(crate) fn profile_index(format: DepthFormat) -> usize {
     }
 }
 
-/// `e = max(|l|, |r|, |b|, |t|)/n`, from the matrix: `(r ± l)/(r − l)` and `2n/(r − l)`.
+/// `e = max(|l|, |r|, |b|, |t|)/n`, the largest tangent of the frustum's half extents.
 fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     // (|r + l|/|r − l| + 1)/(2n/|r − l|) = (|r + l| + |r − l|)/(2n) = max(|l|, |r|)/n: the
     // same value from the parameters, without building the matrix.
