@@ -230,9 +230,14 @@ impl DepthMapping {
     /// # Errors
     /// As [`Planes::new`].
     pub fn projection(n: f64, f: f64, clip: ClipDepth) -> Result<Self> {
-        Ok(Self {
-            shape: Shape::Projection(Planes::new(n, f)?, clip),
-        })
+        Ok(Self::of_planes(Planes::new(n, f)?, clip))
+    }
+
+    /// [`Self::projection`] for planes already checked.
+    pub(crate) fn of_planes(planes: Planes, clip: ClipDepth) -> Self {
+        Self {
+            shape: Shape::Projection(planes, clip),
+        }
     }
 
     /// The mapping of the tweaked infinite projection

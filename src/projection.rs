@@ -90,8 +90,11 @@ impl Frustum {
         m[10] = -self.planes.sum_over_span();
         m[11] = -1.0;
         m[14] = -2.0 * n * self.planes.far_over_span();
-        for x in m {
-            representable(x, "a projection matrix element overflows f64")?;
+        // One test for all (a sum of finite elements that overflows only costs the loop).
+        if !(m[0] + m[5] + m[8] + m[9] + m[10] + m[14]).is_finite() {
+            for x in m {
+                representable(x, "a projection matrix element overflows f64")?;
+            }
         }
         Ok(m)
     }

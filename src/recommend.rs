@@ -464,8 +464,7 @@ pub struct Recommendation {
 /// bounded (clip it with [`clip_to_frustum`]); [`crate::ErrorKind::Overflow`] if a result
 /// overflows.
 pub fn recommend(scene: &Scene) -> Result<Recommendation> {
-    check(scene, ClipDepth::NegOneToOne)?;
-    let terms = error_terms(scene)?;
+    let terms = error_terms(scene)?; // which checks the scene first
     let window_offset = terms.window_offset();
     check_in_range(
         &mapping_of(scene, ClipDepth::NegOneToOne)?,
@@ -1149,8 +1148,8 @@ fn scale(scene: &Scene) -> f64 {
 }
 
 fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
-    let planes = scene.frustum.planes();
-    DepthMapping::projection(planes.near(), planes.far(), clip)
+    // A Frustum's planes are checked.
+    Ok(DepthMapping::of_planes(scene.frustum.planes(), clip))
 }
 
 /// Under reversed Z with the decal's footprint and a measured `error_ulps_reversed` `k`: a bound
