@@ -42,12 +42,6 @@ impl Planes {
         Ok(Self { near, far })
     }
 
-    /// Planes already checked by the caller (`0 < n < f`, both not NaN).
-    #[inline(always)]
-    pub(crate) fn from_checked(near: f64, far: f64) -> Self {
-        Self { near, far }
-    }
-
     /// The near plane distance `n`.
     pub fn near(&self) -> f64 {
         self.near

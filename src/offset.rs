@@ -181,13 +181,17 @@ pub(crate) fn offset_fast(
     // |pz| in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) as well, for `shift_estimate`'s scale.
     let good = (pz <= -n) & (pz >= -f) & (pz > -BIG_DEPTH) & (pz <= -1.0 / BIG_DEPTH);
     let good = good & (shifted < 0.0) & (delta.abs() < f64::INFINITY);
-    let planes = Planes::from_checked(n, f);
-    // The offset's quotient is computed here, before the frustum's test, so that it overlaps
-    // the frustum's own divisions; invalid inputs give a meaningless one, refused by `good`.
-    let offset = shift_estimate(&planes, delta, pz).value();
+    // o = 2fnδ/((f − n)·Pz·(Pz + δ)) = n·δ·(1 − m10)/(Pz·(Pz + δ)), since f/(f − n) =
+    // (1 − m10)/2 (and 1 with f = ∞, where m10 = −1): from the frustum's own estimate of m10.
+    // Scaled by 1/2^e for |Pz| in [2^e, 2^(e+1)) (from its exponent bits, exact), so that
+    // nothing overflows; the reciprocal overlaps the frustum's divisions. Roundings: n·δ, the
+    // reciprocal's three, 1 − m10's five (m10's four, |m10| ≤ |1 − m10|), two products: 11.
+    let s = f64::from_bits(2046u64.wrapping_sub(pz.to_bits() >> 52 & 0x7ff) << 52);
+    let (n_s, delta_s, pz_s) = (n * s, delta * s, pz * s);
+    let over_depths = n_s * delta_s * (1.0 / (pz_s * (pz_s + delta_s)));
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
-    crate::projection::fast_then(l, r, b, t, n, f, depth, |m10| {
-        let (x, decided) = outward_decided(m10, offset, 8.0);
+    crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
+        let (x, decided) = outward_decided(m10, over_depths * (1.0 - y10), 12.0);
         (x, decided & good)
     })
 }
@@ -261,10 +265,14 @@ pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
 /// The fast path of [`epsilon_matrix`] alone, as [`offset_matrix_fast`].
 #[inline(always)]
 pub fn epsilon_matrix_fast(frustum: &Frustum, epsilon: f64) -> Option<[f32; 16]> {
-    let mut m = crate::projection::projection_fast(frustum, ClipDepth::NegOneToOne)?;
-    let (estimate, _) = ndc_offset_of_epsilon(&frustum.planes(), epsilon);
-    m[10] = outward_of_ratio(m[10], estimate, 4.0)?;
-    Some(m)
+    let (l, r, b, t, n, f) = frustum.parameters();
+    let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
+    // o = m10·ε from the frustum's estimate of m10 (four roundings), and the product: 5.
+    let m = crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
+        let (x, decided) = outward_decided(m10, epsilon * y10, 6.0);
+        (x, decided & (epsilon.abs() < f64::INFINITY))
+    })?;
+    Some(m.to_cols_array())
 }
 
 /// [`epsilon_matrix`] decided by the exact path alone, as [`offset_matrix_exact`].
@@ -316,19 +324,6 @@ fn ndc_offset_of_shift(
         }
     };
     (estimate, exact)
-}
-
-/// The f64 estimate of [`ndc_offset_of_shift`] alone, inlined into the fast path (returning
-/// the double-double closure too keeps the estimate in memory, behind a call).
-#[inline(always)]
-fn shift_estimate(planes: &Planes, delta: f64, pz: f64) -> Ratio {
-    // 1/2^e for |pz| in [2^e, 2^(e+1)), from its exponent bits: `unit_scale` without its
-    // branches, for the `|pz|` in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) that `offset_fast` accepts.
-    let s = f64::from_bits(2046u64.wrapping_sub(pz.to_bits() >> 52 & 0x7ff) << 52);
-    let (n, f) = (planes.near(), planes.far());
-    let f = crate::projection::far_for_estimates(n, f) * s;
-    let (n, delta, pz) = (n * s, delta * s, pz * s);
-    Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n))
 }
 
 /// `o`'s numerator and denominator from inputs already scaled by a power of two.

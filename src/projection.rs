@@ -462,10 +462,11 @@ pub(crate) fn fast(
     f: f64,
     depth: DepthRow,
 ) -> Option<Mat4> {
-    fast_then(l, r, b, t, n, f, depth, |m10| (m10, true))
+    fast_then(l, r, b, t, n, f, depth, |m10, _| (m10, true))
 }
 
-/// [`fast`] with element 10 replaced by `element_10(m10)` before the columns are assembled
+/// [`fast`] with element 10 replaced by `element_10(m10, y10)` (its f32 and its f64 estimate,
+/// of at most four roundings) before the columns are assembled
 /// (the offset builders round their offset element outward there, and say whether that was
 /// decided; computed before the one test, so it must not panic).
 #[allow(clippy::too_many_arguments)]
@@ -478,7 +479,7 @@ pub(crate) fn fast_then(
     n: f64,
     f: f64,
     depth: DepthRow,
-    element_10: impl FnOnce(f32) -> (f32, bool),
+    element_10: impl FnOnce(f32, f64) -> (f32, bool),
 ) -> Option<Mat4> {
     let mut good = true;
     let two_n = 2.0 * n;
@@ -508,32 +509,12 @@ pub(crate) fn fast_then(
             depth_den,
             planes: [n, span],
         },
-        |m10| {
-            let (x, decided) = element_10(m10);
+        |m10, y10| {
+            let (x, decided) = element_10(m10, y10);
             (x, decided & good)
         },
     )
 }
-
-/// The far plane the fast paths compute with: `f`, or `2⁶⁰⁰·n` for a farther one (`f = +∞`
-/// included), so that one branch-free formula serves both. The elements (and Lengyel's offset)
-/// depend on `f` through `n/(f − n)`, which moves by less than `2⁻⁵⁹⁸` relative: far inside
-/// the fast test's slack (`crate::rounding`), and an element whose limit is `0` (reversed
-/// depth's `n/(f − n)`) stays below `2⁻¹⁵¹`, where the test passes zero. NaN is not clamped
-/// away here (`f64::min` would drop it): callers check `f − n > 0` on the unclamped `f`.
-#[inline(always)]
-pub(crate) fn far_for_estimates(n: f64, f: f64) -> f64 {
-    let clamp = n * FAR_CLAMP;
-    // Not `f64::min`, whose NaN handling costs a blend: this is one `minsd`.
-    if f < clamp {
-        f
-    } else {
-        clamp
-    }
-}
-
-/// `2⁶⁰⁰`: see [`far_for_estimates`].
-const FAR_CLAMP: f64 = 4.149515568880993e180;
 
 /// The exact path: validates with the detailed errors of [`Frustum::new`] and [`check_tweak`],
 /// then decides every element with [`nearest_of_ratio`] on inputs scaled by powers of two.

@@ -506,13 +506,12 @@ pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
 /// # Errors
 /// As [`recommend`].
 pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
-    let m = scene.frustum.to_cols_array_f64()?;
+    let (l, r, b, t, _, _) = scene.frustum.parameters();
     let [w, h] = scene.viewport.map(f64::from);
     let big_f = scene.frustum.planes().far_over_span();
-    let n = scene.frustum.planes().near();
-    // 2n/(r − l) = m0, so (r − l)/n = 2/m0 (likewise m5 for t − b).
-    let gx = scene.slope * big_f * (2.0 / m[0]).abs() * n / (w * d);
-    let gy = scene.slope * big_f * (2.0 / m[5]).abs() * n / (h * d);
+    // From the parameters, not through 2/m0 = (r − l)/n: the same value without the matrix.
+    let gx = scene.slope * big_f * (r - l).abs() / (w * d);
+    let gy = scene.slope * big_f * (t - b).abs() / (h * d);
     Ok([gx, gy])
 }
 

@@ -133,7 +133,8 @@ pub(crate) struct Estimates {
 }
 
 /// The projection's columns, each element the nearest f32 of its exact value, with element 10
-/// replaced by `element_10(m10)` (an offset rounded outward, and whether that was decided)
+/// replaced by `element_10(m10, y10)` (from its f32 and its f64 estimate: an offset rounded
+/// outward, and whether that was decided)
 /// before the columns are assembled, so the matrix leaves in four registers. `None` unless
 /// the test of the module docs decides all six elements (elements 0 and 5 not tiny),
 /// `element_10` decided, and `n`, `f − n > 0`: one branch for all.
@@ -148,7 +149,7 @@ pub(crate) struct Estimates {
 #[inline(always)]
 pub(crate) fn nearest_columns_then(
     e: Estimates,
-    element_10: impl FnOnce(f32) -> (f32, bool),
+    element_10: impl FnOnce(f32, f64) -> (f32, bool),
 ) -> Option<Mat4> {
     #[cfg(target_arch = "x86_64")]
     {
@@ -165,7 +166,7 @@ pub(crate) fn nearest_columns_then(
 #[inline(always)]
 pub(crate) fn nearest_columns_portable(
     e: Estimates,
-    element_10: impl FnOnce(f32) -> (f32, bool),
+    element_10: impl FnOnce(f32, f64) -> (f32, bool),
 ) -> Option<Mat4> {
     let inv_z = 1.0 / e.depth_den;
     let inv = [
@@ -192,7 +193,7 @@ pub(crate) fn nearest_columns_portable(
         m[i] = y as f32;
     }
     let decided_10;
-    (m[4], decided_10) = element_10(m[4]);
+    (m[4], decided_10) = element_10(m[4], num[4] * inv[4]);
     if !(good & decided_10) {
         return None;
     }
@@ -209,7 +210,10 @@ pub(crate) fn nearest_columns_portable(
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 #[allow(unused_unsafe)] // SSE2 intrinsics are safe to call on x86_64 from Rust 1.87 on
-fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> (f32, bool)) -> Option<Mat4> {
+fn nearest_columns_sse2(
+    e: Estimates,
+    element_10: impl FnOnce(f32, f64) -> (f32, bool),
+) -> Option<Mat4> {
     use std::arch::x86_64::*;
     // SAFETY: SSE2 is part of the x86_64 baseline; these intrinsics only compute on registers.
     unsafe {
@@ -244,7 +248,7 @@ fn nearest_columns_sse2(e: Estimates, element_10: impl FnOnce(f32) -> (f32, bool
             _mm_and_si128(decided(y_scale, 0), decided(y_centre, TINY)),
             _mm_and_si128(decided(y_depth, TINY), positive),
         );
-        let (m10, decided_10) = element_10(_mm_cvtss_f32(lo_z));
+        let (m10, decided_10) = element_10(_mm_cvtss_f32(lo_z), _mm_cvtsd_f64(y_depth));
         if (_mm_movemask_epi8(all) != 0xffff) | !decided_10 {
             return None;
         }
@@ -499,9 +503,9 @@ mod tests {
                 depth_den: if i % 3 == 0 { 1.0 } else { v[2] - v[1] },
                 planes: [v[0].abs(), v[5] - v[6]],
             };
-            let portable = nearest_columns_portable(e, |m| (m, true)).map(|m| m.to_cols_array());
+            let portable = nearest_columns_portable(e, |m, _| (m, true)).map(|m| m.to_cols_array());
             assert_eq!(
-                nearest_columns_then(e, |m| (m, true)).map(|m| m.to_cols_array()),
+                nearest_columns_then(e, |m, _| (m, true)).map(|m| m.to_cols_array()),
                 portable,
                 "{e:?}"
             );

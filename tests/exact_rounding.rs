@@ -819,7 +819,17 @@ fn fast_offset_matrices_match_the_exact_path_in_bulk() {
     });
     in_batches("epsilon_matrix", |rng| {
         let frustum = wide_frustum(rng);
-        let eps = rng.sign() * rng.log_uniform(-15.0, -0.5);
+        let mut eps = rng.sign() * rng.log_uniform(-15.0, -0.5);
+        if rng.next() < 0.25 {
+            // An offset m10·ε landing within a few dozen f64 ulps of an f32 step from plain.
+            let plain = projection_exact(&frustum, ClipDepth::NegOneToOne).unwrap()[10];
+            let steps = rng.pick(&[1.0, 2.0, 3.0, 17.0, 1000.0]) * rng.sign();
+            let spacing = f64::from(plain.next_up()) - f64::from(plain);
+            let (_, _, _, _, n, f) = frustum.parameters();
+            let m10 = exact_row(n, f, ClipDepth::NegOneToOne).0.to_f64().unwrap();
+            eps = nudge_small(rng, steps * spacing / m10);
+            rng.constructed.set(true);
+        }
         let exact = epsilon_matrix_exact(&frustum, eps);
         agree(epsilon_matrix_fast(&frustum, eps), exact, &|| {
             format!("{frustum:?} {eps}")
