@@ -335,6 +335,73 @@ pub fn offset_shift(m: &[f32; 16], clip: ClipDepth, delta: f64, d: f64) -> Resul
     }
 }
 
+/// [`recognize`]'s checks without their details, branch-free: `(valid, s)` with `s = m11`
+/// (`±1`) for a perspective matrix, 0 for an orthographic one.
+#[inline(always)]
+fn recognised_fast(m: &[f32; 16], clip: ClipDepth) -> (bool, f64) {
+    let finite = m.iter().fold(true, |all, x| all & x.is_finite());
+    let rows = (m[2] == 0.0) & (m[6] == 0.0) & (m[3] == 0.0) & (m[7] == 0.0);
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    let (s, m10, m14) = (f64::from(m[11]), f64::from(m[10]), f64::from(m[14]));
+    if m[15] == 0.0 {
+        let near = m14 / (ends(clip).0 - s * m10);
+        let shape = ((s == 1.0) | (s == -1.0)) & (m14 != 0.0) & ((m14 > 0.0) == reversed);
+        let near_ok = (near > 0.0) & (near < f64::INFINITY);
+        (finite & rows & shape & near_ok, s)
+    } else {
+        let shape = (s == 0.0) & (m[15] == 1.0) & (m10 != 0.0) & ((m10 > 0.0) == reversed);
+        (finite & rows & shape, 0.0)
+    }
+}
+
+/// The fast path of [`offset_shift`]: its matrix, or `None` where it defers (an error to
+/// explain, or an offset too close to an f32 step to decide from its f64 estimate,
+/// `crate::offset::outward_of_ratio`). Arithmetic and comparisons only, nothing that panics.
+///
+/// The estimates, from the engine's f32 elements (exact in f64): `c = m14·δ/(d·(d − δ))`
+/// (four roundings), `m14·δ/(d − δ)` (three) and `m10·δ` (one); each intermediate product must
+/// be a normal f64 for their relative bounds (else the exact path decides).
+#[inline]
+pub fn offset_shift_fast(m: &[f32; 16], clip: ClipDepth, delta: f64, d: f64) -> Option<[f32; 16]> {
+    let (recognised, s) = recognised_fast(m, clip);
+    let (m10, m14) = (f64::from(m[10]), f64::from(m[14]));
+    let normal = |x: f64| x.abs() >= f64::MIN_POSITIVE;
+    let inputs = (delta.abs() < f64::INFINITY) & (d.abs() < f64::INFINITY);
+    let (i, estimate, rounds, valid) = if s == 0.0 {
+        (14, m10 * delta, 1.0, true)
+    } else {
+        let shifted = d - delta;
+        let product = m14 * delta;
+        let valid = (d > 0.0) & (shifted > 0.0) & normal(product);
+        if clip == ClipDepth::ReversedZeroToOne {
+            (14, product / shifted, 3.0, valid)
+        } else {
+            let depths = d * shifted;
+            (10, s * (product / depths), 4.0, valid & normal(depths))
+        }
+    };
+    let (x, decided) = crate::offset::outward_decided(m[i], estimate, rounds);
+    let mut out = *m;
+    out[i] = x;
+    (recognised & inputs & valid & decided).then_some(out)
+}
+
+/// The fast path of [`offset_ndc`], as [`offset_shift_fast`] (the offset `c` is exact).
+#[inline]
+pub fn offset_ndc_fast(m: &[f32; 16], clip: ClipDepth, c: f64) -> Option<[f32; 16]> {
+    let (recognised, s) = recognised_fast(m, clip);
+    let toward = toward_sign(clip) * c;
+    let (i, estimate) = if s == 0.0 {
+        (14, toward)
+    } else {
+        (10, s * toward)
+    };
+    let (x, decided) = crate::offset::outward_decided(m[i], estimate, 0.0);
+    let mut out = *m;
+    out[i] = x;
+    (recognised & (c.abs() < f64::INFINITY) & decided).then_some(out)
+}
+
 pub use crate::decal::Decal;
 
 /// The frustum of a recognised perspective matrix: `l, r, b, t` on the near plane from the x

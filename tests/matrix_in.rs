@@ -299,3 +299,95 @@ fn what_cannot_be_offset_is_refused_with_the_element_named() {
     assert!(e.to_string().contains("d - delta"), "{e}");
     assert!(Q::zero() < q(1.0) && BigInt::from(1) > BigInt::from(0));
 }
+
+/// The fast paths (`offset_shift_fast`, `offset_ndc_fast`, behind the C entry points) give the
+/// exact path's matrix whenever they decide, decide almost every ordinary input, and defer on
+/// offsets built to land within a few dozen f64 ulps of an f32 step, and on every error.
+#[test]
+fn the_fast_paths_match_the_exact_ones() {
+    use zshift::matrix_in::{offset_ndc_fast, offset_shift_fast};
+    let mut state = 0x853c_49e6_748f_ea9bu64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut decided, mut ordinary, mut built_deferred, mut built) = (0, 0, 0, 0);
+    for c in cases() {
+        for i in 0..20_000 {
+            let d = c.planes.0 * (1.0 + 1e4 * next());
+            let landing = i % 4 == 0;
+            let (delta, ndc) = if landing {
+                // An offset of 1, 2 or 17 f32 steps of the offset element, nudged by a few f64
+                // ulps of the element (2⁻²⁶ of a step is 2⁻⁴⁹ of the element).
+                let e = if c.ortho || c.clip == ClipDepth::ReversedZeroToOne {
+                    14
+                } else {
+                    10
+                };
+                let p = c.m[e];
+                let step = f64::from(p.abs().next_up()) - f64::from(p.abs());
+                let k = [1.0, 2.0, 17.0][i % 3];
+                let o = k * step * (1.0 + (next() - 0.5) * 2f64.powi(-26));
+                let delta = if c.ortho {
+                    o / f64::from(c.m[10]).abs()
+                } else {
+                    // m14·δ/(d(d − δ)) = o (or m14·δ/(d − δ) = o reversed), for δ.
+                    let m14 = f64::from(c.m[14]).abs();
+                    let g = if c.clip == ClipDepth::ReversedZeroToOne {
+                        1.0
+                    } else {
+                        d
+                    };
+                    o * g * d / (m14 + o * g)
+                };
+                (delta, o)
+            } else {
+                let sign = if next() < 0.5 { -1.0 } else { 1.0 };
+                (
+                    sign * d * 10f64.powf(-7.0 * next()) * 0.5,
+                    sign * 10f64.powf(-8.0 * next()),
+                )
+            };
+            let what = || format!("{} delta {delta} d {d} ndc {ndc}", c.name);
+            let exact = offset_shift(&c.m, c.clip, delta, d);
+            let fast = offset_shift_fast(&c.m, c.clip, delta, d);
+            if let Some(m) = fast {
+                assert_eq!(
+                    Ok(m),
+                    exact.clone().map_err(|e| e.to_string()),
+                    "{}",
+                    what()
+                );
+            }
+            let exact_ndc = offset_ndc(&c.m, c.clip, ndc);
+            if let Some(m) = offset_ndc_fast(&c.m, c.clip, ndc) {
+                assert_eq!(Ok(m), exact_ndc.map_err(|e| e.to_string()), "{}", what());
+            }
+            if landing {
+                built += 1;
+                built_deferred += usize::from(fast.is_none());
+            } else if exact.is_ok() {
+                ordinary += 1;
+                decided += usize::from(fast.is_some());
+            }
+        }
+    }
+    println!("{decided} of {ordinary} decided, {built_deferred} of {built} built deferred");
+    assert!(
+        decided as f64 > 0.999 * ordinary as f64,
+        "{decided} of {ordinary} decided"
+    );
+    assert!(
+        built_deferred > built / 50,
+        "{built_deferred} of {built} built inputs deferred"
+    );
+    for (m, clip) in [
+        ([f32::NAN; 16], ClipDepth::NegOneToOne),
+        (cases()[0].m, ClipDepth::ReversedZeroToOne),
+    ] {
+        assert_eq!(offset_shift_fast(&m, clip, 0.01, 50.0), None);
+        assert_eq!(offset_ndc_fast(&m, clip, 1e-5), None);
+    }
+}

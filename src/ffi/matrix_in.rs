@@ -2,8 +2,8 @@
 //! (src/matrix_in.rs), and the recommendation for it.
 
 use super::{
-    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftFormat,
-    ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
+    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip,
+    ZshiftFormat, ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
 use crate::error::Result;
@@ -55,9 +55,14 @@ pub extern "C" fn zshift_offset_matrix(
     let Some(m) = matrix_from_c(m) else {
         return null_pointer("m");
     };
-    checked_array(out, move || {
-        crate::matrix_in::offset_shift(&m, clip_of(clip)?, delta, d)
-    })
+    let fast = clip_of(clip)
+        .ok()
+        .and_then(|c| crate::matrix_in::offset_shift_fast(&m, c, delta, d));
+    checked_matrix(
+        out,
+        fast.map(|m| glam::Mat4::from_cols_array(&m)),
+        move || crate::matrix_in::offset_shift(&m, clip_of(clip)?, delta, d),
+    )
 }
 
 /// Writes the engine's projection `m` with the NDC depth of every point moved toward the camera
@@ -79,9 +84,14 @@ pub extern "C" fn zshift_offset_matrix_ndc(
     let Some(m) = matrix_from_c(m) else {
         return null_pointer("m");
     };
-    checked_array(out, move || {
-        crate::matrix_in::offset_ndc(&m, clip_of(clip)?, ndc)
-    })
+    let fast = clip_of(clip)
+        .ok()
+        .and_then(|c| crate::matrix_in::offset_ndc_fast(&m, c, ndc));
+    checked_matrix(
+        out,
+        fast.map(|m| glam::Mat4::from_cols_array(&m)),
+        move || crate::matrix_in::offset_ndc(&m, clip_of(clip)?, ndc),
+    )
 }
 
 /// What an engine knows about a decal besides its projection matrix, for
