@@ -219,6 +219,20 @@ pub fn offset_projection_exact(
     Ok(m)
 }
 
+/// The fast path of [`offset_tweaked_infinite`] alone, as [`offset_projection_fast`].
+pub fn offset_tweaked_infinite_fast(
+    frustum: &Frustum,
+    tweak: f64,
+    delta: f64,
+    pz: f64,
+) -> Option<[f32; 16]> {
+    let mut m = crate::projection::tweaked_infinite_fast(frustum, tweak)?;
+    let mapping = DepthMapping::tweaked_infinite(frustum.planes().near(), tweak).ok()?;
+    let c = ndc_offset_of_shift(&mapping, delta, pz).ok()?;
+    m[10] = outward_of_ratio(m[10], Ratio(-c, 1.0), 0.0)?;
+    Some(m)
+}
+
 /// The offset variant of [`crate::projection::tweaked_infinite`]: moves geometry at `Pz`
 /// toward the camera by `δ` with a constant NDC offset through element 10.
 ///

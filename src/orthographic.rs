@@ -15,7 +15,7 @@ use crate::error::Result;
 use crate::offset::rounded_outward;
 use crate::precision::DepthFormat;
 use crate::projection::{to_f32, ClipDepth};
-use crate::rounding::{enclosed, nearest_of_ratio, two_sum, Ratio};
+use crate::rounding::{decided, enclosed, nearest_of_ratio, two_sum, Ratio};
 
 /// The six parameters of `glOrtho`, validated: finite, `l ≠ r`, `b ≠ t`, `n < f`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -145,6 +145,17 @@ pub fn ortho_f64(ortho: &Ortho, clip: ClipDepth) -> [f64; 16] {
 /// # Errors
 /// [`crate::ErrorKind::Overflow`] if an element leaves f32.
 pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
+    let (l, r, b, t, n, f) = (
+        ortho.left,
+        ortho.right,
+        ortho.bottom,
+        ortho.top,
+        ortho.near,
+        ortho.far,
+    );
+    if let Some(m) = ortho_fast(l, r, b, t, n, f, clip) {
+        return Ok(m.to_cols_array());
+    }
     let y = ortho_f64(ortho, clip);
     // The estimates' error bound needs finite intermediates: a sum or difference of extents
     // near f64::MAX that overflows sends every element to the exact decision.
@@ -224,6 +235,77 @@ fn nearest(trusted: bool, y: f64, num: &[f64], den: &[f64]) -> f32 {
             scale: 1.0,
         })
     })
+}
+
+/// The fast path of [`ortho`] (and of `Ortho::new`'s checks): its matrix, or `None` where it
+/// defers (an invalid input, or an element too close to an f32 rounding boundary). Arithmetic
+/// and comparisons only, nothing that panics, and one branch.
+///
+/// The estimates go through the reciprocals of `r − l`, `t − b` and `f − n`: at most three
+/// roundings (`(r + l)·(1/(r − l))`). The checks ride on the rounding test: elements 0, 5 and 10
+/// must be normal (not tiny), which refuses a zero or non-finite width, height or depth span
+/// (`1/0 = ∞`, `1/∞ = 0`, NaN), and `f − n > 0` is tested outright.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn ortho_fast(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: ClipDepth,
+) -> Option<glam::Mat4> {
+    let (inv_w, inv_h, span) = (1.0 / (r - l), 1.0 / (t - b), f - n);
+    let inv_s = 1.0 / span;
+    let (m10, m14) = match clip {
+        ClipDepth::NegOneToOne => (-2.0 * inv_s, -(f + n) * inv_s),
+        ClipDepth::ZeroToOne => (-inv_s, -n * inv_s),
+        ClipDepth::ReversedZeroToOne => (inv_s, f * inv_s),
+    };
+    let y = [
+        2.0 * inv_w,
+        2.0 * inv_h,
+        m10,
+        -(r + l) * inv_w,
+        -(t + b) * inv_h,
+        m14,
+    ];
+    let tiny_allowed = [false, false, false, true, true, true];
+    let good = y
+        .iter()
+        .zip(tiny_allowed)
+        .fold(span > 0.0, |all, (&y, tiny)| all & decided(y, tiny));
+    let [m0, m5, m10, m12, m13, m14] = y.map(|y| y as f32);
+    good.then(|| {
+        glam::Mat4::from_cols(
+            glam::Vec4::new(m0, 0.0, 0.0, 0.0),
+            glam::Vec4::new(0.0, m5, 0.0, 0.0),
+            glam::Vec4::new(0.0, 0.0, m10, 0.0),
+            glam::Vec4::new(m12, m13, m14, 1.0),
+        )
+    })
+}
+
+/// The fast path of [`offset_ortho`], as [`ortho_fast`]: element 14 moved by `m10·δ` (from the
+/// f32 element 10, one rounding) and rounded outward (`crate::offset::outward_of_ratio`).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn offset_ortho_fast(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    clip: ClipDepth,
+    delta: f64,
+) -> Option<glam::Mat4> {
+    let mut m = ortho_fast(l, r, b, t, n, f, clip)?;
+    let offset = f64::from(m.z_axis.z) * delta;
+    let (x, decided) = crate::offset::outward_decided(m.w_axis.z, offset, 1.0);
+    m.w_axis.z = x;
+    (decided & (delta.abs() < f64::INFINITY)).then_some(m)
 }
 
 /// The orthographic matrix of `clip` with every point moved toward the camera by `delta` (eye

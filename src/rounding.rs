@@ -95,7 +95,7 @@ const TINY: i32 = 0x3680_0000;
 /// the exact value it estimates, module docs), `tiny` values below `2⁻¹⁵¹` included if asked.
 /// The scalar form of the lane test in [`nearest_columns_then`], with the same answers.
 #[inline(always)]
-fn decided(y: f64, tiny: bool) -> bool {
+pub(crate) fn decided(y: f64, tiny: bool) -> bool {
     let bits = y.to_bits();
     let low = bits as u32 as i32;
     let high = (bits >> 32) as u32 as i32 & 0x7fff_ffff;

@@ -1056,6 +1056,16 @@ fn every_ortho_element_is_the_nearest_f32_near_rounding_boundaries() {
             );
             double_rounding_wrong += usize::from(rounded_twice[index].to_bits() != want.to_bits());
         }
+        // The offset box: element 14 moved by m10·δ, rounded outward; the rest untouched.
+        let delta = rng.sign() * 10f64.powf(-9.0 * rng.next()) * (f - n);
+        let moved = zshift::orthographic::offset_ortho(&o, clip, delta).expect("in range");
+        assert_outward(
+            moved[14],
+            got[14],
+            &(q32(got[10]) * q(delta)),
+            "offset_ortho",
+        );
+        assert_eq!(moved.map(f32::to_bits)[..14], got.map(f32::to_bits)[..14]);
     }
     assert!(
         double_rounding_wrong > 10,

@@ -1,6 +1,6 @@
 //! Projection builders: glFrustum, gluPerspective, every clip convention, tweaked infinite.
 
-use super::{checked_array, checked_matrix, clip_of, ZshiftClip, ZshiftStatus};
+use super::{checked_matrix, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::{fast, ClipDepth, DepthRow, Frustum};
 
 /// Writes the `glFrustum` matrix (column-major, 16 floats) to `out`. The seed-compatible spelling
@@ -121,7 +121,10 @@ pub extern "C" fn zshift_ortho(
     clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = clip_of(clip)
+        .ok()
+        .and_then(|c| crate::orthographic::ortho_fast(l, r, b, t, n, f, c));
+    checked_matrix(out, fast, move || {
         let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
         crate::orthographic::ortho(&o, clip_of(clip)?)
     })

@@ -1,7 +1,7 @@
 //! Offset matrices: the seed-compatible LoadOffsetMatrix, epsilon, and the offset projection of
 //! every convention; Kooima's median offset.
 
-use super::{checked_array, checked_matrix, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
+use super::{checked_matrix, checked_scalar, clip_of, ZshiftClip, ZshiftStatus};
 use crate::projection::Frustum;
 
 /// Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,
@@ -140,7 +140,13 @@ pub extern "C" fn zshift_offset_tweaked_infinite(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = Frustum::new(l, r, b, t, n, f64::INFINITY)
+        .ok()
+        .and_then(|frustum| {
+            crate::clip_offset::offset_tweaked_infinite_fast(&frustum, tweak, delta, pz)
+        })
+        .map(|m| glam::Mat4::from_cols_array(&m));
+    checked_matrix(out, fast, move || {
         let frustum = Frustum::new(l, r, b, t, n, f64::INFINITY)?;
         crate::clip_offset::offset_tweaked_infinite(&frustum, tweak, delta, pz)
     })
@@ -180,7 +186,10 @@ pub extern "C" fn zshift_offset_ortho(
     delta: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    checked_array(out, || {
+    let fast = clip_of(clip)
+        .ok()
+        .and_then(|c| crate::orthographic::offset_ortho_fast(l, r, b, t, n, f, c, delta));
+    checked_matrix(out, fast, move || {
         let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
         crate::orthographic::offset_ortho(&o, clip_of(clip)?, delta)
     })
