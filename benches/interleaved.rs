@@ -101,6 +101,43 @@ fn main() {
             }),
         ),
         (
+            "zshift_offset_matrix_c_abi",
+            Box::new(move || {
+                // The front door: the engine's own matrix in (glam's, as above), element 10 out.
+                let engine = glam().to_cols_array();
+                batch(|| {
+                    let s = zshift::ffi::zshift_offset_matrix(
+                        black_box(engine.as_ptr()),
+                        zshift::ffi::ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+                        v(delta),
+                        v(-pz),
+                        out.as_mut_ptr(),
+                    );
+                    black_box(&out);
+                    s
+                })
+            }),
+        ),
+        (
+            "zshift_ortho_c_abi",
+            Box::new(move || {
+                batch(|| {
+                    let s = zshift::ffi::zshift_ortho(
+                        v(-4.0),
+                        v(4.0),
+                        v(-2.25),
+                        v(2.25),
+                        v(0.5),
+                        v(100.0),
+                        zshift::ffi::ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+                        out.as_mut_ptr(),
+                    );
+                    black_box(&out);
+                    s
+                })
+            }),
+        ),
+        (
             "zshift_recommend_epsilon_matrix",
             Box::new(|| {
                 batch(|| {

@@ -102,6 +102,14 @@ pub fn interleaved_timings(json: &str) -> Vec<Timing> {
             "interleaved: zshift_frustum, no offset (C ABI, called from Rust)",
         ),
         (
+            "zshift_offset_matrix_c_abi",
+            "interleaved: zshift_offset_matrix, the engine's matrix in (C ABI, called from Rust)",
+        ),
+        (
+            "zshift_ortho_c_abi",
+            "interleaved: zshift_ortho (C ABI, called from Rust)",
+        ),
+        (
             "zshift_recommend_epsilon_matrix",
             "interleaved: zshift recommend + epsilon_matrix (Rust API, slope 1, 1920×1080)",
         ),
