@@ -224,8 +224,8 @@ fn nearest_row(
 }
 
 /// The nearest f32 of the exact ratio `Σ num / Σ den`, given its f64 estimate `y`: `y`'s own
-/// rounding when the estimate is `trusted` (finite intermediates) and the enclosure test
-/// decides it, else the exact decision.
+/// rounding when the estimate is `trusted` (finite intermediates) and the fast test
+/// (`crate::rounding`) decides it, else the exact decision.
 fn nearest(trusted: bool, y: f64, num: &[f64], den: &[f64]) -> f32 {
     let fast = if trusted { enclosed(y) } else { None };
     fast.unwrap_or_else(|| {
