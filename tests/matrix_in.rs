@@ -356,7 +356,7 @@ fn the_fast_paths_match_the_exact_ones() {
             if let Some(m) = fast {
                 assert_eq!(
                     Ok(m),
-                    exact.clone().map_err(|e| e.to_string()),
+                    exact.map_err(|e| e.to_string()),
                     "{}",
                     what()
                 );
