@@ -246,6 +246,13 @@ typedef struct {
    NAN or finite >= 0.
    */
   double error_ulps_reversed;
+  /*
+   The f32 arithmetic from a facing vertex's eye depth to its stored value that the probe
+   identified (it reproduced every stored depth of the probe's facing planes bit for bit), as
+   a code 0..=23, or -1: none identified (the worst case). With it a facing decal sharing its
+   base's float z gets exactly the offset it needs (exact_depth, strict test).
+   */
+  int32_t facing_chain;
 } ZshiftProfile;
 
 /*
