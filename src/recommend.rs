@@ -177,6 +177,15 @@
 //! instead ([`ErrorTerms::facing`]). Under reversed Z the offset is relative (element 14), so the
 //! probe measures the relative `ε` on D32F ([`RasterizerProfile::facing_reversed`]), which
 //! replaces `reversed_epsilon`'s for such scenes.
+//!
+//! Where the probe has also **identified the chain** ([`RasterizerProfile::facing_chain`]: the
+//! one candidate f32 arithmetic of [`crate::depth_chain`] that reproduced every stored depth of
+//! its facing planes bit for bit), no worst phase is needed: the exact f32 steps this scene's
+//! depth needs are computed by emulating that arithmetic ([`crate::depth_chain::steps_to_pass`]),
+//! the largest over elements 10 and 14 within 2 f32 steps of zshift's matrix (an engine's own
+//! `glFrustum` code may round them differently), and the offset requested is `k − 0.45` steps,
+//! which the outward rounding of the offset matrix turns into `k` (or `k + 1`). This needs the
+//! decal's depth as the f32 it is drawn at (`depth_range[0] == depth_range[1]`, an f32 value).
 
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`

@@ -175,8 +175,9 @@ impl Case {
         self.plane.sx.abs() + self.plane.sy.abs()
     }
 
+    /// The decal's eye depths as drawn: its corners' f32 z (what an engine passes).
     fn depth_range(&self) -> (f64, f64) {
-        let d = self.decal.map(|p| -p[2]);
+        let d = self.decal.map(|p| -f64::from(p[2] as f32));
         (
             d.iter().copied().fold(f64::INFINITY, f64::min),
             d.iter().copied().fold(0.0, f64::max),
