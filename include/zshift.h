@@ -462,7 +462,10 @@ typedef struct {
   double slope;
   /*
    Nonzero when every corner of base and decal has the same float eye-space z (a plane
-   facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+   facing the camera, unrotated): two rounding terms vanish. Requires slope == 0. With a
+   probed profile whose facing_chain is known, pass decal_near == decal_far == the float -z
+   drawn for the exact offset, and draw the base with zshift_frustum's matrix (or one within
+   2 float steps of it in elements 10 and 14, f >= 2n).
    */
   uint32_t exact_depth;
   /*

@@ -353,7 +353,12 @@ pub struct Scene {
     pub slope: f64,
     /// Every corner of base and decal has the same f32 eye-space z (a camera-facing plane whose
     /// vertices reach the vertex shader unrotated): the terms `V` and `I` vanish. Requires
-    /// `slope == 0` and [`Base::InsideFrustum`].
+    /// `slope == 0` and [`Base::InsideFrustum`]. With a probed profile that identified the depth
+    /// chain ([`RasterizerProfile::facing_chain`]), pass the decal's depth as the f32 it is drawn
+    /// at (`depth_range[0] == depth_range[1] == −z`) for the exact offset; the base must then be
+    /// drawn with zshift's matrix for `frustum` or one within 2 f32 steps of it in elements 10
+    /// and 14 (a `glFrustum` computed in f32, `f ≥ 2n`); `zshift_decal_matrix` checks the
+    /// engine's own matrix itself.
     pub exact_depth: bool,
     /// The decal pass's depth test; it must match the clip convention (`Less`/`LessEqual`
     /// for `[−1, 1]` and `[0, 1]`, `Greater`/`GreaterEqual` for reversed Z).
@@ -643,6 +648,16 @@ fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
 /// two off the correctly rounded ones, and the answer must hold for it too.
 const CHAIN_ELEMENT_SPREAD: u32 = 2;
 
+/// Whether the chain's answer, checked within [`CHAIN_ELEMENT_SPREAD`] f32 steps of zshift's
+/// matrix `plain`, covers a base drawn with `engine`: its elements 10 and 14 (in magnitude, so a
+/// left-handed matrix compares with its right-handed twin) lie within that spread.
+pub(crate) fn chain_covers(plain: &[f32; 16], engine: &[f32; 16]) -> bool {
+    [10, 14].iter().all(|&i| {
+        let (a, b) = (plain[i].abs().to_bits(), engine[i].abs().to_bits());
+        a.abs_diff(b) <= CHAIN_ELEMENT_SPREAD
+    })
+}
+
 /// A shared-z facing decal under a strict test with a profile whose probe identified the depth
 /// chain ([`RasterizerProfile::facing_chain`]): the exact number of f32 steps `k` of the offset
 /// element it needs ([`crate::depth_chain::steps_to_pass`]; the largest over element 10 and 14
@@ -651,13 +666,20 @@ const CHAIN_ELEMENT_SPREAD: u32 = 2;
 /// within half a step of the f32 one) turns into `k` steps, or `k + 1` in a sliver. Under `[−1, 1]`
 /// and `[0, 1]` a window-depth offset (half the element's move, or all of it); under reversed Z a
 /// relative ε of element 14. `None` where the chain is not known, the scene is not such a decal,
-/// its depth is not an f32, or the format is D32 (UNORM, whose conversion the probe cannot see).
+/// its depth is not an f32, the format is D32 (UNORM, whose conversion the probe cannot see), or
+/// `f < 2n`. The base must be drawn with zshift's matrix for the frustum, or one whose elements 10
+/// and 14 are within [`CHAIN_ELEMENT_SPREAD`] f32 steps of it (any `glFrustum` computed in f32 or
+/// better with `f ≥ 2n`); the matrix-in calls check the engine's own and fall back otherwise.
 fn chain_facing(scene: &Scene, clip: ClipDepth) -> Option<f64> {
     let p = scene.profile;
     let chain = p.facing_chain?;
     let [d1, d2] = scene.depth_range;
     let z = -(d1 as f32);
-    if !(p.measured && scene.exact_depth && scene.depth_test.is_strict())
+    let planes = scene.frustum.planes();
+    // Below f = 2n an engine's f32 (f + n)/(f − n) cancels and may stray far from zshift's
+    // element (Mesa's own glFrustum by 2 to 582912 f32 steps): the worst phase stands in.
+    let near_far_apart = planes.far() >= 2.0 * planes.near();
+    if !(p.measured && scene.exact_depth && scene.depth_test.is_strict() && near_far_apart)
         || d1 != d2
         || f64::from(z) != -d1
     {
