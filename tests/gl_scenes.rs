@@ -1037,7 +1037,9 @@ fn error_growth(
 }
 
 /// llvmpipe's per-pixel error on planes the probe never drew (steeper, nearer the near plane,
-/// other frusta and viewports), at the pixels of each plane within its decal's depth range:
+/// other frusta and viewports), under `[−1, 1]`, reversed Z and `[0, 1]` (whose `E` takes the
+/// `[−1, 1]` figure with the transform's constant doubled), at the pixels of each plane within its
+/// decal's depth range:
 /// within the worst-case `E = T + V + I` (a bound, derived), and within twice the `E` a measured
 /// profile gives (`error_ulps·u·(1 + M) + V`, a sampled maximum: a single plane of the survey
 /// may exceed it, as the largest of more roundings is larger, but never the budget `2E` that
@@ -1052,6 +1054,7 @@ fn the_probed_error_bound_holds() {
     for (clip, probed_figure) in [
         (ClipDepth::NegOneToOne, profile.error_ulps),
         (ClipDepth::ReversedZeroToOne, profile.error_ulps_reversed),
+        (ClipDepth::ZeroToOne, profile.error_ulps),
     ] {
         let survey =
             error_growth_survey(&mut gl, profile, clip).unwrap_or_else(|e| panic!("GL: {e}"));
