@@ -79,4 +79,10 @@ fn main() {
         "facing decal over a shared-z base, GL_LESS (quanta; D32F: 2^-24; NaN not measured): [-1,1] {:?}, [0,1] {:?}; reversed D32F relative epsilon {:.2} x 2^-24",
         p.facing_quanta, p.facing_quanta_zero_to_one, p.facing_reversed
     );
+    println!(
+        "facing depth chain: {:?} (code {}), checked on {} stored depths",
+        p.facing_chain,
+        p.facing_chain.map_or(-1, |c| c.code()),
+        figures.chain_observations
+    );
 }

@@ -246,6 +246,13 @@ typedef struct {
    NAN or finite >= 0.
    */
   double error_ulps_reversed;
+  /*
+   The f32 arithmetic from a facing vertex's eye depth to its stored value that the probe
+   identified (it reproduced every stored depth of the probe's facing planes bit for bit), as
+   a code 0..=23, or -1: none identified (the worst case). With it a facing decal sharing its
+   base's float z gets exactly the offset it needs (exact_depth, strict test).
+   */
+  int32_t facing_chain;
 } ZshiftProfile;
 
 /*
@@ -455,7 +462,10 @@ typedef struct {
   double slope;
   /*
    Nonzero when every corner of base and decal has the same float eye-space z (a plane
-   facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+   facing the camera, unrotated): two rounding terms vanish. Requires slope == 0. With a
+   probed profile whose facing_chain is known, pass decal_near == decal_far == the float -z
+   drawn for the exact offset, and draw the base with zshift_frustum's matrix (or one within
+   2 float steps of it in elements 10 and 14, f >= 2n).
    */
   uint32_t exact_depth;
   /*

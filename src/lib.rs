@@ -35,6 +35,7 @@
 
 pub mod clip_offset;
 pub mod decal;
+pub mod depth_chain;
 pub mod domain;
 mod double_double;
 pub mod error;

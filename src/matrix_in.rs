@@ -473,7 +473,14 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
         )
         .with_value("tweak", tweak));
     }
-    let scene = scene(frustum_of(m, &r, handedness)?, decal, clip);
+    let mut scene = scene(frustum_of(m, &r, handedness)?, decal, clip);
+    // The identified depth chain emulates the base's own elements 10 and 14 only within a few f32
+    // steps of zshift's matrix for this frustum; further off (a tweaked infinite projection, an
+    // engine's loose f32 formula) the measured worst phase stands in.
+    let plain = crate::projection::projection(&scene.frustum, clip)?;
+    if !crate::recommend::chain_covers(&plain, m) {
+        scene.profile.facing_chain = None;
+    }
     let mut rec = crate::recommend::recommend_clip(&scene, clip)?;
     rec.matrix = if clip == ClipDepth::ReversedZeroToOne {
         let eps = rec.relative_epsilon;

@@ -116,6 +116,14 @@ pub struct RasterizerProfile {
     /// such scenes under [`crate::projection::ClipDepth::ReversedZeroToOne`] with D32F. NaN
     /// where not measured.
     pub facing_reversed: f64,
+    /// The f32 arithmetic from a facing vertex's eye depth to its stored value, when the probe
+    /// identified it: the one candidate of [`crate::depth_chain`] that reproduced, bit for bit,
+    /// every stored depth of its facing planes (256 depths per mode, each at several offsets, on
+    /// D16, D24 and D32F, under `[−1, 1]`, `[0, 1]` and reversed Z). `None` for the worst case, or
+    /// where no candidate reproduced them all. The model then computes a shared-z facing decal's
+    /// offset exactly ([`crate::depth_chain::steps_to_pass`]) instead of taking
+    /// `facing_quanta`'s worst phase.
+    pub facing_chain: Option<crate::depth_chain::DepthChain>,
     /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
     /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
@@ -142,6 +150,7 @@ impl RasterizerProfile {
             facing_quanta: [f64::NAN; 4],
             facing_quanta_zero_to_one: [f64::NAN; 4],
             facing_reversed: f64::NAN,
+            facing_chain: None,
             near_clip: NearClip::ClippedF32,
             measured: false,
             probe_seconds: 0.0,

@@ -177,6 +177,15 @@
 //! instead ([`ErrorTerms::facing`]). Under reversed Z the offset is relative (element 14), so the
 //! probe measures the relative `ε` on D32F ([`RasterizerProfile::facing_reversed`]), which
 //! replaces `reversed_epsilon`'s for such scenes.
+//!
+//! Where the probe has also **identified the chain** ([`RasterizerProfile::facing_chain`]: the
+//! one candidate f32 arithmetic of [`crate::depth_chain`] that reproduced every stored depth of
+//! its facing planes bit for bit), no worst phase is needed: the exact f32 steps this scene's
+//! depth needs are computed by emulating that arithmetic ([`crate::depth_chain::steps_to_pass`]),
+//! the largest over elements 10 and 14 within 2 f32 steps of zshift's matrix (an engine's own
+//! `glFrustum` code may round them differently), and the offset requested is `k − 0.45` steps,
+//! which the outward rounding of the offset matrix turns into `k` (or `k + 1`). This needs the
+//! decal's depth as the f32 it is drawn at (`depth_range[0] == depth_range[1]`, an f32 value).
 
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
@@ -344,7 +353,12 @@ pub struct Scene {
     pub slope: f64,
     /// Every corner of base and decal has the same f32 eye-space z (a camera-facing plane whose
     /// vertices reach the vertex shader unrotated): the terms `V` and `I` vanish. Requires
-    /// `slope == 0` and [`Base::InsideFrustum`].
+    /// `slope == 0` and [`Base::InsideFrustum`]. With a probed profile that identified the depth
+    /// chain ([`RasterizerProfile::facing_chain`]), pass the decal's depth as the f32 it is drawn
+    /// at (`depth_range[0] == depth_range[1] == −z`) for the exact offset; the base must then be
+    /// drawn with zshift's matrix for `frustum` or one within 2 f32 steps of it in elements 10
+    /// and 14 (a `glFrustum` computed in f32, `f ≥ 2n`); `zshift_decal_matrix` checks the
+    /// engine's own matrix itself.
     pub exact_depth: bool,
     /// The decal pass's depth test; it must match the clip convention (`Less`/`LessEqual`
     /// for `[−1, 1]` and `[0, 1]`, `Greater`/`GreaterEqual` for reversed Z).
@@ -589,6 +603,9 @@ fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64
 /// from a measured profile; 0 otherwise (and under reversed Z, where the probe does not measure
 /// it).
 fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
+    if let Some(offset) = chain_facing(scene, clip) {
+        return offset;
+    }
     let p = scene.profile;
     let k = match clip {
         ClipDepth::NegOneToOne => p.facing_quanta[profile_index(scene.format)],
@@ -610,6 +627,9 @@ fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
 /// element 14's own rounding as [`reversed_epsilon`] is; `None` where not measured or not such a
 /// scene.
 fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
+    if let Some(eps) = chain_facing(scene, ClipDepth::ReversedZeroToOne) {
+        return Some(eps);
+    }
     let p = scene.profile;
     let k = p.facing_reversed;
     (scene.exact_depth
@@ -619,6 +639,85 @@ fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
         && k.is_finite()
         && k > 0.0)
         .then(|| k * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF))
+}
+
+/// How far, in f32 steps of the engine's elements, the chain's answer is checked around zshift's
+/// own matrix: an engine that computes `glFrustum`'s elements in its own f32 code may be an ulp or
+/// two off the correctly rounded ones, and the answer must hold for it too.
+const CHAIN_ELEMENT_SPREAD: u32 = 2;
+
+/// Whether the chain's answer, checked within [`CHAIN_ELEMENT_SPREAD`] f32 steps of zshift's
+/// matrix `plain`, covers a base drawn with `engine`: its elements 10 and 14 (in magnitude, so a
+/// left-handed matrix compares with its right-handed twin) lie within that spread.
+pub(crate) fn chain_covers(plain: &[f32; 16], engine: &[f32; 16]) -> bool {
+    [10, 14].iter().all(|&i| {
+        let (a, b) = (plain[i].abs().to_bits(), engine[i].abs().to_bits());
+        a.abs_diff(b) <= CHAIN_ELEMENT_SPREAD
+    })
+}
+
+/// A shared-z facing decal under a strict test with a profile whose probe identified the depth
+/// chain ([`RasterizerProfile::facing_chain`]): the exact number of f32 steps `k` of the offset
+/// element it needs ([`crate::depth_chain::steps_to_pass`]; the largest over element 10 and 14
+/// within [`CHAIN_ELEMENT_SPREAD`] steps of zshift's matrix), as the offset to request: the move
+/// of `k − 0.45` steps, which the outward rounding of the offset matrix (from the exact element,
+/// within half a step of the f32 one) turns into `k` steps, or `k + 1` in a sliver. Under `[−1, 1]`
+/// and `[0, 1]` a window-depth offset (half the element's move, or all of it); under reversed Z a
+/// relative ε of element 14. `None` where the chain is not known, the scene is not such a decal,
+/// its depth is not an f32, the format is D32 (UNORM, whose conversion the probe cannot see), or
+/// `f < 2n`. The base must be drawn with zshift's matrix for the frustum, or one whose elements 10
+/// and 14 are within [`CHAIN_ELEMENT_SPREAD`] f32 steps of it (any `glFrustum` computed in f32 or
+/// better with `f ≥ 2n`); the matrix-in calls check the engine's own and fall back otherwise.
+fn chain_facing(scene: &Scene, clip: ClipDepth) -> Option<f64> {
+    let p = scene.profile;
+    let chain = p.facing_chain?;
+    let [d1, d2] = scene.depth_range;
+    let z = -(d1 as f32);
+    let planes = scene.frustum.planes();
+    // Below f = 2n an engine's f32 (f + n)/(f − n) cancels and may stray far from zshift's
+    // element (Mesa's own glFrustum by 2 to 582912 f32 steps): the worst phase stands in.
+    let near_far_apart = planes.far() >= 2.0 * planes.near();
+    if !(p.measured && scene.exact_depth && scene.depth_test.is_strict() && near_far_apart)
+        || d1 != d2
+        || f64::from(z) != -d1
+    {
+        return None;
+    }
+    let bits = match scene.format {
+        DepthFormat::Unorm16 => 16,
+        DepthFormat::Unorm24 => 24,
+        DepthFormat::Unorm32 => return None,
+        DepthFormat::Float32 => 0,
+    };
+    let m = crate::projection::projection(&scene.frustum, clip).ok()?;
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    let spread = CHAIN_ELEMENT_SPREAD;
+    let around = |x: f32| {
+        (0..=2 * spread).filter_map(move |i| {
+            let bits = x.to_bits().checked_add(i)?.checked_sub(spread)?;
+            let y = f32::from_bits(bits);
+            (y.is_finite() && y.signum() == x.signum()).then_some(y)
+        })
+    };
+    let mut k = 0;
+    for m10 in around(m[10]) {
+        for m14 in around(m[14]) {
+            let steps =
+                crate::depth_chain::steps_to_pass(chain, clip, bits, (m10, m14), z, 1 << 20)?;
+            k = k.max(steps);
+        }
+    }
+    let element = |k: u32| {
+        let (m10, m14) = crate::depth_chain::stepped((m[10], m[14]), reversed, k)?;
+        Some(f64::from(if reversed { m14 } else { m10 }))
+    };
+    let (before, at, start) = (element(k - 1)?, element(k)?, element(0)?);
+    let moved = ((before - start) + 0.55 * (at - before)).abs();
+    Some(match clip {
+        ClipDepth::NegOneToOne => 0.5 * moved,
+        ClipDepth::ZeroToOne => moved,
+        ClipDepth::ReversedZeroToOne => moved / start.abs(),
+    })
 }
 
 /// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
@@ -1229,6 +1328,80 @@ mod tests {
             depth_test: DepthTest::Less,
             base: Base::InsideFrustum,
             profile,
+        }
+    }
+
+    /// With an identified depth chain, a shared-z facing decal's matrix moves the offset element
+    /// by exactly the steps the chain needs, the largest over the elements an engine's own f32
+    /// code might hold (within two steps), or one more: checked against the chain emulated here
+    /// on every nearby element, for every format and convention, at depths the probe never drew.
+    #[test]
+    fn an_identified_chain_gives_the_steps_it_needs() {
+        use crate::depth_chain::{stepped, DepthChain};
+        let chain = DepthChain::from_code(2).unwrap(); // Mesa llvmpipe's
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            for format in [
+                DepthFormat::Unorm16,
+                DepthFormat::Unorm24,
+                DepthFormat::Float32,
+            ] {
+                for d in [1.37f32, 11.25, 80.0, 333.3] {
+                    let mut s = scene(format, 0.0, Snapping::Unsnapped);
+                    s.exact_depth = true;
+                    s.depth_range = [f64::from(d); 2];
+                    s.depth_test = if clip == ClipDepth::ReversedZeroToOne {
+                        DepthTest::Greater
+                    } else {
+                        DepthTest::Less
+                    };
+                    s.profile.measured = true;
+                    s.profile.facing_chain = Some(chain);
+                    let plain = crate::projection::projection(&s.frustum, clip).unwrap();
+                    let r = recommend_clip(&s, clip).unwrap();
+                    let reversed = clip == ClipDepth::ReversedZeroToOne;
+                    let element = if reversed { 14 } else { 10 };
+                    let taken = r.matrix[element]
+                        .to_bits()
+                        .abs_diff(plain[element].to_bits());
+                    let bits = match format {
+                        DepthFormat::Unorm16 => 16,
+                        DepthFormat::Unorm24 => 24,
+                        _ => 0,
+                    };
+                    let stored = |m10: f32, m14: f32, k: u32| {
+                        let (a, b) = stepped((m10, m14), reversed, k).unwrap();
+                        chain.stored(bits, chain.window_depth(clip, a, b, -d))
+                    };
+                    // The smallest k that passes on the matrix an engine might hold.
+                    let mut need = 0;
+                    for i in 0..5u32 {
+                        for j in 0..5u32 {
+                            let m10 = f32::from_bits(plain[10].to_bits() + i - 2);
+                            let m14 = f32::from_bits(plain[14].to_bits() + j - 2);
+                            let base = stored(m10, m14, 0);
+                            let k = (1..1 << 16)
+                                .find(|&k| {
+                                    let s = stored(m10, m14, k);
+                                    if reversed {
+                                        s > base
+                                    } else {
+                                        s < base
+                                    }
+                                })
+                                .unwrap();
+                            need = need.max(k);
+                        }
+                    }
+                    assert!(
+                        taken == need || taken == need + 1,
+                        "{clip:?} {format:?} d {d}: {taken} steps taken, {need} needed"
+                    );
+                }
+            }
         }
     }
 

@@ -159,6 +159,15 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
         let (ratio, worst) = far_strip_error(&mut gl);
         println!("{kind:?}: far strip {worst:.1} units of 2^-24, {ratio:.3} u(1+M)");
         assert!(ratio <= p.error_ulps, "{ratio} > {}", p.error_ulps);
+        // llvmpipe's facing depth chain: m10·z + m14 in two roundings, w's reciprocal times
+        // clip z, ½·ndc + ½ in two roundings, UNORM as round-half-even(fl(w·(2^m − 1))): the
+        // probe identified it from every stored depth of its facing planes.
+        let chain = p.facing_chain.expect("llvmpipe's depth chain identified");
+        assert!(
+            !chain.fused_clip && chain.reciprocal && !chain.fused_viewport,
+            "{chain:?}"
+        );
+        assert!(figures.chain_observations > 2000, "{figures:?}");
         // The draw module clips at the near plane in f32 (draw_pipe_clip.c): tens of quanta off.
         assert_eq!(p.near_clip, NearClip::ClippedF32);
         assert!(figures.near_clip_error > 10.0, "{figures:?}");

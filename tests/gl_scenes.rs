@@ -175,8 +175,9 @@ impl Case {
         self.plane.sx.abs() + self.plane.sy.abs()
     }
 
+    /// The decal's eye depths as drawn: its corners' f32 z (what an engine passes).
     fn depth_range(&self) -> (f64, f64) {
-        let d = self.decal.map(|p| -p[2]);
+        let d = self.decal.map(|p| -f64::from(p[2] as f32));
         (
             d.iter().copied().fold(f64::INFINITY, f64::min),
             d.iter().copied().fold(0.0, f64::max),
@@ -1036,7 +1037,9 @@ fn error_growth(
 }
 
 /// llvmpipe's per-pixel error on planes the probe never drew (steeper, nearer the near plane,
-/// other frusta and viewports), at the pixels of each plane within its decal's depth range:
+/// other frusta and viewports), under `[−1, 1]`, reversed Z and `[0, 1]` (whose `E` takes the
+/// `[−1, 1]` figure with the transform's constant doubled), at the pixels of each plane within its
+/// decal's depth range:
 /// within the worst-case `E = T + V + I` (a bound, derived), and within twice the `E` a measured
 /// profile gives (`error_ulps·u·(1 + M) + V`, a sampled maximum: a single plane of the survey
 /// may exceed it, as the largest of more roundings is larger, but never the budget `2E` that
@@ -1051,6 +1054,7 @@ fn the_probed_error_bound_holds() {
     for (clip, probed_figure) in [
         (ClipDepth::NegOneToOne, profile.error_ulps),
         (ClipDepth::ReversedZeroToOne, profile.error_ulps_reversed),
+        (ClipDepth::ZeroToOne, profile.error_ulps),
     ] {
         let survey =
             error_growth_survey(&mut gl, profile, clip).unwrap_or_else(|e| panic!("GL: {e}"));

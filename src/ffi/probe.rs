@@ -82,6 +82,11 @@ pub struct ZshiftProfile {
     /// error_ulps_reversed * 2^-24 * (|m10| + M), |m10| = n/(f - n). NAN where not measured.
     /// NAN or finite >= 0.
     pub error_ulps_reversed: f64,
+    /// The f32 arithmetic from a facing vertex's eye depth to its stored value that the probe
+    /// identified (it reproduced every stored depth of the probe's facing planes bit for bit), as
+    /// a code 0..=23, or -1: none identified (the worst case). With it a facing decal sharing its
+    /// base's float z gets exactly the offset it needs (exact_depth, strict test).
+    pub facing_chain: i32,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -111,6 +116,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             facing_quanta_zero_to_one: p.facing_quanta_zero_to_one,
             facing_reversed: p.facing_reversed,
             error_ulps_reversed: p.error_ulps_reversed,
+            facing_chain: p.facing_chain.map_or(-1, |c| c.code()),
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -179,6 +185,15 @@ impl ZshiftProfile {
             facing_quanta_zero_to_one: self.facing_quanta_zero_to_one,
             facing_reversed: self.facing_reversed,
             error_ulps_reversed: self.error_ulps_reversed,
+            facing_chain: match self.facing_chain {
+                -1 => None,
+                code => Some(
+                    crate::depth_chain::DepthChain::from_code(code).ok_or_else(|| {
+                        domain("ZshiftProfile.facing_chain must be -1 or a code in 0..=23")
+                            .with_integer("facing_chain", i64::from(code))
+                    })?,
+                ),
+            },
             near_clip,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

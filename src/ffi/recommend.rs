@@ -51,7 +51,10 @@ pub struct ZshiftScene {
     /// Eye-space tilt of the decal's plane: |dz/dx| + |dz/dy| (0 when facing the camera).
     pub slope: f64,
     /// Nonzero when every corner of base and decal has the same float eye-space z (a plane
-    /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0.
+    /// facing the camera, unrotated): two rounding terms vanish. Requires slope == 0. With a
+    /// probed profile whose facing_chain is known, pass decal_near == decal_far == the float -z
+    /// drawn for the exact offset, and draw the base with zshift_frustum's matrix (or one within
+    /// 2 float steps of it in elements 10 and 14, f >= 2n).
     pub exact_depth: u32,
     /// GL_SUBPIXEL_BITS of the rasterizer, or ZSHIFT_SUBPIXEL_UNSNAPPED (-1). Used only when
     /// `profile` is NULL (a profile carries its own, measured snapping).

@@ -102,8 +102,10 @@ mod state;
 use std::ffi::{c_void, CStr};
 use std::time::Instant;
 
+use crate::depth_chain::DepthChain;
 use crate::error::{Error, ErrorKind, Result};
 use crate::profile::{NearClip, RasterizerProfile, Snapping};
+use crate::projection::ClipDepth;
 use gl::*;
 
 /// Width and height of the probe's framebuffer in pixels.
@@ -165,6 +167,8 @@ pub struct Figures {
     /// the primitive's largest), under `[−1, 1]` and under reversed Z: what a primitive spanning
     /// several binades does to its smallest depths.
     pub float_local_plane_error: [f64; 2],
+    /// How many stored depths of facing planes the chain identification compared.
+    pub chain_observations: usize,
 }
 
 /// [`probe`], with the [`Figures`] it decided from.
@@ -250,6 +254,47 @@ impl Format {
             Format::Float => f32_spacing(w),
         }
     }
+
+    /// UNORM bits, 0 for D32F ([`crate::depth_chain::DepthChain::stored`]'s convention).
+    fn bits(self) -> u32 {
+        match self {
+            Format::Unorm(m) => m,
+            Format::Float => 0,
+        }
+    }
+
+    /// A value [`read_depth`] returned as the buffer holds it: the UNORM integer, or the float.
+    fn integer(self, value: f64) -> f64 {
+        match self {
+            Format::Unorm(m) => (value * (2f64.powi(m as i32) - 1.0)).round(),
+            Format::Float => value,
+        }
+    }
+}
+
+/// A stored depth the facing measurements read, with the f32 inputs that made it.
+struct ChainObservation {
+    clip: ClipDepth,
+    bits: u32,
+    m10: f32,
+    m14: f32,
+    z: f32,
+    stored: f64,
+}
+
+/// The one candidate chain that reproduces every observation bit for bit, if any (several may
+/// agree where their differences never show; the first in [`DepthChain::candidates`]' order is
+/// kept, and any of them predicts every observation).
+fn identify_chain(seen: &[ChainObservation]) -> Option<DepthChain> {
+    let strict_formats = seen.iter().filter(|o| o.bits != 16).count();
+    if strict_formats == 0 {
+        return None;
+    }
+    DepthChain::candidates().find(|chain| {
+        seen.iter().all(|o| {
+            chain.stored(o.bits, chain.window_depth(o.clip, o.m10, o.m14, o.z)) == o.stored
+        })
+    })
 }
 
 /// `2^(e − 23)` for the exponent `e` of `|w|` as an f32 (the smallest normal spacing below).
@@ -276,7 +321,9 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         reversed_pixels: 0,
         error_ulps: [f64::NAN; 4],
         float_local_plane_error: [f64::NAN; 2],
+        chain_observations: 0,
     };
+    let mut seen = Vec::new();
     for (slot, internal, format) in Format::ALL {
         if !attach(gl, o, internal)? {
             return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
@@ -286,14 +333,18 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             figures.float_resolvable = [bands[0], bands[bands.len() - 1]];
         }
-        if let Some(q) = facing_quanta(gl, o, format, Facing::NegOneToOne)? {
+        if let Some(q) = facing_quanta(gl, o, format, Facing::NegOneToOne, &mut seen)? {
             profile.facing_quanta[slot] = q;
         }
         if let Some(clip_control) = gl.ClipControl {
             clip_control(LOWER_LEFT, ZERO_TO_ONE);
-            let zero_to_one = facing_quanta(gl, o, format, Facing::ZeroToOne);
-            let reversed =
-                zero_to_one.and_then(|z| Ok((z, facing_quanta(gl, o, format, Facing::Reversed)?)));
+            let zero_to_one = facing_quanta(gl, o, format, Facing::ZeroToOne, &mut seen);
+            let reversed = zero_to_one.and_then(|z| {
+                Ok((
+                    z,
+                    facing_quanta(gl, o, format, Facing::Reversed, &mut seen)?,
+                ))
+            });
             clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
             let (zero_to_one, reversed) = reversed?;
             if let Some(q) = zero_to_one {
@@ -328,6 +379,8 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             ) = near_clip(gl, o)?;
         }
     }
+    profile.facing_chain = identify_chain(&seen);
+    figures.chain_observations = seen.len();
     Ok((profile, figures))
 }
 
@@ -1034,9 +1087,15 @@ const FACING_MAX_STEPS: u32 = 16;
 /// moved away from 0 by `k` steps (the relative offset of `zshift_recommend_clip`), `GL_GREATER`,
 /// 256 window depths from 10⁻⁵ to 0.9 spaced by ratio; the figure is the relative ε
 /// `k·ulp(m14)/m14` in units of 2⁻²⁴.
-unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format, mode: Facing) -> Result<Option<f64>> {
+unsafe fn facing_quanta(
+    gl: &Gl,
+    o: &Objects,
+    format: Format,
+    mode: Facing,
+    seen: &mut Vec<ChainObservation>,
+) -> Result<Option<f64>> {
     let reversed = mode == Facing::Reversed;
-    if format == Format::Unorm(16) || (reversed && format != Format::Float) {
+    if reversed && format != Format::Float {
         return Ok(None);
     }
     let views = [
@@ -1126,10 +1185,38 @@ unsafe fn facing_quanta(gl: &Gl, o: &Objects, format: Format, mode: Facing) -> R
             })
             .collect())
     };
+    // Every stored value read, with the f32 inputs that made it, for identifying the chain.
+    let clip = match mode {
+        Facing::NegOneToOne => ClipDepth::NegOneToOne,
+        Facing::ZeroToOne => ClipDepth::ZeroToOne,
+        Facing::Reversed => ClipDepth::ReversedZeroToOne,
+    };
+    let mut record = |k: u32, values: &[f64]| {
+        for (&(view, w), &value) in planes.iter().zip(values) {
+            let m = facing_matrix(&view, mode);
+            let Some((m10, m14)) = crate::depth_chain::stepped((m[10], m[14]), reversed, k) else {
+                continue;
+            };
+            seen.push(ChainObservation {
+                clip,
+                bits: format.bits(),
+                m10,
+                m14,
+                z: -(view.distance_at_depth(w) as f32),
+                stored: format.integer(value),
+            });
+        }
+    };
     let base = draw_and_read(0)?;
+    record(0, &base);
+    if format == Format::Unorm(16) {
+        // One D16 quantum is hundreds of steps: only the chain's conversion is checked here.
+        return Ok(None);
+    }
     let mut needed = vec![None; planes.len()];
     for k in 1..=FACING_MAX_STEPS {
         let decal = draw_and_read(k)?;
+        record(k, &decal);
         for (i, d) in decal.iter().enumerate() {
             let wins = if reversed { *d > base[i] } else { *d < base[i] };
             if needed[i].is_none() && wins {

@@ -717,6 +717,7 @@ class _ZshiftProfile(ctypes.Structure):
         ("facing_quanta_zero_to_one", ctypes.c_double * 4),
         ("facing_reversed", ctypes.c_double),
         ("error_ulps_reversed", ctypes.c_double),
+        ("facing_chain", ctypes.c_int32),
     ]
 
 
