@@ -65,3 +65,15 @@ pub use offset::{
 };
 pub use precision::{depth_resolution, window_depth};
 pub use projection::{frustum, Frustum};
+
+/// Deterministic uniform samples in `[0, 1)` for the unit tests (xorshift64 from `seed`).
+#[cfg(test)]
+pub(crate) fn test_uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

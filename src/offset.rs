@@ -463,13 +463,7 @@ mod tests {
     /// The f64 shortcut must pick exactly the f32 that the double-double path picks.
     #[test]
     fn the_estimated_rounding_agrees_with_the_exact_one() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_uniform(0x9e37_79b9_7f4a_7c15);
         let mut shortcuts = 0;
         for _ in 0..20_000 {
             let n = 10f64.powf(-6.0 + 8.0 * next());

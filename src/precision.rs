@@ -578,13 +578,7 @@ mod tests {
             ClipDepth::ZeroToOne,
             ClipDepth::ReversedZeroToOne,
         ];
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::test_uniform(0x2545_f491_4f6c_dd1d);
         let mut edges = 0;
         for i in 0..30_000 {
             let n = 10f64.powf(-4.0 + 6.0 * next());

@@ -354,12 +354,7 @@ fn the_fast_paths_match_the_exact_ones() {
             let exact = offset_shift(&c.m, c.clip, delta, d);
             let fast = offset_shift_fast(&c.m, c.clip, delta, d);
             if let Some(m) = fast {
-                assert_eq!(
-                    Ok(m),
-                    exact.map_err(|e| e.to_string()),
-                    "{}",
-                    what()
-                );
+                assert_eq!(Ok(m), exact.map_err(|e| e.to_string()), "{}", what());
             }
             let exact_ndc = offset_ndc(&c.m, c.clip, ndc);
             if let Some(m) = offset_ndc_fast(&c.m, c.clip, ndc) {
