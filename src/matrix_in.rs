@@ -246,7 +246,14 @@ fn orthographic(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
 /// `m` with element `i` moved away from its value by `offset` (double-double), rounded outward.
 fn moved(m: &[f32; 16], i: usize, offset: DoubleDouble) -> Result<[f32; 16]> {
     let mut out = *m;
-    out[i] = rounded_outward(m[i], offset)?;
+    // Decided from the offset's leading f64 (within 2⁻⁵³ of it) where it can be, as
+    // `crate::offset::outward_of_ratio` shows; else from the double-double value.
+    let (x, decided) = crate::offset::outward_decided(m[i], offset.hi, 1.0);
+    out[i] = if decided {
+        x
+    } else {
+        rounded_outward(m[i], offset)?
+    };
     Ok(out)
 }
 

@@ -1052,7 +1052,6 @@ pub struct ClipRecommendation {
 pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
     check(scene, clip)?;
     let frustum = &scene.frustum;
-    let m = crate::projection::projection_f64(frustum, clip)?;
     if clip == ClipDepth::NegOneToOne {
         let r = recommend(scene)?;
         return Ok(ClipRecommendation {
@@ -1068,6 +1067,7 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             terms: r.terms,
         });
     }
+    let m = crate::projection::projection_f64(frustum, clip)?;
     let mapping = mapping_of(scene, clip)?;
     let terms = clip_error_terms(scene, clip)?;
     let [d1, d2] = scene.depth_range;
