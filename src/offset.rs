@@ -503,4 +503,51 @@ mod tests {
             );
         }
     }
+
+    /// The bit-level outward decision agrees with the double-double rounding wherever it
+    /// decides, over elements of every sign and magnitude (zero, f32 subnormals, binade edges,
+    /// near overflow) and offsets from far below an ulp to far above the element, and it decides
+    /// the ordinary ones.
+    #[test]
+    fn the_outward_decision_agrees_with_double_double_everywhere() {
+        let mut next = crate::test_uniform(0x5851_f42d_4c95_7f2d);
+        let (mut decided, mut ordinary) = (0, 0);
+        for i in 0..200_000 {
+            let sign = if next() < 0.5 { -1.0f32 } else { 1.0 };
+            let plain = match i % 6 {
+                0 => sign * (2f32.powi((next() * 40.0) as i32 - 20)), // a power of two
+                1 => sign * f32::from_bits((next() * 0x0080_0000 as f64) as u32), // subnormal
+                2 => 0.0,
+                3 => sign * f32::MAX * (next() as f32),
+                _ => sign * (10f64.powf(next() * 16.0 - 8.0) as f32),
+            };
+            let ulp = f64::from(plain.abs().next_up()) - f64::from(plain.abs());
+            let osign = if next() < 0.5 { -1.0 } else { 1.0 };
+            let estimate = osign
+                * match i % 5 {
+                    // Landing near an f32 step, a few f64 ulps of the target off.
+                    0 => ulp * (1.0 + (next() * 16.0).floor()) * (1.0 + (next() - 0.5) * 1e-13),
+                    1 => ulp * 10f64.powf(-12.0 * next()),
+                    2 => f64::from(plain).abs() * 10f64.powf(4.0 * next() - 2.0),
+                    _ => ulp * 10f64.powf(6.0 * next()),
+                };
+            let exact = rounded_outward(plain, DoubleDouble::from_f64(estimate));
+            let (x, ok) = outward_decided(plain, estimate, 0.0);
+            if ok {
+                assert_eq!(
+                    Ok(x.to_bits()),
+                    exact.map(f32::to_bits),
+                    "{plain:e} {estimate:e}"
+                );
+            }
+            if i % 5 == 3 && plain.abs() > 1e-30 && plain.abs() < 1e30 {
+                ordinary += 1;
+                decided += usize::from(ok);
+            }
+        }
+        assert!(
+            decided * 1000 > ordinary * 999,
+            "{decided} of {ordinary} decided"
+        );
+    }
 }
