@@ -178,7 +178,7 @@ pub(crate) fn offset_fast(
     pz: f64,
 ) -> Option<Mat4> {
     let shifted = pz + delta;
-    // |pz| in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) as well, for `shift_estimate`'s scale.
+    // |pz| in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) as well, for the scale below.
     let good = (pz <= -n) & (pz >= -f) & (pz > -BIG_DEPTH) & (pz <= -1.0 / BIG_DEPTH);
     let good = good & (shifted < 0.0) & (delta.abs() < f64::INFINITY);
     // o = 2fnδ/((f − n)·Pz·(Pz + δ)) = n·δ·(1 − m10)/(Pz·(Pz + δ)), since f/(f − n) =
