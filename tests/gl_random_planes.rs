@@ -129,7 +129,7 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
             depth_test: zshift::recommend::DepthTest::Less,
             base: zshift::recommend::Base::InsideFrustum,
             profile: zshift::recommend::RasterizerProfile {
-                snapping: snapping,
+                snapping,
                 ..Default::default()
             },
         };

@@ -47,7 +47,7 @@ pub fn scene_of(s: &Setup, snapping: Snapping) -> Scene {
         depth_test: zshift::recommend::DepthTest::Less,
         base: zshift::recommend::Base::InsideFrustum,
         profile: zshift::recommend::RasterizerProfile {
-            snapping: snapping,
+            snapping,
             ..Default::default()
         },
     }
