@@ -31,7 +31,7 @@
 //! Within a binade `2ᵉ ≤ |y| < 2ᵉ⁺¹` of the normal f32 range (`−126 ≤ e ≤ 126`), the f32 are the
 //! multiples of `2ᵉ⁻²³` and the rounding boundaries the odd multiples of `2ᵉ⁻²⁴`: in units of
 //! `y`'s ulp, the f64 whose low 29 significand bits are exactly `2²⁸`. So when those bits of `y`
-//! differ from `2²⁸` by at least [`SLACK`]` = 16` (mod `2²⁹`), no boundary lies within 16 ulps of
+//! differ from `2²⁸` by at least `SLACK = 16` (mod `2²⁹`), no boundary lies within 16 ulps of
 //! `y` (the nearest boundaries across a power of two are `2²⁶` ulps away or more), `x` lies
 //! within 8 by the bound, and `x` and `y` have the same nearest f32: the conversion `y as f32`.
 //! The test is two integer additions and masks and three comparisons on the bits of `y` (its
