@@ -488,7 +488,7 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
     if !crate::recommend::chain_covers(&plain, m) {
         scene.profile.facing_chain = None;
     }
-    let mut rec = crate::recommend::recommend_clip(&scene, clip)?;
+    let mut rec = crate::recommend::recommend_clip_building(&scene, clip, false)?;
     rec.matrix = if clip == ClipDepth::ReversedZeroToOne {
         let eps = rec.relative_epsilon;
         moved(m, 14, DoubleDouble::product(f64::from(m[14]), eps))?

@@ -1050,9 +1050,20 @@ pub struct ClipRecommendation {
 /// # Errors
 /// As [`recommend`]; [`crate::ErrorKind::Overflow`] if an element of the matrix leaves f32.
 pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
-    check(scene, clip)?;
+    recommend_clip_building(scene, clip, true)
+}
+
+/// [`recommend_clip`], with the offset matrix built from zshift's own projection only when
+/// `build` (the matrix-in calls apply the offset to the engine's matrix instead: `matrix` is then
+/// all zeros).
+pub(crate) fn recommend_clip_building(
+    scene: &Scene,
+    clip: ClipDepth,
+    build: bool,
+) -> Result<ClipRecommendation> {
     let frustum = &scene.frustum;
     if clip == ClipDepth::NegOneToOne {
+        // `recommend` checks the scene itself.
         let r = recommend(scene)?;
         return Ok(ClipRecommendation {
             clip,
@@ -1063,10 +1074,15 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             window_offset: r.window_offset,
             delta_at_far: r.delta_at_far,
             bleed_gap: r.bleed_gap,
-            matrix: crate::offset::epsilon_matrix(frustum, r.epsilon)?,
+            matrix: if build {
+                crate::offset::epsilon_matrix(frustum, r.epsilon)?
+            } else {
+                [0.0; 16]
+            },
             terms: r.terms,
         });
     }
+    check(scene, clip)?;
     let m = crate::projection::projection_f64(frustum, clip)?;
     let mapping = mapping_of(scene, clip)?;
     let terms = clip_error_terms(scene, clip)?;
@@ -1080,7 +1096,11 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             c,
             0.0,
             dw,
-            crate::clip_offset::ndc_offset_projection(frustum, clip, c)?,
+            if build {
+                crate::clip_offset::ndc_offset_projection(frustum, clip, c)?
+            } else {
+                [0.0; 16]
+            },
         )
     } else {
         let eps = match measured_facing_reversed(scene) {
@@ -1088,7 +1108,11 @@ pub fn recommend_clip(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendati
             None => reversed_epsilon(scene, &mapping, &terms)?,
         };
         let b = scale(scene);
-        let matrix = crate::clip_offset::relative_offset_projection(frustum, clip, eps)?;
+        let matrix = if build {
+            crate::clip_offset::relative_offset_projection(frustum, clip, eps)?
+        } else {
+            [0.0; 16]
+        };
         (0.0, eps, fits(eps * (b / d2))?, matrix)
     };
     // The window offset at d: constant, or ε·b/d under reversed Z.
