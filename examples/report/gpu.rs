@@ -6,7 +6,8 @@
 use std::time::Instant;
 
 use zshift::recommend::{
-    recommend, DepthFormat as RecFormat, Recommendation, Scene as RecScene, Snapping,
+    recommend, DepthFormat as RecFormat, RasterizerProfile, Recommendation, Scene as RecScene,
+    Snapping,
 };
 use zshift::Frustum;
 use zshift_harness::{rgba8, DepthFormat, DrawState, Gl, Image, Quad};
@@ -183,6 +184,9 @@ pub enum Method {
     /// zshift's recommended offset (`zshift::recommend::recommend`, model R1) per decal, through
     /// `epsilon_matrix`.
     ZshiftRecommended,
+    /// The same with the profile the probe measured in the report's context and each decal's
+    /// corners (`decal_shape`): the tight description.
+    ZshiftRecommendedProbed,
     /// `glPolygonOffset(−factor, −units)` from the recommendation's equivalent pair.
     PolygonOffsetRecommended,
     /// Every decal vertex moved toward the eye by the recommendation's δ at the decal's far end.
@@ -207,6 +211,9 @@ impl Method {
             }
             Method::EyeSpaceMove { k } => format!("eye-space move, δ = {k}×min"),
             Method::ZshiftRecommended => "zshift matrix, recommended (R1)".into(),
+            Method::ZshiftRecommendedProbed => {
+                "zshift matrix, recommended, probed profile + corners".into()
+            }
             Method::PolygonOffsetRecommended => "glPolygonOffset at zshift's recommendation".into(),
             Method::EyeSpaceMoveRecommended => "eye-space move, recommended δ".into(),
             Method::ThreePassDepthMask => "three-pass depth mask (004)".into(),
@@ -217,7 +224,11 @@ impl Method {
 
 /// The methods of the report, with zshift at the stated multiples `ks` of the minimum δ.
 pub fn methods(ks: &[f64]) -> Vec<Method> {
-    let mut m = vec![Method::NoOffset, Method::ZshiftRecommended];
+    let mut m = vec![
+        Method::NoOffset,
+        Method::ZshiftRecommended,
+        Method::ZshiftRecommendedProbed,
+    ];
     for &k in ks {
         m.push(Method::ZshiftMatrix { k });
     }
@@ -270,10 +281,11 @@ pub fn run_scene(
     gl: &mut Gl,
     scene: &Scene,
     methods: &[Method],
+    probed: &RasterizerProfile,
     tick: &dyn Fn(),
 ) -> Result<Vec<Outcome>, String> {
     gl.set_target_with_stencil(SIZE, SIZE, scene.format)?;
-    let plan = Plan::new(scene)?;
+    let plan = Plan::new(scene, probed)?;
     let (visible_mask, hidden_mask) = reference_masks(gl, scene, &plan)?;
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); methods.len()];
     for round in 0..ROUNDS + 2 {
@@ -331,12 +343,14 @@ struct Plan {
     decals: Vec<DecalShift>,
     /// Per decal: zshift's recommendation for it.
     recommended: Vec<Recommendation>,
+    /// Per decal: the recommendation with the probed profile and the decal's corners.
+    probed: Vec<Recommendation>,
     frustum: Frustum,
     bits: u32,
 }
 
 impl Plan {
-    fn new(scene: &Scene) -> Result<Plan, String> {
+    fn new(scene: &Scene, probed: &RasterizerProfile) -> Result<Plan, String> {
         let frustum = scene.frustum();
         // D32F under the standard mapping resolves like D24 near window depth 1 (NOTES.md).
         let bits = scene.format.bits().min(24);
@@ -352,10 +366,16 @@ impl Plan {
         let recommended = scene
             .decals()
             .into_iter()
-            .map(|(x, y, _)| recommendation(scene, &frustum, x, y))
+            .map(|(x, y, _)| recommendation(scene, &frustum, x, y, None))
+            .collect::<Result<_, String>>()?;
+        let probed = scene
+            .decals()
+            .into_iter()
+            .map(|(x, y, _)| recommendation(scene, &frustum, x, y, Some(probed)))
             .collect::<Result<_, String>>()?;
         Ok(Plan {
             recommended,
+            probed,
             plain: frustum.to_cols_array().map_err(|e| e.to_string())?,
             base: scene.base(),
             occluder: scene.occluder(),
@@ -378,7 +398,7 @@ impl Plan {
 /// The largest of zshift's `bleed_gap` over the scene's decals: occluders nearer than the base
 /// by at least this are never overdrawn at the recommendation (model R1).
 pub fn recommended_bleed_gap(scene: &Scene) -> Result<f64, String> {
-    let plan = Plan::new(scene)?;
+    let plan = Plan::new(scene, &RasterizerProfile::worst_case())?;
     Ok(plan
         .recommended
         .iter()
@@ -388,12 +408,14 @@ pub fn recommended_bleed_gap(scene: &Scene) -> Result<f64, String> {
 
 /// zshift's recommendation for one decal: its corners' eye distances, the plane's slope, the
 /// viewport and format, and llvmpipe's unsnapped depth setup (measured by the gl helper; a GPU
-/// run would use `Snapping::SubpixelBits(GL_SUBPIXEL_BITS)`).
+/// run would use `Snapping::SubpixelBits(GL_SUBPIXEL_BITS)`); with `probed`, that profile and the
+/// decal's corners (`decal_shape`: depths, slope and footprint) instead.
 fn recommendation(
     scene: &Scene,
     frustum: &Frustum,
     x: (f64, f64),
     y: (f64, f64),
+    probed: Option<&RasterizerProfile>,
 ) -> Result<Recommendation, String> {
     let quad = scene.quad(x, y, 0.0, 0.0);
     let distances = quad.corners.map(|c| -(c[2] as f64));
@@ -401,7 +423,7 @@ fn recommendation(
     let d2 = distances.iter().copied().fold(0.0, f64::max);
     let format =
         RecFormat::from_gl_internal_format(scene.format.gl_enum()).expect("a GL depth format");
-    recommend(&RecScene {
+    let mut model = RecScene {
         footprint: None,
         frustum: *frustum,
         viewport: [SIZE, SIZE],
@@ -411,12 +433,28 @@ fn recommendation(
         exact_depth: scene.slope == 0.0,
         depth_test: zshift::recommend::DepthTest::Less,
         base: zshift::recommend::Base::InsideFrustum,
-        profile: zshift::recommend::RasterizerProfile {
+        profile: RasterizerProfile {
             snapping: Snapping::Unsnapped,
             ..Default::default()
         },
-    })
-    .map_err(|e| format!("recommend for decal at {y:?}: {e}"))
+    };
+    if let Some(profile) = probed {
+        let corners = quad
+            .corners
+            .map(|[x, y, z]| zshift::glam::Vec3::new(x, y, z));
+        let shape = zshift::recommend::decal_shape(
+            frustum,
+            zshift::projection::ClipDepth::NegOneToOne,
+            [SIZE, SIZE],
+            &corners,
+        )
+        .map_err(|e| format!("decal_shape for decal at {y:?}: {e}"))?;
+        model.depth_range = shape.depth_range;
+        model.slope = shape.slope;
+        model.footprint = Some(shape.footprint);
+        model.profile = *profile;
+    }
+    recommend(&model).map_err(|e| format!("recommend for decal at {y:?}: {e}"))
 }
 
 /// The decals only, then the occluder only, on a cleared target: the masks of where the decal
@@ -493,7 +531,11 @@ fn draw_frame(gl: &mut Gl, scene: &Scene, plan: &Plan, method: &Method) -> Resul
         _ => {
             gl.draw_quad(&plan.base, &plan.plain, BASE, &normal)?;
             for (i, &(x, y, pz, min)) in plan.decals.iter().enumerate() {
-                let rec = &plan.recommended[i];
+                let rec = if *method == Method::ZshiftRecommendedProbed {
+                    &plan.probed[i]
+                } else {
+                    &plan.recommended[i]
+                };
                 draw_offset_decal(gl, scene, plan, method, x, y, pz, min, rec)?;
             }
             Ok(())
@@ -540,7 +582,7 @@ fn draw_offset_decal(
             let moved = scene.quad(x, y, 0.0, k * min);
             gl.draw_quad(&moved, &plan.plain, DECAL, &normal)
         }
-        Method::ZshiftRecommended => {
+        Method::ZshiftRecommended | Method::ZshiftRecommendedProbed => {
             let m =
                 zshift::epsilon_matrix(&plan.frustum, rec.epsilon).map_err(|e| e.to_string())?;
             gl.draw_quad(&flat, &m, DECAL, &normal)

@@ -75,7 +75,9 @@ fn run() -> Result<(), String> {
     );
     let mut outcomes = Vec::new();
     for scene in &scenes {
-        outcomes.extend(gpu::run_scene(&mut gl, scene, &methods, &|| bar.inc(1))?);
+        outcomes.extend(gpu::run_scene(&mut gl, scene, &methods, &probed, &|| {
+            bar.inc(1)
+        })?);
     }
     bar.finish();
 
