@@ -1,6 +1,8 @@
 //! The recommendation on planes the coplanar-quads grid does not cover: asymmetric frusta, a
 //! non-square viewport, planes tilted in x and y at once, and decals anywhere on screen with
-//! non-rectangular outlines. Fixed pseudo-random cases (a seeded LCG), so failures reproduce.
+//! non-rectangular outlines; each at the worst-case recommendation and at the one from the probed
+//! profile with the decal's corners. Fixed pseudo-random cases (a seeded LCG), so failures
+//! reproduce.
 //! Fails (never skips) without GL.
 
 mod gl_common;
@@ -70,6 +72,9 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
     let snapping = gl_common::snapping_of(&gl);
+    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
+    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
+    let probed = unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe: {e}"));
     let mut rng = Lcg(0x5EED_2026);
     let (mut cases, mut sensitive) = (0, 0);
     let mut tries = 0;
@@ -157,18 +162,46 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
                 mask.iter().filter(|&&m| m).count(),
             )
         };
+        // The tight description: the probed profile and the decal's corners as drawn.
+        let corners = decal
+            .corners
+            .map(|[x, y, z]| zshift::glam::Vec3::new(x, y, z));
+        let shape = zshift::recommend::decal_shape(
+            &frustum,
+            zshift::projection::ClipDepth::NegOneToOne,
+            [WIDTH, HEIGHT],
+            &corners,
+        )
+        .unwrap();
+        let tight = recommend(&Scene {
+            depth_range: shape.depth_range,
+            slope: shape.slope,
+            footprint: Some(shape.footprint),
+            profile: probed,
+            ..scene
+        })
+        .unwrap();
+        let tight_m = zshift::epsilon_matrix(&frustum, tight.epsilon).unwrap();
         let (none, of) = lost(&plain);
         let (at_rec, _) = lost(&decal_m);
+        let (at_tight, _) = lost(&tight_m);
         sensitive += usize::from(none > 0);
         let label = format!(
             "{format:?} n={n:.3} f/n={:.1e} slopes ({sx:.2}, {sy:.2}) decal d {d1:.3e}..{d2:.3e}",
             f / n
         );
-        println!("{label}: {of} px, lost {none} with no offset, {at_rec} at the recommendation");
+        println!(
+            "{label}: {of} px, lost {none} with no offset, {at_rec} at the recommendation, {at_tight} at the probed one with corners ({:.1}x smaller)",
+            rec.window_offset / tight.window_offset
+        );
         assert!(of > 0, "{label}: the decal covers no pixel");
         assert_eq!(
             at_rec, 0,
             "{label}: {at_rec} of {of} decal pixels lost at the recommendation"
+        );
+        assert_eq!(
+            at_tight, 0,
+            "{label}: {at_tight} of {of} decal pixels lost with the probed profile and corners"
         );
     }
     assert!(
