@@ -183,7 +183,9 @@
 //! its facing planes bit for bit), no worst phase is needed: the exact f32 steps this scene's
 //! depth needs are computed by emulating that arithmetic ([`crate::depth_chain::steps_to_pass`]),
 //! the largest over elements 10 and 14 within 2 f32 steps of zshift's matrix (an engine's own
-//! `glFrustum` code may round them differently), and the offset requested is `k − 0.45` steps,
+//! `glFrustum` code may round them differently) and over `m10·z + m14` fused or not (it runs in
+//! the engine's own vertex shader, which its compiler may contract differently from the probe's),
+//! and the offset requested is `k − 0.45` steps,
 //! which the outward rounding of the offset matrix turns into `k` (or `k + 1`). This needs the
 //! decal's depth as the f32 it is drawn at (`depth_range[0] == depth_range[1]`, an f32 value).
 
@@ -659,7 +661,8 @@ pub(crate) fn chain_covers(plain: &[f32; 16], engine: &[f32; 16]) -> bool {
 /// A shared-z facing decal under a strict test with a profile whose probe identified the depth
 /// chain ([`RasterizerProfile::facing_chain`]): the exact number of f32 steps `k` of the offset
 /// element it needs ([`crate::depth_chain::steps_to_pass`]; the largest over element 10 and 14
-/// within [`CHAIN_ELEMENT_SPREAD`] steps of zshift's matrix), as the offset to request: the move
+/// within [`CHAIN_ELEMENT_SPREAD`] steps of zshift's matrix, and over `m10·z + m14` fused or not,
+/// the one step that runs in the engine's own shader), as the offset to request: the move
 /// of `k − 0.45` steps, which the outward rounding of the offset matrix (from the exact element,
 /// within half a step of the f32 one) turns into `k` steps, or `k + 1` in a sliver. Under `[−1, 1]`
 /// and `[0, 1]` a window-depth offset (half the element's move, or all of it); under reversed Z a
@@ -699,12 +702,24 @@ fn chain_facing(scene: &Scene, clip: ClipDepth) -> Option<f64> {
             (y.is_finite() && y.signum() == x.signum()).then_some(y)
         })
     };
+    // The product and sum m10·z + m14 run in the engine's own vertex shader, which a compiler
+    // may fuse or not whatever the probe's shader got: both are covered. (The division by w,
+    // the viewport map and the conversion are the fixed-function part the probe identified.)
+    let shader_variants = [
+        chain,
+        crate::depth_chain::DepthChain {
+            fused_clip: !chain.fused_clip,
+            ..chain
+        },
+    ];
     let mut k = 0;
-    for m10 in around(m[10]) {
-        for m14 in around(m[14]) {
-            let steps =
-                crate::depth_chain::steps_to_pass(chain, clip, bits, (m10, m14), z, 1 << 20)?;
-            k = k.max(steps);
+    for variant in shader_variants {
+        for m10 in around(m[10]) {
+            for m14 in around(m[14]) {
+                let steps =
+                    crate::depth_chain::steps_to_pass(variant, clip, bits, (m10, m14), z, 1 << 20)?;
+                k = k.max(steps);
+            }
         }
     }
     let element = |k: u32| {
@@ -1357,7 +1372,8 @@ mod tests {
 
     /// With an identified depth chain, a shared-z facing decal's matrix moves the offset element
     /// by exactly the steps the chain needs, the largest over the elements an engine's own f32
-    /// code might hold (within two steps), or one more: checked against the chain emulated here
+    /// code might hold (within two steps) and over its shader fusing `m10·z + m14` or not, or one
+    /// more: checked against the chain emulated here
     /// on every nearby element, for every format and convention, at depths the probe never drew.
     #[test]
     fn an_identified_chain_gives_the_steps_it_needs() {
@@ -1396,28 +1412,35 @@ mod tests {
                         DepthFormat::Unorm24 => 24,
                         _ => 0,
                     };
-                    let stored = |m10: f32, m14: f32, k: u32| {
-                        let (a, b) = stepped((m10, m14), reversed, k).unwrap();
-                        chain.stored(bits, chain.window_depth(clip, a, b, -d))
-                    };
-                    // The smallest k that passes on the matrix an engine might hold.
+                    // The smallest k that passes on the matrix an engine might hold, its
+                    // shader fusing m10·z + m14 or not.
                     let mut need = 0;
-                    for i in 0..5u32 {
-                        for j in 0..5u32 {
-                            let m10 = f32::from_bits(plain[10].to_bits() + i - 2);
-                            let m14 = f32::from_bits(plain[14].to_bits() + j - 2);
-                            let base = stored(m10, m14, 0);
-                            let k = (1..1 << 16)
-                                .find(|&k| {
-                                    let s = stored(m10, m14, k);
-                                    if reversed {
-                                        s > base
-                                    } else {
-                                        s < base
-                                    }
-                                })
-                                .unwrap();
-                            need = need.max(k);
+                    for fused_clip in [false, true] {
+                        let chain = DepthChain {
+                            fused_clip,
+                            ..chain
+                        };
+                        let stored = |m10: f32, m14: f32, k: u32| {
+                            let (a, b) = stepped((m10, m14), reversed, k).unwrap();
+                            chain.stored(bits, chain.window_depth(clip, a, b, -d))
+                        };
+                        for i in 0..5u32 {
+                            for j in 0..5u32 {
+                                let m10 = f32::from_bits(plain[10].to_bits() + i - 2);
+                                let m14 = f32::from_bits(plain[14].to_bits() + j - 2);
+                                let base = stored(m10, m14, 0);
+                                let k = (1..1 << 16)
+                                    .find(|&k| {
+                                        let s = stored(m10, m14, k);
+                                        if reversed {
+                                            s > base
+                                        } else {
+                                            s < base
+                                        }
+                                    })
+                                    .unwrap();
+                                need = need.max(k);
+                            }
                         }
                     }
                     assert!(
