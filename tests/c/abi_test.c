@@ -914,6 +914,12 @@ static void test_front_door(void) {
     CHECK_STATUS(zshift_decal_matrix(ortho, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
     expect_detail("negative base_reach", "base_reach");
     decal.base_reach = 1000.0;
+    profile.facing_chain = 99; /* no such chain */
+    CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &clipped), ZSHIFT_ERR_DOMAIN);
+    expect_detail("facing_chain 99", "facing_chain");
+    CHECK(zshift_profile_worst_case(&zeroed) == ZSHIFT_OK && zeroed.facing_chain == -1,
+          "the worst-case profile knows no depth chain (facing_chain %d)", (int)zeroed.facing_chain);
+    profile.facing_chain = -1;
     memset(&zeroed, 0, sizeof zeroed);
     decal.profile = &zeroed;
     CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
