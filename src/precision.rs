@@ -56,7 +56,7 @@ pub fn depth_resolution(n: f64, f: f64, bits: u32, d: f64) -> Result<f64> {
 /// The two terms of Walker's step at distance `d`, exact to double-double precision:
 /// `reach = d·(f − n)` and `base = n·f·(2^m − 1)`, so that `k·d = reach / base`. Every
 /// depth-step formula is a ratio of these (times `d`); `(d, n, f)` are first scaled by a power of
-/// two that keeps the products in range, and [`StepTerms::unscale`] undoes it.
+/// two that keeps the products in range, and [`StepTerms::step`] divides it back out.
 pub(crate) struct StepTerms {
     reach: DoubleDouble,
     base: DoubleDouble,
