@@ -574,6 +574,12 @@ fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
 /// f/n ≥ 10 under `[−1, 1]`: `|m10| = (f + n)/(f − n) ≤ 11/9`).
 const PROBED_M10: f64 = 11.0 / 9.0;
 
+/// A figure of `profile` the model may use: one the probe measured (a measured profile, finite
+/// and positive; NaN means not measured).
+fn measured_figure(profile: &RasterizerProfile, figure: f64) -> Option<f64> {
+    (profile.measured && figure.is_finite() && figure > 0.0).then_some(figure)
+}
+
 /// The per-quad error `T + I` from a measured profile ("A measured profile"): the probe found
 /// every pixel's computed depth within `error_ulps·u·(1 + M)` under `[−1, 1]`, the 1 standing
 /// for the transform's own roundings at `|m10| ≤ 11/9`. A larger `|m10|` (f close to n) adds
@@ -584,14 +590,14 @@ const PROBED_M10: f64 = 11.0 / 9.0;
 /// or an unmeasured figure.
 fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64) -> Option<f64> {
     let p = &scene.profile;
-    let k = if clip == ClipDepth::ReversedZeroToOne {
-        p.error_ulps_reversed
-    } else {
-        p.error_ulps
-    };
-    if !(p.measured && k.is_finite() && k > 0.0) {
-        return None;
-    }
+    let k = measured_figure(
+        p,
+        if clip == ClipDepth::ReversedZeroToOne {
+            p.error_ulps_reversed
+        } else {
+            p.error_ulps
+        },
+    )?;
     let u = F32_UNIT_ROUNDOFF;
     let excess = (m10.abs() - PROBED_M10).max(0.0);
     Some(match clip {
@@ -611,14 +617,14 @@ fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
         return offset;
     }
     let p = scene.profile;
-    let k = match clip {
+    let figure = match clip {
         ClipDepth::NegOneToOne => p.facing_quanta[profile_index(scene.format)],
         ClipDepth::ZeroToOne => p.facing_quanta_zero_to_one[profile_index(scene.format)],
         ClipDepth::ReversedZeroToOne => f64::NAN,
     };
-    if !(p.measured && k.is_finite() && k > 0.0) {
+    let Some(k) = measured_figure(&p, figure) else {
         return 0.0;
-    }
+    };
     let unit = match scene.format {
         DepthFormat::Float32 => F32_UNIT_ROUNDOFF,
         format => format.spacing_at(0.5).unwrap_or(0.0),
@@ -634,14 +640,8 @@ fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
     if let Some(eps) = chain_facing(scene, ClipDepth::ReversedZeroToOne) {
         return Some(eps);
     }
-    let p = scene.profile;
-    let k = p.facing_reversed;
-    (scene.exact_depth
-        && scene.depth_test.is_strict()
-        && scene.format == DepthFormat::Float32
-        && p.measured
-        && k.is_finite()
-        && k > 0.0)
+    let k = measured_figure(&scene.profile, scene.profile.facing_reversed)?;
+    (scene.exact_depth && scene.depth_test.is_strict() && scene.format == DepthFormat::Float32)
         .then(|| k * F32_UNIT_ROUNDOFF / (1.0 - F32_UNIT_ROUNDOFF))
 }
 
@@ -1303,8 +1303,8 @@ fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
 /// correlated.
 fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Option<f64> {
     let footprint = scene.footprint?;
-    let k = scene.profile.error_ulps_reversed;
-    if terms.correlated || !(scene.profile.measured && k.is_finite() && k > 0.0) {
+    let k = measured_figure(&scene.profile, scene.profile.error_ulps_reversed)?;
+    if terms.correlated {
         return None;
     }
     let [d1, d2] = scene.depth_range;

@@ -124,9 +124,7 @@ fn decal_of(gl: &Gl, s: &Setup) -> Decal {
 #[test]
 fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
     let mut gl = context();
-    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
-    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
-    let probed = unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe: {e}"));
+    let probed = gl_common::probed(&gl);
     let mut tighter = 0;
     let mut control_lost = 0;
     let mut rows = 0;

@@ -72,9 +72,7 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
     let mut gl = Gl::new(Profile::Core)
         .unwrap_or_else(|e| panic!("no OpenGL context (EGL surfaceless): {e}"));
     let snapping = gl_common::snapping_of(&gl);
-    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
-    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
-    let probed = unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe: {e}"));
+    let probed = gl_common::probed(&gl);
     let mut rng = Lcg(0x5EED_2026);
     let (mut cases, mut sensitive) = (0, 0);
     let mut tries = 0;

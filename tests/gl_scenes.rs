@@ -20,9 +20,8 @@
 //! `ZSHIFT_SCENES_VERBOSE=1` also names every refused scene and the survey's worst planes,
 //! `ZSHIFT_SCENES_TERMS=1` every scene's error terms.
 
-use std::ffi::CStr;
+mod gl_common;
 
-use zshift::probe::probe;
 use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::{
     clip_to_frustum, decal_shape, recommend_clip, Base, ClipRecommendation, DepthTest,
@@ -39,9 +38,7 @@ use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile, Q
 /// near-plane clipping in f32. `the_probed_error_bound_holds` checks its per-pixel bound
 /// against planes the probe never drew.
 fn probed(gl: &Gl) -> RasterizerProfile {
-    let loader = |name: &CStr| gl.proc_address(name.to_str().unwrap_or(""));
-    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
-    let profile = unsafe { probe(loader) }.unwrap_or_else(|e| panic!("probe failed: {e}"));
+    let profile = gl_common::probed(gl);
     assert!(
         profile.measured && profile.error_ulps.is_finite(),
         "{profile:?}"

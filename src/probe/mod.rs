@@ -286,8 +286,9 @@ struct ChainObservation {
 /// agree where their differences never show; the first in [`DepthChain::candidates`]' order is
 /// kept, and any of them predicts every observation).
 fn identify_chain(seen: &[ChainObservation]) -> Option<DepthChain> {
-    let strict_formats = seen.iter().filter(|o| o.bits != 16).count();
-    if strict_formats == 0 {
+    // D16 alone (its base depths only, each hundreds of steps from the next value) cannot tell
+    // the candidates' arithmetic apart: the offset steps on D24 or D32F must be among them.
+    if seen.iter().all(|o| o.bits == 16) {
         return None;
     }
     DepthChain::candidates().find(|chain| {

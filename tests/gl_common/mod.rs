@@ -21,6 +21,14 @@ pub fn format_of(f: DepthFormat) -> Format {
     Format::from_gl_internal_format(f.gl_enum()).expect("a GL depth format")
 }
 
+/// The profile `zshift::probe::probe` measures in `gl`'s own context (what an engine does once at
+/// start-up).
+pub fn probed(gl: &Gl) -> recommend::RasterizerProfile {
+    let loader = |name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or(""));
+    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
+    unsafe { zshift::probe::probe(loader) }.unwrap_or_else(|e| panic!("probe failed: {e}"))
+}
+
 /// How this rasterizer positions vertices for depth: llvmpipe sets its depth plane up from the
 /// unsnapped float positions (measured, see `src/recommend.rs`); any other driver is assumed to
 /// snap to GL_SUBPIXEL_BITS first (the conservative choice).
