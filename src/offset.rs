@@ -177,27 +177,37 @@ pub(crate) fn offset_fast(
     delta: f64,
     pz: f64,
 ) -> Option<Mat4> {
-    let shifted = pz + delta;
-    // |pz| in [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰) as well, for the scale below.
-    let good = (pz <= -n) & (pz >= -f) & (pz > -BIG_DEPTH) & (pz <= -1.0 / BIG_DEPTH);
-    let good = good & (shifted < 0.0) & (delta.abs() < f64::INFINITY);
     // o = 2fnδ/((f − n)·Pz·(Pz + δ)) = n·δ·(1 − m10)/(Pz·(Pz + δ)), since f/(f − n) =
     // (1 − m10)/2 (and 1 with f = ∞, where m10 = −1): from the frustum's own estimate of m10.
-    // Scaled by 1/2^e for |Pz| in [2^e, 2^(e+1)) (from its exponent bits, exact), so that
-    // nothing overflows; the reciprocal overlaps the frustum's divisions. Roundings: n·δ, the
-    // reciprocal's three, 1 − m10's five (m10's four, |m10| ≤ |1 − m10|), two products: 11.
-    let s = f64::from_bits(2046u64.wrapping_sub(pz.to_bits() >> 52 & 0x7ff) << 52);
-    let (n_s, delta_s, pz_s) = (n * s, delta * s, pz * s);
-    let over_depths = n_s * delta_s * (1.0 / (pz_s * (pz_s + delta_s)));
+    // Roundings: n·δ, Pz + δ, the product, its reciprocal, `over_depths`, 1 − m10's five (m10's
+    // four, |m10| ≤ |1 − m10|) and the last product: 11.
+    let shifted = pz + delta;
+    let (n_delta, depths) = (n * delta, pz * shifted);
+    let over_depths = n_delta * (1.0 / depths);
+    // Pz in [−f, −n] and Pz + δ < 0 (NaN fails every comparison). n·δ and Pz·(Pz + δ) in
+    // [2⁻⁵⁰⁰, 2⁵⁰⁰] keep every rounding above relative (normal results: `over_depths` lies in
+    // [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰], and |1 − m10| ≥ 1 keeps the offset normal or makes it infinite, which
+    // `outward_decided` refuses); a NaN or infinite δ fails it.
+    let good = (pz <= -n) & (pz >= -f) & (shifted < 0.0) & moderate(n_delta) & moderate(depths);
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
     crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
-        let (x, decided) = outward_decided(m10, over_depths * (1.0 - y10), 12.0);
+        let (x, decided) = outward_decided(m10, over_depths * (1.0 - y10), 11.0);
         (x, decided & good)
     })
 }
 
-/// `2¹⁰⁰⁰`: the fast path takes `|Pz|` in `[2⁻¹⁰⁰⁰, 2¹⁰⁰⁰)`.
-const BIG_DEPTH: f64 = 1.0715086071862673e301;
+/// Whether `|x|` lies in `[2⁻⁵⁰⁰, 2⁵⁰⁰]` (NaN does not).
+#[inline(always)]
+fn moderate(x: f64) -> bool {
+    const LOW: f64 = 3.054936363499605e-151; // 2⁻⁵⁰⁰
+    const HIGH: f64 = 3.273390607896142e150; // 2⁵⁰⁰
+    (x.abs() >= LOW) & (x.abs() <= HIGH)
+}
+
+/// How far (in f64 ulps of its binade) the outward target must lie from every f32.
+const OUTWARD_SLACK: u32 = 16;
+/// The low 29 bits of an f64 significand: the bits an f32 drops.
+const LOW_29: u32 = (1 << 29) - 1;
 
 #[allow(clippy::too_many_arguments)]
 #[cold]
@@ -375,8 +385,9 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
     decided.then_some(x)
 }
 
-/// [`outward_of_ratio`] for the offset's f64 estimate, without a branch: the f32 and whether
-/// it is decided (if not, the f32 is meaningless).
+/// [`outward_of_ratio`] for the offset's f64 estimate: the f32 and whether it is decided (if
+/// not, the f32 is meaningless). Branch-free in the usual case; offsets as large as their
+/// target take one more test out of line.
 ///
 /// The f64 target `t = plain + o` (one more rounding) is rounded outward by its bits: its
 /// magnitude truncated to f32, plus one f32 step when the offset points away from zero, else
@@ -389,9 +400,13 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 ///   step from `plain` to the next f32 outward, less a margin far wider than `t`'s rounding,
 ///   so `t` is `plain` or on the offset's side of it, short of the next f32 (the usual offset:
 ///   a few depth steps or less);
-/// - a larger one: `t` is within `rounds·u·|o| + u·|t|` of the exact target, and no f32 is
-///   when the nearest f32 of `t` (round to nearest) is farther than that (the difference is
-///   exact). That fails for an f32 within about `1e-15` relative (offsets that land on one).
+/// - a larger one: `t` is within `rounds·u·|o| + u·|t|` of the exact target. When `|o| < |t|`
+///   that is below `rounds + 1` f64 ulps of `t`'s binade (`u·|t|` is at most one), so no f32
+///   lies between them when `t`'s low 29 significand bits (those an f32 drops) are at least
+///   [`OUTWARD_SLACK`] (16, so `rounds ≤ 14`) from a multiple of `2²⁹`: an integer test on the
+///   bits. Otherwise (a larger offset, or a target that close to an f32), when the nearest f32
+///   of `t` is farther than the error (`gap_decides`; the difference is exact). That fails for
+///   an f32 within about `1e-15` relative (offsets that land on one).
 ///
 /// The target is `plain + o`, not `m10·(1 + ε) = m10 + o`: rounding that one fraction outward
 /// from `m10` would skip the rounding of `plain` itself, and loses offsets below the gap
@@ -404,19 +419,33 @@ pub(crate) fn outward_decided(plain: f32, estimate: f64, rounds: f64) -> (f32, b
     let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
     let small = estimate.abs() * (margin * 16_777_216.0) < plain.abs();
     let target = plain + estimate;
-    // The estimate's own error, and the rounding of the sum (f64::EPSILON = 2·2⁻⁵³).
-    let error = (rounds * estimate.abs() + target.abs()) * (f64::EPSILON / 2.0);
-    let gap = f64::from(target as f32) - target; // exact
     let bits = target.to_bits();
     let magnitude = bits & !(1 << 63);
     // |t| in [2⁻¹²⁶, 2¹²⁷): its high word.
     let normal = (0x3810_0000..0x47e0_0000).contains(&(magnitude >> 32));
+    // No f32 (a multiple of 2²⁹ f64 ulps of t's binade) within OUTWARD_SLACK ulps of t, where
+    // the error of t is at most rounds + 1 ulps when |o| < |t|.
+    let far = (bits as u32).wrapping_add(OUTWARD_SLACK) & LOW_29 >= 2 * OUTWARD_SLACK;
+    let bounded = estimate.abs() < target.abs();
     let away = u64::from((bits ^ estimate.to_bits()) >> 63 == 0);
     // Truncated to f32 by its bits (exponent bias 1023 → 127), after the f64 step toward zero.
     let truncated = (magnitude.wrapping_sub(1 - away) >> 29).wrapping_sub(896 << 23);
     let x = f32::from_bits(truncated.wrapping_add(away) as u32 | (bits >> 32) as u32 & 0x8000_0000);
-    let decided = normal & (small | (gap.abs() > error)) & (estimate != 0.0);
+    let quick = small | (far & bounded);
+    let decided = normal & (estimate != 0.0) && (quick || gap_decides(target, estimate, rounds));
     (x, decided)
+}
+
+/// The slower test of [`outward_decided`], for offsets as large as their target (and targets
+/// within [`OUTWARD_SLACK`] ulps of an f32): whether the f32 nearest `target` lies farther from
+/// it than its error (that of the estimate, `rounds·u·|estimate|`, and the sum's, `u·|target|`).
+/// The difference is exact. Out of line, so the usual case does not wait for its conversions.
+#[cold]
+#[inline(never)]
+fn gap_decides(target: f64, estimate: f64, rounds: f64) -> bool {
+    let error = (rounds * estimate.abs() + target.abs()) * (f64::EPSILON / 2.0);
+    let gap = f64::from(target as f32) - target; // exact
+    gap.abs() > error
 }
 
 /// [`outward_of_ratio`], falling back to the double-double `exact` offset.

@@ -27,30 +27,33 @@
 //! of `1/D`, since `D < 2¹⁰²⁴`. So `|y − x| ≤ ((1 + u)³(1 + 4u) − 1)·|x| < 7.01u·|x|`: less than
 //! 8 f64 ulps of `y` (an ulp of `y`'s binade `[2ᵉ, 2ᵉ⁺¹)` is `2ᵉ⁻⁵²`, and `7.01u·|x| < 7.02·2ᵉ⁻⁵²`).
 //!
-//! ## The test (no rounding boundary within 16 ulps)
-//! Within a binade `2ᵉ ≤ |y| < 2ᵉ⁺¹` of the normal f32 range (`−126 ≤ e ≤ 126`), the f32 are the
-//! multiples of `2ᵉ⁻²³` and the rounding boundaries the odd multiples of `2ᵉ⁻²⁴`: in units of
-//! `y`'s ulp, the f64 whose low 29 significand bits are exactly `2²⁸`. So when those bits of `y`
-//! differ from `2²⁸` by at least `SLACK = 16` (mod `2²⁹`), no boundary lies within 16 ulps of
-//! `y` (the nearest boundaries across a power of two are `2²⁶` ulps away or more), `x` lies
-//! within 8 by the bound, and `x` and `y` have the same nearest f32: the conversion `y as f32`.
-//! The test is two integer additions and masks and three comparisons on the bits of `y` (its
-//! binade from the high word, the pattern from the low one), done two elements at a time with
-//! SSE2 (`nearest_columns_then`): no multiplication, and only the conversions that produce the
-//! result. It fails for about one element in 16 million (`2·16/2²⁹`) of evenly spread inputs,
-//! which go to the exact decision.
+//! ## The test (the same nearest f32 on both sides of the bound)
+//! Rounding to nearest is monotonic: if `a ≤ x ≤ b`, the nearest f32 of `x` lies between
+//! those of `a` and `b`. So the builders bracket the estimate, `a = fl(y·(1 − 2⁻⁴⁹))` and
+//! `b = fl(y·(1 + 2⁻⁴⁹))` (each within `u·|y|` of `y·(1 ∓ 16u)`, so at least `15u·|y|` from
+//! `y`, on either side, where the bound puts `x` within `7.02u·|y|`), convert both to f32 and
+//! keep `y`'s f32 when they agree: `x` lies between `a` and `b` (or `b` and `a`, for a
+//! negative `y`), so its nearest f32 is theirs, which is also `y`'s. Agreement is tested as an
+//! f32 difference that is exactly zero, which also refuses an infinite pair (`∞ − ∞` is NaN)
+//! and a NaN: overflow (`y` near or past `2¹²⁸`) and invalid inputs go to the exact decision.
+//! It costs two products and two conversions per pair of elements, done two elements at a time
+//! with SSE2 and compared four at a time (`nearest_columns_then`): no integer work, and the
+//! result is one of the conversions. It fails for about one element in 16 million (`2·2⁻⁴⁹`
+//! of an f32 ulp of `2⁻²⁴` relative) of evenly spread inputs, which go to the exact decision.
 //!
-//! Outside that range: `|y| ≥ 2¹²⁷` (f32 overflow, or nearly) and f32-subnormal results
-//! (`2⁻¹⁵¹ ≤ |y| < 2⁻¹²⁶`, where boundaries sit elsewhere) always go to the exact decision. A
-//! tiny `|y| < 2⁻¹⁵¹` (zero included) passes, and is right: `y as f32` is a zero of `y`'s sign,
-//! and `|x| < 2⁻¹⁵⁰` rounds to the same zero. For a normal `y` that is the bound; a zero or
-//! f64-subnormal `y` (with both denominators finite and nonzero, as the builders check) is an
-//! exact zero (`a + b` rounds to 0 only when `a = −b`) or a product whose exact value (of
-//! accurate factors) is below `2⁻¹⁰²²`. An intermediate product that underflows (`2n·f` below
-//! `2⁻¹⁰²²`, so `n < 2⁻⁵¹¹`) cannot pass wrongly: with an f32-sized element 14 it needs
-//! `1/(f − n) > 2⁸⁷³`, which makes element 10 (`≥ 2n/(f − n)`) exceed `2¹²⁷`. An intermediate
-//! that overflows gives `±∞` or NaN, whose binade fails the test, and the exact decision
-//! explains the overflow.
+//! f32 subnormal results (`|x| < 2⁻¹²⁶`) are decided the same way: the bound is relative and
+//! `y` is a normal f64 there, and the nearest f32 is monotonic across the subnormal range and
+//! its boundary at `2⁻¹⁵⁰` (rounding to zero). A tiny `y` (zero included) gives a zero of its
+//! sign, and is right: for a normal `y` that is the bound; a zero or f64-subnormal `y` (with
+//! both denominators finite and nonzero, as the builders check) is an exact zero (`a + b`
+//! rounds to 0 only when `a = −b`) or a product whose exact value (of accurate factors) is
+//! below `2⁻¹⁰²²`. An intermediate product that underflows (`2n·f` below `2⁻¹⁰²²`, so
+//! `n < 2⁻⁵¹¹`) cannot pass wrongly: with an f32-sized element 14 it needs `1/(f − n) > 2⁸⁷³`,
+//! which makes element 10 (`≥ 2n/(f − n)`) overflow f32. An intermediate that overflows gives
+//! `±∞` or NaN, which the test refuses, and the exact decision explains the overflow. Under a
+//! flush-to-zero floating-point mode (MXCSR FTZ, which the library never sets), an f32
+//! subnormal element comes out as a zero of its sign, as such a caller's own f32 code would see
+//! it; every normal element is unaffected.
 //!
 //! ## The exact decision
 //! `nearest_of_ratio` takes `x` as a ratio `N/D` whose numerator and denominator are
@@ -77,39 +80,36 @@ use std::cmp::Ordering;
 
 use glam::{Mat4, Vec4};
 
-/// How far (in f64 ulps of `y`'s binade) an estimate `y` must be from every f32 rounding
-/// boundary to decide it: twice the 8-ulp bound of the module docs.
-const SLACK: i32 = 16;
-/// Added to the low word of `y`'s bits: a boundary (low 29 bits `2²⁸`) maps to `SLACK`.
-const MIDPOINT_SHIFT: i32 = SLACK - (1 << 28);
-/// The low 29 bits of the significand: the bits an f32 drops.
-const LOW_29: i32 = (1 << 29) - 1;
-/// `|y|`'s high word from `2⁻¹²⁶` (the least normal f32) on …
-const NORMAL_LOW: i32 = 0x3810_0000;
-/// … and below `2¹²⁷` (so `y as f32` is finite).
-const NORMAL_HIGH: i32 = 0x47e0_0000;
-/// `|y|`'s high word below `2⁻¹⁵¹`: tiny, rounding to zero.
-const TINY: i32 = 0x3680_0000;
+/// `1 − 2⁻⁴⁹` and `1 + 2⁻⁴⁹`: the estimate `y` times these brackets every value within twice
+/// the module docs' bound of it (`16u` on either side, for a bound below `8u`).
+const BELOW: f64 = 1.0 - 1.0 / 562_949_953_421_312.0;
+/// See [`BELOW`].
+const ABOVE: f64 = 1.0 + 1.0 / 562_949_953_421_312.0;
 
-/// Whether the nearest f32 of `y` is that of every value within [`SLACK`] ulps of `y` (so of
-/// the exact value it estimates, module docs), `tiny` values below `2⁻¹⁵¹` included if asked.
-/// The scalar form of the lane test in [`nearest_columns_then`], with the same answers.
+/// The nearest f32 of `y`, if it is that of every value within the bound of the module docs
+/// (so of the exact value `y` estimates): both ends of the bracket `y·(1 ∓ 2⁻⁴⁹)` round to the
+/// same finite f32, and, unless `zero_allowed`, it is not zero (the builders refuse a zero
+/// element 0 or 5: it means an infinite width or height). The scalar form of the lane test in
+/// [`nearest_columns_then`], with the same answers.
 #[inline(always)]
-pub(crate) fn decided(y: f64, tiny: bool) -> bool {
-    let bits = y.to_bits();
-    let low = bits as u32 as i32;
-    let high = (bits >> 32) as u32 as i32 & 0x7fff_ffff;
-    let far = (low.wrapping_add(MIDPOINT_SHIFT) & LOW_29) >= 2 * SLACK;
-    let binade = (NORMAL_LOW..NORMAL_HIGH).contains(&high) | (tiny & (high < TINY));
-    far & binade
+pub(crate) fn enclosed_or_zero(y: f64, zero_allowed: bool) -> Option<f32> {
+    let (lo, hi) = ((y * BELOW) as f32, (y * ABOVE) as f32);
+    let decided = ((lo - hi) == 0.0) & (zero_allowed | (lo != 0.0));
+    decided.then_some(lo)
 }
 
-/// The nearest f32 of every value within a few ulps of `y` (of the exact value an estimate of
-/// at most four roundings on normal intermediates stands for, module docs), if [`decided`]
-/// shows it is one f32; `None` otherwise. A tiny `y` (below `2⁻¹⁵¹`) gives a zero.
+/// Whether [`enclosed_or_zero`] decides `y`.
+#[inline(always)]
+pub(crate) fn decided(y: f64, zero_allowed: bool) -> bool {
+    enclosed_or_zero(y, zero_allowed).is_some()
+}
+
+/// The nearest f32 of every value within the bound of the module docs of `y` (of the exact
+/// value an estimate of at most four roundings on normal intermediates stands for), if
+/// [`enclosed_or_zero`] shows it is one f32; `None` otherwise. A tiny `y` gives a zero.
 #[inline(always)]
 pub(crate) fn enclosed(y: f64) -> Option<f32> {
-    decided(y, true).then_some(y as f32)
+    enclosed_or_zero(y, true)
 }
 
 /// A projection's six varying elements as ratios of f64 values the builders compute:
@@ -168,32 +168,26 @@ pub(crate) fn nearest_columns_portable(
     e: Estimates,
     element_10: impl FnOnce(f32, f64) -> (f32, bool),
 ) -> Option<Mat4> {
+    let inv = [1.0 / e.den[0], 1.0 / e.den[1]];
     let inv_z = 1.0 / e.depth_den;
-    let inv = [
-        1.0 / e.den[0],
-        1.0 / e.den[1],
-        1.0 / e.den[0],
-        1.0 / e.den[1],
-        inv_z,
-        inv_z,
-    ];
-    let num = [
-        e.scale,
-        e.scale,
-        e.centre[0],
-        e.centre[1],
-        e.depth[0],
-        e.depth[1],
+    let y = [
+        e.scale * inv[0],
+        e.scale * inv[1],
+        e.centre[0] * inv[0],
+        e.centre[1] * inv[1],
+        e.depth[0] * inv_z,
+        e.depth[1] * inv_z,
     ];
     let mut m = [0.0f32; 6];
     let mut good = (e.planes[0] > 0.0) & (e.planes[1] > 0.0);
     for i in 0..6 {
-        let y = num[i] * inv[i];
-        good &= decided(y, i >= 2); // elements 0 and 5 must not be tiny
-        m[i] = y as f32;
+        let (lo, hi) = ((y[i] * BELOW) as f32, (y[i] * ABOVE) as f32);
+        // Elements 0 and 5 must not be zero (module docs of `enclosed_or_zero`).
+        good &= ((lo - hi) == 0.0) & ((i >= 2) | (lo != 0.0));
+        m[i] = lo;
     }
     let decided_10;
-    (m[4], decided_10) = element_10(m[4], num[4] * inv[4]);
+    (m[4], decided_10) = element_10(m[4], y[4]);
     if !(good & decided_10) {
         return None;
     }
@@ -205,7 +199,7 @@ pub(crate) fn nearest_columns_portable(
     ))
 }
 
-/// [`nearest_columns_then`] with SSE2: two elements per f64 operation, four per f32 comparison, and
+/// [`nearest_columns_then`] with SSE2: two elements per f64 operation, four per f32 one, and
 /// the columns assembled by shuffles in registers (stored once by the caller).
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
@@ -220,36 +214,27 @@ fn nearest_columns_sse2(
         let den = _mm_set_pd(e.den[1], e.den[0]);
         let inv = _mm_div_pd(_mm_set1_pd(1.0), den); // [1/(r − l), 1/(t − b)]
         let inv_z = _mm_set1_pd(1.0 / e.depth_den);
-        let scale = _mm_set1_pd(e.scale);
-        let centre = _mm_set_pd(e.centre[1], e.centre[0]);
-        let depth = _mm_set_pd(e.depth[1], e.depth[0]);
-        // The estimates numerator·reciprocal, [m0 m5], [m8 m9], [m10 m14], and their nearest
-        // f32: [m0 m5 m8 m9] and [m10 m14 0 0].
-        let (y_scale, y_centre) = (_mm_mul_pd(scale, inv), _mm_mul_pd(centre, inv));
-        let y_depth = _mm_mul_pd(depth, inv_z);
-        let lo_xy = _mm_movelh_ps(_mm_cvtpd_ps(y_scale), _mm_cvtpd_ps(y_centre));
-        let lo_z = _mm_cvtpd_ps(y_depth);
-        // `decided` for two estimates, as four 32-bit lanes [low, high, low, high]: the low
-        // words shifted and masked to the pattern (compared with 2·SLACK), the high words
-        // masked to |y|'s (compared with the binade's bounds, and TINY where allowed).
-        let decided = |y: __m128d, tiny: i32| {
-            let v = _mm_castpd_si128(y);
-            let v = _mm_add_epi32(v, _mm_set_epi32(0, MIDPOINT_SHIFT, 0, MIDPOINT_SHIFT));
-            let v = _mm_and_si128(v, _mm_set_epi32(i32::MAX, LOW_29, i32::MAX, LOW_29));
-            let low = _mm_set_epi32(NORMAL_LOW - 1, 2 * SLACK - 1, NORMAL_LOW - 1, 2 * SLACK - 1);
-            let above = _mm_cmpgt_epi32(v, low); // far from a boundary; normal
-            let small = _mm_cmpgt_epi32(_mm_set_epi32(tiny, 0, tiny, 0), v); // —; tiny
-            let high = _mm_set_epi32(NORMAL_HIGH, i32::MAX, NORMAL_HIGH, i32::MAX);
-            _mm_and_si128(_mm_or_si128(above, small), _mm_cmpgt_epi32(high, v))
-        };
+        // The estimates numerator·reciprocal: [m0 m5], [m8 m9], [m10 m14].
+        let y_scale = _mm_mul_pd(_mm_set1_pd(e.scale), inv);
+        let y_centre = _mm_mul_pd(_mm_set_pd(e.centre[1], e.centre[0]), inv);
+        let y_depth = _mm_mul_pd(_mm_set_pd(e.depth[1], e.depth[0]), inv_z);
+        // Each bracket's ends in f32: [m0 m5 m8 m9] and [m10 m14 0 0], below and above.
+        let (below, above) = (_mm_set1_pd(BELOW), _mm_set1_pd(ABOVE));
+        let end = |y: __m128d, side: __m128d| _mm_cvtpd_ps(_mm_mul_pd(y, side));
+        let lo_xy = _mm_movelh_ps(end(y_scale, below), end(y_centre, below));
+        let hi_xy = _mm_movelh_ps(end(y_scale, above), end(y_centre, above));
+        let (lo_z, hi_z) = (end(y_depth, below), end(y_depth, above));
+        // Ends that agree (a difference of exactly zero: finite and equal), elements 0 and 5
+        // not zero (a NaN in lanes 2 and 3 makes them pass), and n, f − n > 0.
+        let zero = _mm_setzero_ps();
+        let same_xy = _mm_cmpeq_ps(_mm_sub_ps(lo_xy, hi_xy), zero);
+        let same_z = _mm_cmpeq_ps(_mm_sub_ps(lo_z, hi_z), zero);
+        let nonzero = _mm_cmpneq_ps(lo_xy, _mm_set_ps(f32::NAN, f32::NAN, 0.0, 0.0));
         let planes = _mm_set_pd(e.planes[1], e.planes[0]);
-        let positive = _mm_castpd_si128(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
-        let all = _mm_and_si128(
-            _mm_and_si128(decided(y_scale, 0), decided(y_centre, TINY)),
-            _mm_and_si128(decided(y_depth, TINY), positive),
-        );
+        let positive = _mm_castpd_ps(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
+        let all = _mm_and_ps(_mm_and_ps(same_xy, same_z), _mm_and_ps(nonzero, positive));
         let (m10, decided_10) = element_10(_mm_cvtss_f32(lo_z), _mm_cvtsd_f64(y_depth));
-        if (_mm_movemask_epi8(all) != 0xffff) | !decided_10 {
+        if (_mm_movemask_ps(all) != 0xf) | !decided_10 {
             return None;
         }
         let lo_z = _mm_move_ss(lo_z, _mm_set_ss(m10));
@@ -445,36 +430,52 @@ mod tests {
 
     #[test]
     fn the_test_refuses_near_midpoints_and_accepts_f32_values() {
+        // Near 1 an f64 ulp is 2u, so the bracket ±16u is ±8 ulps.
         let mid = 1.0 + f64::from(f32::EPSILON) / 2.0;
         let ulps = |k: i64| f64::from_bits((mid.to_bits() as i64 + k) as u64);
         assert_eq!(enclosed(mid), None);
-        assert_eq!(enclosed(ulps(7)), None);
+        assert_eq!(enclosed(ulps(4)), None);
+        assert_eq!(enclosed(ulps(-4)), None);
+        assert_eq!(enclosed(ulps(7)), None); // inside the bracket
         assert_eq!(enclosed(ulps(-7)), None);
-        assert_eq!(enclosed(ulps(15)), None); // SLACK − 1 ulps
-        assert_eq!(enclosed(ulps(-15)), None);
-        assert_eq!(enclosed(ulps(16)), Some(1.0 + f32::EPSILON));
+        assert_eq!(enclosed(ulps(9)), Some(1.0 + f32::EPSILON));
+        assert_eq!(enclosed(ulps(-9)), Some(1.0));
         assert_eq!(enclosed(ulps(40)), Some(1.0 + f32::EPSILON));
-        assert_eq!(enclosed(ulps(-40)), Some(1.0));
+        // Just below 2 an ulp is u: the bracket reaches 16 ulps.
+        let mid = 2.0 - f64::from(f32::EPSILON) / 2.0;
+        let ulps = |k: i64| f64::from_bits((mid.to_bits() as i64 + k) as u64);
+        assert_eq!(enclosed(ulps(-15)), None);
+        assert_eq!(enclosed(ulps(-17)), Some(2.0 - f32::EPSILON));
         for (y, want) in [
             (1.0, 1.0f32),
             (-3.5, -3.5),
             (0.0, 0.0),
             (-0.0, -0.0),
             (1e-300, 0.0),
+            (2f64.powi(-151), 0.0),
             (2f64.powi(-126), f32::MIN_POSITIVE),
+            (1e-39, 1e-39),
+            (f64::from(f32::from_bits(1)), f32::from_bits(1)),
             (-1.5 * 2f64.powi(126), -1.5 * 2f32.powi(126)),
+            (2f64.powi(127), 2f32.powi(127)),
         ] {
             assert_eq!(enclosed(y).map(f32::to_bits), Some(want.to_bits()), "{y}");
         }
-        // f32 subnormals, the band below them where an f32 boundary (2⁻¹⁵⁰) lies, and values
-        // from 2¹²⁷ on go to the exact decision.
-        let subnormal_band = [1e-39, 2f64.powi(-150), 2f64.powi(-151), 2f64.powi(127)];
-        for bad in [f64::NAN, f64::INFINITY, 2f64.powi(128)]
-            .into_iter()
-            .chain(subnormal_band)
-        {
+        // A boundary inside the bracket (2⁻¹⁵⁰ between 0 and the least subnormal, the overflow
+        // threshold), infinities, NaN: the exact decision.
+        let threshold = f64::from(f32::MAX) + 2f64.powi(103);
+        for bad in [
+            f64::NAN,
+            f64::INFINITY,
+            2f64.powi(128),
+            2f64.powi(-150),
+            threshold,
+        ] {
             assert_eq!(enclosed(bad), None, "{bad}");
         }
+        // A zero element 0 or 5 (an infinite width) is refused where zero is not allowed.
+        assert_eq!(enclosed_or_zero(0.0, false), None);
+        assert_eq!(enclosed_or_zero(1e-39, false), Some(1e-39));
     }
 
     /// The SSE2 and portable column builders agree, element for element and on refusals.
