@@ -42,26 +42,67 @@ fn main() {
     let (l, r, b, t, n, f, pz) = (-0.0577, 0.0577, -0.0414, 0.0414, 0.1, 1000.0, -50.0);
     let delta = 4.0 * zshift::min_delta_toward(n, f, 24, pz).expect("valid case");
     let frustum = zshift::Frustum::new(l, r, b, t, n, f).expect("valid case");
-    let v = |x: f64| black_box(x);
+    // Inputs are read from memory on every call (volatile loads of these locals, which are
+    // never written again), as the C++ harness reads its volatile globals: nothing is
+    // constant-folded. (`black_box(x)` on a value would instead store and reload it on every
+    // call, a store-forwarding round trip in front of every input that no engine's code makes.)
+    let (eye_depth, ortho) = (-pz, [-4.0, 4.0, -2.25, 2.25, 0.5, 100.0]);
+    let one = 1.0;
+    let v = |x: &f64| unsafe { std::ptr::read_volatile(x) };
     let glam = || {
         glam::camera::rh::proj::opengl::frustum(
-            v(l) as f32,
-            v(r) as f32,
-            v(b) as f32,
-            v(t) as f32,
-            v(n) as f32,
-            v(f) as f32,
+            v(&l) as f32,
+            v(&r) as f32,
+            v(&b) as f32,
+            v(&t) as f32,
+            v(&n) as f32,
+            v(&f) as f32,
+        )
+    };
+    // GLM 0.9.9's `frustum<float>` (ext/matrix_clip_space.inl, `frustumRH_NO`) line for line:
+    // the baseline the C++ harness times, compiled here by the same compiler as zshift.
+    let glm = || {
+        let (l, r, b, t, n, f) = (
+            v(&l) as f32,
+            v(&r) as f32,
+            v(&b) as f32,
+            v(&t) as f32,
+            v(&n) as f32,
+            v(&f) as f32,
+        );
+        glam::Mat4::from_cols(
+            glam::Vec4::new((2.0 * n) / (r - l), 0.0, 0.0, 0.0),
+            glam::Vec4::new(0.0, (2.0 * n) / (t - b), 0.0, 0.0),
+            glam::Vec4::new(
+                (r + l) / (r - l),
+                (t + b) / (t - b),
+                -(f + n) / (f - n),
+                -1.0,
+            ),
+            glam::Vec4::new(0.0, 0.0, -(2.0 * f * n) / (f - n), 0.0),
         )
     };
     let mut out = [0.0f32; 16];
     let mut variants: Vec<(&str, Batch)> = vec![
         ("glam_frustum", Box::new(|| batch(glam))),
+        ("glm_formula_frustum", Box::new(|| batch(glm))),
+        (
+            "glm_formula_frustum_seed_tweak",
+            Box::new(|| {
+                batch(|| {
+                    let mut m = glm();
+                    let eps = seed::seed_epsilon(v(&n), v(&f), v(&delta) as f32, v(&pz) as f32);
+                    m.z_axis.z = seed::seed_tweak(m.z_axis.z, eps);
+                    m
+                })
+            }),
+        ),
         (
             "glam_frustum_seed_tweak",
             Box::new(|| {
                 batch(|| {
                     let mut m = glam();
-                    let eps = seed::seed_epsilon(v(n), v(f), v(delta) as f32, v(pz) as f32);
+                    let eps = seed::seed_epsilon(v(&n), v(&f), v(&delta) as f32, v(&pz) as f32);
                     m.z_axis.z = seed::seed_tweak(m.z_axis.z, eps);
                     m
                 })
@@ -70,15 +111,26 @@ fn main() {
         (
             "zshift_frustum",
             Box::new(|| {
-                batch(|| zshift::frustum(v(l), v(r), v(b), v(t), v(n), v(f)).expect("valid case"))
+                batch(|| {
+                    zshift::frustum(v(&l), v(&r), v(&b), v(&t), v(&n), v(&f)).expect("valid case")
+                })
             }),
         ),
         (
             "zshift_load_offset_matrix",
             Box::new(|| {
                 batch(|| {
-                    zshift::load_offset_matrix(v(l), v(r), v(b), v(t), v(n), v(f), v(delta), v(pz))
-                        .expect("valid case")
+                    zshift::load_offset_matrix(
+                        v(&l),
+                        v(&r),
+                        v(&b),
+                        v(&t),
+                        v(&n),
+                        v(&f),
+                        v(&delta),
+                        v(&pz),
+                    )
+                    .expect("valid case")
                 })
             }),
         ),
@@ -87,12 +139,12 @@ fn main() {
             Box::new(move || {
                 batch(|| {
                     let s = zshift::ffi::zshift_frustum(
-                        v(l),
-                        v(r),
-                        v(b),
-                        v(t),
-                        v(n),
-                        v(f),
+                        v(&l),
+                        v(&r),
+                        v(&b),
+                        v(&t),
+                        v(&n),
+                        v(&f),
                         out.as_mut_ptr(),
                     );
                     black_box(&out);
@@ -109,8 +161,8 @@ fn main() {
                     let s = zshift::ffi::zshift_offset_matrix(
                         black_box(engine.as_ptr()),
                         zshift::ffi::ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-                        v(delta),
-                        v(-pz),
+                        v(&delta),
+                        v(&eye_depth),
                         out.as_mut_ptr(),
                     );
                     black_box(&out);
@@ -123,12 +175,12 @@ fn main() {
             Box::new(move || {
                 batch(|| {
                     let s = zshift::ffi::zshift_ortho(
-                        v(-4.0),
-                        v(4.0),
-                        v(-2.25),
-                        v(2.25),
-                        v(0.5),
-                        v(100.0),
+                        v(&ortho[0]),
+                        v(&ortho[1]),
+                        v(&ortho[2]),
+                        v(&ortho[3]),
+                        v(&ortho[4]),
+                        v(&ortho[5]),
                         zshift::ffi::ZSHIFT_CLIP_NEG_ONE_TO_ONE,
                         out.as_mut_ptr(),
                     );
@@ -146,8 +198,8 @@ fn main() {
                         frustum: black_box(frustum),
                         viewport: [1920, 1080],
                         format: zshift::recommend::DepthFormat::Unorm24,
-                        depth_range: [v(-pz), -pz],
-                        slope: v(1.0),
+                        depth_range: [v(&eye_depth), -pz],
+                        slope: v(&one),
                         exact_depth: false,
                         depth_test: zshift::recommend::DepthTest::Less,
                         base: zshift::recommend::Base::InsideFrustum,
@@ -174,10 +226,31 @@ fn main() {
     // Ratios round by round (the two sides under the same load), then their median.
     let ratio =
         |a: usize, b: usize| median(times[a].iter().zip(&times[b]).map(|(x, y)| x / y).collect());
+    let index = |name: &str| {
+        variants
+            .iter()
+            .position(|(n, _)| *n == name)
+            .expect("a variant")
+    };
     let ratios = [
-        ("ratio_frustum_to_glam", ratio(2, 0)),
-        ("ratio_offset_to_glam_tweak", ratio(3, 1)),
-    ];
+        ("ratio_frustum_to_glam", ("zshift_frustum", "glam_frustum")),
+        (
+            "ratio_offset_to_glam_tweak",
+            ("zshift_load_offset_matrix", "glam_frustum_seed_tweak"),
+        ),
+        (
+            "ratio_frustum_to_glm_formula",
+            ("zshift_frustum", "glm_formula_frustum"),
+        ),
+        (
+            "ratio_offset_to_glm_formula_tweak",
+            (
+                "zshift_load_offset_matrix",
+                "glm_formula_frustum_seed_tweak",
+            ),
+        ),
+    ]
+    .map(|(key, (a, b))| (key, ratio(index(a), index(b))));
     let fields: Vec<String> = variants
         .iter()
         .map(|(name, _)| *name)

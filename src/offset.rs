@@ -131,7 +131,7 @@ pub fn load_offset_matrix(
     delta: f64,
     pz: f64,
 ) -> Result<Mat4> {
-    match offset_fast(l, r, b, t, n, f, delta, pz) {
+    match offset_quick(l, r, b, t, n, f, delta, pz) {
         Some(m) => Ok(m),
         None => Ok(Mat4::from_cols_array(&offset_slow(
             l, r, b, t, n, f, delta, pz,
@@ -157,14 +157,15 @@ pub fn load_offset_array(
     delta: f64,
     pz: f64,
 ) -> Result<[f32; 16]> {
-    match offset_fast(l, r, b, t, n, f, delta, pz) {
+    match offset_quick(l, r, b, t, n, f, delta, pz) {
         Some(m) => Ok(m.to_cols_array()),
         None => offset_slow(l, r, b, t, n, f, delta, pz),
     }
 }
 
 /// The fast path of [`load_offset_array`]: `None` when an input is invalid or a rounding is
-/// too close to call from the f64 estimates.
+/// too close to call from the f64 estimates. The quick test first ([`outward_quick`], no
+/// branch), then, out of line, the wide one ([`outward_decided`]) for the offsets it leaves.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn offset_fast(
@@ -176,6 +177,57 @@ pub(crate) fn offset_fast(
     f: f64,
     delta: f64,
     pz: f64,
+) -> Option<Mat4> {
+    offset_quick(l, r, b, t, n, f, delta, pz).or_else(|| offset_wide(l, r, b, t, n, f, delta, pz))
+}
+
+/// [`offset_fast`] with the quick test alone: what the C ABI's good path runs, with no call
+/// inside it (a call would make every live value a spill).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn offset_quick(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Option<Mat4> {
+    offset_with(l, r, b, t, n, f, delta, pz, outward_quick)
+}
+
+/// [`offset_fast`]'s second try: the wide test, out of line.
+#[allow(clippy::too_many_arguments)]
+#[cold]
+#[inline(never)]
+fn offset_wide(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+) -> Option<Mat4> {
+    offset_with(l, r, b, t, n, f, delta, pz, outward_decided)
+}
+
+/// The fast path's arithmetic, with `outward` deciding the offset element.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn offset_with(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    delta: f64,
+    pz: f64,
+    outward: impl FnOnce(f32, f64, f64) -> (f32, bool),
 ) -> Option<Mat4> {
     // o = 2fnδ/((f − n)·Pz·(Pz + δ)) = n·δ·(1 − m10)/(Pz·(Pz + δ)), since f/(f − n) =
     // (1 − m10)/2 (and 1 with f = ∞, where m10 = −1): from the frustum's own estimate of m10.
@@ -191,7 +243,7 @@ pub(crate) fn offset_fast(
     let good = (pz <= -n) & (pz >= -f) & (shifted < 0.0) & moderate(n_delta) & moderate(depths);
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
     crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
-        let (x, decided) = outward_decided(m10, over_depths * (1.0 - y10), 11.0);
+        let (x, decided) = outward(m10, over_depths * (1.0 - y10), 11.0);
         (x, decided & good)
     })
 }
@@ -209,6 +261,7 @@ const OUTWARD_SLACK: u32 = 16;
 /// The low 29 bits of an f64 significand: the bits an f32 drops.
 const LOW_29: u32 = (1 << 29) - 1;
 
+/// The slow side of [`load_offset_array`]: the wide test, then the exact path.
 #[allow(clippy::too_many_arguments)]
 #[cold]
 #[inline(never)]
@@ -222,6 +275,9 @@ fn offset_slow(
     delta: f64,
     pz: f64,
 ) -> Result<[f32; 16]> {
+    if let Some(m) = offset_wide(l, r, b, t, n, f, delta, pz) {
+        return Ok(m.to_cols_array());
+    }
     offset_matrix_exact(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
 }
 
@@ -415,37 +471,62 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 /// down to `plain` itself, no offset at all, where `plain + o` rounds to the f32 below it.
 #[inline(always)]
 pub(crate) fn outward_decided(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
-    let plain = f64::from(plain);
-    let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
-    let small = estimate.abs() * (margin * 16_777_216.0) < plain.abs();
-    let target = plain + estimate;
-    let bits = target.to_bits();
-    let magnitude = bits & !(1 << 63);
-    // |t| in [2⁻¹²⁶, 2¹²⁷): its high word.
-    let normal = (0x3810_0000..0x47e0_0000).contains(&(magnitude >> 32));
-    // No f32 (a multiple of 2²⁹ f64 ulps of t's binade) within OUTWARD_SLACK ulps of t, where
-    // the error of t is at most rounds + 1 ulps when |o| < |t|.
-    let far = (bits as u32).wrapping_add(OUTWARD_SLACK) & LOW_29 >= 2 * OUTWARD_SLACK;
-    let bounded = estimate.abs() < target.abs();
-    let away = u64::from((bits ^ estimate.to_bits()) >> 63 == 0);
-    // Truncated to f32 by its bits (exponent bias 1023 → 127), after the f64 step toward zero.
-    let truncated = (magnitude.wrapping_sub(1 - away) >> 29).wrapping_sub(896 << 23);
-    let x = f32::from_bits(truncated.wrapping_add(away) as u32 | (bits >> 32) as u32 & 0x8000_0000);
-    let quick = small | (far & bounded);
-    let decided = normal & (estimate != 0.0) && (quick || gap_decides(target, estimate, rounds));
-    (x, decided)
+    let o = Outward::new(plain, estimate, rounds);
+    let error = (rounds * estimate.abs() + o.target.abs()) * (f64::EPSILON / 2.0);
+    let gap = f64::from(o.target as f32) - o.target; // exact
+    (o.x, o.valid & (o.quick | (gap.abs() > error)))
 }
 
-/// The slower test of [`outward_decided`], for offsets as large as their target (and targets
-/// within [`OUTWARD_SLACK`] ulps of an f32): whether the f32 nearest `target` lies farther from
-/// it than its error (that of the estimate, `rounds·u·|estimate|`, and the sum's, `u·|target|`).
-/// The difference is exact. Out of line, so the usual case does not wait for its conversions.
-#[cold]
-#[inline(never)]
-fn gap_decides(target: f64, estimate: f64, rounds: f64) -> bool {
-    let error = (rounds * estimate.abs() + target.abs()) * (f64::EPSILON / 2.0);
-    let gap = f64::from(target as f32) - target; // exact
-    gap.abs() > error
+/// [`outward_decided`] with the integer test alone (no conversions; the usual offset, below
+/// its target and at least [`OUTWARD_SLACK`] ulps from an f32): the f32, and whether that
+/// test decided it. A `false` may still be decided by [`outward_decided`].
+#[inline(always)]
+pub(crate) fn outward_quick(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
+    let o = Outward::new(plain, estimate, rounds);
+    (o.x, o.valid & o.quick)
+}
+
+/// The outward rounding of `plain + estimate` by its bits, and the tests that need no
+/// conversion (see [`outward_decided`]).
+struct Outward {
+    /// `plain + estimate` in f64.
+    target: f64,
+    /// The target rounded outward (meaningless unless decided).
+    x: f32,
+    /// A nonzero estimate and a target in the normal f32 range.
+    valid: bool,
+    /// Decided by the small-offset rule or the integer test.
+    quick: bool,
+}
+
+impl Outward {
+    #[inline(always)]
+    fn new(plain: f32, estimate: f64, rounds: f64) -> Self {
+        debug_assert!(rounds + 2.0 <= f64::from(OUTWARD_SLACK));
+        let plain = f64::from(plain);
+        let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
+        let small = estimate.abs() * (margin * 16_777_216.0) < plain.abs();
+        let target = plain + estimate;
+        let bits = target.to_bits();
+        let magnitude = bits & !(1 << 63);
+        // |t| in [2⁻¹²⁶, 2¹²⁷): its high word.
+        let normal = (0x3810_0000..0x47e0_0000).contains(&(magnitude >> 32));
+        // No f32 (a multiple of 2²⁹ f64 ulps of t's binade) within OUTWARD_SLACK ulps of t,
+        // where the error of t is below rounds + 1 ulps when |o| < |t|.
+        let far = (bits as u32).wrapping_add(OUTWARD_SLACK) & LOW_29 >= 2 * OUTWARD_SLACK;
+        let bounded = estimate.abs() < target.abs();
+        let away = u64::from((bits ^ estimate.to_bits()) >> 63 == 0);
+        // Truncated to f32 by its bits (exponent bias 1023 → 127), after the f64 step toward
+        // zero.
+        let truncated = (magnitude.wrapping_sub(1 - away) >> 29).wrapping_sub(896 << 23);
+        let sign = (bits >> 32) as u32 & 0x8000_0000;
+        Outward {
+            target,
+            x: f32::from_bits(truncated.wrapping_add(away) as u32 | sign),
+            valid: normal & (estimate != 0.0),
+            quick: small | (far & bounded),
+        }
+    }
 }
 
 /// [`outward_of_ratio`], falling back to the double-double `exact` offset.

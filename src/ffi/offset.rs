@@ -30,7 +30,7 @@ pub extern "C" fn zshift_load_offset_matrix(
     pz: f64,
     out: *mut f32,
 ) -> ZshiftStatus {
-    let fast = crate::offset::offset_fast(l, r, b, t, n, f, delta, pz);
+    let fast = crate::offset::offset_quick(l, r, b, t, n, f, delta, pz);
     checked_matrix(out, fast, move || {
         crate::offset::offset_matrix(&Frustum::new(l, r, b, t, n, f)?, delta, pz)
     })
