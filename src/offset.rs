@@ -331,14 +331,19 @@ pub fn epsilon_matrix(frustum: &Frustum, epsilon: f64) -> Result<[f32; 16]> {
 /// The fast path of [`epsilon_matrix`] alone, as [`offset_matrix_fast`].
 #[inline(always)]
 pub fn epsilon_matrix_fast(frustum: &Frustum, epsilon: f64) -> Option<[f32; 16]> {
+    Some(epsilon_columns_fast(frustum, epsilon)?.to_cols_array())
+}
+
+/// [`epsilon_matrix_fast`] as glam columns (kept in registers by the C ABI's one store).
+#[inline(always)]
+pub(crate) fn epsilon_columns_fast(frustum: &Frustum, epsilon: f64) -> Option<Mat4> {
     let (l, r, b, t, n, f) = frustum.parameters();
     let depth = DepthRow::Clip(ClipDepth::NegOneToOne);
     // o = m10·ε from the frustum's estimate of m10 (four roundings), and the product: 5.
-    let m = crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
+    crate::projection::fast_then(l, r, b, t, n, f, depth, |m10, y10| {
         let (x, decided) = outward_decided(m10, epsilon * y10, 6.0);
         (x, decided & (epsilon.abs() < f64::INFINITY))
-    })?;
-    Some(m.to_cols_array())
+    })
 }
 
 /// [`epsilon_matrix`] decided by the exact path alone, as [`offset_matrix_exact`].

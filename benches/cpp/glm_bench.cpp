@@ -45,7 +45,7 @@ float seed_epsilon(double n, double f, float delta, float pz) {
 // Nanoseconds per call of `body` over one batch (the template inlines each builder into its loop).
 template <class F>
 double batch(F body) {
-    const long calls = 100000;
+    const long calls = 20000;
     alignas(64) float out[16];
     auto t0 = std::chrono::steady_clock::now();
     for (long j = 0; j < calls; ++j) {
@@ -98,18 +98,47 @@ int time_all() {
     auto zs_perspective = [&failures](float* out) {
         if (zshift_perspective(vfovy, vaspect, vn, vf, out) != ZSHIFT_OK) ++failures;
     };
+    // The recommendation + matrix of benches/cpu.rs (D24, slope 1, 1920x1080, 8 sub-pixel bits,
+    // the decal at -pz, the worst-case profile): a scene record filled per call, as an engine
+    // fills one per decal.
+    auto zs_recommend = [&failures](float* out) {
+        ZshiftScene s;
+        std::memset(&s, 0, sizeof s);
+        s.l = vl, s.r = vr, s.b = vb, s.t = vt, s.n = vn, s.f = vf;
+        s.viewport_width = 1920, s.viewport_height = 1080;
+        s.depth_format = 0x81A6;  // GL_DEPTH_COMPONENT24
+        s.decal_near = -vpz, s.decal_far = -vpz, s.slope = 1.0;
+        s.subpixel_bits = 8;
+        if (zshift_recommend_matrix(&s, out) != ZSHIFT_OK) ++failures;
+    };
+    // The front door on the engine's own matrix (GLM's), the same decal.
+    static const glm::mat4 engine = glm::frustum<float>(float(vl), float(vr), float(vb), float(vt),
+                                                        float(vn), float(vf));
+    auto zs_decal = [&failures](float* out) {
+        ZshiftDecal d;
+        std::memset(&d, 0, sizeof d);
+        d.viewport_width = 1920, d.viewport_height = 1080;
+        d.format = ZSHIFT_FORMAT_UNORM24;
+        d.subpixel_bits = 8;
+        d.decal_near = -vpz, d.decal_far = -vpz, d.slope = 1.0;
+        if (zshift_decal_matrix(&engine[0][0], ZSHIFT_CLIP_NEG_ONE_TO_ONE, &d, out) != ZSHIFT_OK)
+            ++failures;
+    };
 
     const char* keys[] = {"glm_frustum_float",          "glm_frustum_float_seed_tweak",
                           "glm_frustum_double",         "glm_perspective_float",
                           "zshift_load_offset_matrix_c_abi", "zshift_frustum_c_abi",
-                          "zshift_perspective_c_abi"};
-    std::vector<double> ns[7];
+                          "zshift_perspective_c_abi", "zshift_recommend_matrix_c_abi",
+                          "zshift_decal_matrix_c_abi"};
+    const int variants = 9;
+    std::vector<double> ns[variants];
     const int rounds = 61;
     for (int i = 0; i < rounds + 2; ++i) {
-        double t[7] = {batch(glm_plain),  batch(glm_tweak),  batch(glm_double), batch(glm_perspective),
-                       batch(zs_offset),  batch(zs_frustum), batch(zs_perspective)};
+        double t[variants] = {batch(glm_plain),       batch(glm_tweak),  batch(glm_double),
+                              batch(glm_perspective), batch(zs_offset),  batch(zs_frustum),
+                              batch(zs_perspective),  batch(zs_recommend), batch(zs_decal)};
         if (i < 2) continue;  // the first two rounds warm caches and clocks
-        for (int k = 0; k < 7; ++k) ns[k].push_back(t[k]);
+        for (int k = 0; k < variants; ++k) ns[k].push_back(t[k]);
     }
     if (failures) return 2;
     // Ratios round by round (the two sides a few milliseconds apart, under the same load), then
@@ -121,7 +150,7 @@ int time_all() {
     };
     std::printf("{\"glm_version\": \"%d.%d.%d.%d\"", GLM_VERSION_MAJOR, GLM_VERSION_MINOR,
                 GLM_VERSION_PATCH, GLM_VERSION_REVISION);
-    for (int k = 0; k < 7; ++k) std::printf(", \"%s\": %.3f", keys[k], median(ns[k]));
+    for (int k = 0; k < variants; ++k) std::printf(", \"%s\": %.3f", keys[k], median(ns[k]));
     std::printf(", \"ratio_frustum_to_glm\": %.3f, \"ratio_offset_to_glm_tweak\": %.3f",
                 ratio(5, 0), ratio(4, 1));
     std::printf("}\n");

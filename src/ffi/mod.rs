@@ -198,6 +198,25 @@ fn checked_matrix_slow(
     checked_array(out, slow)
 }
 
+/// [`checked`] for an output that `compute` writes itself: it gets `out` (not NULL) and must
+/// write it only on success, as the last thing it does. Used where the result leaves the
+/// computation in registers (a matrix): returned through the panic boundary instead, it would
+/// be stored to memory and read back at once (a store-forwarding stall as long as the copy).
+fn checked_in_place<P: std::panic::RefUnwindSafe>(
+    out: *mut P,
+    compute: impl FnOnce(*mut P) -> Result<()> + UnwindSafe,
+) -> ZshiftStatus {
+    checked(out, move || compute(out), |_, ()| {})
+}
+
+/// Writes a matrix's 16 floats to `out` (column-major), which the caller promises writable
+/// (any alignment): four stores from registers.
+fn write_matrix(out: *mut f32, m: glam::Mat4) {
+    // SAFETY: the caller promises 16 writable floats; write_unaligned needs no alignment, and
+    // a Mat4 is 16 column-major f32 with no padding.
+    unsafe { out.cast::<glam::Mat4>().write_unaligned(m) }
+}
+
 /// [`checked_array`] for a single double.
 fn checked_scalar(
     out: *mut f64,

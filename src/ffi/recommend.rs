@@ -4,8 +4,8 @@
 use std::panic::UnwindSafe;
 
 use super::{
-    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
-    ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
+    checked, checked_array, checked_in_place, clip_of, format_named, null_pointer, write_matrix,
+    ZshiftClip, ZshiftDepthTest, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
 };
 use crate::error::Result;
 use crate::projection::{ClipDepth, Frustum};
@@ -260,7 +260,15 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
             reach: s.base_reach,
         }
     };
-    let profile = super::probe::profile_or_worst(s.profile, snapping)?;
+    // The worst case built in place (no `Result` to move it through).
+    let profile = if s.profile.is_null() {
+        crate::recommend::RasterizerProfile {
+            snapping,
+            ..crate::recommend::RasterizerProfile::worst_case()
+        }
+    } else {
+        super::probe::profile_or_worst(s.profile, snapping)?
+    };
     let frustum = Frustum::new(s.l, s.r, s.b, s.t, s.n, s.f)?;
     let viewport = [s.viewport_width, s.viewport_height];
     let fields = [s.decal_near, s.decal_far, s.slope];
@@ -332,10 +340,18 @@ pub extern "C" fn zshift_recommend_matrix(
     let Some(s) = scene_from_c(scene) else {
         return null_pointer("scene");
     };
-    checked_array(out, move || {
+    checked_in_place(out, move |out| {
         let model = to_model(&s, ClipDepth::NegOneToOne)?;
         let r = crate::recommend::recommend(&model)?;
-        crate::offset::epsilon_matrix(&model.frustum, r.epsilon)
+        let m = match crate::offset::epsilon_columns_fast(&model.frustum, r.epsilon) {
+            Some(m) => m,
+            None => {
+                let m = crate::offset::epsilon_matrix(&model.frustum, r.epsilon)?;
+                glam::Mat4::from_cols_array(&m)
+            }
+        };
+        write_matrix(out, m);
+        Ok(())
     })
 }
 
