@@ -484,9 +484,11 @@ pub fn recommend(m: &[f32; 16], clip: ClipDepth, decal: &Decal) -> Result<ClipRe
     // The identified depth chain emulates the base's own elements 10 and 14 only within a few f32
     // steps of zshift's matrix for this frustum; further off (a tweaked infinite projection, an
     // engine's loose f32 formula) the measured worst phase stands in.
-    let plain = crate::projection::projection(&scene.frustum, clip)?;
-    if !crate::recommend::chain_covers(&plain, m) {
-        scene.profile.facing_chain = None;
+    if scene.profile.facing_chain.is_some() {
+        let plain = crate::projection::projection(&scene.frustum, clip)?;
+        if !crate::recommend::chain_covers(&plain, m) {
+            scene.profile.facing_chain = None;
+        }
     }
     let mut rec = crate::recommend::recommend_clip_building(&scene, clip, false)?;
     rec.matrix = if clip == ClipDepth::ReversedZeroToOne {

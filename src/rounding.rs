@@ -35,7 +35,7 @@
 //! end is `x·(1 ∓ 16u)` within one more rounding than the bound (`< 8.1u`, with the reciprocal's
 //! `4u`), so `a < x·(1 − 7.8u) < x < x·(1 + 7.8u) < b` for a positive `x` (mirrored for a negative
 //! one): the nearest f32 of `x` is theirs, and that of the estimate `N·(1/D)` too. (The
-//! scalar form, [`enclosed_or_zero`], brackets a finished estimate `y` instead, `fl(y·(1 ∓
+//! scalar form, `enclosed_or_zero`, brackets a finished estimate `y` instead, `fl(y·(1 ∓
 //! 2⁻⁴⁹))`: each end within `u·|y|` of `y·(1 ∓ 16u)`, at least `15u·|y|` from `y` where the
 //! bound puts `x` within `7.02u·|y|`.) Scaling the numerator first leaves one product between
 //! the division and each end. Agreement is tested on the bits, with the f32 finite: an

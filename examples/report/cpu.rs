@@ -90,6 +90,14 @@ pub fn interleaved_timings(json: &str) -> Vec<Timing> {
             "interleaved: glam frustum + the seed's f32 tweak",
         ),
         (
+            "glm_formula_frustum",
+            "interleaved: GLM's frustum<float> formula in Rust, no offset",
+        ),
+        (
+            "glm_formula_frustum_seed_tweak",
+            "interleaved: GLM's frustum<float> formula in Rust + the seed's f32 tweak",
+        ),
+        (
             "zshift_frustum",
             "interleaved: zshift::frustum, no offset (Rust API)",
         ),
@@ -160,6 +168,15 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
         (
             "zshift_perspective_c_abi",
             "zshift_perspective (C ABI, called from C++), no offset".to_string(),
+        ),
+        (
+            "zshift_recommend_matrix_c_abi",
+            "zshift_recommend_matrix (C ABI, called from C++; slope 1, 1920×1080)".to_string(),
+        ),
+        (
+            "zshift_decal_matrix_c_abi",
+            "zshift_decal_matrix, GLM's matrix in (C ABI, called from C++; slope 1, 1920×1080)"
+                .to_string(),
         ),
     ]
     .into_iter()

@@ -109,6 +109,8 @@ fn run() -> Result<(), String> {
             (cpp_json.as_deref(), "ratio_offset_to_glm_tweak"),
             (rust_json.as_deref(), "ratio_frustum_to_glam"),
             (rust_json.as_deref(), "ratio_offset_to_glam_tweak"),
+            (rust_json.as_deref(), "ratio_frustum_to_glm_formula"),
+            (rust_json.as_deref(), "ratio_offset_to_glm_formula_tweak"),
         ]
         .map(|(json, key)| json.and_then(|j| cpu::round_ratio(j, key))),
         cases: &cases,
@@ -268,8 +270,9 @@ struct Report<'a> {
     timings: &'a [cpu::Timing],
     cpp_ran: bool,
     /// zshift_frustum / GLM, zshift_load_offset_matrix / GLM + tweak (C++), zshift::frustum /
-    /// glam, zshift::load_offset_matrix / glam + tweak (Rust): medians of per-round ratios.
-    round_ratios: [Option<f64>; 4],
+    /// glam, zshift::load_offset_matrix / glam + tweak, and the same two over GLM's formula in
+    /// Rust (Rust): medians of per-round ratios.
+    round_ratios: [Option<f64>; 6],
     cases: &'a [numeric::Case],
     numeric: &'a [numeric::VariantStats],
     scenes: &'a [gpu::Scene],
@@ -326,14 +329,21 @@ fn headline(w: &mut String, r: &Report) {
          `zshift_frustum` costs {} of GLM's `glm::frustum<float>` and \
          `zshift_load_offset_matrix` {} of `glm::frustum<float>` + the seed's f32 tweak, every \
          element correctly rounded (the offset element outward). Rust API (interleaved, the same \
-         way): `zshift::frustum` {} of glam's f32 frustum, `zshift::load_offset_matrix` {} of \
-         glam + the seed's tweak; recommend + matrix {}. On Mesa, zshift + `glLoadMatrixf` costs {} of \
+         way): `zshift::frustum` {} of GLM's `frustum<float>` formula compiled beside it ({} of \
+         glam's f32 frustum, which divides three times where GLM divides six), \
+         `zshift::load_offset_matrix` {} of that formula + the seed's tweak ({} of glam + the \
+         tweak). Recommend + matrix: {} (Rust API), {} (`zshift_recommend_matrix`, C ABI), {} \
+         (`zshift_decal_matrix`, the engine's matrix in). On Mesa, zshift + `glLoadMatrixf` costs {} of \
          the seed's `glFrustum` + `glGetFloatv` + tweak + `glLoadMatrixf`.",
         round(r.round_ratios[0]),
         round(r.round_ratios[1]),
+        round(r.round_ratios[4]),
         round(r.round_ratios[2]),
+        round(r.round_ratios[5]),
         round(r.round_ratios[3]),
         ns("interleaved: zshift recommend + epsilon_matrix"),
+        ns("zshift_recommend_matrix (C ABI"),
+        ns("zshift_decal_matrix, GLM's matrix in"),
         ratio(
             t,
             "zshift_load_offset_matrix + glLoadMatrixf",
