@@ -29,21 +29,19 @@
 //!
 //! ## The test (the same nearest f32 on both sides of the bound)
 //! Rounding to nearest is monotonic: if `a ≤ x ≤ b`, the nearest f32 of `x` lies between
-//! those of `a` and `b`. So the builders bracket the element: with `N` its numerator and `1/D`
-//! the reciprocal, `a = fl(fl(N·(1 − 2⁻⁴⁹))·(1/D))` and `b = fl(fl(N·(1 + 2⁻⁴⁹))·(1/D))`, the
-//! estimate's roundings plus one, convert both to f32 and keep the f32 when they agree. Each
-//! end is `x·(1 ∓ 16u)` within one more rounding than the bound (`< 8.1u`, with the reciprocal's
-//! `4u`), so `a < x·(1 − 7.8u) < x < x·(1 + 7.8u) < b` for a positive `x` (mirrored for a negative
-//! one): the nearest f32 of `x` is theirs, and that of the estimate `N·(1/D)` too. (The
-//! scalar form, `enclosed_or_zero`, brackets a finished estimate `y` instead, `fl(y·(1 ∓
-//! 2⁻⁴⁹))`: each end within `u·|y|` of `y·(1 ∓ 16u)`, at least `15u·|y|` from `y` where the
-//! bound puts `x` within `7.02u·|y|`.) Scaling the numerator first leaves one product between
-//! the division and each end. Agreement is tested on the bits, with the f32 finite: an
-//! infinite pair (overflow, `y` near or past `2¹²⁸`) and NaN (invalid inputs) go to the exact
-//! decision. It costs four products and two conversions per pair of elements, done two
-//! elements at a time with SSE2 and compared four at a time (`nearest_columns_then`): the
-//! result is one of the conversions. It fails for about one element in 16 million (`2·2⁻⁴⁹`
-//! of an f32 ulp of `2⁻²⁴` relative) of evenly spread inputs, which go to the exact decision.
+//! those of `a` and `b`. So the builders bracket the estimate, `a = fl(y·(1 − 2⁻⁴⁹))` and
+//! `b = fl(y·(1 + 2⁻⁴⁹))` (each within `u·|y|` of `y·(1 ∓ 16u)`, so at least `15u·|y|` from
+//! `y`, on either side, where the bound puts `x` within `7.02u·|y|`), convert both to f32 and
+//! keep `y`'s f32 when they agree: `x` lies between `a` and `b` (or `b` and `a`, for a
+//! negative `y`), so its nearest f32 is theirs, which is also `y`'s. Agreement is tested as an
+//! f32 difference that is exactly zero, which also refuses an infinite pair (`∞ − ∞` is NaN)
+//! and a NaN: overflow (`y` near or past `2¹²⁸`) and invalid inputs go to the exact decision.
+//! (Two distinct f32 differ by at least the least subnormal, so the difference is zero only
+//! for equal ones, unless a flush-to-zero mode is set, see below.) It costs two products and
+//! two conversions per pair of elements, done two elements at a time with SSE2 and compared
+//! four at a time (`nearest_columns_then`): no integer work, and the result is one of the
+//! conversions. It fails for about one element in 16 million (`2·2⁻⁴⁹` of an f32 ulp of
+//! `2⁻²⁴` relative) of evenly spread inputs, which go to the exact decision.
 //!
 //! f32 subnormal results (`|x| < 2⁻¹²⁶`) are decided the same way: the bound is relative and
 //! `y` is a normal f64 there, and the nearest f32 is monotonic across the subnormal range and
@@ -98,7 +96,7 @@ const ABOVE: f64 = 1.0 + 1.0 / 562_949_953_421_312.0;
 #[inline(always)]
 pub(crate) fn enclosed_or_zero(y: f64, zero_allowed: bool) -> Option<f32> {
     let (lo, hi) = ((y * BELOW) as f32, (y * ABOVE) as f32);
-    let decided = (lo.to_bits() == hi.to_bits()) & lo.is_finite() & (zero_allowed | (lo != 0.0));
+    let decided = ((lo - hi) == 0.0) & (zero_allowed | (lo != 0.0));
     decided.then_some(lo)
 }
 
@@ -174,27 +172,24 @@ pub(crate) fn nearest_columns_portable(
 ) -> Option<Mat4> {
     let inv = [1.0 / e.den[0], 1.0 / e.den[1]];
     let inv_z = 1.0 / e.depth_den;
-    let num = [
-        e.scale,
-        e.scale,
-        e.centre[0],
-        e.centre[1],
-        e.depth[0],
-        e.depth[1],
+    let y = [
+        e.scale * inv[0],
+        e.scale * inv[1],
+        e.centre[0] * inv[0],
+        e.centre[1] * inv[1],
+        e.depth[0] * inv_z,
+        e.depth[1] * inv_z,
     ];
-    let inv = [inv[0], inv[1], inv[0], inv[1], inv_z, inv_z];
     let mut m = [0.0f32; 6];
     let mut good = (e.planes[0] > 0.0) & (e.planes[1] > 0.0);
     for i in 0..6 {
-        let lo = ((num[i] * BELOW) * inv[i]) as f32;
-        let hi = ((num[i] * ABOVE) * inv[i]) as f32;
-        // The same bits, finite; elements 0 and 5 not zero (`enclosed_or_zero`).
-        let same = (lo.to_bits() == hi.to_bits()) & lo.is_finite();
-        good &= same & ((i >= 2) | (lo != 0.0));
+        // Elements 0 and 5 must not be zero (`enclosed_or_zero`).
+        let (lo, hi) = ((y[i] * BELOW) as f32, (y[i] * ABOVE) as f32);
+        good &= ((lo - hi) == 0.0) & ((i >= 2) | (lo != 0.0));
         m[i] = lo;
     }
     let decided_10;
-    (m[4], decided_10) = element_10((num[4] * inv_z) as f32, num[4] * inv_z);
+    (m[4], decided_10) = element_10(y[4] as f32, y[4]);
     if !(good & decided_10) {
         return None;
     }
@@ -221,37 +216,25 @@ fn nearest_columns_sse2(
         let den = _mm_set_pd(e.den[1], e.den[0]);
         let inv = _mm_div_pd(_mm_set1_pd(1.0), den); // [1/(r − l), 1/(t − b)]
         let inv_z = _mm_set1_pd(1.0 / e.depth_den);
-        let (scale, centre) = (_mm_set1_pd(e.scale), _mm_set_pd(e.centre[1], e.centre[0]));
-        let depth = _mm_set_pd(e.depth[1], e.depth[0]);
-        // The estimate of m10 (for `element_10`), and each bracket's ends in f32: [m0 m5 m8 m9]
-        // and [m10 m14 0 0], below and above. The numerators are scaled before the divisions
-        // end, so each end is one product after them (module docs).
-        let y_depth = _mm_mul_pd(depth, inv_z);
+        // The estimates numerator·reciprocal: [m0 m5], [m8 m9], [m10 m14].
+        let y_scale = _mm_mul_pd(_mm_set1_pd(e.scale), inv);
+        let y_centre = _mm_mul_pd(_mm_set_pd(e.centre[1], e.centre[0]), inv);
+        let y_depth = _mm_mul_pd(_mm_set_pd(e.depth[1], e.depth[0]), inv_z);
+        // Each bracket's ends in f32: [m0 m5 m8 m9] and [m10 m14 0 0], below and above.
         let (below, above) = (_mm_set1_pd(BELOW), _mm_set1_pd(ABOVE));
-        let end = |num: __m128d, side: __m128d, inv: __m128d| {
-            _mm_cvtpd_ps(_mm_mul_pd(_mm_mul_pd(num, side), inv))
-        };
-        let lo_xy = _mm_movelh_ps(end(scale, below, inv), end(centre, below, inv));
-        let hi_xy = _mm_movelh_ps(end(scale, above, inv), end(centre, above, inv));
-        let (lo_z, hi_z) = (end(depth, below, inv_z), end(depth, above, inv_z));
-        // Ends that agree (the same bits) and are finite, elements 0 and 5 not zero (a NaN in
-        // lanes 2 and 3 makes them pass), and n, f − n > 0.
-        let same_xy = _mm_castsi128_ps(_mm_cmpeq_epi32(
-            _mm_castps_si128(lo_xy),
-            _mm_castps_si128(hi_xy),
-        ));
-        let same_z = _mm_castsi128_ps(_mm_cmpeq_epi32(
-            _mm_castps_si128(lo_z),
-            _mm_castps_si128(hi_z),
-        ));
-        let magnitude = _mm_castsi128_ps(_mm_set1_epi32(i32::MAX));
-        let finite = |x: __m128| _mm_cmplt_ps(_mm_and_ps(x, magnitude), _mm_set1_ps(f32::INFINITY));
+        let end = |y: __m128d, side: __m128d| _mm_cvtpd_ps(_mm_mul_pd(y, side));
+        let lo_xy = _mm_movelh_ps(end(y_scale, below), end(y_centre, below));
+        let hi_xy = _mm_movelh_ps(end(y_scale, above), end(y_centre, above));
+        let (lo_z, hi_z) = (end(y_depth, below), end(y_depth, above));
+        // Ends that agree (a difference of exactly zero: finite and equal), elements 0 and 5
+        // not zero (a NaN in lanes 2 and 3 makes them pass), and n, f − n > 0.
+        let zero = _mm_setzero_ps();
+        let same_xy = _mm_cmpeq_ps(_mm_sub_ps(lo_xy, hi_xy), zero);
+        let same_z = _mm_cmpeq_ps(_mm_sub_ps(lo_z, hi_z), zero);
         let nonzero = _mm_cmpneq_ps(lo_xy, _mm_set_ps(f32::NAN, f32::NAN, 0.0, 0.0));
         let planes = _mm_set_pd(e.planes[1], e.planes[0]);
         let positive = _mm_castpd_ps(_mm_cmpgt_pd(planes, _mm_setzero_pd()));
-        let same = _mm_and_ps(same_xy, same_z);
-        let finite = _mm_and_ps(finite(lo_xy), finite(lo_z));
-        let all = _mm_and_ps(_mm_and_ps(same, finite), _mm_and_ps(nonzero, positive));
+        let all = _mm_and_ps(_mm_and_ps(same_xy, same_z), _mm_and_ps(nonzero, positive));
         let (m10, decided_10) = element_10(_mm_cvtsd_f64(y_depth) as f32, _mm_cvtsd_f64(y_depth));
         if (_mm_movemask_ps(all) != 0xf) | !decided_10 {
             return None;
