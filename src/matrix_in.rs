@@ -130,6 +130,7 @@ pub fn recognize(m: &[f32; 16], clip: ClipDepth) -> Result<Recognized> {
     }
 }
 
+#[inline(always)]
 fn perspective(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
     let s = e[11];
     if s != 1.0 && s != -1.0 {
@@ -244,6 +245,7 @@ fn orthographic(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
 }
 
 /// `m` with element `i` moved away from its value by `offset` (double-double), rounded outward.
+#[inline(always)]
 fn moved(m: &[f32; 16], i: usize, offset: DoubleDouble) -> Result<[f32; 16]> {
     let mut out = *m;
     // Decided from the offset's leading f64 (within 2⁻⁵³ of it) where it can be, as
@@ -414,6 +416,7 @@ pub use crate::decal::Decal;
 /// The frustum of a recognised perspective matrix: `l, r, b, t` on the near plane from the x
 /// and y rows (`x_ndc = m0·x/d + s·m8`), sorted so `l < r` and `b < t` (a y flip changes no
 /// footprint), and the recognised planes (`f = +∞` for a tweaked projection).
+#[inline(always)]
 fn frustum_of(m: &[f32; 16], r: &Recognized, handedness: f64) -> Result<Frustum> {
     let n = r.near;
     let side = |scale: f32, shear: f32| {
@@ -521,6 +524,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 /// The model's scene for a decal under a frustum (the one place that knows `Scene`'s fields):
 /// the convention's strict depth test, a base inside the frustum, the worst-case profile with
 /// the decal's snapping.
+#[inline(always)]
 fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
     use crate::recommend::DepthTest;
     Scene {

@@ -481,6 +481,7 @@ pub struct Recommendation {
 /// reversed-Z depth test, bits outside 0..=32, or a base reach too large for f32 clipping to be
 /// bounded (clip it with [`clip_to_frustum`]); [`crate::ErrorKind::Overflow`] if a result
 /// overflows.
+#[inline(always)]
 pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let terms = error_terms(scene)?; // which checks the scene first
     let window_offset = terms.window_offset();

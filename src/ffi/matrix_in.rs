@@ -140,6 +140,7 @@ pub struct ZshiftDecal {
     pub decal_corner_count: u32,
 }
 
+#[inline(always)]
 fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal> {
     if d.viewport_width == 0 || d.viewport_height == 0 {
         return Err(domain(
@@ -206,21 +207,26 @@ fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal
     })
 }
 
-/// The recommendation for a decal drawn with the engine's own perspective matrix, and the
-/// decal's matrix: what both entry points below compute.
+/// The recommendation for a decal drawn with the engine's own matrix, its matrix included:
+/// what both entry points below compute.
+#[inline(always)]
 fn recommend_for(
-    m: [f32; 16],
+    m: &[f32; 16],
     clip: ZshiftClip,
-    decal: ZshiftDecal,
-) -> Result<([f32; 16], ZshiftRecommendation)> {
+    decal: &ZshiftDecal,
+) -> Result<crate::recommend::ClipRecommendation> {
     let clip = clip_of(clip)?;
-    let r = crate::matrix_in::recommend(&m, clip, &decal_from_c(&m, clip, &decal)?)?;
-    let per_ndc = if clip == ClipDepth::NegOneToOne {
+    crate::matrix_in::recommend(m, clip, &decal_from_c(m, clip, decal)?)
+}
+
+/// The C record of a recommendation under `clip` (valid: [`recommend_for`] has checked it).
+fn record_of(r: &crate::recommend::ClipRecommendation, clip: ZshiftClip) -> ZshiftRecommendation {
+    let per_ndc = if clip == super::ZSHIFT_CLIP_NEG_ONE_TO_ONE {
         0.5
     } else {
         1.0
     };
-    let record = ZshiftRecommendation::new(
+    ZshiftRecommendation::new(
         r.epsilon,
         r.window_offset / per_ndc,
         r.window_offset,
@@ -228,8 +234,7 @@ fn recommend_for(
         r.bleed_gap,
         r.polygon_offset,
         &r.terms,
-    );
-    Ok((r.matrix, record))
+    )
 }
 
 /// Reads the caller's decal (NULL refused, no alignment needed).
@@ -273,7 +278,7 @@ pub extern "C" fn zshift_decal_matrix(
     let Some(decal) = decal_from_ptr(decal) else {
         return null_pointer("decal");
     };
-    checked_array(out, move || Ok(recommend_for(m, clip, decal)?.0))
+    checked_array(out, move || Ok(recommend_for(&m, clip, &decal)?.matrix))
 }
 
 /// Writes the recommendation behind `zshift_decal_matrix`: the offset in every form (epsilon,
@@ -299,7 +304,7 @@ pub extern "C" fn zshift_recommend_for_matrix(
     // write_unaligned needs no alignment.
     checked(
         out,
-        move || Ok(recommend_for(m, clip, decal)?.1),
+        move || Ok(record_of(&recommend_for(&m, clip, &decal)?, clip)),
         |out, record| unsafe { out.write_unaligned(record) },
     )
 }
