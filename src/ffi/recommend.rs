@@ -236,7 +236,15 @@ pub(super) fn decal_shape_from_c(
     shape(&corners).map(Some)
 }
 
-fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene> {
+/// Converts the caller's scene to the Rust model's (every field checked) and hands it to
+/// `then` by reference. The model stays where it was built: returned through a `Result`, its
+/// 280 bytes would be copied once more, with a block copy reading across the narrower stores
+/// that just wrote it (a store-forwarding stall that cost a tenth of the call).
+fn with_model<R>(
+    s: &ZshiftScene,
+    clip: ClipDepth,
+    then: impl FnOnce(&crate::recommend::Scene) -> Result<R>,
+) -> Result<R> {
     use crate::recommend::{Base, DepthTest, Scene, Snapping};
     let format = format_named(s.depth_format, "depth_format")?;
     let snapping = match s.subpixel_bits {
@@ -275,7 +283,7 @@ fn to_model(s: &ZshiftScene, clip: ClipDepth) -> Result<crate::recommend::Scene>
     let shape = decal_shape_from_c(s.decal_corners, s.decal_corner_count, fields, |c| {
         crate::footprint::decal_shape(&frustum, clip, viewport, c)
     })?;
-    Ok(Scene {
+    then(&Scene {
         footprint: shape.map(|d| d.footprint),
         frustum,
         viewport,
@@ -312,7 +320,7 @@ pub extern "C" fn zshift_recommend(
         return null_pointer("scene");
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend(&to_model(&s, ClipDepth::NegOneToOne)?)?;
+        let r = with_model(&s, ClipDepth::NegOneToOne, crate::recommend::recommend)?;
         Ok(ZshiftRecommendation::new(
             r.epsilon,
             r.ndc_offset,
@@ -341,17 +349,18 @@ pub extern "C" fn zshift_recommend_matrix(
         return null_pointer("scene");
     };
     checked_in_place(out, move |out| {
-        let model = to_model(&s, ClipDepth::NegOneToOne)?;
-        let r = crate::recommend::recommend(&model)?;
-        let m = match crate::offset::epsilon_columns_fast(&model.frustum, r.epsilon) {
-            Some(m) => m,
-            None => {
-                let m = crate::offset::epsilon_matrix(&model.frustum, r.epsilon)?;
-                glam::Mat4::from_cols_array(&m)
-            }
-        };
-        write_matrix(out, m);
-        Ok(())
+        with_model(&s, ClipDepth::NegOneToOne, |model| {
+            let r = crate::recommend::recommend(model)?;
+            let m = match crate::offset::epsilon_columns_fast(&model.frustum, r.epsilon) {
+                Some(m) => m,
+                None => {
+                    let m = crate::offset::epsilon_matrix(&model.frustum, r.epsilon)?;
+                    glam::Mat4::from_cols_array(&m)
+                }
+            };
+            write_matrix(out, m);
+            Ok(())
+        })
     })
 }
 
@@ -387,7 +396,8 @@ pub extern "C" fn zshift_recommend_clip(
         return null_pointer("scene");
     };
     checked_record(out, move || {
-        let r = crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?;
+        let c = clip_of(clip)?;
+        let r = with_model(&s, c, |model| crate::recommend::recommend_clip(model, c))?;
         let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
             0.5
         } else {
@@ -423,10 +433,10 @@ pub extern "C" fn zshift_recommend_clip_matrix(
         return null_pointer("scene");
     };
     checked_array(out, move || {
-        Ok(
-            crate::recommend::recommend_clip(&to_model(&s, clip_of(clip)?)?, clip_of(clip)?)?
-                .matrix,
-        )
+        let c = clip_of(clip)?;
+        with_model(&s, c, |model| {
+            Ok(crate::recommend::recommend_clip(model, c)?.matrix)
+        })
     })
 }
 
