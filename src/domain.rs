@@ -42,6 +42,13 @@ impl Planes {
         Ok(Self { near, far })
     }
 
+    /// Planes already checked as [`Self::new`] does (`0 < n < ∞`, `f > n`).
+    #[inline]
+    pub(crate) fn unchecked(near: f64, far: f64) -> Self {
+        debug_assert!(near > 0.0 && near < f64::INFINITY && far > near);
+        Self { near, far }
+    }
+
     /// The near plane distance `n`.
     pub fn near(&self) -> f64 {
         self.near

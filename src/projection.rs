@@ -34,7 +34,30 @@ impl Frustum {
     /// [`ErrorKind::NotFinite`] for NaN or an infinity (other than `f = +∞`);
     /// [`ErrorKind::Domain`] if `l = r`, `b = t`, `n ≤ 0` or `f ≤ n`
     /// (`glFrustum` raises `GL_INVALID_VALUE` for the same cases).
+    #[inline]
     pub fn new(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Self> {
+        // The same checks in a few comparisons, so that a valid frustum is built in place
+        // where it is used (a `Result` returned from a call is copied out of memory with wider
+        // loads than the stores that wrote it: a store-forwarding stall per use). Anything
+        // else goes to the checks that name the input at fault.
+        let finite_extents = l.is_finite() & r.is_finite() & b.is_finite() & t.is_finite();
+        let planes = (n > 0.0) & (n < f64::INFINITY) & (f > n); // NaN fails
+        if finite_extents & planes & (l != r) & (b != t) {
+            return Ok(Self {
+                left: l,
+                right: r,
+                bottom: b,
+                top: t,
+                planes: Planes::unchecked(n, f),
+            });
+        }
+        Self::checked(l, r, b, t, n, f)
+    }
+
+    /// [`Self::new`]'s checks one by one, each failure with its own detail.
+    #[cold]
+    #[inline(never)]
+    fn checked(l: f64, r: f64, b: f64, t: f64, n: f64, f: f64) -> Result<Self> {
         finite(l, "the left extent l is NaN or infinite")?;
         finite(r, "the right extent r is NaN or infinite")?;
         finite(b, "the bottom extent b is NaN or infinite")?;
