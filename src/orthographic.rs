@@ -145,6 +145,17 @@ pub fn ortho_f64(ortho: &Ortho, clip: ClipDepth) -> [f64; 16] {
 /// # Errors
 /// [`crate::ErrorKind::Overflow`] if an element leaves f32.
 pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
+    match ortho_fast(ortho, clip) {
+        Some(m) => Ok(m),
+        None => ortho_decided(ortho, clip, true),
+    }
+}
+
+/// The fast path of [`ortho`] alone: `None` where it defers (an element too close to an f32
+/// rounding boundary, or an element 0, 5 or 10 that is zero or not finite). When it returns a
+/// matrix, that matrix is [`ortho`]'s (and [`ortho_exact`]'s).
+#[inline(always)]
+pub fn ortho_fast(ortho: &Ortho, clip: ClipDepth) -> Option<[f32; 16]> {
     let (l, r, b, t, n, f) = (
         ortho.left,
         ortho.right,
@@ -153,9 +164,21 @@ pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
         ortho.near,
         ortho.far,
     );
-    if let Some(m) = ortho_fast(l, r, b, t, n, f, clip) {
-        return Ok(m.to_cols_array());
-    }
+    Some(ortho_columns(l, r, b, t, n, f, clip)?.to_cols_array())
+}
+
+/// [`ortho`] decided by the exact path alone (every element by exact comparison with its f32
+/// rounding boundaries). The same matrix, slower; tests compare the fast path with it.
+///
+/// # Errors
+/// As [`ortho`].
+pub fn ortho_exact(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
+    ortho_decided(ortho, clip, false)
+}
+
+/// [`ortho`] element by element: from its f64 estimate when `estimates` allows it and the
+/// test of [`crate::rounding`] decides it, else exactly.
+fn ortho_decided(ortho: &Ortho, clip: ClipDepth, estimates: bool) -> Result<[f32; 16]> {
     let y = ortho_f64(ortho, clip);
     // The estimates' error bound needs finite intermediates: a sum or difference of extents
     // near f64::MAX that overflows sends every element to the exact decision.
@@ -168,7 +191,7 @@ pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
         ortho.far - ortho.near,
         ortho.far + ortho.near,
     ];
-    let trusted = intermediates.iter().all(|x| x.is_finite());
+    let trusted = estimates & intermediates.iter().all(|x| x.is_finite());
     let nearest = |y: f64, num: &[f64], den: &[f64]| nearest(trusted, y, num, den);
     let (m0, m12) = nearest_row(trusted, y[0], y[12], l, r);
     let (m5, m13) = nearest_row(trusted, y[5], y[13], b, t);
@@ -247,7 +270,7 @@ fn nearest(trusted: bool, y: f64, num: &[f64], den: &[f64]) -> f32 {
 /// (`1/0 = ∞`, `1/∞ = 0`, NaN), and `f − n > 0` is tested outright.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn ortho_fast(
+pub(crate) fn ortho_columns(
     l: f64,
     r: f64,
     b: f64,
@@ -287,11 +310,11 @@ pub(crate) fn ortho_fast(
     })
 }
 
-/// The fast path of [`offset_ortho`], as [`ortho_fast`]: element 14 moved by `m10·δ` (from the
+/// The fast path of [`offset_ortho`], as [`ortho_columns`]: element 14 moved by `m10·δ` (from the
 /// f32 element 10, one rounding) and rounded outward (`crate::offset::outward_of_ratio`).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn offset_ortho_fast(
+pub(crate) fn offset_ortho_columns(
     l: f64,
     r: f64,
     b: f64,
@@ -301,7 +324,7 @@ pub(crate) fn offset_ortho_fast(
     clip: ClipDepth,
     delta: f64,
 ) -> Option<glam::Mat4> {
-    let mut m = ortho_fast(l, r, b, t, n, f, clip)?;
+    let mut m = ortho_columns(l, r, b, t, n, f, clip)?;
     let offset = f64::from(m.z_axis.z) * delta;
     let (x, decided) = crate::offset::outward_decided(m.w_axis.z, offset, 1.0);
     m.w_axis.z = x;
@@ -316,9 +339,38 @@ pub(crate) fn offset_ortho_fast(
 /// # Errors
 /// As [`ortho`]; [`crate::ErrorKind::NotFinite`] if `delta` is NaN or infinite.
 pub fn offset_ortho(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]> {
+    match offset_ortho_fast(o, clip, delta) {
+        Some(m) => Ok(m),
+        None => offset_ortho_decided(o, clip, delta, ortho),
+    }
+}
+
+/// The fast path of [`offset_ortho`] alone, as [`ortho_fast`].
+#[inline(always)]
+pub fn offset_ortho_fast(o: &Ortho, clip: ClipDepth, delta: f64) -> Option<[f32; 16]> {
+    let (l, r, b, t, n, f) = (o.left, o.right, o.bottom, o.top, o.near, o.far);
+    Some(offset_ortho_columns(l, r, b, t, n, f, clip, delta)?.to_cols_array())
+}
+
+/// [`offset_ortho`] decided by the exact path alone: [`ortho_exact`], and element 14 moved in
+/// double-double arithmetic. The same matrix, slower; tests compare the fast path with it.
+///
+/// # Errors
+/// As [`offset_ortho`].
+pub fn offset_ortho_exact(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]> {
+    offset_ortho_decided(o, clip, delta, ortho_exact)
+}
+
+/// [`offset_ortho`] from the plain matrix `plain` builds.
+fn offset_ortho_decided(
+    o: &Ortho,
+    clip: ClipDepth,
+    delta: f64,
+    plain: fn(&Ortho, ClipDepth) -> Result<[f32; 16]>,
+) -> Result<[f32; 16]> {
     finite(delta, "the eye-space shift delta is NaN or infinite")
         .map_err(|e| e.with_value("delta", delta))?;
-    let mut m = ortho(o, clip)?;
+    let mut m = plain(o, clip)?;
     m[14] = rounded_outward(m[14], DoubleDouble::product(f64::from(m[10]), delta))?;
     Ok(m)
 }

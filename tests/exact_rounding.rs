@@ -854,6 +854,145 @@ fn fast_offset_projections_match_the_exact_path_in_bulk() {
     });
 }
 
+/// A `glOrtho` box over wide ranges (extents from 1e-4 to 1e4, centred or not, near planes of
+/// either sign), or (one time in four) one whose element 0, 12, 10 or 14 is solved for from an
+/// f32 midpoint, within a few dozen f64 ulps of it.
+fn wide_or_near_boundary_box(rng: &Rng, clip: ClipDepth) -> zshift::orthographic::Ortho {
+    let scale = rng.log_uniform(-4.0, 4.0);
+    let (mut r, mut t) = (
+        scale * rng.log_uniform(-1.0, 1.0),
+        scale * rng.log_uniform(-1.0, 1.0),
+    );
+    let (mut l, b) = if rng.next() < 0.5 {
+        (-r, -t)
+    } else {
+        (r * (rng.next() * 2.0 - 1.2), t * (rng.next() * 2.0 - 1.2))
+    };
+    let mut n = rng.sign() * rng.log_uniform(-6.0, 3.0);
+    let mut f = n + rng.log_uniform(-9.0, 6.0);
+    if rng.next() < 0.25 {
+        rng.constructed.set(true);
+        let m = midpoint_near(rng, rng.sign() * rng.log_uniform(-4.0, 4.0));
+        match (rng.next() * 4.0) as u32 {
+            0 => r = l + nudge_small(rng, 2.0 / m.abs()), // 2/(r − l) = |m|
+            1 => {
+                // −(r + l)/(r − l) = m with r − l = w
+                let w = scale;
+                r = nudge_small(rng, (w - m * w) / 2.0);
+                l = r - w;
+            }
+            2 => {
+                // element 10 = m: the span from it
+                let k = match clip {
+                    ClipDepth::NegOneToOne => -2.0,
+                    ClipDepth::ZeroToOne => -1.0,
+                    ClipDepth::ReversedZeroToOne => 1.0,
+                };
+                f = n + nudge_small(rng, (k / m).abs());
+            }
+            _ => {
+                // element 14 = m
+                let span = f - n;
+                match clip {
+                    ClipDepth::NegOneToOne => {
+                        f = nudge_small(rng, (span - m * span) / 2.0);
+                        n = f - span;
+                    }
+                    ClipDepth::ZeroToOne => {
+                        n = nudge_small(rng, -m * span);
+                        f = n + span;
+                    }
+                    ClipDepth::ReversedZeroToOne => {
+                        f = nudge_small(rng, m * span);
+                        n = f - span;
+                    }
+                }
+            }
+        }
+    }
+    if r == l {
+        r = l + scale;
+    }
+    if !(f > n) {
+        f = n + 1.0;
+    }
+    zshift::orthographic::Ortho::new(l, r, b, t, n, f).expect("a valid box")
+}
+
+#[test]
+fn fast_ortho_matches_the_exact_path_in_bulk() {
+    use zshift::orthographic::{offset_ortho_exact, offset_ortho_fast, ortho_exact, ortho_fast};
+    in_batches("ortho (3 conventions)", |rng| {
+        let clip = rng.pick(&CLIPS);
+        let o = wide_or_near_boundary_box(rng, clip);
+        agree(ortho_fast(&o, clip), ortho_exact(&o, clip), &|| {
+            format!("{o:?} {clip:?}")
+        })
+    });
+    in_batches("offset_ortho (3 conventions)", |rng| {
+        let clip = rng.pick(&CLIPS);
+        let o = wide_or_near_boundary_box(rng, clip);
+        let delta = rng.sign() * rng.log_uniform(-9.0, 0.0) * (o.far() - o.near());
+        let exact = offset_ortho_exact(&o, clip, delta);
+        agree(offset_ortho_fast(&o, clip, delta), exact, &|| {
+            format!("{o:?} {clip:?} {delta}")
+        })
+    });
+}
+
+/// An engine's matrix: zshift's own projection of a wide frustum under `clip` (now and then
+/// left-handed: column 2 negated, as `lh` builders give it), or one time in four a `glOrtho`
+/// matrix of a wide box.
+fn engine_matrix(rng: &Rng, clip: ClipDepth) -> Option<[f32; 16]> {
+    let mut m = if rng.next() < 0.25 {
+        zshift::orthographic::ortho(&wide_or_near_boundary_box(rng, clip), clip).ok()?
+    } else {
+        projection(&wide_frustum(rng), clip).ok()?
+    };
+    if m[15] == 0.0 && rng.next() < 0.5 {
+        for x in &mut m[8..12] {
+            *x = -*x;
+        }
+    }
+    rng.constructed.set(false); // a box near a boundary says nothing of the offset element
+    Some(m)
+}
+
+/// The matrix-in calls (`zshift_offset_matrix`, `zshift_offset_matrix_ndc`) on engine matrices:
+/// their fast paths against the double-double paths, shifts from 1e-9 of the distance to
+/// nearly all of it, toward and away.
+#[test]
+fn fast_matrix_in_offsets_match_the_exact_path_in_bulk() {
+    use zshift::matrix_in::{offset_ndc, offset_ndc_fast, offset_shift, offset_shift_fast};
+    in_batches("offset_shift (engine matrices, 3 conventions)", |rng| {
+        let clip = rng.pick(&CLIPS);
+        let Some(m) = engine_matrix(rng, clip) else {
+            return Outcome::Refused;
+        };
+        let d = rng.log_uniform(-6.0, 6.0);
+        let delta = match (rng.next() * 4.0) as u32 {
+            0 => d * (1.0 - rng.log_uniform(-12.0, -1.0)),
+            _ => d * rng.sign() * rng.log_uniform(-9.0, -0.3),
+        };
+        let exact = offset_shift(&m, clip, delta, d);
+        agree(offset_shift_fast(&m, clip, delta, d), exact, &|| {
+            format!("{m:?} {clip:?} {delta} {d}")
+        })
+    });
+    in_batches("offset_ndc (engine matrices, 3 conventions)", |rng| {
+        let clip = rng.pick(&CLIPS);
+        let Some(m) = engine_matrix(rng, clip) else {
+            return Outcome::Refused;
+        };
+        let c = rng.sign() * rng.log_uniform(-12.0, -1.0);
+        agree(
+            offset_ndc_fast(&m, clip, c),
+            offset_ndc(&m, clip, c),
+            &|| format!("{m:?} {clip:?} {c}"),
+        )
+    });
+}
+
 // ---- The C entry points take the same fast path ---------------------------------------------
 
 /// The C ABI's builders (their own fast path, one store) give the Rust API's matrices, bit for

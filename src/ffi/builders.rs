@@ -123,7 +123,7 @@ pub extern "C" fn zshift_ortho(
 ) -> ZshiftStatus {
     let fast = clip_of(clip)
         .ok()
-        .and_then(|c| crate::orthographic::ortho_fast(l, r, b, t, n, f, c));
+        .and_then(|c| crate::orthographic::ortho_columns(l, r, b, t, n, f, c));
     checked_matrix(out, fast, move || {
         let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
         crate::orthographic::ortho(&o, clip_of(clip)?)

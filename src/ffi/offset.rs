@@ -188,7 +188,7 @@ pub extern "C" fn zshift_offset_ortho(
 ) -> ZshiftStatus {
     let fast = clip_of(clip)
         .ok()
-        .and_then(|c| crate::orthographic::offset_ortho_fast(l, r, b, t, n, f, c, delta));
+        .and_then(|c| crate::orthographic::offset_ortho_columns(l, r, b, t, n, f, c, delta));
     checked_matrix(out, fast, move || {
         let o = crate::orthographic::Ortho::new(l, r, b, t, n, f)?;
         crate::orthographic::offset_ortho(&o, clip_of(clip)?, delta)
