@@ -859,7 +859,7 @@ fn fast_offset_projections_match_the_exact_path_in_bulk() {
 /// f32 midpoint, within a few dozen f64 ulps of it.
 fn wide_or_near_boundary_box(rng: &Rng, clip: ClipDepth) -> zshift::orthographic::Ortho {
     let scale = rng.log_uniform(-4.0, 4.0);
-    let (mut r, mut t) = (
+    let (mut r, t) = (
         scale * rng.log_uniform(-1.0, 1.0),
         scale * rng.log_uniform(-1.0, 1.0),
     );
@@ -913,7 +913,7 @@ fn wide_or_near_boundary_box(rng: &Rng, clip: ClipDepth) -> zshift::orthographic
     if r == l {
         r = l + scale;
     }
-    if !(f > n) {
+    if f <= n || f.is_nan() {
         f = n + 1.0;
     }
     zshift::orthographic::Ortho::new(l, r, b, t, n, f).expect("a valid box")
