@@ -447,8 +447,8 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 }
 
 /// [`outward_of_ratio`] for the offset's f64 estimate: the f32 and whether it is decided (if
-/// not, the f32 is meaningless). Branch-free; [`outward_quick`] is its integer test alone, for
-/// the good paths that run this one out of line when that test does not decide.
+/// not, the f32 is meaningless). Branch-free in the usual case; offsets as large as their
+/// target take one more test out of line.
 ///
 /// The f64 target `t = plain + o` (one more rounding) is rounded outward by its bits: its
 /// magnitude truncated to f32, plus one f32 step when the offset points away from zero, else
@@ -477,21 +477,18 @@ pub(crate) fn outward_of_ratio(plain: f32, o: Ratio, rounds: f64) -> Option<f32>
 #[inline(always)]
 pub(crate) fn outward_decided(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
     let o = Outward::new(plain, estimate, rounds);
-    let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
-    let small = estimate.abs() * (margin * 16_777_216.0) < f64::from(plain).abs();
     let error = (rounds * estimate.abs() + o.target.abs()) * (f64::EPSILON / 2.0);
     let gap = f64::from(o.target as f32) - o.target; // exact
-    (o.x, o.valid & (o.far | small | (gap.abs() > error)))
+    (o.x, o.valid & (o.quick | (gap.abs() > error)))
 }
 
 /// [`outward_decided`] with the integer test alone (no conversions; the usual offset, below
-/// its target and at least [`OUTWARD_SLACK`] ulps from an f32; a tiny offset, within that of
-/// `plain`, is left to [`outward_decided`]'s small-offset rule): the f32, and whether that test
-/// decided it. A `false` may still be decided by [`outward_decided`].
+/// its target and at least [`OUTWARD_SLACK`] ulps from an f32): the f32, and whether that
+/// test decided it. A `false` may still be decided by [`outward_decided`].
 #[inline(always)]
 pub(crate) fn outward_quick(plain: f32, estimate: f64, rounds: f64) -> (f32, bool) {
     let o = Outward::new(plain, estimate, rounds);
-    (o.x, o.valid & o.far)
+    (o.x, o.valid & o.quick)
 }
 
 /// The outward rounding of `plain + estimate` by its bits, and the tests that need no
@@ -503,16 +500,18 @@ struct Outward {
     x: f32,
     /// A nonzero estimate and a target in the normal f32 range.
     valid: bool,
-    /// Decided by the integer test: the offset below its target, the target at least
-    /// [`OUTWARD_SLACK`] ulps from every f32.
-    far: bool,
+    /// Decided by the small-offset rule or the integer test.
+    quick: bool,
 }
 
 impl Outward {
     #[inline(always)]
     fn new(plain: f32, estimate: f64, rounds: f64) -> Self {
         debug_assert!(rounds + 2.0 <= f64::from(OUTWARD_SLACK));
-        let target = f64::from(plain) + estimate;
+        let plain = f64::from(plain);
+        let margin = (1.0 + (rounds + 2.0) * f64::EPSILON) * (1.0 + 1.0 / 16_384.0);
+        let small = estimate.abs() * (margin * 16_777_216.0) < plain.abs();
+        let target = plain + estimate;
         let bits = target.to_bits();
         let magnitude = bits & !(1 << 63);
         // |t| in [2⁻¹²⁶, 2¹²⁷): its high word.
@@ -530,7 +529,7 @@ impl Outward {
             target,
             x: f32::from_bits(truncated.wrapping_add(away) as u32 | sign),
             valid: normal & (estimate != 0.0),
-            far: far & bounded,
+            quick: small | (far & bounded),
         }
     }
 }
