@@ -75,8 +75,9 @@
 //! least f32 at or beyond `plain + o`. There the boundaries are the f32 values themselves. An
 //! offset whose estimate, grown by its error bound, stays below the step to the next f32 is
 //! decided as that next f32; a larger one when the f64 target lies farther from every f32 than
-//! its error bound (the test above, with the f32 values as boundaries); otherwise double-double
-//! decides.
+//! its error bound: an integer test on its bits where the offset is smaller than its target
+//! (its low 29 significand bits at least 16 ulps from a multiple of `2²⁹`, where the f32 values
+//! lie), else the exact f64 distance to the nearest f32; otherwise double-double decides.
 
 use std::cmp::Ordering;
 
