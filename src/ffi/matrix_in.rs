@@ -140,8 +140,15 @@ pub struct ZshiftDecal {
     pub decal_corner_count: u32,
 }
 
-#[inline(always)]
-fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal> {
+/// Converts the caller's decal to the Rust model's (every field checked) and hands it to
+/// `then` by reference, where it was built (as `super::recommend`'s `with_model` does: returned
+/// through a `Result`, it would be copied once more, with a stall).
+fn with_decal<R>(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    d: &ZshiftDecal,
+    then: impl FnOnce(&Decal) -> Result<R>,
+) -> Result<R> {
     if d.viewport_width == 0 || d.viewport_height == 0 {
         return Err(domain(
             "ZshiftDecal.viewport_width and viewport_height must be nonzero (an all-zero ZshiftDecal is refused)",
@@ -184,9 +191,15 @@ fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal
         super::recommend::decal_shape_from_c(d.decal_corners, d.decal_corner_count, fields, |c| {
             crate::matrix_in::decal_shape(m, clip, viewport, c)
         })?;
-    Ok(Decal {
+    let format = format_named(d.format.value, "format")?;
+    let profile = if d.profile.is_null() {
+        None
+    } else {
+        Some(super::probe::profile_or_worst(d.profile, snapping)?)
+    };
+    then(&Decal {
         viewport,
-        format: format_named(d.format.value, "format")?,
+        format,
         depth_range: shape.map_or([d.decal_near, d.decal_far], |s| s.depth_range),
         slope: shape.map_or(d.slope, |s| s.slope),
         footprint: shape.map(|s| s.footprint),
@@ -199,11 +212,7 @@ fn decal_from_c(m: &[f32; 16], clip: ClipDepth, d: &ZshiftDecal) -> Result<Decal
                 reach: d.base_reach,
             }
         },
-        profile: if d.profile.is_null() {
-            None
-        } else {
-            Some(super::probe::profile_or_worst(d.profile, snapping)?)
-        },
+        profile,
     })
 }
 
@@ -216,7 +225,7 @@ fn recommend_for(
     decal: &ZshiftDecal,
 ) -> Result<crate::recommend::ClipRecommendation> {
     let clip = clip_of(clip)?;
-    crate::matrix_in::recommend(m, clip, &decal_from_c(m, clip, decal)?)
+    with_decal(m, clip, decal, |d| crate::matrix_in::recommend(m, clip, d))
 }
 
 /// The C record of a recommendation under `clip` (valid: [`recommend_for`] has checked it).

@@ -194,22 +194,34 @@ const MAX_DECAL_CORNERS: u32 = 64;
 /// Reads `count` eye-space corners (3 floats each) from `corners` and computes the decal's
 /// shape with `shape`; `Ok(None)` for NULL with count 0. With corners, `fields`
 /// (decal_near, decal_far, slope) must be 0: the corners define the decal.
+#[inline(always)]
 pub(super) fn decal_shape_from_c(
     corners: *const f32,
     count: u32,
     fields: [f64; 3],
     shape: impl FnOnce(&[glam::Vec3]) -> Result<crate::footprint::DecalShape>,
 ) -> Result<Option<crate::footprint::DecalShape>> {
+    // No corners, the usual case, decided where it is used (returned from a call, the large
+    // `Result` would be copied out of memory for nothing).
+    if corners.is_null() && count == 0 {
+        return Ok(None);
+    }
+    corner_shape(corners, count, fields, shape).map(Some)
+}
+
+/// [`decal_shape_from_c`] with corners (or a NULL pointer with a nonzero count: refused).
+fn corner_shape(
+    corners: *const f32,
+    count: u32,
+    fields: [f64; 3],
+    shape: impl FnOnce(&[glam::Vec3]) -> Result<crate::footprint::DecalShape>,
+) -> Result<crate::footprint::DecalShape> {
     use crate::domain::domain;
     if corners.is_null() {
-        return if count == 0 {
-            Ok(None)
-        } else {
-            Err(
-                domain("decal_corner_count must be 0 when decal_corners is NULL")
-                    .with_integer("decal_corner_count", i64::from(count)),
-            )
-        };
+        return Err(
+            domain("decal_corner_count must be 0 when decal_corners is NULL")
+                .with_integer("decal_corner_count", i64::from(count)),
+        );
     }
     if !(3..=MAX_DECAL_CORNERS).contains(&count) {
         return Err(
@@ -233,7 +245,7 @@ pub(super) fn decal_shape_from_c(
             glam::Vec3::new(at(0), at(1), at(2))
         })
         .collect();
-    shape(&corners).map(Some)
+    shape(&corners)
 }
 
 /// Converts the caller's scene to the Rust model's (every field checked) and hands it to
