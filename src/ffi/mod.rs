@@ -178,9 +178,7 @@ fn checked_matrix(
 ) -> ZshiftStatus {
     match fast {
         Some(m) if !out.is_null() => {
-            // SAFETY: not NULL; the caller promises 16 writable floats; write_unaligned needs no
-            // alignment, and a Mat4 is 16 column-major f32 with no padding.
-            unsafe { out.cast::<glam::Mat4>().write_unaligned(m) };
+            write_matrix(out, m); // not NULL, and the caller promises 16 writable floats
             last_error::clear();
             ZSHIFT_OK
         }
@@ -209,8 +207,9 @@ fn checked_in_place<P: std::panic::RefUnwindSafe>(
     checked(out, move || compute(out), |_, ()| {})
 }
 
-/// Writes a matrix's 16 floats to `out` (column-major), which the caller promises writable
-/// (any alignment): four stores from registers.
+/// Writes a matrix's 16 floats to `out` (column-major), which the caller has checked is not
+/// NULL and promises writable (any alignment): four stores from registers.
+#[inline(always)]
 fn write_matrix(out: *mut f32, m: glam::Mat4) {
     // SAFETY: the caller promises 16 writable floats; write_unaligned needs no alignment, and
     // a Mat4 is 16 column-major f32 with no padding.
