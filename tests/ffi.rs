@@ -154,6 +154,85 @@ fn matrices_are_written_whole_or_not_at_all_even_unaligned() {
     assert_eq!((m[10], m[14]), (-1.0, -2.0));
 }
 
+/// Input records are read field by field when aligned and as a block when not: both give the
+/// same matrix, and the block read sees every field (a corner count with a NULL pointer is
+/// refused from either).
+#[test]
+fn input_records_read_the_same_aligned_or_not() {
+    let mut scene: ZshiftScene = unsafe { std::mem::zeroed() };
+    (scene.l, scene.r, scene.b, scene.t, scene.n, scene.f) = (-0.1, 0.1, -0.075, 0.075, 0.1, 1e3);
+    (scene.viewport_width, scene.viewport_height) = (1920, 1080);
+    scene.depth_format = 0x81A6;
+    (scene.decal_near, scene.decal_far, scene.slope) = (40.0, 60.0, 1.0);
+    scene.subpixel_bits = 8;
+    let mut engine = [0.0f32; 16];
+    assert_eq!(
+        zshift_frustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1e3, engine.as_mut_ptr()),
+        ZSHIFT_OK
+    );
+    let mut decal: ZshiftDecal = unsafe { std::mem::zeroed() };
+    (decal.viewport_width, decal.viewport_height) = (1920, 1080);
+    decal.format = ZSHIFT_FORMAT_UNORM24;
+    decal.subpixel_bits = 8;
+    (decal.decal_near, decal.decal_far, decal.slope) = (40.0, 60.0, 1.0);
+
+    // Each record copied to an odd byte offset.
+    fn shifted<T>(record: &T, buffer: &mut Vec<u8>) -> *const T {
+        let size = std::mem::size_of::<T>();
+        buffer.resize(size + 1, 0);
+        // SAFETY: `record` is `size` readable bytes; the buffer has room after its first byte.
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                (record as *const T).cast::<u8>(),
+                buffer[1..].as_mut_ptr(),
+                size,
+            )
+        };
+        buffer[1..].as_ptr().cast::<T>()
+    }
+    let (mut scene_bytes, mut decal_bytes) = (Vec::new(), Vec::new());
+    let (mut aligned, mut unaligned) = ([0.0f32; 16], [1.0f32; 16]);
+    assert_eq!(
+        zshift_recommend_matrix(&scene, aligned.as_mut_ptr()),
+        ZSHIFT_OK
+    );
+    let odd_scene = shifted(&scene, &mut scene_bytes);
+    assert_eq!(
+        zshift_recommend_matrix(odd_scene, unaligned.as_mut_ptr()),
+        ZSHIFT_OK
+    );
+    assert_eq!(aligned, unaligned);
+    let clip = ZSHIFT_CLIP_NEG_ONE_TO_ONE;
+    assert_eq!(
+        zshift_decal_matrix(engine.as_ptr(), clip, &decal, aligned.as_mut_ptr()),
+        ZSHIFT_OK
+    );
+    let odd_decal = shifted(&decal, &mut decal_bytes);
+    let status = zshift_decal_matrix(engine.as_ptr(), clip, odd_decal, unaligned.as_mut_ptr());
+    assert_eq!(status, ZSHIFT_OK);
+    assert_eq!(aligned, unaligned);
+
+    // The last field reaches the reader both ways.
+    scene.decal_corner_count = 4;
+    decal.decal_corner_count = 4;
+    for record in [
+        &scene as *const ZshiftScene,
+        shifted(&scene, &mut scene_bytes),
+    ] {
+        assert_eq!(
+            zshift_recommend_matrix(record, aligned.as_mut_ptr()),
+            ZSHIFT_ERR_DOMAIN
+        );
+    }
+    for record in [
+        &decal as *const ZshiftDecal,
+        shifted(&decal, &mut decal_bytes),
+    ] {
+        let status = zshift_decal_matrix(engine.as_ptr(), clip, record, aligned.as_mut_ptr());
+        assert_eq!(status, ZSHIFT_ERR_DOMAIN);
+    }
+}
+
 #[test]
 fn every_status_has_a_distinct_message_and_unknown_codes_are_safe() {
     let codes = [

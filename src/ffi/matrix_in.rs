@@ -251,8 +251,35 @@ fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
     if decal.is_null() {
         return None;
     }
-    // SAFETY: not NULL; the caller promises a readable ZshiftDecal; read_unaligned copies it.
-    Some(unsafe { decal.read_unaligned() })
+    // SAFETY: not NULL; the caller promises a readable ZshiftDecal.
+    Some(unsafe { super::read_record(decal, ZshiftDecal::read_fields) })
+}
+
+impl ZshiftDecal {
+    /// Reads an aligned record field by field, for [`super::read_record`].
+    ///
+    /// # Safety
+    /// `p` is not NULL, aligned, and points to a readable ZshiftDecal.
+    unsafe fn read_fields(p: *const Self) -> Self {
+        use std::ptr::{addr_of, read_volatile as read};
+        // SAFETY: as the function's contract; every field is plain data.
+        unsafe {
+            Self {
+                viewport_width: read(addr_of!((*p).viewport_width)),
+                viewport_height: read(addr_of!((*p).viewport_height)),
+                format: read(addr_of!((*p).format)),
+                subpixel_bits: read(addr_of!((*p).subpixel_bits)),
+                decal_near: read(addr_of!((*p).decal_near)),
+                decal_far: read(addr_of!((*p).decal_far)),
+                slope: read(addr_of!((*p).slope)),
+                exact_depth: read(addr_of!((*p).exact_depth)),
+                base_reach: read(addr_of!((*p).base_reach)),
+                profile: read(addr_of!((*p).profile)),
+                decal_corners: read(addr_of!((*p).decal_corners)),
+                decal_corner_count: read(addr_of!((*p).decal_corner_count)),
+            }
+        }
+    }
 }
 
 /// Writes the decal's projection matrix: the engine's own projection `m` (the one its base is

@@ -216,6 +216,24 @@ fn write_matrix(out: *mut f32, m: glam::Mat4) {
     unsafe { out.cast::<glam::Mat4>().write_unaligned(m) }
 }
 
+/// Reads the caller's record at `p` (not NULL, readable, any alignment). Aligned, with
+/// `fields` (volatile reads of one field at a time): each load as wide as the caller's store
+/// of that field, so it is forwarded from the store the caller has just made. A block copy, or
+/// loads the compiler merges, span several of those stores and wait for them to reach the
+/// cache (6 ns of `zshift_recommend_matrix`'s 105). Unaligned, as a block.
+///
+/// # Safety
+/// `p` is not NULL and points to a readable `T`; `fields` reads an aligned `T` at `p`.
+unsafe fn read_record<T>(p: *const T, fields: unsafe fn(*const T) -> T) -> T {
+    if p.align_offset(std::mem::align_of::<T>()) == 0 {
+        // SAFETY: aligned, and as the function's contract.
+        unsafe { fields(p) }
+    } else {
+        // SAFETY: as the function's contract; read_unaligned needs no alignment.
+        unsafe { p.read_unaligned() }
+    }
+}
+
 /// [`checked_array`] for a single double.
 fn checked_scalar(
     out: *mut f64,

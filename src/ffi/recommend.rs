@@ -173,9 +173,42 @@ fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
     if scene.is_null() {
         return None;
     }
-    // SAFETY: not NULL; the caller promises a readable ZshiftScene; read_unaligned needs no
-    // alignment and the struct is plain data.
-    Some(unsafe { scene.read_unaligned() })
+    // SAFETY: not NULL; the caller promises a readable ZshiftScene.
+    Some(unsafe { super::read_record(scene, ZshiftScene::read_fields) })
+}
+
+impl ZshiftScene {
+    /// Reads an aligned record field by field, for [`super::read_record`].
+    ///
+    /// # Safety
+    /// `p` is not NULL, aligned, and points to a readable ZshiftScene.
+    unsafe fn read_fields(p: *const Self) -> Self {
+        use std::ptr::{addr_of, read_volatile as read};
+        // SAFETY: as the function's contract; every field is plain data.
+        unsafe {
+            Self {
+                l: read(addr_of!((*p).l)),
+                r: read(addr_of!((*p).r)),
+                b: read(addr_of!((*p).b)),
+                t: read(addr_of!((*p).t)),
+                n: read(addr_of!((*p).n)),
+                f: read(addr_of!((*p).f)),
+                viewport_width: read(addr_of!((*p).viewport_width)),
+                viewport_height: read(addr_of!((*p).viewport_height)),
+                depth_format: read(addr_of!((*p).depth_format)),
+                decal_near: read(addr_of!((*p).decal_near)),
+                decal_far: read(addr_of!((*p).decal_far)),
+                slope: read(addr_of!((*p).slope)),
+                exact_depth: read(addr_of!((*p).exact_depth)),
+                subpixel_bits: read(addr_of!((*p).subpixel_bits)),
+                depth_func: read(addr_of!((*p).depth_func)),
+                base_reach: read(addr_of!((*p).base_reach)),
+                profile: read(addr_of!((*p).profile)),
+                decal_corners: read(addr_of!((*p).decal_corners)),
+                decal_corner_count: read(addr_of!((*p).decal_corner_count)),
+            }
+        }
+    }
 }
 
 /// [`checked`] for a `ZshiftRecommendation` output, written with `write_unaligned`.
