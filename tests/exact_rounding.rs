@@ -854,6 +854,56 @@ fn fast_offset_projections_match_the_exact_path_in_bulk() {
     });
 }
 
+/// The sides `(l, r, n, f)` of a `glOrtho` box with one element solved for from the f32
+/// midpoint `m`, within a few dozen f64 ulps of it: `which` 0, element 0 = |m| (`r` from `l`);
+/// 1, element 12 = m over the width `width()`; 2, element 10 = m (`f` from `n`); 3, element 14
+/// = m over the depth span `span()` (NegOneToOne: −(f + n)/span; else −n/span or f/span).
+fn ortho_sides_near(
+    rng: &Rng,
+    clip: ClipDepth,
+    which: u32,
+    m: f64,
+    (mut l, mut r, mut n, mut f): (f64, f64, f64, f64),
+    width: impl FnOnce() -> f64,
+    span: impl FnOnce() -> f64,
+) -> (f64, f64, f64, f64) {
+    match which {
+        0 => r = l + nudge_small(rng, 2.0 / m.abs()),
+        1 => {
+            // −(r + l)/(r − l) = m with r − l = w
+            let w = width();
+            r = nudge_small(rng, (w - m * w) / 2.0);
+            l = r - w;
+        }
+        2 => {
+            let k = match clip {
+                ClipDepth::NegOneToOne => -2.0,
+                ClipDepth::ZeroToOne => -1.0,
+                ClipDepth::ReversedZeroToOne => 1.0,
+            };
+            f = n + nudge_small(rng, (k / m).abs());
+        }
+        _ => {
+            let span = span();
+            match clip {
+                ClipDepth::NegOneToOne => {
+                    f = nudge_small(rng, (span - m * span) / 2.0);
+                    n = f - span;
+                }
+                ClipDepth::ZeroToOne => {
+                    n = nudge_small(rng, -m * span);
+                    f = n + span;
+                }
+                ClipDepth::ReversedZeroToOne => {
+                    f = nudge_small(rng, m * span);
+                    n = f - span;
+                }
+            }
+        }
+    }
+    (l, r, n, f)
+}
+
 /// A `glOrtho` box over wide ranges (extents from 1e-4 to 1e4, centred or not, near planes of
 /// either sign), or (one time in four) one whose element 0, 12, 10 or 14 is solved for from an
 /// f32 midpoint, within a few dozen f64 ulps of it.
@@ -873,42 +923,9 @@ fn wide_or_near_boundary_box(rng: &Rng, clip: ClipDepth) -> zshift::orthographic
     if rng.next() < 0.25 {
         rng.constructed.set(true);
         let m = midpoint_near(rng, rng.sign() * rng.log_uniform(-4.0, 4.0));
-        match (rng.next() * 4.0) as u32 {
-            0 => r = l + nudge_small(rng, 2.0 / m.abs()), // 2/(r − l) = |m|
-            1 => {
-                // −(r + l)/(r − l) = m with r − l = w
-                let w = scale;
-                r = nudge_small(rng, (w - m * w) / 2.0);
-                l = r - w;
-            }
-            2 => {
-                // element 10 = m: the span from it
-                let k = match clip {
-                    ClipDepth::NegOneToOne => -2.0,
-                    ClipDepth::ZeroToOne => -1.0,
-                    ClipDepth::ReversedZeroToOne => 1.0,
-                };
-                f = n + nudge_small(rng, (k / m).abs());
-            }
-            _ => {
-                // element 14 = m
-                let span = f - n;
-                match clip {
-                    ClipDepth::NegOneToOne => {
-                        f = nudge_small(rng, (span - m * span) / 2.0);
-                        n = f - span;
-                    }
-                    ClipDepth::ZeroToOne => {
-                        n = nudge_small(rng, -m * span);
-                        f = n + span;
-                    }
-                    ClipDepth::ReversedZeroToOne => {
-                        f = nudge_small(rng, m * span);
-                        n = f - span;
-                    }
-                }
-            }
-        }
+        let which = (rng.next() * 4.0) as u32;
+        let span = f - n;
+        (l, r, n, f) = ortho_sides_near(rng, clip, which, m, (l, r, n, f), || scale, || span);
     }
     if r == l {
         r = l + scale;
@@ -1142,44 +1159,16 @@ fn every_ortho_element_is_the_nearest_f32_near_rounding_boundaries() {
         let m = midpoint_near(&rng, if i % 2 == 0 { scale } else { -scale });
         let (mut l, mut r, mut n, mut f) =
             (-1.0, 1.0 + rng.next(), -rng.next(), 10.0 * rng.next() + 0.5);
-        match (i / 3) % 4 {
-            // 2/(r − l) = |m|
-            0 => r = l + nudge_small(&rng, 2.0 / m.abs()),
-            // −(r + l)/(r − l) = m with r − l = w
-            1 => {
-                let w = 1.0 + rng.next();
-                r = nudge_small(&rng, (w - m * w) / 2.0);
-                l = r - w;
-            }
-            // element 10 = m: the span from it
-            2 => {
-                let k = match clip {
-                    ClipDepth::NegOneToOne => -2.0,
-                    ClipDepth::ZeroToOne => -1.0,
-                    ClipDepth::ReversedZeroToOne => 1.0,
-                };
-                let span = nudge_small(&rng, (k / m).abs());
-                f = n + span;
-            }
-            // element 14 = m (NegOneToOne: −(f + n)/span; else −n/span or f/span)
-            _ => {
-                let span = 1.0 + rng.next();
-                match clip {
-                    ClipDepth::NegOneToOne => {
-                        f = nudge_small(&rng, (span - m * span) / 2.0);
-                        n = f - span;
-                    }
-                    ClipDepth::ZeroToOne => {
-                        n = nudge_small(&rng, -m * span);
-                        f = n + span;
-                    }
-                    ClipDepth::ReversedZeroToOne => {
-                        f = nudge_small(&rng, m * span);
-                        n = f - span;
-                    }
-                }
-            }
-        }
+        let width_and_span = || 1.0 + rng.next();
+        (l, r, n, f) = ortho_sides_near(
+            &rng,
+            clip,
+            ((i / 3) % 4) as u32,
+            m,
+            (l, r, n, f),
+            width_and_span,
+            width_and_span,
+        );
         let (b, t) = (-0.75, 0.5 + rng.next());
         let o = Ortho::new(l, r, b, t, n, f).expect("valid box");
         let got = ortho(&o, clip).expect("in range");
