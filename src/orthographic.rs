@@ -71,6 +71,18 @@ impl Ortho {
         self.far
     }
 
+    /// `(l, r, b, t, n, f)`, as passed to [`Self::new`].
+    pub fn parameters(&self) -> (f64, f64, f64, f64, f64, f64) {
+        (
+            self.left,
+            self.right,
+            self.bottom,
+            self.top,
+            self.near,
+            self.far,
+        )
+    }
+
     /// The window depth in `[0, 1]` at eye distance `d` under `clip` (`glDepthRange(0, 1)`):
     /// `(d − n)/(f − n)`, or `(f − d)/(f − n)` reversed.
     ///
@@ -156,14 +168,7 @@ pub fn ortho(ortho: &Ortho, clip: ClipDepth) -> Result<[f32; 16]> {
 /// matrix, that matrix is [`ortho`]'s (and [`ortho_exact`]'s).
 #[inline(always)]
 pub fn ortho_fast(ortho: &Ortho, clip: ClipDepth) -> Option<[f32; 16]> {
-    let (l, r, b, t, n, f) = (
-        ortho.left,
-        ortho.right,
-        ortho.bottom,
-        ortho.top,
-        ortho.near,
-        ortho.far,
-    );
+    let (l, r, b, t, n, f) = ortho.parameters();
     Some(ortho_columns(l, r, b, t, n, f, clip)?.to_cols_array())
 }
 
@@ -182,20 +187,12 @@ fn ortho_decided(ortho: &Ortho, clip: ClipDepth, estimates: bool) -> Result<[f32
     let y = ortho_f64(ortho, clip);
     // The estimates' error bound needs finite intermediates: a sum or difference of extents
     // near f64::MAX that overflows sends every element to the exact decision.
-    let (l, r, b, t) = (ortho.left, ortho.right, ortho.bottom, ortho.top);
-    let intermediates = [
-        r - l,
-        r + l,
-        t - b,
-        t + b,
-        ortho.far - ortho.near,
-        ortho.far + ortho.near,
-    ];
+    let (l, r, b, t, n, f) = ortho.parameters();
+    let intermediates = [r - l, r + l, t - b, t + b, f - n, f + n];
     let trusted = estimates & intermediates.iter().all(|x| x.is_finite());
     let nearest = |y: f64, num: &[f64], den: &[f64]| nearest(trusted, y, num, den);
     let (m0, m12) = nearest_row(trusted, y[0], y[12], l, r);
     let (m5, m13) = nearest_row(trusted, y[5], y[13], b, t);
-    let (n, f) = (ortho.near, ortho.far);
     let s = unit_scale(n.abs().max(f.abs()));
     let (span, span_err) = two_sum(f * s, -(n * s));
     let den = [span, span_err];
@@ -348,7 +345,7 @@ pub fn offset_ortho(o: &Ortho, clip: ClipDepth, delta: f64) -> Result<[f32; 16]>
 /// The fast path of [`offset_ortho`] alone, as [`ortho_fast`].
 #[inline(always)]
 pub fn offset_ortho_fast(o: &Ortho, clip: ClipDepth, delta: f64) -> Option<[f32; 16]> {
-    let (l, r, b, t, n, f) = (o.left, o.right, o.bottom, o.top, o.near, o.far);
+    let (l, r, b, t, n, f) = o.parameters();
     Some(offset_ortho_columns(l, r, b, t, n, f, clip, delta)?.to_cols_array())
 }
 
