@@ -383,7 +383,10 @@ fn ndc_offset_of_shift(
     let s = unit_scale(pz);
     let (n, delta, pz) = (planes.near() * s, delta * s, pz * s);
     let far = (!planes.is_infinite()).then_some(planes.far() * s);
-    let estimate = scaled_shift_estimate(n, far, delta, pz);
+    let estimate = match far {
+        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
+        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
+    };
     let exact = move || {
         let two_n_delta = DoubleDouble::product(2.0 * n, delta);
         let depth_product = DoubleDouble::from_f64(pz).mul(DoubleDouble::sum(pz, delta));
@@ -395,15 +398,6 @@ fn ndc_offset_of_shift(
         }
     };
     (estimate, exact)
-}
-
-/// `o`'s numerator and denominator from inputs already scaled by a power of two.
-#[inline(always)]
-fn scaled_shift_estimate(n: f64, far: Option<f64>, delta: f64, pz: f64) -> Ratio {
-    match far {
-        None => Ratio(2.0 * n * delta, pz * (pz + delta)),
-        Some(f) => Ratio(2.0 * n * delta * f, pz * (pz + delta) * (f - n)),
-    }
 }
 
 /// `o = m10·ε = −ε·(f+n)/(f−n)` (`−ε` when `f = +∞`): an f64 estimate of its numerator (two
