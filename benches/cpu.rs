@@ -85,6 +85,7 @@ fn cpu_builders(c: &mut Criterion) {
         let frustum = zshift::Frustum::new(k.l, k.r, k.b, k.t, k.n, k.f).unwrap();
         b.iter(|| {
             let scene = zshift::recommend::Scene {
+                pipeline: Default::default(),
                 footprint: None,
                 frustum: black_box(frustum),
                 viewport: [1920, 1080],

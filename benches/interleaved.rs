@@ -197,6 +197,7 @@ fn main() {
             Box::new(|| {
                 batch(|| {
                     let scene = zshift::recommend::Scene {
+                        pipeline: Default::default(),
                         footprint: None,
                         frustum: black_box(frustum),
                         viewport: [1920, 1080],

@@ -96,6 +96,8 @@ static const ZshiftFormat ZSHIFT_FORMAT_UNORM16 = { 0x81A5 }; /* GL_DEPTH_COMPON
 static const ZshiftFormat ZSHIFT_FORMAT_UNORM24 = { 0x81A6 }; /* GL_DEPTH_COMPONENT24 */
 static const ZshiftFormat ZSHIFT_FORMAT_UNORM32 = { 0x81A7 }; /* GL_DEPTH_COMPONENT32 */
 static const ZshiftFormat ZSHIFT_FORMAT_FLOAT32 = { 0x8CAC }; /* GL_DEPTH_COMPONENT32F */
+static const ZshiftFormat ZSHIFT_FORMAT_UNORM24_STENCIL8 = { 0x88F0 }; /* GL_DEPTH24_STENCIL8: depth as UNORM24 */
+static const ZshiftFormat ZSHIFT_FORMAT_FLOAT32_STENCIL8 = { 0x8CAD }; /* GL_DEPTH32F_STENCIL8: depth as FLOAT32 */
 
 /* The depth test of a pass, by its GL enum (glDepthFunc). */
 typedef struct ZshiftDepthTest { uint32_t value; } ZshiftDepthTest;
@@ -316,13 +318,53 @@ typedef struct {
    which makes it far tighter on sloped planes (README, "Scenes engines draw"); perspective matrices only; the
    corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
    derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
-   Projected through the matrix given (any handedness or flip). The viewport must sit at the framebuffer's origin.
+   Projected through the matrix given (any handedness or flip). Planes that contain the
+   view direction (ground under a level camera) are answered from the corners.
    */
   const float *decal_corners;
   /*
    How many corners `decal_corners` holds (3 to 64; 0 with NULL).
    */
   uint32_t decal_corner_count;
+  /*
+   The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+   reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL; 0 (a zeroed field):
+   the convention's strict test. An engine that draws every pass with GL_LEQUAL must say
+   so: a tie then passes, and the bleed gap is one quantum wider than under GL_LESS.
+   Orthographic matrices: the strict tests only.
+   */
+  ZshiftDepthTest depth_func;
+  /*
+   `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+   at the framebuffer's origin; split screens and editor panes have others). The
+   rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+   with the viewport's distance from it.
+   */
+  uint32_t viewport_x;
+  /*
+   `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+   */
+  uint32_t viewport_y;
+  /*
+   `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+   0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+   A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+   larger part of the NDC range.
+   */
+  double depth_range_near;
+  /*
+   `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+   */
+  double depth_range_far;
+  /*
+   0 when base and decal vertices reach the vertex shader in eye space (relative to the
+   camera). Engines that keep vertices in world (or model) space and transform them with a
+   float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
+   in that space, and of the camera's position there (for a model-view with a uniform
+   scale k, k times that). The float transform's roundings are relative to these
+   magnitudes, not to the distance from the camera; the offset gains that term.
+   */
+  double world_reach;
 } ZshiftDecal;
 
 /*
@@ -502,16 +544,47 @@ typedef struct {
    The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
    positions its vertices have after the model-view transform), or NULL. With corners the
    recommendation knows the decal's exact depth plane and where it lies on the screen,
-   which makes it far tighter on sloped planes (README, "Scenes engines draw"); the
-   corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
-   derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
-   The viewport must sit at the framebuffer's origin.
+   which makes it far tighter on sloped planes, and answers planes that contain the view
+   direction (ground under a level camera, whose slope is infinite); the corners then
+   define the decal, and decal_near, decal_far and slope must be 0 (they are derived).
+   NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
    */
   const float *decal_corners;
   /*
    How many corners `decal_corners` holds (3 to 64; 0 with NULL).
    */
   uint32_t decal_corner_count;
+  /*
+   `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+   at the framebuffer's origin; split screens and editor panes have others). The
+   rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+   with the viewport's distance from it.
+   */
+  uint32_t viewport_x;
+  /*
+   `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+   */
+  uint32_t viewport_y;
+  /*
+   `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+   0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+   A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+   larger part of the NDC range.
+   */
+  double depth_range_near;
+  /*
+   `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+   */
+  double depth_range_far;
+  /*
+   0 when base and decal vertices reach the vertex shader in eye space (relative to the
+   camera). Engines that keep vertices in world (or model) space and transform them with a
+   float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
+   in that space, and of the camera's position there (for a model-view with a uniform
+   scale k, k times that). The float transform's roundings are relative to these
+   magnitudes, not to the distance from the camera; the offset gains that term.
+   */
+  double world_reach;
 } ZshiftScene;
 
 /*

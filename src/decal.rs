@@ -33,6 +33,16 @@ pub struct Decal {
     /// engine's matrix), or `None`: the model's bounds over every plane of that slope and every
     /// pixel of the viewport. Perspective only: the orthographic model does not use it.
     pub footprint: Option<crate::footprint::Footprint>,
+    /// The decal pass's depth test (`glDepthFunc`), or `None` for the convention's strict test
+    /// (`GL_LESS`, `GL_GREATER` under reversed Z). An `…EQUAL` test needs one quantum less
+    /// offset and an occluder one quantum more separation: an engine that draws every pass
+    /// with `GL_LEQUAL` must say so, or its bleed gap is a quantum too narrow.
+    pub depth_test: Option<crate::recommend::DepthTest>,
+    /// How the engine draws besides its matrix: world-space vertices, the viewport's origin,
+    /// `glDepthRange` ([`crate::model::Pipeline`]; its `Default` is eye-space vertices, the
+    /// viewport at the framebuffer's origin, `glDepthRange(0, 1)`). Perspective only: the
+    /// orthographic model takes the default.
+    pub pipeline: crate::model::Pipeline,
 }
 
 impl Decal {

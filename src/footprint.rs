@@ -11,9 +11,13 @@
 //! from the decal's eye-space corners) and the window rectangle it covers. [`decal_shape`]
 //! computes it, with the depth range and slope, from the corners an engine already has.
 //!
-//! Window coordinates are GL's: pixels from the lower-left corner of the viewport, which must
-//! sit at the framebuffer's origin (`glViewport(0, 0, W, H)`) for `M` to be measured from the
-//! rasterizer's origin.
+//! Window coordinates are GL's: pixels from the lower-left corner of the viewport. A viewport
+//! elsewhere in the framebuffer is accounted for by [`Footprint::in_framebuffer`] (the model
+//! does it from [`crate::model::Pipeline::viewport_origin`]).
+//!
+//! A plane that contains the view direction (level ground under a level camera) has an
+//! infinite eye-space slope but an ordinary window plane: [`DecalShape::slope`] is then `+∞`
+//! and the model runs on the footprint alone.
 
 use glam::Vec3;
 
@@ -50,6 +54,26 @@ impl Footprint {
     pub fn magnitude(&self) -> f64 {
         self.origin_depth.abs() + self.extrapolation()
     }
+
+    /// The same footprint measured from the framebuffer's origin, for a viewport whose
+    /// lower-left corner is at `origin` (`glViewport(x, y, ..)`): the plane extrapolated to the
+    /// framebuffer's `(0, 0)`, `w₀ − gₓ·x − g_y·y`, and the far corner moved by `origin`.
+    /// `magnitude_depth` grows by at most `2(|gₓ|·x + |g_y|·y)·far`, `far` the decal's farthest
+    /// eye depth (each pixel's `M` grows by at most twice the extra run).
+    pub fn in_framebuffer(&self, origin: [u32; 2], far: f64) -> Footprint {
+        if origin == [0, 0] {
+            return *self;
+        }
+        let [x, y] = origin.map(f64::from);
+        let [gx, gy] = self.gradient;
+        let run = gx.abs() * x + gy.abs() * y;
+        Footprint {
+            origin_depth: self.origin_depth - gx * x - gy * y,
+            gradient: self.gradient,
+            far_corner: [self.far_corner[0] + x, self.far_corner[1] + y],
+            magnitude_depth: self.magnitude_depth + 2.0 * run * far,
+        }
+    }
 }
 
 /// What [`decal_shape`] finds from a decal's corners: everything a
@@ -58,7 +82,9 @@ impl Footprint {
 pub struct DecalShape {
     /// The nearest and farthest eye depth (`−z`) of the corners.
     pub depth_range: [f64; 2],
-    /// The plane's eye-space slope `|∂z/∂x| + |∂z/∂y|`.
+    /// The plane's eye-space slope `|∂z/∂x| + |∂z/∂y|`; `+∞` for a plane that contains the
+    /// view direction (level ground under a level camera), which the model answers from the
+    /// footprint.
     pub slope: f64,
     /// The window-space geometry.
     pub footprint: Footprint,
@@ -111,7 +137,7 @@ pub fn decal_shape(
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate; [`crate::ErrorKind::Domain`]
 /// for fewer than 3 corners, a zero viewport, a corner at or behind the eye (named), corners that
-/// do not span a plane or are not coplanar, or a plane edge-on to the view direction.
+/// do not span a plane or are not coplanar, or a plane through the eye (edge-on in the image).
 pub fn decal_shape_for_matrix(
     m: &[f64; 16],
     clip: ClipDepth,
@@ -134,12 +160,13 @@ pub fn decal_shape_for_matrix(
         }
     }
     let (normal, _) = plane_through(&eye)?;
-    if normal[2] == 0.0 {
-        return Err(domain(
-            "the decal's plane is edge-on to the view direction (infinite slope)",
-        ));
-    }
-    let slope = (normal[0].abs() + normal[1].abs()) / normal[2].abs();
+    // +∞ for a plane containing the view direction: its window plane is still ordinary (only a
+    // plane through the eye is edge-on in the image, refused below).
+    let slope = if normal[2] == 0.0 {
+        f64::INFINITY
+    } else {
+        (normal[0].abs() + normal[1].abs()) / normal[2].abs()
+    };
     let [w, h] = viewport.map(f64::from);
     let row = |r: usize, p: &[f64; 3]| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
     let mut window = Vec::with_capacity(eye.len());
@@ -165,7 +192,9 @@ pub fn decal_shape_for_matrix(
     }
     let (plane, offset) = plane_through(&window)?;
     if plane[2] == 0.0 {
-        return Err(domain("the decal is seen edge-on: it covers no pixel"));
+        return Err(domain(
+            "the decal's plane passes through the eye: it is edge-on in the image and covers no pixel",
+        ));
     }
     let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
     let gradient = [-plane[0] / plane[2], -plane[1] / plane[2]];

@@ -42,6 +42,7 @@ pub mod error;
 pub mod ffi;
 pub mod footprint;
 pub mod matrix_in;
+pub mod model;
 pub mod median;
 pub mod offset;
 pub mod orthographic;

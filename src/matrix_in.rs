@@ -522,8 +522,8 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 }
 
 /// The model's scene for a decal under a frustum (the one place that knows `Scene`'s fields):
-/// the convention's strict depth test, a base inside the frustum, the worst-case profile with
-/// the decal's snapping.
+/// the decal's depth test (the convention's strict one unless given), base, profile (the worst
+/// case with the decal's snapping unless given) and pipeline.
 #[inline(always)]
 fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
     use crate::recommend::DepthTest;
@@ -535,12 +535,13 @@ fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
         depth_range: decal.depth_range,
         slope: decal.slope,
         exact_depth: decal.exact_depth,
-        depth_test: if clip == ClipDepth::ReversedZeroToOne {
+        depth_test: decal.depth_test.unwrap_or(if clip == ClipDepth::ReversedZeroToOne {
             DepthTest::Greater
         } else {
             DepthTest::Less
-        },
+        }),
         base: decal.base,
         profile: decal.rasterizer(),
+        pipeline: decal.pipeline,
     }
 }

@@ -521,6 +521,17 @@ pub fn check(scene: &Scene) -> Result<()> {
     if scene.decal.viewport.contains(&0) {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
+    if scene.decal.pipeline != crate::model::Pipeline::default() {
+        return Err(domain(
+            "the orthographic model takes eye-space vertices, the viewport at the framebuffer's origin and glDepthRange(0, 1): set world_reach, viewport_x, viewport_y to 0 and the depth range to 0, 1",
+        ));
+    }
+    if scene.decal.depth_test.is_some_and(|t| !t.is_strict()) {
+        return Err(domain(
+            "the orthographic model covers the strict depth tests only (GL_LESS, GL_GREATER): pass depth_func 0 or the strict test",
+        )
+        .with_code("depth_func", scene.decal.depth_test.map_or(0, |t| t.gl_enum())));
+    }
     finite(scene.decal.slope, "the plane slope is NaN or infinite")
         .map_err(|e| e.with_value("slope", scene.decal.slope))?;
     if scene.decal.slope < 0.0 {

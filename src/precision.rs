@@ -132,6 +132,11 @@ pub enum DepthFormat {
     Float32,
 }
 
+/// `GL_DEPTH24_STENCIL8`: 24-bit UNORM depth packed with 8 stencil bits.
+const GL_DEPTH24_STENCIL8: u32 = 0x88F0;
+/// `GL_DEPTH32F_STENCIL8`: f32 depth packed with 8 stencil bits.
+const GL_DEPTH32F_STENCIL8: u32 = 0x8CAD;
+
 impl DepthFormat {
     /// Bits per depth value.
     pub fn bits(self) -> u32 {
@@ -154,15 +159,27 @@ impl DepthFormat {
     }
 
     /// The format of an OpenGL depth internal format enum (the inverse of
-    /// [`Self::gl_internal_format`]).
+    /// [`Self::gl_internal_format`]), packed depth-stencil formats included: their depth is
+    /// stored as the depth-only format's (`GL_DEPTH24_STENCIL8`, 0x88F0, as
+    /// `GL_DEPTH_COMPONENT24`; `GL_DEPTH32F_STENCIL8`, 0x8CAD, as `GL_DEPTH_COMPONENT32F`), and
+    /// the stencil bits change nothing of it.
     ///
     /// # Errors
     /// [`ErrorKind::Domain`] for any other value.
     pub fn from_gl_internal_format(internal_format: u32) -> Result<Self> {
+        match internal_format {
+            GL_DEPTH24_STENCIL8 => return Ok(Self::Unorm24),
+            GL_DEPTH32F_STENCIL8 => return Ok(Self::Float32),
+            _ => {}
+        }
         [Self::Unorm16, Self::Unorm24, Self::Unorm32, Self::Float32]
             .into_iter()
             .find(|f| f.gl_internal_format() == internal_format)
-            .ok_or_else(|| domain("the depth format must be GL_DEPTH_COMPONENT16, 24, 32 or 32F"))
+            .ok_or_else(|| {
+                domain(
+                    "the depth format must be GL_DEPTH_COMPONENT16 (0x81A5), GL_DEPTH_COMPONENT24 (0x81A6), GL_DEPTH_COMPONENT32 (0x81A7), GL_DEPTH_COMPONENT32F (0x8CAC), GL_DEPTH24_STENCIL8 (0x88F0) or GL_DEPTH32F_STENCIL8 (0x8CAD)",
+                )
+            })
     }
 
     /// Whether the format is unsigned normalized (fixed point).

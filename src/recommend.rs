@@ -257,6 +257,10 @@ const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 /// The decal's window-space geometry (see [`crate::footprint`]).
 pub use crate::footprint::{decal_shape, DecalShape, Footprint};
 
+/// How the engine draws besides its projection (see [`crate::model::pipeline`]).
+pub use crate::model::Pipeline;
+use crate::model::{vertex, PlaneForm};
+
 /// What the depth attachment stores: the crate's one depth-format type.
 pub use crate::precision::DepthFormat;
 
@@ -375,7 +379,14 @@ pub struct Scene {
     /// it, with `depth_range` and `slope`, from the decal's eye-space corners): its exact window
     /// gradients and screen position replace the bounds over every plane of that slope and every
     /// pixel of the viewport in `I`, `S` and `M` (see "A measured profile"). `None`: those bounds.
+    /// With a footprint the plane may contain the view direction (`slope = +∞`: level ground
+    /// under a level camera): every term is then taken from the window plane ("The engine's
+    /// pipeline").
     pub footprint: Option<Footprint>,
+    /// How the engine draws besides the projection: world-space vertices, the viewport's
+    /// origin, `glDepthRange` ([`Pipeline::default`]: eye-space vertices, the viewport at the
+    /// framebuffer's origin, `glDepthRange(0, 1)`).
+    pub pipeline: Pipeline,
 }
 
 /// The error of the two quads' computed window depths, term by term (window-depth units),
@@ -638,6 +649,9 @@ fn measured_facing(scene: &Scene, clip: ClipDepth) -> f64 {
 /// element 14's own rounding as [`reversed_epsilon`] is; `None` where not measured or not such a
 /// scene.
 fn measured_facing_reversed(scene: &Scene) -> Option<f64> {
+    if !scene.pipeline.is_default_depth() {
+        return None;
+    }
     if let Some(eps) = chain_facing(scene, ClipDepth::ReversedZeroToOne) {
         return Some(eps);
     }
@@ -777,32 +791,32 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         m[10].abs(),
         m[14].abs(),
     );
-    let (s, d1) = (scene.slope, scene.depth_range[0]);
+    let d1 = scene.depth_range[0];
     let gamma = (6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF;
-    // The plane z = −d_a + sₓx + s_y·y (|sₓ| + |s_y| = s, d_a ≥ d₁) in clip coordinates:
-    // L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c with g_X = m14·sₓ/(d_a·m0),
-    // g_Y = m14·s_y/(d_a·m5), Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5).
-    // A visible point at depth d on the ray (kₓ, k_y) (|k| ≤ e) has d = d_a/(1 + sₓkₓ + s_y·k_y),
-    // so |1/d_a| ≤ (1 + s·e)/d₁ wherever the axis crossing d_a lies.
-    let inv_da = (1.0 + s * half_extent_tangent(&scene.frustum)?) / d1;
-    let g_x = m14 * s * inv_da / m0;
-    let g_y = m14 * s * inv_da / m5;
-    let z0 = m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5));
-    let (a_x, a_y, a_z, a_w) = (
+    // The plane's form L(c) = z_c − aₓ·x_c − a_y·y_c − a₀·w_c: exact from the footprint, or
+    // bounds over every plane of the slope (see plane_form).
+    let form = plane_form(scene, clip, &m)?;
+    let a = [
         (m0 + m8) * reach,
         (m5 + m9) * reach,
         m10 * reach + m14,
         reach,
-    );
-    let l = a_z + g_x * a_x + g_y * a_y + z0 * a_w;
-    let w_low = d1 - gamma * reach;
+    ];
+    // World-space vertices carry the f32 model-view's errors into the clipper, which
+    // interpolates them (a convex combination: no larger than at the vertices).
+    let world = vertex::world_magnitudes(&m, scene.pipeline.world_reach)
+        .map(|b| vertex::WORLD_ROUNDINGS * F32_UNIT_ROUNDOFF * b);
+    let errors = [0, 1, 2, 3].map(|k| gamma * a[k] + world[k]);
+    let l = form.bound(errors);
+    let w_low = d1 - gamma * reach - world[3];
     if w_low.is_nan() || w_low <= 0.5 * d1 {
         return Err(domain(
-            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum with clip_to_frustum and pass Base::InsideFrustum",
-        ));
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
+        )
+        .with_value("base_reach", reach));
     }
     representable(
-        mapping.window_per_ndc() * gamma * l / w_low,
+        mapping.window_per_ndc() * l / w_low,
         "the clipping term overflows f64",
     )
 }
@@ -882,15 +896,29 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
     planes.check_distance(d2)?;
     if d1 > d2 {
         return Err(domain(
-            "the decal's depth range must be [nearest, farthest]",
-        ));
+            "the decal's depth range must be [nearest, farthest]: decal_far must be >= decal_near",
+        )
+        .with_value("decal_far", d2));
     }
     if scene.viewport.contains(&0) {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
-    finite(scene.slope, "the plane slope is NaN or infinite")?;
+    scene.pipeline.check()?;
+    // A plane containing the view direction has an infinite eye-space slope; with the decal's
+    // footprint the model runs on its window plane and needs no slope.
+    if !(scene.footprint.is_some() && scene.slope == f64::INFINITY) {
+        finite(scene.slope, "the plane slope is NaN or infinite (pass the decal's corners for a plane that contains the view direction)")
+            .map_err(|e| e.with_value("slope", scene.slope))?;
+    }
     if scene.slope < 0.0 {
-        return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0"));
+        return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0")
+            .with_value("slope", scene.slope));
+    }
+    if scene.exact_depth && scene.pipeline.world_reach > 0.0 {
+        return Err(domain(
+            "exact_depth needs vertices in eye space: with world_reach > 0 the f32 model-view computes each vertex's z",
+        )
+        .with_value("world_reach", scene.pipeline.world_reach));
     }
     if scene.exact_depth && scene.slope != 0.0 {
         return Err(domain(
@@ -1150,7 +1178,7 @@ pub(crate) fn recommend_clip_building(
     let mut bleed_gap = 0.0f64;
     for d in [d1, d2] {
         let at_d = ErrorTerms {
-            quantum: quantum(scene.format, mapping.window_depth(d)?)?,
+            quantum: unit_quantum(scene, mapping.window_depth(d)?)?,
             ..terms
         };
         let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
@@ -1190,6 +1218,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     check(scene, clip)?;
     let u = F32_UNIT_ROUNDOFF;
     let mapping = mapping_of(scene, clip)?;
+    let pipeline = scene.pipeline;
     let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
     let [d1, d2] = scene.depth_range;
     // In plain f64 (d₁, d₂ are checked): within 2⁻⁵⁰ of the correctly rounded window depths,
@@ -1199,29 +1228,38 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         mapping.window_depth_estimate(d2),
     );
     let (w_min, w_max) = (w1.min(w2), w1.max(w2));
+    // Under glDepthRange(near, far) the stored depth is near + (far − near)·w: the roundings of
+    // the viewport map and of the interpolation are relative to it, i.e. to w + lift in unit
+    // window depth (0 for the default range).
+    let lift = pipeline.depth_range[0] / pipeline.span();
     let transform = if clip == ClipDepth::NegOneToOne {
         // m10·z and + m14 round relative to |m10|·d and |clip_z| ≤ d (halved by the viewport
         // map), the reciprocal and product relative to |ndc|, ½·ndc + ½ relative to w.
         let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
-        u * (m10.abs() / 2.0 + 1.5 * ndc_max + w_max)
+        u * (m10.abs() / 2.0 + 1.5 * ndc_max + w_max + lift)
     } else {
         // NDC = window depth: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
         // the division by w = d; the sum, reciprocal and product round relative to
         // |ndc| ≤ w_max; the viewport map z·1 + 0 is exact but counted.
-        u * (m10.abs() + 4.0 * w_max)
+        u * (m10.abs() + 4.0 * w_max + lift)
     };
-    // G: how far the plane's window depth runs across the viewport, |gₓ|·W + |g_y|·H (with the
-    // axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative to
-    // the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
+    // The footprint measured from the framebuffer's origin, where the rasterizer's plane
+    // starts (the viewport may lie inside a larger framebuffer).
+    let footprint = scene
+        .footprint
+        .map(|f| f.in_framebuffer(pipeline.viewport_origin, d2));
+    // G: how far the plane's window depth runs across the framebuffer, |gₓ|·X + |g_y|·Y (with
+    // the axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative
+    // to the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
     // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
-    // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·W + |g_y|·H is at most the
+    // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·X + |g_y|·Y is at most the
     // larger of the two with the whole slope.
     // With the decal's footprint, the exact run from the origin to its farthest pixel.
-    let extrapolated = match scene.footprint {
+    let extrapolated = match footprint {
         Some(footprint) => footprint.extrapolation(),
         None => {
             let [gx, gy] = window_gradient(scene, d1)?;
-            let [width, height] = scene.viewport.map(f64::from);
+            let [width, height] = framebuffer_extent(scene);
             (gx * width).max(gy * height)
                 * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
         }
@@ -1229,23 +1267,29 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
     } else {
-        let e = half_extent_tangent(&scene.frustum)?;
-        let vertex = u * (scale(scene) / d1) * (1.0 + scene.slope * e);
         let span = (w_max - w_min).max(extrapolated);
-        (vertex, u * (3.0 * w_max + 6.0 * span))
+        (
+            vertex_term(scene, clip)?,
+            u * (3.0 * (w_max + lift) + 6.0 * span),
+        )
     };
     // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
     // its smallest.
     let far_w = if mapping.is_reversed() { w_min } else { w_max };
     // That point is d₂ either way; the estimate decides the spacing unless near a binade edge.
-    let q = mapping.spacing_at_estimate(scene.format, d2, far_w)?;
+    let q = if pipeline.depth_range == [0.0, 1.0] {
+        mapping.spacing_at_estimate(scene.format, d2, far_w)?
+    } else {
+        unit_quantum(scene, mapping.window_depth(d2)?)?
+    };
     let bound = transform + vertex + interpolation;
     // M, the largest magnitude of the plane's terms from the window origin over the decal's
     // pixels: |w₀| + |gₓ|·x + |g_y|·y ≤ w + 2(|gₓ|·x + |g_y|·y) without the footprint.
-    let magnitude = match scene.footprint {
-        Some(footprint) => footprint.magnitude(),
-        None => w_max + 2.0 * extrapolated,
-    };
+    let magnitude = lift
+        + match footprint {
+            Some(footprint) => footprint.magnitude(),
+            None => w_max + 2.0 * extrapolated,
+        };
     let plane = match measured_plane_error(scene, clip, m10, magnitude) {
         Some(measured) => (measured + vertex).min(bound),
         None => bound,
@@ -1255,7 +1299,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         NearClip::ClippedF32 => clip_term(scene, clip, &mapping)?,
         // The probe found clipped planes within twice the unclipped error plus 2 D24 quanta.
         NearClip::PlanePreserving if matches!(scene.base, Base::Clipped { .. }) => {
-            plane + snap + 2.0 / 16_777_215.0
+            plane + snap + pipeline.per_unit(2.0 / 16_777_215.0)
         }
         NearClip::PlanePreserving => 0.0,
     };
@@ -1264,11 +1308,13 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // depth is never behind the base's, so under an …EQUAL test (a tie passes) no offset is
     // needed. The budget of base and decal is then 0; the occluder's error stays in the gap.
     let correlated = scene.exact_depth && !scene.depth_test.is_strict();
-    let facing = if scene.exact_depth && scene.depth_test.is_strict() {
-        measured_facing(scene, clip)
-    } else {
-        0.0
-    };
+    // The probe measured the facing figures with glDepthRange(0, 1) and eye-space vertices.
+    let facing =
+        if scene.exact_depth && scene.depth_test.is_strict() && pipeline.is_default_depth() {
+            measured_facing(scene, clip)
+        } else {
+            0.0
+        };
     Ok(ErrorTerms {
         quantum: q,
         transform,
@@ -1281,6 +1327,77 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         correlated,
         facing,
     })
+}
+
+/// The viewport's far corner in the framebuffer, `[x + W, y + H]` pixels: how far the
+/// rasterizer's plane, set up from the framebuffer's origin, can be extrapolated.
+fn framebuffer_extent(scene: &Scene) -> [f64; 2] {
+    let [x, y] = scene.pipeline.viewport_origin.map(f64::from);
+    let [w, h] = scene.viewport.map(f64::from);
+    [x + w, y + h]
+}
+
+/// `q` in unit window depth at unit window depth `w`: the format's spacing at the stored depth
+/// `near + (far − near)·w` of `glDepthRange`, over `far − near`.
+fn unit_quantum(scene: &Scene, w: f64) -> Result<f64> {
+    let p = scene.pipeline;
+    Ok(p.per_unit(quantum(scene.format, p.actual(w))?))
+}
+
+/// The plane's form on clip coordinates ([`crate::model::plane_form`]): exact from the decal's
+/// footprint, else bounds on its coefficients' magnitudes over every plane of the scene's slope
+/// whose axis crossing lies at `d₁` or beyond (the plane `z = −d_a + sₓx + s_y·y`, `|sₓ| + |s_y| = s`,
+/// has `aₓ = m14·sₓ/(d_a·m0)`, `a_y = m14·s_y/(d_a·m5)`,
+/// `a₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)`; a visible point at depth `d` on the ray
+/// `(kₓ, k_y)` (`|k| ≤ e`) has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`).
+fn plane_form(scene: &Scene, clip: ClipDepth, m: &[f64; 16]) -> Result<PlaneForm> {
+    if let Some(footprint) = scene.footprint {
+        return Ok(PlaneForm::of_footprint(&footprint, scene.viewport, clip));
+    }
+    let (m0, m5, m8, m9, m10, m14) = (
+        m[0].abs(),
+        m[5].abs(),
+        m[8].abs(),
+        m[9].abs(),
+        m[10].abs(),
+        m[14].abs(),
+    );
+    let (s, d1) = (scene.slope, scene.depth_range[0]);
+    let inv_da = (1.0 + s * half_extent_tangent(&scene.frustum)?) / d1;
+    Ok(PlaneForm {
+        a0: m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5)),
+        ax: m14 * s * inv_da / m0,
+        ay: m14 * s * inv_da / m5,
+    })
+}
+
+/// The term `V` ([`crate::model::vertex`]), in unit window depth: with the decal's footprint
+/// the eye-rounding bound from the plane's form (finite for planes containing the view
+/// direction), else `u·(b/d₁)·(1 + s·e)` (a plane of slope `s` crossing the axis at `d₁` or
+/// beyond); with world-space vertices ([`Pipeline::world_reach`]) the larger of that and the
+/// f32 model-view term.
+fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
+    let mapping = mapping_of(scene, clip)?;
+    let per_ndc = mapping.window_per_ndc();
+    let m = crate::projection::projection_f64(&scene.frustum, clip)?;
+    let form = plane_form(scene, clip, &m)?;
+    let (l, r, b, t, n, _) = scene.frustum.parameters();
+    let eye = match scene.footprint {
+        Some(_) => {
+            let tangents = [l.abs().max(r.abs()) / n, b.abs().max(t.abs()) / n];
+            per_ndc * vertex::eye_rounding(&form, &m, tangents)
+        }
+        None => {
+            let e = half_extent_tangent(&scene.frustum)?;
+            F32_UNIT_ROUNDOFF * (scale(scene) / scene.depth_range[0]) * (1.0 + scene.slope * e)
+        }
+    };
+    let reach = scene.pipeline.world_reach;
+    if reach == 0.0 {
+        return Ok(eye);
+    }
+    let world = per_ndc * vertex::world_rounding(&form, &m, reach, scene.depth_range[0]);
+    representable(eye.max(world), "the vertex term overflows f64")
 }
 
 /// `b = f·n/(f − n)` (`n` for `f = ∞`): every `glFrustum`-family mapping stores
@@ -1312,7 +1429,11 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
     let (m10, _) =
         crate::projection::depth_row(&scene.frustum.planes(), ClipDepth::ReversedZeroToOne);
     let u = F32_UNIT_ROUNDOFF;
-    let plane = k * u * (m10.abs() * d2 + footprint.magnitude_depth) + terms.vertex * d1;
+    let pipeline = scene.pipeline;
+    let lift = pipeline.depth_range[0] / pipeline.span();
+    let shifted = footprint.in_framebuffer(pipeline.viewport_origin, d2);
+    let magnitude_depth = shifted.magnitude_depth + lift * d2;
+    let plane = k * u * (m10.abs() * d2 + magnitude_depth) + terms.vertex * d1;
     Some((2.0 * plane + (2.0 * terms.snap + terms.clip) * d2) / b)
 }
 
@@ -1328,20 +1449,25 @@ fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -
     let strict = if terms.strict { 1.0 } else { 0.0 };
     let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
-        let q = quantum(scene.format, mapping.window_depth(d)?)?;
+        let q = unit_quantum(scene, mapping.window_depth(d)?)?;
         Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
     };
     let mut eps = need(d1)?.max(need(d2)?);
-    let (w_lo, w_hi) = (mapping.window_depth(d2)?, mapping.window_depth(d1)?);
+    // The binades are those of the stored depth, near + (far − near)·w under glDepthRange.
+    let pipeline = scene.pipeline;
+    let (w_lo, w_hi) = (
+        pipeline.actual(mapping.window_depth(d2)?),
+        pipeline.actual(mapping.window_depth(d1)?),
+    );
     if !scene.format.is_unorm() && w_lo > 0.0 {
         // exp2, not powi: powi(k) for k < −1022 is 1/2^−k, which overflows to ∞ and gives 0,
         // and a walk from 0 never ends (a subnormal window depth reaches here).
         let mut p = (w_lo.log2().floor() + 1.0).exp2();
         while p > 0.0 && p <= w_hi {
-            let d = mapping.distance_at_window(p)?;
-            eps = eps.max(
-                strict * p * 2f64.powi(-23) * (d / b) + (budget * (d / b)).min(relative_budget),
-            );
+            let unit = ((p - pipeline.depth_range[0]) / pipeline.span()).clamp(0.0, 1.0);
+            let d = mapping.distance_at_window(unit)?;
+            let q = pipeline.per_unit(p * 2f64.powi(-23));
+            eps = eps.max(strict * q * (d / b) + (budget * (d / b)).min(relative_budget));
             p *= 2.0;
         }
     }
@@ -1363,6 +1489,7 @@ mod tests {
         };
         let e = 0.577_350_269_189_625_7;
         Scene {
+            pipeline: Default::default(),
             footprint: None,
             frustum: Frustum::new(-e, e, -e, e, 1.0, 1e3).unwrap(),
             viewport: [256, 256],

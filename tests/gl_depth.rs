@@ -87,6 +87,7 @@ fn depth_readback_matches_window_depth_within_the_quantum_and_transform_error() 
 fn transform_term(ratio: f64, d: f64) -> f64 {
     let e = TAN_HALF;
     let scene = zshift::recommend::Scene {
+        pipeline: Default::default(),
         footprint: None,
         frustum: zshift::Frustum::new(-e, e, -e, e, 1.0, ratio).unwrap(),
         viewport: [SIZE, SIZE],
@@ -232,6 +233,7 @@ fn sloped_plane_depth_stays_within_the_models_per_quad_bound() {
                 }
                 let e = TAN_HALF;
                 let scene = zshift::recommend::Scene {
+                    pipeline: Default::default(),
                     footprint: None,
                     frustum: zshift::Frustum::new(-e, e, -e, e, 1.0, ratio).unwrap(),
                     viewport: [s.size, s.size],
@@ -305,6 +307,7 @@ fn window_gradient_matches_the_rendered_depth_slope() {
             f64::from(depth[(c - 10) * size + c] - depth[(c + 10) * size + c]).abs() / 20.0;
         let e = TAN_HALF;
         let scene = zshift::recommend::Scene {
+            pipeline: Default::default(),
             footprint: None,
             frustum: zshift::Frustum::new(-e, e, -e, e, 1.0, ratio).unwrap(),
             viewport: [128, 128],

@@ -109,6 +109,8 @@ fn engines() -> Vec<Engine> {
 fn decal_of(gl: &Gl, s: &Setup) -> Decal {
     let (d1, d2) = s.decal_depth_range();
     Decal {
+        depth_test: None,
+        pipeline: Default::default(),
         footprint: None,
         viewport: [s.size, s.size],
         format: gl_common::format_of(s.format),

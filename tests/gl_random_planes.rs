@@ -122,6 +122,7 @@ fn random_planes_lose_no_decal_pixel_at_the_recommendation() {
         };
         cases += 1;
         let scene = Scene {
+            pipeline: Default::default(),
             footprint: None,
             frustum,
             viewport: [WIDTH, HEIGHT],

@@ -236,6 +236,7 @@ impl Case {
         let format = zshift::recommend::DepthFormat::from_gl_internal_format(self.format.gl_enum())
             .expect("a GL depth format");
         Scene {
+            pipeline: Default::default(),
             footprint: None,
             frustum: self.cam.frustum(),
             viewport: [self.size.0, self.size.1],

@@ -113,6 +113,11 @@ fn range_offset_that_overflows_is_an_error() {
 fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
     // The input the sweep found (a wide, off-centre frustum; decal out to 1e300).
     let scene = ZshiftScene {
+        viewport_y: 0,
+        world_reach: 0.0,
+        depth_range_far: 0.0,
+        depth_range_near: 0.0,
+        viewport_x: 0,
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: -1e-300,
@@ -153,6 +158,11 @@ mod abi;
 fn recommend_never_returns_an_infinite_polygon_offset() {
     let scenes = [
         ZshiftScene {
+            viewport_y: 0,
+            world_reach: 0.0,
+            depth_range_far: 0.0,
+            depth_range_near: 0.0,
+            viewport_x: 0,
             decal_corners: std::ptr::null(),
             decal_corner_count: 0,
             l: -2464271192.763489,
@@ -174,6 +184,11 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             profile: std::ptr::null(),
         },
         ZshiftScene {
+            viewport_y: 0,
+            world_reach: 0.0,
+            depth_range_far: 0.0,
+            depth_range_near: 0.0,
+            viewport_x: 0,
             decal_corners: std::ptr::null(),
             decal_corner_count: 0,
             l: -7.645722780061472,
@@ -223,6 +238,11 @@ fn window_depth_at_the_top_of_f64_is_one() {
 #[test]
 fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
     let scene = ZshiftScene {
+        viewport_y: 0,
+        world_reach: 0.0,
+        depth_range_far: 0.0,
+        depth_range_near: 0.0,
+        viewport_x: 0,
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: -1e-300,

@@ -284,6 +284,7 @@ pub fn recommendation(scene: &Scene, snapping: Snapping) -> Result<(Recommendati
     .map_err(|e| format!("zshift::recommend::decal_shape: {e}"))?;
     let farthest = shape.depth_range[1];
     let model = RecommendScene {
+        pipeline: Default::default(),
         footprint: Some(shape.footprint),
         frustum,
         viewport: [SIZE, SIZE],

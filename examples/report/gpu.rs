@@ -424,6 +424,7 @@ fn recommendation(
     let format =
         RecFormat::from_gl_internal_format(scene.format.gl_enum()).expect("a GL depth format");
     let mut model = RecScene {
+        pipeline: Default::default(),
         footprint: None,
         frustum: *frustum,
         viewport: [SIZE, SIZE],

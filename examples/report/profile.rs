@@ -56,6 +56,7 @@ fn floors(probed: &RasterizerProfile) -> Vec<Floor> {
                 ("probed, decal corners", *probed, true),
             ] {
                 let mut scene = Scene {
+                    pipeline: Default::default(),
                     footprint: None,
                     frustum,
                     viewport: [256, 144],

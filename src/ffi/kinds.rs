@@ -26,13 +26,15 @@ pub struct ZshiftClip {
 }
 
 /// A depth attachment's format, by its GL internal format enum: ZSHIFT_FORMAT_UNORM16 (=
-/// GL_DEPTH_COMPONENT16), ZSHIFT_FORMAT_UNORM24, ZSHIFT_FORMAT_UNORM32, ZSHIFT_FORMAT_FLOAT32.
+/// GL_DEPTH_COMPONENT16), ZSHIFT_FORMAT_UNORM24, ZSHIFT_FORMAT_UNORM32, ZSHIFT_FORMAT_FLOAT32,
+/// and the packed depth-stencil formats ZSHIFT_FORMAT_UNORM24_STENCIL8 (GL_DEPTH24_STENCIL8)
+/// and ZSHIFT_FORMAT_FLOAT32_STENCIL8 (GL_DEPTH32F_STENCIL8).
 ///
 /// cbindgen:ignore
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub struct ZshiftFormat {
-    /// The GL enum (0x81A5, 0x81A6, 0x81A7 or 0x8CAC).
+    /// The GL enum (0x81A5, 0x81A6, 0x81A7, 0x8CAC, 0x88F0 or 0x8CAD).
     pub value: u32,
 }
 
@@ -100,6 +102,16 @@ pub const ZSHIFT_FORMAT_UNORM32: ZshiftFormat = ZshiftFormat { value: 0x81A7 };
 ///
 /// cbindgen:ignore
 pub const ZSHIFT_FORMAT_FLOAT32: ZshiftFormat = ZshiftFormat { value: 0x8CAC };
+/// GL_DEPTH24_STENCIL8: the packed depth-stencil format engines attach most; its depth is
+/// stored as GL_DEPTH_COMPONENT24's.
+///
+/// cbindgen:ignore
+pub const ZSHIFT_FORMAT_UNORM24_STENCIL8: ZshiftFormat = ZshiftFormat { value: 0x88F0 };
+/// GL_DEPTH32F_STENCIL8: float depth packed with stencil; its depth is stored as
+/// GL_DEPTH_COMPONENT32F's.
+///
+/// cbindgen:ignore
+pub const ZSHIFT_FORMAT_FLOAT32_STENCIL8: ZshiftFormat = ZshiftFormat { value: 0x8CAD };
 
 /// GL_LESS: the default depth test, for [-1, 1] and [0, 1].
 ///
@@ -178,6 +190,16 @@ pub const HEADER_CONSTANTS: &[(&str, &str, i64)] = &[
         "ZshiftFormat",
         "ZSHIFT_FORMAT_FLOAT32",
         ZSHIFT_FORMAT_FLOAT32.value as i64,
+    ),
+    (
+        "ZshiftFormat",
+        "ZSHIFT_FORMAT_UNORM24_STENCIL8",
+        ZSHIFT_FORMAT_UNORM24_STENCIL8.value as i64,
+    ),
+    (
+        "ZshiftFormat",
+        "ZSHIFT_FORMAT_FLOAT32_STENCIL8",
+        ZSHIFT_FORMAT_FLOAT32_STENCIL8.value as i64,
     ),
     (
         "ZshiftDepthTest",

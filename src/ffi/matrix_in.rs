@@ -2,7 +2,7 @@
 //! (src/matrix_in.rs), and the recommendation for it.
 
 use super::{
-    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip,
+    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
     ZshiftFormat, ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
@@ -134,10 +134,38 @@ pub struct ZshiftDecal {
     /// which makes it far tighter on sloped planes (README, "Scenes engines draw"); perspective matrices only; the
     /// corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
     /// derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
-    /// Projected through the matrix given (any handedness or flip). The viewport must sit at the framebuffer's origin.
+    /// Projected through the matrix given (any handedness or flip). Planes that contain the
+    /// view direction (ground under a level camera) are answered from the corners.
     pub decal_corners: *const f32,
     /// How many corners `decal_corners` holds (3 to 64; 0 with NULL).
     pub decal_corner_count: u32,
+    /// The decal pass's depth test: ZSHIFT_DEPTH_TEST_LESS or ZSHIFT_DEPTH_TEST_LEQUAL, under
+    /// reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL; 0 (a zeroed field):
+    /// the convention's strict test. An engine that draws every pass with GL_LEQUAL must say
+    /// so: a tie then passes, and the bleed gap is one quantum wider than under GL_LESS.
+    /// Orthographic matrices: the strict tests only.
+    pub depth_func: ZshiftDepthTest,
+    /// `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+    /// at the framebuffer's origin; split screens and editor panes have others). The
+    /// rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+    /// with the viewport's distance from it.
+    pub viewport_x: u32,
+    /// `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+    pub viewport_y: u32,
+    /// `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+    /// 0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+    /// A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+    /// larger part of the NDC range.
+    pub depth_range_near: f64,
+    /// `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+    pub depth_range_far: f64,
+    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
+    /// camera). Engines that keep vertices in world (or model) space and transform them with a
+    /// float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
+    /// in that space, and of the camera's position there (for a model-view with a uniform
+    /// scale k, k times that). The float transform's roundings are relative to these
+    /// magnitudes, not to the distance from the camera; the offset gains that term.
+    pub world_reach: f64,
 }
 
 /// Converts the caller's decal to the Rust model's (every field checked) and hands it to
@@ -213,6 +241,18 @@ fn with_decal<R>(
             }
         },
         profile,
+        depth_test: match d.depth_func.value {
+            0 => None,
+            func => Some(
+                crate::recommend::DepthTest::from_gl(func)
+                    .map_err(|e| e.with_code("depth_func", func))?,
+            ),
+        },
+        pipeline: super::recommend::pipeline_from_c(
+            [d.viewport_x, d.viewport_y],
+            [d.depth_range_near, d.depth_range_far],
+            d.world_reach,
+        )?,
     })
 }
 
@@ -277,6 +317,12 @@ impl ZshiftDecal {
                 profile: read(addr_of!((*p).profile)),
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
+                depth_func: read(addr_of!((*p).depth_func)),
+                viewport_x: read(addr_of!((*p).viewport_x)),
+                viewport_y: read(addr_of!((*p).viewport_y)),
+                depth_range_near: read(addr_of!((*p).depth_range_near)),
+                depth_range_far: read(addr_of!((*p).depth_range_far)),
+                world_reach: read(addr_of!((*p).world_reach)),
             }
         }
     }

@@ -81,13 +81,34 @@ pub struct ZshiftScene {
     /// The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
     /// positions its vertices have after the model-view transform), or NULL. With corners the
     /// recommendation knows the decal's exact depth plane and where it lies on the screen,
-    /// which makes it far tighter on sloped planes (README, "Scenes engines draw"); the
-    /// corners then define the decal, and decal_near, decal_far and slope must be 0 (they are
-    /// derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
-    /// The viewport must sit at the framebuffer's origin.
+    /// which makes it far tighter on sloped planes, and answers planes that contain the view
+    /// direction (ground under a level camera, whose slope is infinite); the corners then
+    /// define the decal, and decal_near, decal_far and slope must be 0 (they are derived).
+    /// NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
     pub decal_corners: *const f32,
     /// How many corners `decal_corners` holds (3 to 64; 0 with NULL).
     pub decal_corner_count: u32,
+    /// `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+    /// at the framebuffer's origin; split screens and editor panes have others). The
+    /// rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+    /// with the viewport's distance from it.
+    pub viewport_x: u32,
+    /// `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+    pub viewport_y: u32,
+    /// `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+    /// 0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+    /// A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+    /// larger part of the NDC range.
+    pub depth_range_near: f64,
+    /// `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+    pub depth_range_far: f64,
+    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
+    /// camera). Engines that keep vertices in world (or model) space and transform them with a
+    /// float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
+    /// in that space, and of the camera's position there (for a model-view with a uniform
+    /// scale k, k times that). The float transform's roundings are relative to these
+    /// magnitudes, not to the distance from the camera; the offset gains that term.
+    pub world_reach: f64,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -206,6 +227,11 @@ impl ZshiftScene {
                 profile: read(addr_of!((*p).profile)),
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
+                viewport_x: read(addr_of!((*p).viewport_x)),
+                viewport_y: read(addr_of!((*p).viewport_y)),
+                depth_range_near: read(addr_of!((*p).depth_range_near)),
+                depth_range_far: read(addr_of!((*p).depth_range_far)),
+                world_reach: read(addr_of!((*p).world_reach)),
             }
         }
     }
@@ -339,7 +365,33 @@ fn with_model<R>(
         depth_test,
         base,
         profile,
+        pipeline: pipeline_from_c(
+            [s.viewport_x, s.viewport_y],
+            [s.depth_range_near, s.depth_range_far],
+            s.world_reach,
+        )?,
     })
+}
+
+/// The model's [`crate::model::Pipeline`] from a C record's fields (`ZshiftScene`,
+/// `ZshiftDecal`): a depth range of `[0, 0]` (a zeroed struct) is `glDepthRange(0, 1)`; the
+/// model checks every field ([`crate::model::Pipeline::check`]).
+pub(super) fn pipeline_from_c(
+    viewport_origin: [u32; 2],
+    depth_range: [f64; 2],
+    world_reach: f64,
+) -> Result<crate::model::Pipeline> {
+    let pipeline = crate::model::Pipeline {
+        world_reach,
+        viewport_origin,
+        depth_range: if depth_range == [0.0, 0.0] {
+            [0.0, 1.0]
+        } else {
+            depth_range
+        },
+    };
+    pipeline.check()?;
+    Ok(pipeline)
 }
 
 /// Writes the smallest depth offset that ends z-fighting between a decal and its coplanar

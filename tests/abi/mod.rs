@@ -82,6 +82,12 @@ unsafe impl Send for Inputs {}
 unsafe impl Sync for Inputs {}
 
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    viewport_x: 0,
+    viewport_y: 0,
+    world_reach: 0.0,
+    depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
+    depth_range_far: 0.0,
+    depth_range_near: 0.0,
     decal_corners: std::ptr::null(),
     decal_corner_count: 0,
     viewport_width: 1920,
@@ -97,6 +103,11 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
+    viewport_y: 0,
+    world_reach: 0.0,
+    depth_range_far: 0.0,
+    depth_range_near: 0.0,
+    viewport_x: 0,
     decal_corners: std::ptr::null(),
     decal_corner_count: 0,
     l: -0.1,
@@ -743,6 +754,11 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
+        viewport_y: 0,
+        world_reach: 0.0,
+        depth_range_far: 0.0,
+        depth_range_near: 0.0,
+        viewport_x: 0,
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: i.l,

@@ -44,6 +44,7 @@ pub fn snapping_of(gl: &Gl) -> Snapping {
 pub fn scene_of(s: &Setup, snapping: Snapping) -> Scene {
     let (d1, d2) = s.decal_depth_range();
     Scene {
+        pipeline: Default::default(),
         footprint: None,
         frustum: frustum_of(s),
         viewport: [s.size, s.size],

@@ -1,0 +1,107 @@
+//! What the engine's pipeline does besides the projection: where its vertices come from and
+//! where its window lies.
+//!
+//! * **Vertices in world space.** Engines keep vertices in world (or model) space and transform
+//!   them in the vertex shader with an f32 model-view (or model-view-projection) matrix; the
+//!   roundings of that transform are absolute, relative to the world coordinates and the
+//!   camera's position, not to the vertex's distance from the camera. [`Pipeline::world_reach`]
+//!   states their size; [`crate::model::vertex`] derives the term.
+//! * **The viewport's origin.** A rasterizer sets its depth plane up relative to the
+//!   framebuffer's origin (Mesa llvmpipe's `a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀`), so a viewport at
+//!   `(x, y)` in a larger framebuffer (split screen, editor panes) extrapolates the plane
+//!   further, and the interpolation's roundings grow with it.
+//! * **`glDepthRange(near, far)`** (Direct3D's viewport `MinDepth`/`MaxDepth`) maps NDC depth to
+//!   `near + (far − near)·w`, `w` the unit window depth of `[0, 1]`: the format's quantum is
+//!   `1/(far − near)` times larger against `w`, and the stored values lie near `near`, not 0.
+//!
+//! The model works in **unit window depth** `w` (what `glDepthRange(0, 1)` stores): every
+//! offset and error term is a change of `w`, so an offset applied through the projection matrix
+//! means the same whatever the depth range. [`Pipeline::actual`] maps `w` to the stored window
+//! depth, [`Pipeline::per_unit`] converts a stored spacing back to `w`.
+
+use crate::domain::{domain, finite};
+use crate::error::Result;
+
+/// How the engine draws, besides its projection matrix: the vertex pipeline before it and the
+/// framebuffer state after it. The [`Default`] is the pipeline the model assumed before it knew
+/// these: eye-space vertices, the viewport at the framebuffer's origin, `glDepthRange(0, 1)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pipeline {
+    /// The largest magnitude of any coordinate a base or decal vertex has where the vertex
+    /// shader receives it (world or model space), and of the camera's position in that space;
+    /// 0 when the vertices reach the shader in eye space (already relative to the camera, as
+    /// camera-relative rendering does). The model-view matrix must be rigid (a rotation and a
+    /// translation; with a uniform scale `k`, pass `k·world_reach`). See [`crate::model::vertex`].
+    pub world_reach: f64,
+    /// `glViewport`'s `x` and `y`: the viewport's lower-left corner in the framebuffer, pixels.
+    pub viewport_origin: [u32; 2],
+    /// `glDepthRange(near, far)` (Direct3D: `MinDepth`, `MaxDepth`), `0 ≤ near < far ≤ 1`.
+    pub depth_range: [f64; 2],
+}
+
+impl Default for Pipeline {
+    fn default() -> Self {
+        Self {
+            world_reach: 0.0,
+            viewport_origin: [0, 0],
+            depth_range: [0.0, 1.0],
+        }
+    }
+}
+
+impl Pipeline {
+    /// `far − near` of the depth range: stored window depth per unit window depth.
+    pub fn span(&self) -> f64 {
+        self.depth_range[1] - self.depth_range[0]
+    }
+
+    /// The stored window depth of unit window depth `w`: `near + (far − near)·w`.
+    pub fn actual(&self, w: f64) -> f64 {
+        self.depth_range[0] + self.span() * w
+    }
+
+    /// A difference of stored window depth as a difference of unit window depth.
+    pub fn per_unit(&self, stored: f64) -> f64 {
+        stored / self.span()
+    }
+
+    /// Whether this is the default pipeline (the one the probe's facing figures were measured
+    /// with: eye-space vertices, `glDepthRange(0, 1)`).
+    pub fn is_default_depth(&self) -> bool {
+        self.world_reach == 0.0 && self.depth_range == [0.0, 1.0]
+    }
+
+    /// Checks every field, naming the bad one as the C field is spelled.
+    ///
+    /// # Errors
+    /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite `world_reach` or depth range end;
+    /// [`crate::ErrorKind::Domain`] for a negative `world_reach`, or a depth range that is not
+    /// `0 ≤ near < far ≤ 1`.
+    pub fn check(&self) -> Result<()> {
+        let w = self.world_reach;
+        finite(w, "world_reach is NaN or infinite").map_err(|e| e.with_value("world_reach", w))?;
+        if w < 0.0 {
+            return Err(domain(
+                "world_reach must be >= 0 (0: vertices reach the shader in eye space)",
+            )
+            .with_value("world_reach", w));
+        }
+        let [near, far] = self.depth_range;
+        for (name, x) in [("depth_range_near", near), ("depth_range_far", far)] {
+            finite(x, "a glDepthRange end is NaN or infinite").map_err(|e| e.with_value(name, x))?;
+        }
+        if !(0.0..1.0).contains(&near) {
+            return Err(domain(
+                "glDepthRange's near end must lie in [0, 1) (pass 0 and 1 for the default)",
+            )
+            .with_value("depth_range_near", near));
+        }
+        if !(far > near && far <= 1.0) {
+            return Err(domain(
+                "glDepthRange's far end must lie in (depth_range_near, 1] (pass 0 and 1 for the default)",
+            )
+            .with_value("depth_range_far", far));
+        }
+        Ok(())
+    }
+}
