@@ -358,11 +358,12 @@ typedef struct {
   double depth_range_far;
   /*
    0 when base and decal vertices reach the vertex shader in eye space (relative to the
-   camera). Engines that keep vertices in world (or model) space and transform them with a
-   float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
-   in that space, and of the camera's position there (for a model-view with a uniform
-   scale k, k times that). The float transform's roundings are relative to these
-   magnitudes, not to the distance from the camera; the offset gains that term.
+   camera, as camera-relative rendering sends them). Engines that keep vertices in world
+   space and transform them with a float view (model-view, or model-view-projection)
+   matrix on the GPU: the largest |coordinate| of the camera's position, and of every
+   model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
+   The float transform's roundings are relative to these magnitudes, not to the distance
+   from the camera; the offset gains that term.
    */
   double world_reach;
 } ZshiftDecal;
@@ -578,11 +579,12 @@ typedef struct {
   double depth_range_far;
   /*
    0 when base and decal vertices reach the vertex shader in eye space (relative to the
-   camera). Engines that keep vertices in world (or model) space and transform them with a
-   float model-view matrix on the GPU: the largest |coordinate| of any base or decal vertex
-   in that space, and of the camera's position there (for a model-view with a uniform
-   scale k, k times that). The float transform's roundings are relative to these
-   magnitudes, not to the distance from the camera; the offset gains that term.
+   camera, as camera-relative rendering sends them). Engines that keep vertices in world
+   space and transform them with a float view (model-view, or model-view-projection)
+   matrix on the GPU: the largest |coordinate| of the camera's position, and of every
+   model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
+   The float transform's roundings are relative to these magnitudes, not to the distance
+   from the camera; the offset gains that term.
    */
   double world_reach;
 } ZshiftScene;

@@ -765,6 +765,13 @@ pub(crate) fn profile_index(format: DepthFormat) -> usize {
     }
 }
 
+/// `(eₓ, e_y) = (max(|l|, |r|)/n, max(|b|, |t|)/n)`, the largest tangents of the frustum's half
+/// extents in x and y.
+fn tangents_of(frustum: &Frustum) -> [f64; 2] {
+    let (l, r, b, t, n, _) = frustum.parameters();
+    [l.abs().max(r.abs()) / n, b.abs().max(t.abs()) / n]
+}
+
 /// `e = max(|l|, |r|, |b|, |t|)/n`, the largest tangent of the frustum's half extents.
 fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     // (|r + l|/|r − l| + 1)/(2n/|r − l|) = (|r + l| + |r − l|)/(2n) = max(|l|, |r|)/n: the
@@ -804,8 +811,12 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     ];
     // World-space vertices carry the f32 model-view's errors into the clipper, which
     // interpolates them (a convex combination: no larger than at the vertices).
-    let world = vertex::world_magnitudes(&m, scene.pipeline.world_reach)
-        .map(|b| vertex::WORLD_ROUNDINGS * F32_UNIT_ROUNDOFF * b);
+    // (a base vertex is within √3·R of the camera).
+    let world = if scene.pipeline.world_reach > 0.0 {
+        vertex::world_errors(&m, scene.pipeline.world_reach, 3f64.sqrt() * reach)
+    } else {
+        [0.0; 4]
+    };
     let errors = [0, 1, 2, 3].map(|k| gamma * a[k] + world[k]);
     let l = form.bound(errors);
     let w_low = d1 - gamma * reach - world[3];
@@ -1381,12 +1392,8 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
     let per_ndc = mapping.window_per_ndc();
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
     let form = plane_form(scene, clip, &m)?;
-    let (l, r, b, t, n, _) = scene.frustum.parameters();
     let eye = match scene.footprint {
-        Some(_) => {
-            let tangents = [l.abs().max(r.abs()) / n, b.abs().max(t.abs()) / n];
-            per_ndc * vertex::eye_rounding(&form, &m, tangents)
-        }
+        Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents_of(&scene.frustum)),
         None => {
             let e = half_extent_tangent(&scene.frustum)?;
             F32_UNIT_ROUNDOFF * (scale(scene) / scene.depth_range[0]) * (1.0 + scene.slope * e)
@@ -1396,7 +1403,14 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
     if reach == 0.0 {
         return Ok(eye);
     }
-    let world = per_ndc * vertex::world_rounding(&form, &m, reach, scene.depth_range[0]);
+    let world =
+        per_ndc * vertex::world_rounding(
+            &form,
+            &m,
+            reach,
+            scene.depth_range[0],
+            tangents_of(&scene.frustum),
+        );
     representable(eye.max(world), "the vertex term overflows f64")
 }
 

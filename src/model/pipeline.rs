@@ -27,11 +27,13 @@ use crate::error::Result;
 /// these: eye-space vertices, the viewport at the framebuffer's origin, `glDepthRange(0, 1)`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pipeline {
-    /// The largest magnitude of any coordinate a base or decal vertex has where the vertex
-    /// shader receives it (world or model space), and of the camera's position in that space;
-    /// 0 when the vertices reach the shader in eye space (already relative to the camera, as
-    /// camera-relative rendering does). The model-view matrix must be rigid (a rotation and a
-    /// translation; with a uniform scale `k`, pass `k·world_reach`). See [`crate::model::vertex`].
+    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
+    /// camera, as camera-relative rendering sends them). Otherwise the largest magnitude of any
+    /// coordinate of the camera's position, and of every model's origin, in the space the
+    /// shader receives vertices in (world space for most engines): the f32 model-view's
+    /// roundings are relative to it, however close the vertex is to the camera. The view and
+    /// model matrices must be rigid (rotation and translation; with a uniform scale `k`, pass
+    /// `k·world_reach`). See [`crate::model::vertex`].
     pub world_reach: f64,
     /// `glViewport`'s `x` and `y`: the viewport's lower-left corner in the framebuffer, pixels.
     pub viewport_origin: [u32; 2],

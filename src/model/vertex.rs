@@ -15,24 +15,33 @@
 //! the eye-space slope is not).
 //!
 //! # World-space vertices through an f32 model-view matrix ([`world_rounding`])
-//! With vertices in world space (magnitude at most `W`, the camera's position too) and a rigid
-//! model-view `[R | t]`, an eye coordinate is `Σⱼ Rₖⱼ·pⱼ + tₖ`, whose terms sum to at most
-//! `A = 2√3·W` in magnitude (a rotation row has `‖Rₖ‖₁ ≤ √3`, and `|tₖ| = |Rₖ·camera| ≤ √3·W`).
-//! Every rounding of the transform is relative to that magnitude, not to the vertex's distance
-//! from the camera, so the clip coordinate `k` of a vertex errs by at most `γ_W·Bₖ`,
-//! `Bₖ = Σᵢ₍₃₎ |Pₖᵢ|·A + |Pₖ₃|`, with `γ_W = 14u` counted on the costlier of the two ways
-//! engines compute it:
+//! Engines keep vertices in world (or model) space and transform them on the GPU. With the
+//! camera's position and every model's origin within `W` of the world origin (each
+//! coordinate), a rigid view `[R | t]` (`t = −R·camera`) and rigid model matrices, the terms an
+//! eye coordinate `k` sums have magnitude at most
+//!
+//! `A = √3·(4W + |p − camera|)`:
+//!
+//! a rotation row has `‖Rₖ‖₁ ≤ √3`; a world vertex has coordinates up to `W + |p − camera|`,
+//! the translation `|tₖ| ≤ √3·W`; through a model matrix `V·M` the object-space coordinates
+//! are up to `2W + |p − camera|` and `V·M`'s translation up to `2√3·W`. A vertex inside the
+//! frustum has `|p − camera| ≤ ρ·w`, `ρ = √(1 + eₓ² + e_y²)`. Every rounding of the transform
+//! is relative to those magnitudes, not to the vertex's distance from the camera, so each clip
+//! coordinate `k` errs by at most `γ_W·Bₖ`, `Bₖ = Σᵢ₍₃₎ |Pₖᵢ|·A + |Pₖ₃|`, independently (no
+//! cancellation between `z_c` and `w_c` is assumed), with `γ_W = 14u` counted on the costlier
+//! of the two ways engines compute it:
 //!
 //! * `P·(MV·p)` in the shader: `p` stored as f32 (1), `MV`'s elements stored as f32 (1), the
-//!   product `MV·p` (three products and three sums, 4 at most per coordinate with the
-//!   first product exact-or-rounded: 4), the product `P·eye` (4): `10u`;
+//!   product `MV·p` (three products and three sums: 4 on the longest path), the product
+//!   `P·eye` (4): `10u`;
 //! * `(P·MV)·p` (one MVP uniform, or GLSL's left-to-right `proj * view * model * v`): `p` (1),
-//!   `MV` (4 for the product of model and view, when they are separate), `P·MV` (4), its
-//!   storage as f32 (1), the product with `p` (4): `14u`.
+//!   `V·M` (4), `P·MV` (4), its storage as f32 (1), the product with `p` (4): `14u`.
 //!
-//! For a pixel at eye depth `d ≥ d₁` of the decal the error is at most `L(γ_W·B)/d₁`: it does
-//! not shrink with the vertices' distance, and it grows with `W` — which is what camera-relative
-//! rendering (vertices sent relative to the camera, `W` small) removes.
+//! `A` splits into a part that does not shrink with distance, `4√3·W`, and one proportional to
+//! `w`, `√3·ρ·w`. Through the form, the first gives at most `L(γ_W·B(4√3·W))/d₁` at a pixel of
+//! depth `d ≥ d₁` (the weights `μᵢ` sum to 1), the second at most `L(γ_W·B'(√3·ρ))` (the
+//! weights `μᵢ·wᵢ/d` sum to 1; `B'` without the translation column). Camera-relative rendering
+//! (vertices sent relative to the camera, `W` about the scene's own size) removes the first.
 
 use super::PlaneForm;
 
@@ -51,21 +60,39 @@ pub fn eye_rounding(form: &PlaneForm, m: &[f64; 16], tangents: [f64; 2]) -> f64 
     U * (g[0].abs() * tangents[0] + g[1].abs() * tangents[1] + g[2].abs())
 }
 
-/// The magnitude bound `Bₖ` of each clip coordinate of a world-space vertex (module docs):
-/// `Σᵢ₍₃₎ |Pₖᵢ|·2√3·W + |Pₖ₃|` for `k = x, y, z, w`.
-pub fn world_magnitudes(m: &[f64; 16], world_reach: f64) -> [f64; 4] {
-    let a = 2.0 * 3f64.sqrt() * world_reach;
+/// `Bₖ = Σᵢ₍₃₎ |Pₖᵢ|·a + |Pₖ₃|·translation` for `k = x, y, z, w`: the magnitude of the terms of
+/// clip coordinate `k` for eye coordinates of magnitude `a` (module docs).
+pub fn clip_magnitudes(m: &[f64; 16], a: f64, translation: f64) -> [f64; 4] {
     [0, 1, 2, 3].map(|row| {
-        (0..3).map(|col| m[4 * col + row].abs()).sum::<f64>() * a + m[12 + row].abs()
+        (0..3).map(|col| m[4 * col + row].abs()).sum::<f64>() * a
+            + m[12 + row].abs() * translation
     })
 }
 
-/// The NDC depth error at a pixel of eye depth `d ≥ nearest` from the f32 transform of
-/// world-space vertices of magnitude `world_reach`: `|L|(γ_W·B)/nearest` (module docs). `form`
-/// may hold bounds on the magnitudes of the plane's coefficients (only their sizes are used).
-pub fn world_rounding(form: &PlaneForm, m: &[f64; 16], world_reach: f64, nearest: f64) -> f64 {
-    let b = world_magnitudes(m, world_reach);
-    WORLD_ROUNDINGS * U * form.bound(b) / nearest
+/// The clip-space error bound `γ_W·Bₖ` of a vertex whose distance from the camera is at most
+/// `extent`, transformed from world space with the camera and model origins within
+/// `world_reach` of the world origin (module docs): `A = √3·(4W + extent)`.
+pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
+    let a = 3f64.sqrt() * (4.0 * world_reach + extent);
+    clip_magnitudes(m, a, 1.0).map(|b| WORLD_ROUNDINGS * U * b)
+}
+
+/// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum,
+/// from the f32 transform of world-space vertices (module docs):
+/// `L(γ_W·B(4√3·W))/nearest + L(γ_W·B'(√3·ρ))`, `ρ = √(1 + eₓ² + e_y²)` from `tangents`.
+/// `form` may hold bounds on the magnitudes of the plane's coefficients (only their sizes are
+/// used).
+pub fn world_rounding(
+    form: &PlaneForm,
+    m: &[f64; 16],
+    world_reach: f64,
+    nearest: f64,
+    tangents: [f64; 2],
+) -> f64 {
+    let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
+    let fixed = clip_magnitudes(m, 4.0 * 3f64.sqrt() * world_reach, 1.0);
+    let growing = clip_magnitudes(m, 3f64.sqrt() * rho, 0.0);
+    WORLD_ROUNDINGS * U * (form.bound(fixed) / nearest + form.bound(growing))
 }
 
 #[cfg(test)]
