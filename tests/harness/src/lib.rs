@@ -43,6 +43,7 @@ use khronos_egl as egl;
 pub use glow;
 
 pub mod coplanar;
+pub mod world;
 
 /// `EGL_PLATFORM_SURFACELESS_MESA`: a display with no window system.
 const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
@@ -270,6 +271,8 @@ pub struct Gl {
     vbo: glow::Buffer,
     legacy: Legacy,
     target: Option<Target>,
+    /// The world-space mesh pipeline of [`world`], made on first use.
+    world: Option<(glow::Program, glow::VertexArray, glow::Buffer)>,
     _not_send: std::marker::PhantomData<*const ()>,
 }
 
@@ -356,6 +359,7 @@ impl Gl {
             vbo,
             legacy,
             target: None,
+            world: None,
             _not_send: std::marker::PhantomData,
         })
     }
@@ -757,6 +761,13 @@ impl Gl {
 impl Drop for Gl {
     fn drop(&mut self) {
         self.drop_target();
+        if let Some((program, vao, vbo)) = self.world.take() {
+            unsafe {
+                self.gl.delete_program(program);
+                self.gl.delete_vertex_array(vao);
+                self.gl.delete_buffer(vbo);
+            }
+        }
         unsafe {
             self.gl.delete_program(self.program);
             self.gl.delete_vertex_array(self.vao);

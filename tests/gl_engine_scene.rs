@@ -1,0 +1,572 @@
+//! The scene every engine draws, on a real rasterizer (headless EGL; Mesa llvmpipe in CI): a
+//! decal on ground that runs to the horizon and behind the camera, seen by a camera 1.7 units
+//! above it at pitch 0° (level) to 60°, with vertices in **world space** through an **f32 view
+//! matrix** in the vertex shader (`proj * (view * vec4(p, 1))`), the whole scene translated with
+//! the camera by 0 to 10⁴ units from the world origin, the ground drawn **as it is** (one quad of
+//! ±1000 units, or a 64×64 grid of triangles; no cutting), in a viewport at the framebuffer's
+//! origin or inside a larger one, under `glDepthRange(0, 1)` or a sub-range, on D24, D24S8,
+//! D32F and D32F_S8 attachments under `[−1, 1]`, `[0, 1]` and reversed Z, with strict and
+//! `…EQUAL` depth tests (every pass drawn with the same test, as engines do), and with the
+//! worst-case and the probed profile.
+//!
+//! The decal is asked for through the front door (`matrix_in::recommend` on the engine's own
+//! matrix, the decal's eye-space corners, `base_reach`, the pipeline), exactly as an engine
+//! would. Every answered scene must lose 0 decal pixels and bleed 0 pixels over an occluder
+//! parallel to the ground whose eye depth is at least the reported gap in front of the ground
+//! at every pixel. A refusal must be a scene where bisection finds no working offset. The test
+//! prints, per class, the recommended ÷ smallest working offset (bisection over f32 steps of the
+//! offset element) and the bleed gap ÷ the decal's distance.
+//!
+//! References are GL readbacks and this file's own f64 geometry. Fails (never skips) without GL.
+//! `ZSHIFT_ENGINE_SCENES=full` runs every variation of the grid (slow); the default samples
+//! one variation per base scene. `--nocapture` prints the table; `ZSHIFT_ENGINE_SCENES_VERBOSE=1`
+//! every scene.
+
+mod gl_common;
+
+use zshift::matrix_in::{decal_shape, recommend, Decal};
+use zshift::model::Pipeline;
+use zshift::precision::DepthFormat as Format;
+use zshift::projection::{projection, ClipDepth, Frustum};
+use zshift::recommend::{Base, DepthTest, RasterizerProfile, Snapping};
+use zshift_harness::coplanar::{
+    bisect_smallest_passing, stepped_toward_camera, steps_between, Count, BASE, CLEAR, DECAL,
+    OCCLUDER,
+};
+use zshift_harness::world::Window;
+use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile};
+
+/// Camera height above the ground.
+const EYE_HEIGHT: f64 = 1.7;
+/// The ground's half extent around the camera.
+const GROUND: f64 = 1000.0;
+/// The viewport, 16:9.
+const VIEWPORT: [u32; 2] = [320, 180];
+/// glm::perspective's vertical field of view.
+const FOVY_DEG: f64 = 60.0;
+
+/// One convention and attachment.
+#[derive(Debug, Clone, Copy)]
+struct Attachment {
+    label: &'static str,
+    clip: ClipDepth,
+    format: DepthFormat,
+    packed: bool,
+}
+
+const ATTACHMENTS: [Attachment; 6] = [
+    Attachment { label: "[-1,1] D24", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: false },
+    Attachment { label: "[-1,1] D24S8", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: true },
+    Attachment { label: "[0,1] D32F", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: false },
+    Attachment { label: "[0,1] D32F_S8", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: true },
+    Attachment { label: "reversed D32F", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D32F, packed: false },
+    Attachment { label: "reversed D24S8", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D24, packed: true },
+];
+
+/// One scene of the sweep.
+#[derive(Debug, Clone, Copy)]
+struct Case {
+    at: Attachment,
+    pitch_deg: f64,
+    translate: f64,
+    grid: bool,
+    near: f64,
+    far: f64,
+    size: f64,
+    distance: f64,
+    side: f64,
+    equal_test: bool,
+    origin: [u32; 2],
+    depth_range: [f64; 2],
+}
+
+impl Case {
+    fn reversed(&self) -> bool {
+        self.at.clip == ClipDepth::ReversedZeroToOne
+    }
+
+    fn frustum(&self) -> Frustum {
+        let t = self.near * (FOVY_DEG.to_radians() / 2.0).tan();
+        let r = t * f64::from(VIEWPORT[0]) / f64::from(VIEWPORT[1]);
+        Frustum::new(-r, r, -t, t, self.near, self.far).expect("valid frustum")
+    }
+
+    fn camera(&self) -> [f64; 3] {
+        [self.translate, EYE_HEIGHT, self.translate]
+    }
+
+    /// The rotation world → eye: the camera looks down world −z, pitched down by `pitch`.
+    fn rotation(&self) -> [[f64; 3]; 3] {
+        let (s, c) = self.pitch_deg.to_radians().sin_cos();
+        [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
+    }
+
+    /// Eye coordinates of a world point, in f64.
+    fn eye(&self, p: [f64; 3]) -> [f64; 3] {
+        let (r, c) = (self.rotation(), self.camera());
+        let d = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+        [0, 1, 2].map(|i| r[i][0] * d[0] + r[i][1] * d[1] + r[i][2] * d[2])
+    }
+
+    /// The f32 view matrix (column-major), built in f64 as an engine's math library would and
+    /// rounded once.
+    fn view(&self) -> [f32; 16] {
+        let (r, c) = (self.rotation(), self.camera());
+        let mut m = [0.0f32; 16];
+        for i in 0..3 {
+            for j in 0..3 {
+                m[4 * j + i] = r[i][j] as f32;
+            }
+            m[12 + i] = -(r[i][0] * c[0] + r[i][1] * c[1] + r[i][2] * c[2]) as f32;
+        }
+        m[15] = 1.0;
+        m
+    }
+
+    fn ground(&self) -> Vec<[f32; 3]> {
+        let (x0, z0) = (self.translate - GROUND, self.translate - GROUND);
+        let cells = if self.grid { 64 } else { 1 };
+        let step = 2.0 * GROUND / f64::from(cells);
+        let at = |i: u32, j: u32| {
+            [
+                (x0 + step * f64::from(i)) as f32,
+                0.0,
+                (z0 + step * f64::from(j)) as f32,
+            ]
+        };
+        let mut t = Vec::new();
+        for i in 0..cells {
+            for j in 0..cells {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                t.extend([a, b, c, a, c, d]);
+            }
+        }
+        t
+    }
+
+    /// The decal's centre on the ground (world).
+    fn decal_centre(&self) -> [f64; 2] {
+        [
+            self.translate + self.side * self.distance,
+            self.translate - self.distance,
+        ]
+    }
+
+    /// A square of half side `half` around the decal's centre at height `y`, as world corners.
+    fn square(&self, half: f64, y: f64) -> [[f64; 3]; 4] {
+        let [x, z] = self.decal_centre();
+        [
+            [x - half, y, z + half],
+            [x + half, y, z + half],
+            [x + half, y, z - half],
+            [x - half, y, z - half],
+        ]
+    }
+
+    fn decal_world(&self) -> [[f32; 3]; 4] {
+        self.square(self.size / 2.0, 0.0)
+            .map(|p| p.map(|c| c as f32))
+    }
+
+    /// Every decal corner strictly inside the frustum (the model's decal is not clipped).
+    fn decal_on_screen(&self) -> bool {
+        let fr = self.frustum();
+        let (l, r, b, t, n, f) = fr.parameters();
+        self.decal_world().iter().all(|p| {
+            let e = self.eye(p.map(f64::from));
+            let d = -e[2];
+            d > n * 1.01
+                && d < f * 0.99
+                && e[0] / d > 0.98 * l / n
+                && e[0] / d < 0.98 * r / n
+                && e[1] / d > 0.98 * b / n
+                && e[1] / d < 0.98 * t / n
+        })
+    }
+
+    fn framebuffer(&self) -> [u32; 2] {
+        [
+            self.origin[0] + VIEWPORT[0] + 8,
+            self.origin[1] + VIEWPORT[1] + 8,
+        ]
+    }
+
+    fn window(&self) -> Window {
+        Window {
+            viewport: [
+                self.origin[0] as i32,
+                self.origin[1] as i32,
+                VIEWPORT[0] as i32,
+                VIEWPORT[1] as i32,
+            ],
+            depth_range: self.depth_range,
+        }
+    }
+
+    fn tests(&self) -> (u32, DepthTest) {
+        match (self.reversed(), self.equal_test) {
+            (false, false) => (glow::LESS, DepthTest::Less),
+            (false, true) => (glow::LEQUAL, DepthTest::LessEqual),
+            (true, false) => (glow::GREATER, DepthTest::Greater),
+            (true, true) => (glow::GEQUAL, DepthTest::GreaterEqual),
+        }
+    }
+
+    /// The largest |x|, |y| or |z| of the ground's eye-space vertices.
+    fn base_reach(&self) -> f64 {
+        let g = self.translate;
+        [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
+            .iter()
+            .map(|[sx, sz]| {
+                let e = self.eye([g + sx * GROUND, 0.0, g + sz * GROUND]);
+                e.iter().fold(0.0f64, |a, c| a.max(c.abs()))
+            })
+            .fold(0.0, f64::max)
+    }
+
+    fn label(&self) -> String {
+        format!(
+            "{} pitch {}° T {} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
+            self.at.label,
+            self.pitch_deg,
+            self.translate,
+            if self.grid { "grid" } else { "quad" },
+            self.near,
+            self.far,
+            self.size,
+            self.distance,
+            if self.side != 0.0 { " side" } else { "" },
+            if self.equal_test { "EQUAL" } else { "strict" },
+            self.origin,
+            self.depth_range
+        )
+    }
+}
+
+/// Draws one case's passes on `gl` (target already made).
+struct Renderer<'a> {
+    gl: &'a mut Gl,
+    case: Case,
+    view: [f32; 16],
+    plain: [f32; 16],
+    ground: Vec<[f32; 3]>,
+    mask: Vec<bool>,
+}
+
+fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {
+    vec![q[0], q[1], q[2], q[0], q[2], q[3]]
+}
+
+impl<'a> Renderer<'a> {
+    fn new(gl: &'a mut Gl, case: Case) -> Result<Self, String> {
+        let [w, h] = case.framebuffer();
+        if case.at.packed {
+            gl.set_target_with_stencil(w, h, case.at.format)?;
+        } else {
+            gl.set_target(w, h, case.at.format)?;
+        }
+        gl.clip_control(if case.at.clip == ClipDepth::NegOneToOne {
+            GlClip::NegativeOneToOne
+        } else {
+            GlClip::ZeroToOne
+        })?;
+        gl.set_window(&case.window())?;
+        let plain = projection(&case.frustum(), case.at.clip).map_err(|e| e.to_string())?;
+        let mut r = Renderer {
+            gl,
+            case,
+            view: case.view(),
+            plain,
+            ground: case.ground(),
+            mask: Vec::new(),
+        };
+        r.mask = r.coverage(&quad_triangles(&case.decal_world()))?;
+        Ok(r)
+    }
+
+    fn clear(&mut self) -> Result<(), String> {
+        let depth = if self.case.reversed() { 0.0 } else { 1.0 };
+        self.gl.clear(CLEAR, depth)
+    }
+
+    fn state(&self) -> DrawState {
+        DrawState {
+            depth_func: self.case.tests().0,
+            ..DrawState::default()
+        }
+    }
+
+    fn coverage(&mut self, triangles: &[[f32; 3]]) -> Result<Vec<bool>, String> {
+        self.clear()?;
+        let always = DrawState {
+            depth_func: glow::ALWAYS,
+            ..DrawState::default()
+        };
+        let (view, plain) = (self.view, self.plain);
+        self.gl.draw_world(triangles, &view, &plain, DECAL, &always)?;
+        Ok(self.gl.read_color()?.mask_of(zshift_harness::rgba8(DECAL)))
+    }
+
+    fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+        self.clear()?;
+        let (view, plain, state) = (self.view, self.plain, self.state());
+        let ground = std::mem::take(&mut self.ground);
+        let drawn = self.gl.draw_world(&ground, &view, &plain, BASE, &state);
+        self.ground = ground;
+        drawn?;
+        let decal = quad_triangles(&self.case.decal_world());
+        self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;
+        Ok(Count::decal_missing(&self.gl.read_color()?, &self.mask))
+    }
+
+    /// Decal pixels shown over an occluder parallel to the ground whose eye depth is `gap` in
+    /// front of the ground's at every decal pixel: along a ray from the camera at height h,
+    /// `d_occluder/d_ground = (h − δh)/h`, so `δh = gap·h/d₁` suffices (`d₁` the decal's
+    /// nearest eye depth).
+    fn bled(&mut self, decal_proj: &[f32; 16], gap: f64, d1: f64) -> Result<Option<Count>, String> {
+        let lift = gap * EYE_HEIGHT / d1 * (1.0 + 1e-6);
+        if lift >= 0.9 * EYE_HEIGHT {
+            return Ok(None); // a gap reaching the camera: nothing to check
+        }
+        let occluder = quad_triangles(
+            &self
+                .case
+                .square(0.75 * self.case.size, lift)
+                .map(|p| p.map(|c| c as f32)),
+        );
+        let occ_mask = self.coverage(&occluder)?;
+        let both: Vec<bool> = occ_mask.iter().zip(&self.mask).map(|(a, b)| *a && *b).collect();
+        self.clear()?;
+        let (view, plain, state) = (self.view, self.plain, self.state());
+        let ground = std::mem::take(&mut self.ground);
+        let drawn = self.gl.draw_world(&ground, &view, &plain, BASE, &state);
+        self.ground = ground;
+        drawn?;
+        self.gl.draw_world(&occluder, &view, &plain, OCCLUDER, &state)?;
+        let decal = quad_triangles(&self.case.decal_world());
+        self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;
+        Ok(Some(Count::decal_shown(&self.gl.read_color()?, &both)))
+    }
+
+    /// The smallest number of f32 steps of the offset element toward the camera that loses no
+    /// decal pixel, by bisection up to 2²²; `None` if none does.
+    fn smallest_working(&mut self) -> Result<Option<u32>, String> {
+        let (plain, reversed) = (self.plain, self.case.reversed());
+        let hi = 1 << 22;
+        if self.lost(&stepped_toward_camera(&plain, reversed, hi))?.hit > 0 {
+            return Ok(None);
+        }
+        if self.lost(&plain)?.hit == 0 {
+            return Ok(Some(0));
+        }
+        bisect_smallest_passing(0, hi, |k| {
+            Ok(self.lost(&stepped_toward_camera(&plain, reversed, k))?.hit == 0)
+        })
+        .map(Some)
+    }
+}
+
+/// What one scene gave.
+#[derive(Debug, Default)]
+struct Outcome {
+    lost: usize,
+    bled: usize,
+    refused: Option<String>,
+    drawable: bool,
+    ratio: Option<f64>,
+    gap_over_distance: f64,
+    terms: Option<zshift::recommend::ErrorTerms>,
+}
+
+fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Option<Outcome>, String> {
+    if !case.decal_on_screen() {
+        return Ok(None);
+    }
+    let mut r = Renderer::new(gl, case)?;
+    if r.mask.iter().filter(|&&m| m).count() < 4 {
+        return Ok(None);
+    }
+    let corners: Vec<glam::Vec3> = case
+        .decal_world()
+        .iter()
+        .map(|p| {
+            let e = case.eye(p.map(f64::from));
+            glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
+        })
+        .collect();
+    let plain = r.plain;
+    let asked = decal_shape(&plain, case.at.clip, VIEWPORT, &corners).and_then(|shape| {
+        let decal = Decal {
+            viewport: VIEWPORT,
+            format: Format::from_gl_internal_format(if case.at.packed {
+                match case.at.format {
+                    DepthFormat::D24 => glow::DEPTH24_STENCIL8,
+                    _ => glow::DEPTH32F_STENCIL8,
+                }
+            } else {
+                case.at.format.gl_enum()
+            })?,
+            depth_range: shape.depth_range,
+            slope: shape.slope,
+            exact_depth: false,
+            snapping: Snapping::SubpixelBits(8),
+            base: Base::Clipped {
+                reach: case.base_reach(),
+            },
+            profile: Some(*profile),
+            footprint: Some(shape.footprint),
+            depth_test: Some(case.tests().1),
+            pipeline: Pipeline {
+                world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
+                viewport_origin: case.origin,
+                depth_range: case.depth_range,
+            },
+        };
+        recommend(&plain, case.at.clip, &decal).map(|rec| (rec, shape.depth_range[0]))
+    });
+    let mut out = Outcome::default();
+    match asked {
+        Err(e) => {
+            out.refused = Some(e.to_string());
+            out.drawable = r.smallest_working()?.is_some();
+        }
+        Ok((rec, d1)) => {
+            out.lost = r.lost(&rec.matrix)?.hit;
+            out.bled = r.bled(&rec.matrix, rec.bleed_gap, d1)?.map_or(0, |c| c.hit);
+            out.gap_over_distance = rec.bleed_gap / d1;
+            out.terms = Some(rec.terms);
+            let steps = steps_between(&plain, &rec.matrix, case.reversed());
+            out.ratio = r
+                .smallest_working()?
+                .map(|k| f64::from(steps) / f64::from(k.max(1)));
+        }
+    }
+    Ok(Some(out))
+}
+
+/// A tiny deterministic generator for picking each base scene's variation.
+struct Pick(u64);
+
+impl Pick {
+    fn index(&mut self, n: usize) -> usize {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 % n as u64) as usize
+    }
+}
+
+/// The sweep: every attachment × pitch × translation × ground, each with one variation of
+/// decal, planes, depth test and window picked deterministically (all of them under
+/// `ZSHIFT_ENGINE_SCENES=full`).
+fn cases() -> Vec<Case> {
+    let full = std::env::var("ZSHIFT_ENGINE_SCENES").is_ok_and(|v| v == "full");
+    let mut pick = Pick(0x2545_F491_4F6C_DD1D);
+    let mut out = Vec::new();
+    for at in ATTACHMENTS {
+        for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {
+            for translate in [0.0, 100.0, 1e3, 1e4] {
+                for grid in [false, true] {
+                    let variations = if full { 6 } else { 1 };
+                    for _ in 0..variations {
+                        let distances: &[f64] = if pitch_deg >= 60.0 {
+                            &[1.5, 2.0]
+                        } else if pitch_deg >= 30.0 {
+                            &[3.0, 4.0]
+                        } else {
+                            &[3.0, 10.0, 50.0, 200.0]
+                        };
+                        let near = [0.1, 0.01][pick.index(2)];
+                        out.push(Case {
+                            at,
+                            pitch_deg,
+                            translate,
+                            grid,
+                            near,
+                            far: [1000.0, f64::INFINITY][pick.index(2)],
+                            size: [0.5, 2.0, 4.0][pick.index(3)],
+                            distance: distances[pick.index(distances.len())],
+                            side: [0.0, 0.4][pick.index(2)],
+                            equal_test: pick.index(2) == 1,
+                            origin: [[0, 0], [400, 260]][pick.index(2)],
+                            depth_range: [[0.0, 1.0], [0.0, 0.5], [0.5, 1.0]][pick.index(3)],
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+#[test]
+fn the_scene_every_engine_draws() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    let probed = gl_common::probed(&gl);
+    let worst = RasterizerProfile::worst_case();
+    let verbose = std::env::var("ZSHIFT_ENGINE_SCENES_VERBOSE").is_ok();
+    let mut failures = Vec::new();
+    let mut table = std::collections::BTreeMap::<String, Vec<Outcome>>::new();
+    let (mut drawn, mut skipped) = (0, 0);
+    for case in cases() {
+        for (name, profile) in [("worst", &worst), ("probed", &probed)] {
+            let Some(out) = run_case(&mut gl, case, profile).unwrap_or_else(|e| panic!("{}: {e}", case.label())) else {
+                skipped += 1;
+                continue;
+            };
+            drawn += 1;
+            if verbose {
+                println!("{name:6} {}: {out:?}", case.label());
+            }
+            if out.lost > 0 || out.bled > 0 {
+                failures.push(format!("{name} {}: lost {} bled {}", case.label(), out.lost, out.bled));
+            }
+            let ground = if case.grid { "grid" } else { "quad" };
+            let key = format!("{:16} {:6} {}", case.at.label, name, ground);
+            table.entry(key).or_default().push(out);
+        }
+    }
+    println!("{drawn} scenes drawn, {skipped} skipped (decal off screen or under 4 pixels)");
+    println!(
+        "{:30} {:>6} {:>8} {:>10} {:>10} {:>10} {:>12} {:>12}",
+        "class", "scenes", "refused", "drawable", "ratio med", "ratio max", "gap/d med", "gap/d max"
+    );
+    let mut refused_drawable = 0;
+    for (key, outs) in &table {
+        let refused = outs.iter().filter(|o| o.refused.is_some()).count();
+        let drawable = outs.iter().filter(|o| o.refused.is_some() && o.drawable).count();
+        refused_drawable += drawable;
+        let mut ratios: Vec<f64> = outs.iter().filter_map(|o| o.ratio).collect();
+        let mut gaps: Vec<f64> = outs
+            .iter()
+            .filter(|o| o.refused.is_none())
+            .map(|o| o.gap_over_distance)
+            .collect();
+        let rmax = ratios.iter().copied().fold(f64::NAN, f64::max);
+        let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
+        println!(
+            "{key:30} {:>6} {refused:>8} {drawable:>10} {:>10.1} {rmax:>10.1} {:>12.2e} {gmax:>12.2e}",
+            outs.len(),
+            median(&mut ratios),
+            median(&mut gaps)
+        );
+    }
+    if verbose {
+        for outs in table.values() {
+            for o in outs.iter().filter(|o| o.refused.is_some()) {
+                println!("refused: {:?} drawable {}", o.refused, o.drawable);
+            }
+        }
+    }
+    println!("refused although bisection finds a working offset: {refused_drawable}");
+    assert!(drawn > 100, "too few scenes drawn: {drawn}");
+    assert!(failures.is_empty(), "{} scenes lost or bled pixels:\n{}", failures.len(), failures.join("\n"));
+}

@@ -1,0 +1,89 @@
+//! Meshes drawn the way engines draw them: vertices in world space, transformed in the vertex
+//! shader by an f32 view matrix and then the projection (`proj * (view * vec4(p, 1))`), into a
+//! viewport anywhere in the framebuffer, under any `glDepthRange`.
+//!
+//! [`Gl::draw_quad`] sends eye-space corners and only the projection; this is the other path,
+//! where the f32 view transform's roundings (relative to the world coordinates, not to the
+//! distance from the camera) reach the rasterizer as they do in an engine.
+
+use glow::HasContext;
+
+use crate::{DrawState, Gl};
+
+const WORLD_VERTEX_SHADER: &str = "#version 330 core
+layout(location = 0) in vec3 world;
+uniform mat4 view;
+uniform mat4 proj;
+void main() { gl_Position = proj * (view * vec4(world, 1.0)); }
+";
+
+/// Where the viewport lies and how depth is mapped: `glViewport(x, y, w, h)` and
+/// `glDepthRange(near, far)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Window {
+    /// `glViewport`'s x, y, width, height.
+    pub viewport: [i32; 4],
+    /// `glDepthRange(near, far)`.
+    pub depth_range: [f64; 2],
+}
+
+impl Gl {
+    /// Sets `glViewport` and `glDepthRange` from `window` (they stay until changed; the target
+    /// helpers reset the viewport to the whole target).
+    ///
+    /// # Errors
+    /// A GL error.
+    pub fn set_window(&mut self, window: &Window) -> Result<(), String> {
+        let [x, y, w, h] = window.viewport;
+        unsafe {
+            self.gl.viewport(x, y, w, h);
+            self.gl
+                .depth_range_f64(window.depth_range[0], window.depth_range[1]);
+        }
+        self.check("glViewport/glDepthRange")
+    }
+
+    /// Draws `triangles` (world-space vertices, three per triangle) through
+    /// `gl_Position = proj * (view * vec4(world, 1))` in flat `color`, with `state`'s depth
+    /// func, masks and polygon offset.
+    ///
+    /// # Errors
+    /// No target, a shader failure, or a GL error.
+    pub fn draw_world(
+        &mut self,
+        triangles: &[[f32; 3]],
+        view: &[f32; 16],
+        proj: &[f32; 16],
+        color: [f32; 4],
+        state: &DrawState,
+    ) -> Result<(), String> {
+        self.require_target()?;
+        if self.world.is_none() {
+            self.world = Some(unsafe { crate::flat_colour_pipeline(&self.gl, WORLD_VERTEX_SHADER)? });
+        }
+        let (program, vao, vbo) = self.world.expect("made above");
+        let bytes: Vec<u8> = triangles
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_ne_bytes())
+            .collect();
+        let gl = &self.gl;
+        unsafe {
+            gl.use_program(Some(program));
+            gl.bind_vertex_array(Some(vao));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
+            let v = gl.get_uniform_location(program, "view");
+            gl.uniform_matrix_4_f32_slice(v.as_ref(), false, view);
+            let p = gl.get_uniform_location(program, "proj");
+            gl.uniform_matrix_4_f32_slice(p.as_ref(), false, proj);
+            let c = gl.get_uniform_location(program, "color");
+            gl.uniform_4_f32(c.as_ref(), color[0], color[1], color[2], color[3]);
+            self.apply(state);
+            gl.draw_arrays(glow::TRIANGLES, 0, triangles.len() as i32);
+            gl.bind_vertex_array(None);
+            gl.use_program(None);
+        }
+        self.check("draw_world")
+    }
+}
