@@ -14,7 +14,7 @@
 //! the computation, with `write_unaligned` or a byte copy from a local; neither pointer needs
 //! any alignment.
 //! These promises are checked by `tests/threads.rs`, `tests/miri_ffi.rs` (under Miri:
-//! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (README, Hardening).
+//! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (docs/hardening.md).
 
 // These doc comments are also the C header's text, where `out[10]` or `double[N]` is C syntax,
 // not a Rust intra-doc link.
