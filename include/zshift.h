@@ -625,7 +625,10 @@ typedef ZshiftGlProc (*ZshiftGlLoader)(const char *name, void *user);
 #define ZSHIFT_ERR_DOMAIN 3
 
 /*
- The inputs were valid but the quantity does not exist (k*|Pz| >= 1 in eq. 4.1.10).
+ The inputs were valid but no useful answer exists for them: the quantity does not exist
+ (k*|Pz| >= 1 in eq. 4.1.10, a minimum epsilon under reversed Z with f = +INFINITY), stacked
+ layers would reach the gap, or a recommendation would push the decal past the near plane or
+ need a bleed gap wider than half its distance. `zshift_last_error()` says which.
  */
 #define ZSHIFT_ERR_UNRESOLVABLE 4
 
@@ -647,8 +650,9 @@ typedef ZshiftGlProc (*ZshiftGlLoader)(const char *name, void *user);
 #define ZSHIFT_ERR_GL 7
 
 /*
- A static, NUL-terminated English sentence describing `status`. Never NULL; unknown codes
- get "unknown zshift status". The caller must not free it.
+ A static, NUL-terminated English sentence describing the kind of failure `status` stands
+ for (not one case of it: `zshift_last_error()` names the input, its value and the bound).
+ Never NULL; unknown codes get "unknown zshift status". The caller must not free it.
  */
 const char *zshift_status_message(ZshiftStatus status);
 

@@ -7,7 +7,8 @@
 // Conventions, as in the C header: OpenGL right-handed eye space looking down -z, NDC depth
 // [-1, 1], window depth [0, 1]; n, f, d are positive distances (f may be +infinity where a
 // function says so), pz is an eye-space z (negative in front of the camera); delta > 0 moves
-// geometry toward the camera and gives epsilon < 0. Equation numbers refer to the seed texts.
+// geometry toward the camera and gives epsilon < 0. Equation numbers (4.1.x) refer to Lengyel's
+// offset matrix; the depth step is Walker's depth resolution.
 //
 // Link with the zshift library (pkg-config zshift, or CMake's zshift::zshift).
 #ifndef ZSHIFT_HPP
@@ -19,6 +20,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "zshift.h"
 
@@ -53,6 +55,9 @@ constexpr ZshiftStatus to_c(Status status) noexcept { return static_cast<ZshiftS
 
 /// The library's sentence for a status (never null; unknown codes get "unknown zshift status").
 inline const char *message(Status status) noexcept { return zshift_status_message(to_c(status)); }
+
+/// zshift_status_message under its C name: the same sentence as message().
+inline const char *status_message(Status status) noexcept { return message(status); }
 
 /// A zshift call failed. `status()` says how; `what()` says which input, its value and why (the
 /// library's zshift_last_error() detail, such as "the near plane distance n must be greater than
@@ -527,8 +532,30 @@ inline double ortho_depth_step(double n, double f, Clip clip, Format format, dou
 /// input, its value and why. zshift::Error::what() already carries it.
 inline std::string last_error() { return zshift_last_error(); }
 
-/// The library version, such as "0.1.0".
-inline std::string version() { return zshift_version(); }
+/// The library version, such as "0.1.0": a static string, as zshift_version() returns it.
+inline const char *version() noexcept { return zshift_version(); }
+
+/// An eye-space vertex (x, y, z), for clip_to_frustum().
+using Vertex = std::array<double, 3>;
+
+/// Cuts a convex base polygon (eye-space vertices in order around it) to the view frustum of
+/// glFrustum(l, r, b, t, n, f), in double and slightly inside, so that the rasterizer clips
+/// nothing of it (zshift_clip_to_frustum): draw the result as a triangle fan and pass
+/// base_reach = 0. Empty when nothing is inside. Throws Error: Status::not_finite,
+/// Status::domain (a bad frustum, more than 65536 vertices).
+inline std::vector<Vertex> clip_to_frustum(double l, double r, double b, double t, double n, double f,
+                                           const std::vector<Vertex> &polygon) {
+  static_assert(sizeof(Vertex) == 3 * sizeof(double), "Vertex is three packed doubles");
+  const std::uint32_t count = static_cast<std::uint32_t>(polygon.size());
+  if (polygon.size() > 65536) throw Error(ZSHIFT_ERR_DOMAIN, "the polygon must have at most 65536 vertices");
+  const std::uint32_t capacity = count + 6;  // the header: count + 6 always suffices
+  std::vector<Vertex> out(capacity);
+  std::uint32_t written = 0;
+  detail::check(zshift_clip_to_frustum(l, r, b, t, n, f, polygon.empty() ? nullptr : polygon.data()->data(),
+                                       count, out.data()->data(), capacity, &written));
+  out.resize(written);
+  return out;
+}
 
 // ---------------------------------------------------------------------------------------------
 // The rasterizer probe (zshift_probe): measures the current GL context's profile through a

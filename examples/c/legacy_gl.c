@@ -12,7 +12,7 @@
 #include "zshift.h"
 
 /* [quickstart-c-legacy] */
-/* Replaces glFrustum(l, r, b, t, n, f) when delta == 0, and the seed's
+/* Replaces glFrustum(l, r, b, t, n, f) when delta == 0, and Lengyel's
  * LoadOffsetMatrix(l, r, b, t, n, f, delta, pz) otherwise: loads the projection that moves
  * geometry at eye-space depth pz (negative) toward the camera by delta eye-space units. */
 static int load_projection(double l, double r, double b, double t, double n, double f,

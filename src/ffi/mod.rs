@@ -14,7 +14,7 @@
 //! the computation, with `write_unaligned` or a byte copy from a local; neither pointer needs
 //! any alignment.
 //! These promises are checked by `tests/threads.rs`, `tests/miri_ffi.rs` (under Miri:
-//! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (README, Hardening).
+//! `scripts/miri`), `scripts/sanitize` (ASan + UBSan) and `scripts/fuzz` (docs/hardening.md).
 
 // These doc comments are also the C header's text, where `out[10]` or `double[N]` is C syntax,
 // not a Rust intra-doc link.
@@ -82,7 +82,10 @@ pub const ZSHIFT_ERR_NOT_FINITE: ZshiftStatus = ZshiftStatus(2);
 /// [-f, -n], Pz + delta >= 0, d outside [n, f], bits outside 1..=32).
 pub const ZSHIFT_ERR_DOMAIN: ZshiftStatus = ZshiftStatus(3);
 
-/// The inputs were valid but the quantity does not exist (k*|Pz| >= 1 in eq. 4.1.10).
+/// The inputs were valid but no useful answer exists for them: the quantity does not exist
+/// (k*|Pz| >= 1 in eq. 4.1.10, a minimum epsilon under reversed Z with f = +INFINITY), stacked
+/// layers would reach the gap, or a recommendation would push the decal past the near plane or
+/// need a bleed gap wider than half its distance. `zshift_last_error()` says which.
 pub const ZSHIFT_ERR_UNRESOLVABLE: ZshiftStatus = ZshiftStatus(4);
 
 /// The inputs were valid but the result does not fit its type (f64, or f32 for matrices).
@@ -242,21 +245,24 @@ fn checked_scalar(
     checked_array(out, || compute().map(|value| [value]))
 }
 
-/// A static, NUL-terminated English sentence describing `status`. Never NULL; unknown codes
-/// get "unknown zshift status". The caller must not free it.
+/// A static, NUL-terminated English sentence describing the kind of failure `status` stands
+/// for (not one case of it: `zshift_last_error()` names the input, its value and the bound).
+/// Never NULL; unknown codes get "unknown zshift status". The caller must not free it.
 #[no_mangle]
 pub extern "C" fn zshift_status_message(status: ZshiftStatus) -> *const c_char {
     let text: &'static std::ffi::CStr = match status {
         ZSHIFT_OK => c"success",
-        ZSHIFT_ERR_NULL_POINTER => c"an output pointer was NULL",
+        ZSHIFT_ERR_NULL_POINTER => c"a required pointer argument was NULL",
         ZSHIFT_ERR_NOT_FINITE => {
-            c"an input was NaN or infinite (only the far plane may be +INFINITY)"
+            c"an input was NaN or infinite where a finite value is required"
         }
-        ZSHIFT_ERR_DOMAIN => c"an input was outside the function's domain",
-        ZSHIFT_ERR_UNRESOLVABLE => c"no such value exists: the depth step is too large here",
+        ZSHIFT_ERR_DOMAIN => c"an input was outside the values the function accepts",
+        ZSHIFT_ERR_UNRESOLVABLE => {
+            c"the inputs are valid, but no useful answer exists for them"
+        }
         ZSHIFT_ERR_OVERFLOW => c"the result does not fit its floating-point type",
         ZSHIFT_ERR_INTERNAL => c"internal error in zshift (a caught panic); please report it",
-        ZSHIFT_ERR_GL => c"the current OpenGL context could not do what the probe needs",
+        ZSHIFT_ERR_GL => c"the OpenGL context could not do what the call needs",
         _ => c"unknown zshift status",
     };
     text.as_ptr()

@@ -239,7 +239,30 @@ static void test_messages() {
     CHECK(std::string(e.what()) == "the near plane distance n must be greater than 0 (n = -1)",
           "frustum(n = -1) threw \"%s\"", e.what());
   }
-  CHECK(zshift::version() == zshift_version() && !zshift::version().empty(), "version()");
+  // version() has C's type: a static const char *, the very pointer the C call returns.
+  static_assert(std::is_same_v<decltype(zshift::version()), const char *>, "version() returns const char *");
+  CHECK(zshift::version() == zshift_version() && zshift::version()[0] != '\0', "version()");
+  CHECK(zshift::status_message(zshift::Status::unresolvable) == zshift_status_message(ZSHIFT_ERR_UNRESOLVABLE),
+        "status_message()");
+}
+
+// clip_to_frustum() returns what zshift_clip_to_frustum writes: a ground running behind the
+// camera, cut inside the frustum.
+static void test_clip_to_frustum() {
+  const std::vector<zshift::Vertex> ground = {
+      {-100.0, -2.0, 100.0}, {100.0, -2.0, 100.0}, {100.0, -2.0, -500.0}, {-100.0, -2.0, -500.0}};
+  std::vector<zshift::Vertex> cut = zshift::clip_to_frustum(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, ground);
+  double c[3 * 10];
+  std::uint32_t count = 0;
+  CHECK(zshift_clip_to_frustum(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, ground.data()->data(), 4, c, 10, &count) ==
+            ZSHIFT_OK, "C zshift_clip_to_frustum failed");
+  CHECK(cut.size() == count && count >= 3 && std::memcmp(cut.data(), c, count * sizeof(zshift::Vertex)) == 0,
+        "clip_to_frustum() differs from the C call (%zu vs %u vertices)", cut.size(), static_cast<unsigned>(count));
+  for (const zshift::Vertex &v : cut) CHECK(-v[2] > 0.1, "a cut vertex lies behind the near plane (z = %g)", v[2]);
+  CHECK(zshift::clip_to_frustum(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}}).empty(),
+        "a polygon behind the camera is not cut to nothing");
+  check_throws("clip_to_frustum(l == r)", zshift::Status::domain,
+               [&] { zshift::clip_to_frustum(1, 1, -1, 1, 1, 10, ground); });
 }
 
 // recommend_clip() and recommend_clip_matrix() return exactly what the C calls write; reversed
@@ -272,10 +295,11 @@ int main() {
   test_conventions();
   test_recommend_clip();
   test_messages();
+  test_clip_to_frustum();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
     return 1;
   }
-  std::printf("wrapper_test: all %d checks passed (zshift %s)\n", checks, zshift::version().c_str());
+  std::printf("wrapper_test: all %d checks passed (zshift %s)\n", checks, zshift::version());
   return 0;
 }

@@ -11,6 +11,6 @@ int main() {
     if (e.status() != zshift::Status::domain) return 1;
   }
   zshift::Matrix m = zshift::load_offset_matrix(-1, 1, -1, 1, 1, 100, 0.5, -50);
-  std::printf("zshift %s (C++), element 10 = %.9g\n", zshift::version().c_str(), static_cast<double>(m[10]));
+  std::printf("zshift %s (C++), element 10 = %.9g\n", zshift::version(), static_cast<double>(m[10]));
   return 0;
 }

@@ -21,7 +21,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 
 P=$prefix
 # [quickstart-install]
-scripts/install $P                                                                          # P: any prefix, e.g. ~/.local (run in this repository)
+scripts/install $P   # P: an absolute prefix, e.g. P=$HOME/.local (run in this repository)
 # [/quickstart-install]
 version=$(sed -n 's/^version *= *"\(.*\)"/\1/p' Cargo.toml | head -n 1)
 soname=libzshift.so.${version%%.*}
@@ -66,31 +66,30 @@ expect() { # PROGRAM LINKAGE OUTPUT
   "$1" | grep -F "$3" || fail "$1 did not print '$3'"
 }
 
-echo "-- the README's lines: C, C++, pkg-config, CMake (P is the prefix)"
-mkdir -p "$work/quick"
-cp tests/packaging/consumer.c "$work/quick/main.c"
-cp tests/packaging/consumer.cpp "$work/quick/main.cpp"
-cat > "$work/quick/CMakeLists.txt" <<'CMAKE'
-cmake_minimum_required(VERSION 3.16)
-project(app C)
-find_package(zshift 0.1 REQUIRED)
-add_executable(app main.c)
-target_link_libraries(app PRIVATE zshift::zshift)
-CMAKE
+echo "-- the README's lines: examples/consumer built with C, C++, pkg-config, CMake (P is the prefix)"
+# They run in a copy of examples/consumer, so the tree stays clean.
+mkdir -p "$work/quick/examples"
+cp -r examples/consumer "$work/quick/examples/"
+rm -rf "$work/quick/examples/consumer/build" "$work/quick/examples/consumer"/app_*
 (
   cd "$work/quick"
   set -x
   # [quickstart-use-c]
+  cd examples/consumer                                                                        # main.c, main.cpp, CMakeLists.txt
   cc main.c -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_c                         # C
   c++ -std=c++17 main.cpp -I$P/include -L$P/lib -Wl,-rpath,$P/lib -lzshift -o app_cpp         # C++ (zshift.hpp)
   cc main.c $(PKG_CONFIG_PATH=$P/lib/pkgconfig pkg-config --cflags --libs zshift) -o app_pc   # pkg-config
-  cmake -S . -B build -DCMAKE_PREFIX_PATH=$P && cmake --build build                           # CMake (CMakeLists.txt: see Packaging)
+  cmake -S . -B build -DCMAKE_PREFIX_PATH=$P && cmake --build build                           # CMake: app, app_cpp
+  ./app_c && ./build/app_cpp                                                                  # run with no LD_LIBRARY_PATH
   # [/quickstart-use-c]
 ) >"$work/quick.log" 2>&1 || { cat "$work/quick.log" >&2; fail "a README line did not build"; }
-expect "$work/quick/app_c" dynamic "$want"
-expect "$work/quick/app_cpp" dynamic "zshift $version (C++)"
-expect "$work/quick/app_pc" dynamic "$want"
-expect "$work/quick/build/app" dynamic "$want"
+cat "$work/quick.log" | grep -v '^+' || true
+quick=$work/quick/examples/consumer
+expect "$quick/app_c" dynamic "$want"
+expect "$quick/app_cpp" dynamic "zshift $version (C++)"
+expect "$quick/app_pc" dynamic "$want"
+expect "$quick/build/app" dynamic "$want"
+expect "$quick/build/app_cpp" static "zshift $version (C++)"
 
 echo "-- pkg-config: shared"
 # [quickstart-pkg-config]

@@ -517,7 +517,8 @@ class FrontDoor(unittest.TestCase):
                                           (40.0, 60.0), slope=1.0, subpixel_bits=8)
         self.assertGreater(rec.window_offset, 0.0)
         o = zshift.ortho(-20.0, 20.0, -10.0, 10.0, 1.0, 500.0)
-        decal = zshift.decal_matrix(o, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24, (40.0, 60.0))
+        decal = zshift.decal_matrix(o, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24, (40.0, 60.0),
+                                    subpixel_bits=8)
         self.assertEqual([i for i in range(16) if decal[i] != o[i]], [14])
 
     def test_corners_describe_the_decal(self):
@@ -534,13 +535,13 @@ class FrontDoor(unittest.TestCase):
         decal = zshift.decal_matrix(*args, None, subpixel_bits=8, corners=corners)
         self.assertEqual([i for i in range(16) if decal[i] != m[i]], [10])
         with self.assertRaises(zshift.ZshiftError) as caught:
-            zshift.decal_matrix(*args, (14.0, 18.0), corners=corners)
+            zshift.decal_matrix(*args, (14.0, 18.0), subpixel_bits=8, corners=corners)
         self.assertIn("corners", str(caught.exception))
         with self.assertRaises(zshift.ZshiftError) as caught:
-            zshift.decal_matrix(*args, None, corners=corners[:2])
+            zshift.decal_matrix(*args, subpixel_bits=8, corners=corners[:2])
         self.assertIn("decal_corner_count", str(caught.exception))
         with self.assertRaises(zshift.ZshiftError) as caught:
-            zshift.decal_matrix(*args, None, corners=[(x, y, -z) for x, y, z in corners])
+            zshift.decal_matrix(*args, subpixel_bits=8, corners=[(x, y, -z) for x, y, z in corners])
         self.assertIn("decal corner", str(caught.exception))
 
     def test_mismatch_and_bad_matrices_are_refused_with_a_reason(self):
@@ -554,5 +555,5 @@ class FrontDoor(unittest.TestCase):
             zshift.offset_matrix(reversed_m, zshift.Format.UNORM24, 0.01, 50.0)
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.decal_matrix(reversed_m, zshift.Clip.REVERSED_ZERO_TO_ONE, (0, 720), zshift.Format.FLOAT32,
-                                (40.0, 60.0))
+                                (40.0, 60.0), subpixel_bits=8)
         self.assertIn("viewport", str(caught.exception))

@@ -12,13 +12,14 @@ camera); ``delta > 0`` moves geometry toward the camera and gives ``epsilon < 0`
 16 floats in column-major order (what ``glLoadMatrixf`` takes; element 10 is row 2, column 2):
 a tuple of Python floats, or a ``numpy.float32`` array of shape (16,) when numpy is installed.
 Scalars are Python floats. Every failure raises :class:`ZshiftError` carrying the C status and
-the library's message for it. Equation numbers refer to the seed texts.
+the library's message for it. Equation numbers refer to the texts zshift implements: Lengyel's
+offset matrix ("4.1.x"), Walker's depth resolution, Kooima's median projection.
 """
 
-import collections
-import ctypes
-import enum
-import functools
+import collections as _collections
+import ctypes as _ctypes
+import enum as _enum_module
+import functools as _functools
 
 from . import _library
 from ._library import LibraryNotFound
@@ -42,12 +43,16 @@ __all__ = [
     "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
     "ortho_depth_step",
     "probe", "profile_worst_case", "Profile", "NEAR_CLIP_CLIPPED_F32", "NEAR_CLIP_PLANE_PRESERVING",
+    "clip_to_frustum",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
 ABI_VERSION = 1
 
 #: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
+#: Never a default: the recommendation functions require ``subpixel_bits`` (the rasterizer's
+#: ``glGetIntegerv(GL_SUBPIXEL_BITS)``, 0 being the most conservative value) unless a ``profile``
+#: from :func:`probe` supplies it.
 SUBPIXEL_UNSNAPPED = -1
 
 #: The depth formats :func:`recommend` knows, as GL internal format enums.
@@ -55,10 +60,10 @@ GL_DEPTH_COMPONENT16, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT32 = 0x81A5, 0x81A
 GL_DEPTH_COMPONENT32F = 0x8CAC
 
 #: What :func:`recommend` returns: the C ``ZshiftRecommendation``'s fields, as floats.
-Recommendation = collections.namedtuple("Recommendation", [name for name, _ in _library.ZshiftRecommendation._fields_])
+Recommendation = _collections.namedtuple("Recommendation", [name for name, _ in _library.ZshiftRecommendation._fields_])
 
 
-class Status(enum.IntEnum):
+class Status(_enum_module.IntEnum):
     """The C status codes (``ZSHIFT_OK``, ``ZSHIFT_ERR_*``)."""
 
     OK = 0
@@ -87,7 +92,7 @@ class ZshiftError(ValueError):
         super().__init__(self.message)
 
 
-@functools.lru_cache(maxsize=None)
+@_functools.lru_cache(maxsize=None)
 def _loaded():
     return _library.load()
 
@@ -121,7 +126,7 @@ def version():
 def _last_error():
     lib = _lib()
     fn = lib.zshift_last_error
-    fn.argtypes, fn.restype = [], ctypes.c_char_p
+    fn.argtypes, fn.restype = [], _ctypes.c_char_p
     return fn().decode("utf-8", "replace")
 
 
@@ -138,7 +143,7 @@ def _bits(bits):
 
 
 def _matrix(call):
-    out = (ctypes.c_float * 16)()
+    out = (_ctypes.c_float * 16)()
     _check(call(out))
     if _numpy is not None:
         return _numpy.array(out, dtype=_numpy.float32)
@@ -146,8 +151,8 @@ def _matrix(call):
 
 
 def _scalar(call):
-    out = ctypes.c_double()
-    _check(call(ctypes.byref(out)))
+    out = _ctypes.c_double()
+    _check(call(_ctypes.byref(out)))
     return out.value
 
 
@@ -234,6 +239,8 @@ def _corner_fields(decal_depths, slope, corners):
     triples) the C record gets them and zeros for the fields they replace; ``decal_depths`` must
     then be ``None`` and ``slope`` 0."""
     if corners is None:
+        if decal_depths is None:
+            raise TypeError("pass decal_depths=(nearest, farthest) (the decal's eye distances) or corners=")
         near, far = decal_depths
         return near, far, slope, None, 0, None
     if decal_depths is not None or slope != 0.0:
@@ -241,8 +248,22 @@ def _corner_fields(decal_depths, slope, corners):
     flat = [float(c) for corner in corners for c in corner]
     if len(flat) % 3:
         raise TypeError("corners must be (x, y, z) triples")
-    array = (ctypes.c_float * max(len(flat), 1))(*flat)
-    return 0.0, 0.0, 0.0, ctypes.cast(array, ctypes.c_void_p), len(flat) // 3, array
+    array = (_ctypes.c_float * max(len(flat), 1))(*flat)
+    return 0.0, 0.0, 0.0, _ctypes.cast(array, _ctypes.c_void_p), len(flat) // 3, array
+
+
+def _subpixel_bits(subpixel_bits, profile):
+    """``subpixel_bits`` as the C record takes it. It has no default (the C header: 0 is the most
+    conservative value, "not a default"); a ``profile`` supplies the rasterizer's snapping, and
+    its own ``subpixel_bits`` then fills the (ignored) field."""
+    if subpixel_bits is not None:
+        return subpixel_bits
+    if profile is not None and isinstance(profile, Profile):
+        return profile.subpixel_bits
+    raise TypeError(
+        "subpixel_bits is required (it has no default): pass glGetIntegerv(GL_SUBPIXEL_BITS) "
+        "(0 is the most conservative value), zshift.SUBPIXEL_UNSNAPPED (-1) for a rasterizer that "
+        "sets depth up from unsnapped positions such as Mesa llvmpipe, or profile=zshift.probe(...)")
 
 
 def _attach_corners(record, pointer, count, keepalive):
@@ -256,9 +277,11 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
     l, r, b, t, n, f = frustum
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
+    subpixel_bits = _subpixel_bits(subpixel_bits, profile)
+    depth_format = _enum(depth_format, Format, "depth_format") & 0xFFFFFFFF
     for name, value, low, high in (
         ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
-        ("depth_format", depth_format, 0, 2**32), ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
+        ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
     ):
         # ctypes would wrap out-of-range integers silently.
         if not isinstance(value, int) or not low <= value < high:
@@ -283,12 +306,11 @@ def _attach_profile(record, profile):
         value = getattr(profile, name)
         setattr(c_profile, name, ctype(*value) if isinstance(value, tuple) else value)
     record._profile_keepalive = c_profile
-    record.profile = ctypes.cast(ctypes.pointer(c_profile), ctypes.c_void_p)
+    record.profile = _ctypes.cast(_ctypes.pointer(c_profile), _ctypes.c_void_p)
 
 
-def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-              subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
+              subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
     between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
     interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
@@ -297,9 +319,12 @@ def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_de
     ``(width, height)`` in pixels; ``depth_format`` a GL internal format (``GL_DEPTH_COMPONENT24``
     ...); ``decal_depths`` the decal's ``(nearest, farthest)`` eye distance; ``slope`` its plane's
     eye-space ``|dz/dx| + |dz/dy|``; ``exact_depth`` whether base and decal corners share one float
-    z (facing planes only); ``subpixel_bits`` the rasterizer's ``GL_SUBPIXEL_BITS`` or
-    :data:`SUBPIXEL_UNSNAPPED`. Use ``delta_at_far`` with :func:`load_offset_matrix` at
-    ``pz = -farthest``, or :func:`recommend_matrix`.
+    z (facing planes only). ``subpixel_bits`` has no default, as in C: pass the rasterizer's
+    ``glGetIntegerv(GL_SUBPIXEL_BITS)`` (0 is the most conservative value),
+    :data:`SUBPIXEL_UNSNAPPED` for a rasterizer that sets depth up from unsnapped positions
+    (Mesa llvmpipe), or a ``profile``, which supplies it; omitting both raises ``TypeError``.
+    Use ``delta_at_far`` with :func:`load_offset_matrix` at ``pz = -farthest``, or
+    :func:`recommend_matrix`.
 
     ``profile`` is the rasterizer's :data:`Profile` from :func:`probe` (call it once per context
     and pass it to every recommendation); ``None`` is the worst case with ``subpixel_bits``. A
@@ -319,24 +344,23 @@ def recommend(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_de
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
                    base_reach, corners)
     out = _library.ZshiftRecommendation()
-    _check(_lib().zshift_recommend(ctypes.byref(scene), ctypes.byref(out)))
+    _check(_lib().zshift_recommend(_ctypes.byref(scene), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
-def recommend_matrix(frustum, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                     subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+def recommend_matrix(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
+                     subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
                    base_reach, corners)
-    return _matrix(lambda out: _lib().zshift_recommend_matrix(ctypes.byref(scene), out))
+    return _matrix(lambda out: _lib().zshift_recommend_matrix(_ctypes.byref(scene), out))
 
 
 # ---- Every clip convention, Kooima's median projection, depth bias, planning ----
 
 
-class Clip(enum.IntEnum):
+class Clip(_enum_module.IntEnum):
     """NDC depth convention (``ZSHIFT_CLIP_*``): OpenGL's [-1, 1]; [0, 1] (glClipControl
     ZERO_TO_ONE, Direct3D, Vulkan); reversed [0, 1] (near 1, far 0, GL_GREATER; float depth)."""
 
@@ -345,7 +369,7 @@ class Clip(enum.IntEnum):
     REVERSED_ZERO_TO_ONE = 2
 
 
-class Format(enum.IntEnum):
+class Format(_enum_module.IntEnum):
     """Depth attachment format (``ZSHIFT_FORMAT_*``)."""
 
     UNORM16 = 0x81A5  # the GL enums: GL_DEPTH_COMPONENT16, 24, 32, 32F
@@ -354,7 +378,7 @@ class Format(enum.IntEnum):
     FLOAT32 = 0x8CAC
 
 
-class BiasApi(enum.IntEnum):
+class BiasApi(_enum_module.IntEnum):
     """Whose constant depth bias (``ZSHIFT_BIAS_*``): glPolygonOffset units, Direct3D DepthBias,
     Vulkan depthBiasConstantFactor."""
 
@@ -363,7 +387,7 @@ class BiasApi(enum.IntEnum):
     VULKAN = 2
 
 
-class OffsetKind(enum.IntEnum):
+class OffsetKind(_enum_module.IntEnum):
     """What :func:`range_offset` returns (``ZSHIFT_OFFSET_*``): a signed NDC offset for element 10,
     or a relative epsilon for element 14 (reversed Z with float depth)."""
 
@@ -376,11 +400,11 @@ class OffsetKind(enum.IntEnum):
 MIN_INFINITE_TWEAK = 2.0**-22
 
 #: What :func:`range_offset` returns: the offset and the eye-space shifts it makes at lo and hi.
-RangeOffset = collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
+RangeOffset = _collections.namedtuple("RangeOffset", ["offset", "shift_at_lo", "shift_at_hi"])
 
 
-class DepthTest(enum.IntEnum):
-    """The depth test of a pass (``ZSHIFT_DEPTH_TEST_*``), by its GL enum."""
+class DepthTest(_enum_module.IntEnum):
+    """The depth test of a pass (``ZSHIFT_DEPTH_TEST_*``), by its GL _enum_module."""
 
     LESS = 0x0201
     LEQUAL = 0x0203
@@ -388,15 +412,29 @@ class DepthTest(enum.IntEnum):
     GEQUAL = 0x0206
 
 
-def _enum(value, kind):
+_ARGUMENT_NAMES = {"Clip": "clip", "Format": "format", "BiasApi": "api", "OffsetKind": "kind",
+                   "DepthTest": "depth_test"}
+
+
+def _enum(value, kind, name=None):
     # One enum per kind of argument, as the C header has one type per kind: a member of another
-    # enum (a Format passed as a Clip) is a TypeError, never a silently different call. A plain
-    # int is passed as is (the library refuses an unknown value).
-    if isinstance(value, enum.Enum) and not isinstance(value, kind):
-        raise TypeError(f"expected a zshift.{kind.__name__}, got {value!r}")
+    # enum (a Format passed as a Clip) is a TypeError, never a silently different call. A
+    # member's name is accepted as a string ("ZERO_TO_ONE", any case). A plain int is passed as
+    # is (the library refuses an unknown value and says which field and value).
+    name = name or _ARGUMENT_NAMES.get(kind.__name__, kind.__name__)
+    members = ", ".join(f"{kind.__name__}.{member.name}" for member in kind)
+    if isinstance(value, _enum_module.Enum) and not isinstance(value, kind):
+        raise TypeError(f"{name} must be a zshift.{kind.__name__} (one of {members}), not {value!r}")
+    if isinstance(value, str):
+        member = kind.__members__.get(value.upper())
+        if member is None:
+            raise ZshiftError(Status.DOMAIN, f"{name} = {value!r} is not a zshift.{kind.__name__}: "
+                                             f"pass one of {members}, or its name")
+        value = member
     # An int32 for the C call; ctypes would wrap a larger int silently.
-    if not isinstance(value, int) or not -(2**31) <= value < 2**32:
-        raise ZshiftError(Status.DOMAIN, f"{kind.__name__} value {value!r} is not a 32-bit integer")
+    if isinstance(value, bool) or not isinstance(value, int) or not -(2**31) <= value < 2**32:
+        raise ZshiftError(Status.DOMAIN, f"{name} = {value!r} is not a zshift.{kind.__name__}: "
+                                         f"pass one of {members}, or its name")
     return int(value) if value < 2**31 else int(value) - 2**32
 
 
@@ -503,7 +541,7 @@ def tight_planes(nearest, farthest):
     """The tightest clip planes ``(n, f)`` for a scene between eye distances ``nearest`` and
     ``farthest`` (``f`` may be ``math.inf``). Raises :class:`ZshiftError`: ``NOT_FINITE``;
     ``DOMAIN`` unless 0 < nearest <= farthest."""
-    out = (ctypes.c_double * 2)()
+    out = (_ctypes.c_double * 2)()
     _check(_lib().zshift_tight_planes(nearest, farthest, out))
     return tuple(out)
 
@@ -512,7 +550,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
     """The smallest single offset that moves stored depth by at least ``steps`` steps at every
     distance in [lo, hi], as a :data:`RangeOffset`; multiply ``offset`` by k for the k-th stacked
     decal layer. Raises :class:`ZshiftError`: ``NOT_FINITE``, ``DOMAIN``, ``UNRESOLVABLE``."""
-    out = (ctypes.c_double * 3)()
+    out = (_ctypes.c_double * 3)()
     _check(_lib().zshift_range_offset(n, f, _enum(clip, Clip), _enum(format, Format), _enum(kind, OffsetKind), lo, hi, steps, out))
     return RangeOffset(*out)
 
@@ -521,8 +559,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
 
 
 def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                   subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+                   subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
     :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
     :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
@@ -536,39 +573,72 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
                    base_reach, corners)
     out = _library.ZshiftRecommendation()
-    _check(_lib().zshift_recommend_clip(ctypes.byref(scene), _enum(clip, Clip), ctypes.byref(out)))
+    _check(_lib().zshift_recommend_clip(_ctypes.byref(scene), _enum(clip, Clip), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                          subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+                          subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
                    base_reach, corners)
-    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(ctypes.byref(scene), _enum(clip, Clip), out))
+    return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(_ctypes.byref(scene), _enum(clip, Clip), out))
+
+
+def clip_to_frustum(frustum, polygon):
+    """Cuts a convex base polygon to the view frustum ``(l, r, b, t, n, f)`` of ``glFrustum``
+    (``zshift_clip_to_frustum``), in double and slightly inside, so that the rasterizer clips
+    nothing of it: draw the result as a triangle fan and pass ``base_reach=0``. A ground that runs
+    behind the camera, drawn raw, makes the recommendation carry the large clipping term (or be
+    refused, ``UNRESOLVABLE``, "cut the base to the frustum"); cut this way it carries none.
+
+    ``polygon`` is a sequence of eye-space ``(x, y, z)`` vertices in order around the polygon;
+    returns the cut polygon as a list of ``(x, y, z)`` tuples (empty when nothing is inside).
+
+    Raises :class:`ZshiftError`: ``NOT_FINITE`` for a NaN or infinite coordinate or frustum
+    parameter (except ``f = math.inf``); ``DOMAIN`` for a bad frustum or more than 65536 vertices;
+    ``TypeError`` for a vertex that is not an ``(x, y, z)`` triple.
+    """
+    l, r, b, t, n, f = frustum
+    vertices = [tuple(float(c) for c in vertex) for vertex in polygon]
+    if any(len(vertex) != 3 for vertex in vertices):
+        raise TypeError("polygon must be a sequence of (x, y, z) eye-space vertices")
+    count = len(vertices)
+    capacity = count + 6  # the header: count + 6 always suffices
+    flat = (_ctypes.c_double * max(3 * count, 1))(*[c for vertex in vertices for c in vertex])
+    out = (_ctypes.c_double * (3 * capacity))()
+    out_count = _ctypes.c_uint32()
+    fn = _lib().zshift_clip_to_frustum
+    fn.argtypes = [_ctypes.c_double] * 6 + [
+        _ctypes.POINTER(_ctypes.c_double), _ctypes.c_uint32, _ctypes.POINTER(_ctypes.c_double), _ctypes.c_uint32,
+        _ctypes.POINTER(_ctypes.c_uint32)]
+    fn.restype = _ctypes.c_int32
+    if count > 65536:
+        raise ZshiftError(Status.DOMAIN, f"the polygon must have at most 65536 vertices (count = {count})")
+    _check(fn(l, r, b, t, n, f, flat, count, out, capacity, _ctypes.byref(out_count)))
+    return [(out[3 * i], out[3 * i + 1], out[3 * i + 2]) for i in range(out_count.value)]
 
 
 # ---- The front door: the engine's own matrix in, the decal's matrix out ----
 
 
-class _Decal(ctypes.Structure):
+class _Decal(_ctypes.Structure):
     """The C ``ZshiftDecal`` (include/zshift.h), field for field."""
 
     _fields_ = [
-        ("viewport_width", ctypes.c_uint32), ("viewport_height", ctypes.c_uint32),
-        ("format", ctypes.c_uint32), ("subpixel_bits", ctypes.c_int32),
-        ("decal_near", ctypes.c_double), ("decal_far", ctypes.c_double), ("slope", ctypes.c_double),
-        ("exact_depth", ctypes.c_uint32),
-        ("base_reach", ctypes.c_double),
-        ("profile", ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
-        ("decal_corners", ctypes.c_void_p), ("decal_corner_count", ctypes.c_uint32),  # const float *
+        ("viewport_width", _ctypes.c_uint32), ("viewport_height", _ctypes.c_uint32),
+        ("format", _ctypes.c_uint32), ("subpixel_bits", _ctypes.c_int32),
+        ("decal_near", _ctypes.c_double), ("decal_far", _ctypes.c_double), ("slope", _ctypes.c_double),
+        ("exact_depth", _ctypes.c_uint32),
+        ("base_reach", _ctypes.c_double),
+        ("profile", _ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
+        ("decal_corners", _ctypes.c_void_p), ("decal_corner_count", _ctypes.c_uint32),  # const float *
     ]
 
 
-_FLOAT16 = ctypes.c_float * 16
+_FLOAT16 = _ctypes.c_float * 16
 
 
 def _front_door():
@@ -576,9 +646,9 @@ def _front_door():
     one 32-bit integer, passed as that integer)."""
     lib = _lib()
     if not getattr(lib, "_zshift_front_door", False):
-        d, i32, status = ctypes.c_double, ctypes.c_int32, ctypes.c_int32
-        matrix, float_out = ctypes.POINTER(ctypes.c_float), ctypes.POINTER(ctypes.c_float)
-        decal, record = ctypes.POINTER(_Decal), ctypes.POINTER(_library.ZshiftRecommendation)
+        d, i32, status = _ctypes.c_double, _ctypes.c_int32, _ctypes.c_int32
+        matrix, float_out = _ctypes.POINTER(_ctypes.c_float), _ctypes.POINTER(_ctypes.c_float)
+        decal, record = _ctypes.POINTER(_Decal), _ctypes.POINTER(_library.ZshiftRecommendation)
         for name, argtypes in {
             "zshift_offset_matrix": [matrix, i32, d, d, float_out],
             "zshift_offset_matrix_ndc": [matrix, i32, d, float_out],
@@ -586,7 +656,7 @@ def _front_door():
             "zshift_recommend_for_matrix": [matrix, i32, decal, record],
             "zshift_ortho": [d] * 6 + [i32, float_out],
             "zshift_offset_ortho": [d] * 6 + [i32, d, float_out],
-            "zshift_ortho_depth_step": [d, d, i32, i32, d, ctypes.POINTER(ctypes.c_double)],
+            "zshift_ortho_depth_step": [d, d, i32, i32, d, _ctypes.POINTER(_ctypes.c_double)],
         }.items():
             fn = getattr(lib, name)
             fn.argtypes, fn.restype = argtypes, status
@@ -610,7 +680,8 @@ def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bi
            corners=None):
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
-    fmt = _enum(depth_format, Format)
+    subpixel_bits = _subpixel_bits(subpixel_bits, profile)
+    fmt = _enum(depth_format, Format, "depth_format")
     for name, value, low, high in (
         ("viewport width", width, 0, 2**32), ("viewport height", height, 0, 2**32),
         ("subpixel_bits", subpixel_bits, -(2**31), 2**31),
@@ -647,9 +718,8 @@ def offset_matrix_ndc(m, clip, ndc):
     return _matrix(lambda out: _front_door().zshift_offset_matrix_ndc(mat, _enum(clip, Clip), ndc, out))
 
 
-def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                 subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+def decal_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
+                 subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """The decal's matrix for the engine's own projection ``m``: the recommended offset
     (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
     ``m``'s own offset element, every other element bit-identical. The engine never restates its
@@ -658,18 +728,17 @@ def decal_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
                    corners)
-    return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), out))
+    return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), out))
 
 
-def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths, slope=0.0, exact_depth=False,
-                         subpixel_bits=SUBPIXEL_UNSNAPPED, profile=None, base_reach=0.0,
-        corners=None):
+def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
+                         subpixel_bits=None, profile=None, base_reach=0.0, corners=None):
     """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
                    corners)
     out = _library.ZshiftRecommendation()
-    _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), ctypes.byref(decal), ctypes.byref(out)))
+    _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
@@ -701,42 +770,42 @@ NEAR_CLIP_CLIPPED_F32 = 1
 NEAR_CLIP_PLANE_PRESERVING = 2
 
 
-class _ZshiftProfile(ctypes.Structure):
+class _ZshiftProfile(_ctypes.Structure):
     """The C ``ZshiftProfile`` (fields documented in zshift.h)."""
 
     _fields_ = [
-        ("measured", ctypes.c_uint32),
-        ("subpixel_bits", ctypes.c_int32),
-        ("resolvable", ctypes.c_double * 4),
-        ("plane_error", ctypes.c_double * 4),
-        ("plane_error_reversed", ctypes.c_double),
-        ("error_ulps", ctypes.c_double),
-        ("near_clip", ctypes.c_int32),
-        ("probe_seconds", ctypes.c_double),
-        ("facing_quanta", ctypes.c_double * 4),
-        ("facing_quanta_zero_to_one", ctypes.c_double * 4),
-        ("facing_reversed", ctypes.c_double),
-        ("error_ulps_reversed", ctypes.c_double),
-        ("facing_chain", ctypes.c_int32),
+        ("measured", _ctypes.c_uint32),
+        ("subpixel_bits", _ctypes.c_int32),
+        ("resolvable", _ctypes.c_double * 4),
+        ("plane_error", _ctypes.c_double * 4),
+        ("plane_error_reversed", _ctypes.c_double),
+        ("error_ulps", _ctypes.c_double),
+        ("near_clip", _ctypes.c_int32),
+        ("probe_seconds", _ctypes.c_double),
+        ("facing_quanta", _ctypes.c_double * 4),
+        ("facing_quanta_zero_to_one", _ctypes.c_double * 4),
+        ("facing_reversed", _ctypes.c_double),
+        ("error_ulps_reversed", _ctypes.c_double),
+        ("facing_chain", _ctypes.c_int32),
     ]
 
 
 #: What :func:`probe` and :func:`profile_worst_case` return: the C ``ZshiftProfile``'s fields
 #: (arrays as 4-tuples in the order D16, D24, D32, D32F; see zshift.h for each field).
-Profile = collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
+Profile = _collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
 
 # ZshiftGlLoader: ZshiftGlProc (*)(const char *name, void *user); a function pointer travels
 # as an address (c_void_p), the same size on every platform Python's ctypes supports.
-_GL_LOADER = ctypes.CFUNCTYPE(ctypes.c_void_p, ctypes.c_char_p, ctypes.c_void_p)
+_GL_LOADER = _ctypes.CFUNCTYPE(_ctypes.c_void_p, _ctypes.c_char_p, _ctypes.c_void_p)
 
 
-@functools.lru_cache(maxsize=None)
+@_functools.lru_cache(maxsize=None)
 def _probe_lib():
     lib = _lib()
-    lib.zshift_probe.argtypes = [_GL_LOADER, ctypes.c_void_p, ctypes.POINTER(_ZshiftProfile)]
-    lib.zshift_probe.restype = ctypes.c_int32
-    lib.zshift_profile_worst_case.argtypes = [ctypes.POINTER(_ZshiftProfile)]
-    lib.zshift_profile_worst_case.restype = ctypes.c_int32
+    lib.zshift_probe.argtypes = [_GL_LOADER, _ctypes.c_void_p, _ctypes.POINTER(_ZshiftProfile)]
+    lib.zshift_probe.restype = _ctypes.c_int32
+    lib.zshift_profile_worst_case.argtypes = [_ctypes.POINTER(_ZshiftProfile)]
+    lib.zshift_profile_worst_case.restype = _ctypes.c_int32
     return lib
 
 
@@ -744,7 +813,7 @@ def _profile(record):
     values = []
     for name, _ in _ZshiftProfile._fields_:
         value = getattr(record, name)
-        values.append(tuple(value) if isinstance(value, ctypes.Array) else value)
+        values.append(tuple(value) if isinstance(value, _ctypes.Array) else value)
     return Profile(*values)
 
 
@@ -752,7 +821,7 @@ def profile_worst_case():
     """The worst-case :class:`Profile`: the recommendation's default assumptions
     (``measured == 0``)."""
     out = _ZshiftProfile()
-    _check(_probe_lib().zshift_profile_worst_case(ctypes.byref(out)))
+    _check(_probe_lib().zshift_profile_worst_case(_ctypes.byref(out)))
     return _profile(out)
 
 
@@ -783,5 +852,5 @@ def probe(get_proc_address):
 
     callback = _GL_LOADER(loader)  # kept alive for the call's duration
     out = _ZshiftProfile()
-    _check(_probe_lib().zshift_probe(callback, None, ctypes.byref(out)))
+    _check(_probe_lib().zshift_probe(callback, None, _ctypes.byref(out)))
     return _profile(out)
