@@ -171,16 +171,17 @@ using Recommendation = ZshiftRecommendation;
 inline constexpr std::int32_t subpixel_unsnapped = ZSHIFT_SUBPIXEL_UNSNAPPED;
 
 /// A Scene from its fields, in declaration order; usable in constant expressions. depth_func,
-/// base_reach and profile take their documented defaults (0: the convention's strict test, a
-/// base inside the frustum; nullptr: the worst-case profile with subpixel_bits); set them on
-/// the result, or pass a probed Profile to recommend(scene, profile).
+/// base_reach, profile and the pipeline fields take their documented defaults (0: the
+/// convention's strict test, a base inside the frustum; nullptr: the worst-case profile with
+/// subpixel_bits; the viewport at the framebuffer's origin, glDepthRange(0, 1), eye-space
+/// vertices); set them on the result, or pass a probed Profile to recommend(scene, profile).
 constexpr Scene make_scene(double l, double r, double b, double t, double n, double f,
                            std::uint32_t viewport_width, std::uint32_t viewport_height,
                            std::uint32_t depth_format, double decal_near, double decal_far,
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
                decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, nullptr,
-               nullptr, 0u};
+               nullptr, 0u, 0u, 0u, 0.0, 0.0, 0.0};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting

@@ -105,6 +105,11 @@ class ZshiftScene(ctypes.Structure):
         ("profile", ctypes.c_void_p),
         # const float *: the decal's eye-space corners (3 floats each), or NULL.
         ("decal_corners", ctypes.c_void_p), ("decal_corner_count", ctypes.c_uint32),
+        # The engine's pipeline: glViewport's x, y; glDepthRange (0, 0: the default 0, 1);
+        # world_reach (0: eye-space vertices).
+        ("viewport_x", ctypes.c_uint32), ("viewport_y", ctypes.c_uint32),
+        ("depth_range_near", ctypes.c_double), ("depth_range_far", ctypes.c_double),
+        ("world_reach", ctypes.c_double),
     ]
 
 
