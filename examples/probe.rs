@@ -53,8 +53,8 @@ fn main() {
         figures.snapping_residual.2
     );
     println!(
-        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1})",
-        p.near_clip, figures.near_clip_error, figures.near_preclipped_error
+        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1}); clipper error clip_ulps {:.3} (the model's bound: 36)",
+        p.near_clip, figures.near_clip_error, figures.near_preclipped_error, p.clip_ulps
     );
     println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {

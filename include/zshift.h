@@ -255,6 +255,13 @@ typedef struct {
    base's float z gets exactly the offset it needs (exact_depth, strict test).
    */
   int32_t facing_chain;
+  /*
+   Under ZSHIFT_NEAR_CLIP_CLIPPED_F32: the clipper's measured error in units of 2^-24 of the
+   magnitudes of a clipped base's clip coordinates (the model's term C takes it in place of
+   its bound 36, six clip stages of f32 rounding): measured on ground planes reaching 1000
+   and 10^4 units behind and ahead of the camera. NAN where not measured. NAN or finite >= 0.
+   */
+  double clip_ulps;
 } ZshiftProfile;
 
 /*
@@ -366,6 +373,15 @@ typedef struct {
    from the camera; the offset gains that term.
    */
   double world_reach;
+  /*
+   With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+   applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+   projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+   counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+   conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+   left-to-right proj * view * model * p).
+   */
+  uint32_t eye_first;
 } ZshiftDecal;
 
 /*
@@ -587,6 +603,15 @@ typedef struct {
    from the camera; the offset gains that term.
    */
   double world_reach;
+  /*
+   With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+   applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+   projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+   counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+   conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+   left-to-right proj * view * model * p).
+   */
+  uint32_t eye_first;
 } ZshiftScene;
 
 /*

@@ -127,6 +127,16 @@ pub struct RasterizerProfile {
     /// How primitives crossing the near plane are clipped: decides the term `C` of a base the
     /// rasterizer clips ([`NearClip`]).
     pub near_clip: NearClip,
+    /// Under [`NearClip::ClippedF32`]: the clipper's measured error in the model's own units.
+    /// The term `C` of a clipped base is `(window/NDC)·γ·L(A)/d₁` ([`crate::recommend`], "The
+    /// base"), with `γ = (6 + 5·6)·u` bounding every rounding of six clip stages; the probe draws
+    /// ground planes reaching 1000 and 10⁴ units behind and ahead of the camera (sloped ones,
+    /// and floors seen level and pitched, turned about the vertical), clipped by the rasterizer
+    /// on D24, and finds every pixel within `clip_ulps·u·(window/NDC)·L(A)/d` of its exact plane
+    /// (less one quantum of conversion; all of the pixel's error is put down to the clipper).
+    /// A measured profile uses `γ = clip_ulps·u`. NaN where not measured. A sampled maximum over
+    /// the probe's grounds, not a proof (`tests/gl_engine_scene.rs` checks it on other grounds).
+    pub clip_ulps: f64,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
     /// The model uses `error_ulps` only from a measured profile; every other field always.
     pub measured: bool,
@@ -152,6 +162,7 @@ impl RasterizerProfile {
             facing_reversed: f64::NAN,
             facing_chain: None,
             near_clip: NearClip::ClippedF32,
+            clip_ulps: f64::NAN,
             measured: false,
             probe_seconds: 0.0,
         }

@@ -114,9 +114,10 @@
 //!
 //! It is a sound bound but a large one: on the issue's floor (corners at ±1000, n = 0.1, decals
 //! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
-//! and where it would move the decal past the near plane, or make the bleed gap exceed half the
-//! decal's distance, [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`], "cut the base to
-//! the frustum"). **The remedy is [`clip_to_frustum`]**: cut the base polygon in f64 to the
+//! and where it would move the decal past the near plane [`recommend`] refuses
+//! ([`crate::ErrorKind::Unresolvable`], "cut the base to the frustum"); elsewhere it answers,
+//! and the bleed gap says what the answer costs (an occluder nearer than the gap is painted
+//! over). **The remedy is [`clip_to_frustum`]**: cut the base polygon in f64 to the
 //! frustum shrunk by 2⁻¹⁶ (near plane slightly in front, sides slightly inside: less than a
 //! quarter pixel up to 16384 pixels), draw the result as a fan, and pass
 //! [`Base::InsideFrustum`]: the rasterizer then clips nothing, every vertex's errors are
@@ -507,7 +508,6 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
     let d2 = scene.depth_range[1];
     let delta_at_far = delta_for_epsilon(scene, epsilon, -d2)?;
     let bleed_gap = gap_for_window_difference(scene, terms.gap_window(window_offset), d2);
-    check_useful(&terms, bleed_gap, d2)?;
     let units = polygon_units(scene, &terms, window_offset);
     // Every output must fit a double (a zero quantum made `units` +∞ with ZSHIFT_OK).
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
@@ -799,7 +799,10 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         m[14].abs(),
     );
     let d1 = scene.depth_range[0];
-    let gamma = (6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF;
+    // The bound on six clip stages of f32 rounding, or what the probe measured of the clipper.
+    let gamma = measured_figure(&scene.profile, scene.profile.clip_ulps)
+        .unwrap_or(6.0 + 5.0 * CLIP_STAGES)
+        * F32_UNIT_ROUNDOFF;
     // The plane's form L(c) = z_c − aₓ·x_c − a_y·y_c − a₀·w_c: exact from the footprint, or
     // bounds over every plane of the slope (see plane_form).
     let form = plane_form(scene, clip, &m)?;
@@ -810,16 +813,13 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         reach,
     ];
     // World-space vertices carry the f32 model-view's errors into the clipper, which
-    // interpolates them (a convex combination: no larger than at the vertices).
-    // (a base vertex is within √3·R of the camera).
-    let world = if scene.pipeline.world_reach > 0.0 {
-        vertex::world_errors(&m, scene.pipeline.world_reach, 3f64.sqrt() * reach)
-    } else {
-        [0.0; 4]
-    };
-    let errors = [0, 1, 2, 3].map(|k| gamma * a[k] + world[k]);
-    let l = form.bound(errors);
-    let w_low = d1 - gamma * reach - world[3];
+    // interpolates them: L is linear, so an interpolated vertex is off the plane by the same
+    // convex combination of its ends' L-values, no more than at the vertices (a base vertex is
+    // within √3·R of the camera). Computed eye-first, the error is an eye-space vector that only
+    // counts through the form on eye coordinates; one combined matrix errs per clip coordinate.
+    let (world_l, world_w) = world_clip_errors(scene, &m, &form, 3f64.sqrt() * reach);
+    let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k])) + world_l;
+    let w_low = d1 - gamma * reach - world_w;
     if w_low.is_nan() || w_low <= 0.5 * d1 {
         return Err(domain(
             "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
@@ -832,17 +832,31 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     )
 }
 
-/// Refuses the answer for a clipped base whose term `C` makes it useless: a bleed gap past half
-/// the decal's distance (the decal would be drawn over everything in the nearer half of the
-/// way to the eye). Cutting the base to the frustum removes `C`.
-fn check_useful(terms: &ErrorTerms, bleed_gap: f64, d2: f64) -> Result<()> {
-    if terms.clip > 0.0 && bleed_gap > 0.5 * d2 {
-        return Err(crate::error::Error::new(
-            crate::ErrorKind::Unresolvable,
-            "the f32 clipping term of this clipped base makes the bleed gap exceed half the decal's distance: cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
-        ));
+/// The world-space transform's contribution to `|L(e)|` and to `|e_w|` of a vertex within
+/// `extent` of the camera (0 for eye-space vertices): `γ_E·A·|g|₁` and `γ_E·A` when the eye
+/// position is computed first and the form is exact (`g` the form on eye coordinates), else
+/// `L(γ_W·B)` and `γ_W·B_w` ([`crate::model::vertex`]).
+fn world_clip_errors(
+    scene: &Scene,
+    m: &[f64; 16],
+    form: &PlaneForm,
+    extent: f64,
+) -> (f64, f64) {
+    let reach = scene.pipeline.world_reach;
+    if reach == 0.0 {
+        return (0.0, 0.0);
     }
-    Ok(())
+    if scene.pipeline.eye_first && scene.footprint.is_some() {
+        let a = vertex::EYE_FIRST_ROUNDINGS
+            * F32_UNIT_ROUNDOFF
+            * 3f64.sqrt()
+            * (4.0 * reach + extent);
+        let g: f64 = form.on_eye(m).iter().map(|c| c.abs()).sum();
+        // w = ∓z_eye: its error is the eye z's, at most a.
+        return (a * g, a);
+    }
+    let e = vertex::world_errors(m, reach, extent);
+    (form.bound(e), e[3])
 }
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
@@ -1199,7 +1213,6 @@ pub(crate) fn recommend_clip_building(
         };
         bleed_gap = bleed_gap.max(g);
     }
-    check_useful(&terms, bleed_gap, d2)?;
     let (epsilon, polygon_offset) = if clip == ClipDepth::ReversedZeroToOne {
         (relative_epsilon, [0.0, 0.0])
     } else {
@@ -1403,8 +1416,15 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
     if reach == 0.0 {
         return Ok(eye);
     }
-    let world =
-        per_ndc * vertex::world_rounding(
+    // One combined matrix errs in each clip coordinate independently; the eye position computed
+    // first errs in eye space, and only its part off the plane counts (needs the exact form).
+    let world_rounding = if scene.pipeline.eye_first && scene.footprint.is_some() {
+        vertex::world_rounding_eye_first
+    } else {
+        vertex::world_rounding
+    };
+    let world = per_ndc
+        * world_rounding(
             &form,
             &m,
             reach,

@@ -418,6 +418,8 @@ fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Opti
             depth_test: Some(case.tests().1),
             pipeline: Pipeline {
                 world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
+                // The shader computes proj * (view * p): the eye position first.
+                eye_first: true,
                 viewport_origin: case.origin,
                 depth_range: case.depth_range,
             },

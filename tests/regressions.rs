@@ -113,6 +113,7 @@ fn range_offset_that_overflows_is_an_error() {
 fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
     // The input the sweep found (a wide, off-centre frustum; decal out to 1e300).
     let scene = ZshiftScene {
+        eye_first: 0,
         viewport_y: 0,
         world_reach: 0.0,
         depth_range_far: 0.0,
@@ -158,6 +159,7 @@ mod abi;
 fn recommend_never_returns_an_infinite_polygon_offset() {
     let scenes = [
         ZshiftScene {
+            eye_first: 0,
             viewport_y: 0,
             world_reach: 0.0,
             depth_range_far: 0.0,
@@ -184,6 +186,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             profile: std::ptr::null(),
         },
         ZshiftScene {
+            eye_first: 0,
             viewport_y: 0,
             world_reach: 0.0,
             depth_range_far: 0.0,
@@ -238,6 +241,7 @@ fn window_depth_at_the_top_of_f64_is_one() {
 #[test]
 fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
     let scene = ZshiftScene {
+        eye_first: 0,
         viewport_y: 0,
         world_reach: 0.0,
         depth_range_far: 0.0,

@@ -167,6 +167,13 @@ pub struct ZshiftDecal {
     /// The float transform's roundings are relative to these magnitudes, not to the distance
     /// from the camera; the offset gains that term.
     pub world_reach: f64,
+    /// With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+    /// applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+    /// projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+    /// counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+    /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+    /// left-to-right proj * view * model * p).
+    pub eye_first: u32,
 }
 
 /// Converts the caller's decal to the Rust model's (every field checked) and hands it to
@@ -253,6 +260,7 @@ fn with_decal<R>(
             [d.viewport_x, d.viewport_y],
             [d.depth_range_near, d.depth_range_far],
             d.world_reach,
+            d.eye_first != 0,
         )?,
     })
 }
@@ -324,6 +332,7 @@ impl ZshiftDecal {
                 depth_range_near: read(addr_of!((*p).depth_range_near)),
                 depth_range_far: read(addr_of!((*p).depth_range_far)),
                 world_reach: read(addr_of!((*p).world_reach)),
+                eye_first: read(addr_of!((*p).eye_first)),
             }
         }
     }

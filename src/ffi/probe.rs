@@ -87,6 +87,11 @@ pub struct ZshiftProfile {
     /// a code 0..=23, or -1: none identified (the worst case). With it a facing decal sharing its
     /// base's float z gets exactly the offset it needs (exact_depth, strict test).
     pub facing_chain: i32,
+    /// Under ZSHIFT_NEAR_CLIP_CLIPPED_F32: the clipper's measured error in units of 2^-24 of the
+    /// magnitudes of a clipped base's clip coordinates (the model's term C takes it in place of
+    /// its bound 36, six clip stages of f32 rounding): measured on ground planes reaching 1000
+    /// and 10^4 units behind and ahead of the camera. NAN where not measured. NAN or finite >= 0.
+    pub clip_ulps: f64,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -117,6 +122,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             facing_reversed: p.facing_reversed,
             error_ulps_reversed: p.error_ulps_reversed,
             facing_chain: p.facing_chain.map_or(-1, |c| c.code()),
+            clip_ulps: p.clip_ulps,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -160,6 +166,7 @@ impl ZshiftProfile {
             self.error_ulps,
             self.facing_reversed,
             self.error_ulps_reversed,
+            self.clip_ulps,
         ];
         if self
             .plane_error
@@ -170,7 +177,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -195,6 +202,7 @@ impl ZshiftProfile {
                 ),
             },
             near_clip,
+            clip_ulps: self.clip_ulps,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {
                 self.probe_seconds

@@ -110,6 +110,13 @@ pub struct ZshiftScene {
     /// The float transform's roundings are relative to these magnitudes, not to the distance
     /// from the camera; the offset gains that term.
     pub world_reach: f64,
+    /// With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+    /// applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+    /// projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+    /// counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+    /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+    /// left-to-right proj * view * model * p).
+    pub eye_first: u32,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -233,6 +240,7 @@ impl ZshiftScene {
                 depth_range_near: read(addr_of!((*p).depth_range_near)),
                 depth_range_far: read(addr_of!((*p).depth_range_far)),
                 world_reach: read(addr_of!((*p).world_reach)),
+                eye_first: read(addr_of!((*p).eye_first)),
             }
         }
     }
@@ -370,6 +378,7 @@ fn with_model<R>(
             [s.viewport_x, s.viewport_y],
             [s.depth_range_near, s.depth_range_far],
             s.world_reach,
+            s.eye_first != 0,
         )?,
     })
 }
@@ -381,9 +390,11 @@ pub(super) fn pipeline_from_c(
     viewport_origin: [u32; 2],
     depth_range: [f64; 2],
     world_reach: f64,
+    eye_first: bool,
 ) -> Result<crate::model::Pipeline> {
     let pipeline = crate::model::Pipeline {
         world_reach,
+        eye_first,
         viewport_origin,
         depth_range: if depth_range == [0.0, 0.0] {
             [0.0, 1.0]

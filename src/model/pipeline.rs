@@ -35,6 +35,13 @@ pub struct Pipeline {
     /// model matrices must be rigid (rotation and translation; with a uniform scale `k`, pass
     /// `k·world_reach`). See [`crate::model::vertex`].
     pub world_reach: f64,
+    /// With `world_reach > 0`: the vertex shader computes the eye position first and applies
+    /// the projection to it (`proj * (view * p)`, `proj * (modelView * p)`; three.js's
+    /// `projectionMatrix * mvPosition`), so an error of the eye position moves the vertex along
+    /// the plane as much as off it, and only the part off the plane counts. `false` (the
+    /// conservative default) also covers one model-view-projection matrix (`mvp * p`, or GLSL's
+    /// left-to-right `proj * view * model * p`), whose clip coordinates err independently.
+    pub eye_first: bool,
     /// `glViewport`'s `x` and `y`: the viewport's lower-left corner in the framebuffer, pixels.
     pub viewport_origin: [u32; 2],
     /// `glDepthRange(near, far)` (Direct3D: `MinDepth`, `MaxDepth`), `0 ≤ near < far ≤ 1`.
@@ -45,6 +52,7 @@ impl Default for Pipeline {
     fn default() -> Self {
         Self {
             world_reach: 0.0,
+            eye_first: false,
             viewport_origin: [0, 0],
             depth_range: [0.0, 1.0],
         }

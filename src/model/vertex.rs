@@ -37,6 +37,14 @@
 //! * `(P·MV)·p` (one MVP uniform, or GLSL's left-to-right `proj * view * model * v`): `p` (1),
 //!   `V·M` (4), `P·MV` (4), its storage as f32 (1), the product with `p` (4): `14u`.
 //!
+//! With the eye position computed first ([`crate::model::Pipeline::eye_first`]) the error is an
+//! eye-space vector `δp` with `|δpₖ| ≤ γ_E·A`, `γ_E = 10u` (the first way above, less the
+//! projection's own roundings, which the transform term `T` counts as in eye space), and it
+//! reaches depth through the form on eye coordinates `g = L∘P`, as eye rounding does:
+//! `|L(P·δp)| ≤ γ_E·A·(|gₓ| + |g_y| + |g_z|)`. A move along the plane costs nothing (level
+//! ground only feels an error of eye `y`), so this is far smaller than the independent clip
+//! errors of one combined matrix.
+//!
 //! `A` splits into a part that does not shrink with distance, `4√3·W`, and one proportional to
 //! `w`, `√3·ρ·w`. Through the form, the first gives at most `L(γ_W·B(4√3·W))/d₁` at a pixel of
 //! depth `d ≥ d₁` (the weights `μᵢ` sum to 1), the second at most `L(γ_W·B'(√3·ρ))` (the
@@ -75,6 +83,25 @@ pub fn clip_magnitudes(m: &[f64; 16], a: f64, translation: f64) -> [f64; 4] {
 pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
     let a = 3f64.sqrt() * (4.0 * world_reach + extent);
     clip_magnitudes(m, a, 1.0).map(|b| WORLD_ROUNDINGS * U * b)
+}
+
+/// `γ_E`: the roundings of a world-space vertex through an f32 model-view matrix when the eye
+/// position is computed first (module docs), in units of the magnitude `A`.
+pub(crate) const EYE_FIRST_ROUNDINGS: f64 = 10.0;
+
+/// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum, from
+/// the f32 model-view transform of world-space vertices when the eye position is computed first
+/// (module docs): `γ_E·|g|₁·√3·(4W/nearest + ρ)`, `g = form.on_eye(m)` (the exact form).
+pub fn world_rounding_eye_first(
+    form: &PlaneForm,
+    m: &[f64; 16],
+    world_reach: f64,
+    nearest: f64,
+    tangents: [f64; 2],
+) -> f64 {
+    let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
+    let g: f64 = form.on_eye(m).iter().map(|c| c.abs()).sum();
+    EYE_FIRST_ROUNDINGS * U * g * 3f64.sqrt() * (4.0 * world_reach / nearest + rho)
 }
 
 /// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum,

@@ -377,6 +377,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
                 profile.near_clip,
                 figures.near_clip_error,
                 figures.near_preclipped_error,
+                profile.clip_ulps,
             ) = near_clip(gl, o)?;
         }
     }
@@ -1404,7 +1405,7 @@ fn snap(t: &Triangle, h: usize) -> ClipTriangle {
 /// twice the near distance (nothing left for the rasterizer to clip); on the pixels both cover,
 /// each is compared with the plane of the coordinates it was given (D24 quanta). Returns the
 /// verdict and the two worst errors.
-unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64)> {
+unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64, f64)> {
     let view = NEAR_VIEW;
     let grounds = near_grounds();
     let given = grounds.iter().map(|g| Scene {
@@ -1420,9 +1421,10 @@ unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64)> {
     });
     let scenes: Vec<Scene> = given.chain(preclipped).collect();
     let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
-    let (mut worst_given, mut worst_preclipped) = (0.0f64, 0.0f64);
+    let (mut worst_given, mut worst_preclipped, mut clip_ulps) = (0.0f64, 0.0f64, 0.0f64);
     let count = grounds.len();
     for i in 0..count {
+        clip_ulps = clip_ulps.max(clipper_ulps(&view, &grounds[i], &scenes[i], &stored[i]));
         let given_errors = pixel_errors(&scenes[i], &stored[i]);
         let preclipped_errors = pixel_errors(&scenes[count + i], &stored[count + i]);
         let both: Vec<(f64, f64)> = given_errors
@@ -1447,7 +1449,46 @@ unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64)> {
     } else {
         NearClip::ClippedF32
     };
-    Ok((clip, worst_given, worst_preclipped))
+    Ok((clip, worst_given, worst_preclipped, clip_ulps))
+}
+
+/// The clipper's error on one ground drawn as given, in the model's own units
+/// ([`RasterizerProfile::clip_ulps`]): the largest `(|stored − exact| − q)⁺·d / (½·2⁻²⁴·L(A))`
+/// over the pixels, `d` the pixel's eye depth, `q` one D24 quantum of conversion, `A` the
+/// magnitudes of the ground's clip coordinates for its reach `R` (the largest eye coordinate of
+/// its corners: `A = ((|m0| + |m8|)·R, (|m5| + |m9|)·R, |m10|·R + |m14|, R)`), and `L` the
+/// ground plane's form on clip coordinates (`|aₓ|·A_x + |a_y|·A_y + A_z + |a₀|·A_w`, `aₓ`, `a_y`,
+/// `a₀` its NDC depth plane) — the model's term `C` with `clip_ulps·u` for its `γ`. Everything
+/// the pixel errs by is put down to the clipper, the plane's own error included.
+fn clipper_ulps(view: &View, ground: &[[f64; 3]; 3], scene: &Scene, stored: &[f64]) -> f64 {
+    let reach = ground.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
+    let m = scene.matrix.map(f64::from);
+    let a = [
+        (m[0].abs() + m[8].abs()) * reach,
+        (m[5].abs() + m[9].abs()) * reach,
+        m[10].abs() * reach + m[14].abs(),
+        reach,
+    ];
+    let Some(plane) = scene.exact().first().map(Plane::new) else {
+        return 0.0;
+    };
+    // The NDC depth plane z_n = a₀ + aₓ·xₙ + a_y·yₙ, read off the exact plane's window depth
+    // (½·z_n + ½) at three tile points: NDC (0, 0), (1, 0) and (0, 1) are tile pixels
+    // SIZE/2 and SIZE.
+    let half = SIZE as f64 / 2.0;
+    let ndc = |x: f64, y: f64| 2.0 * plane.extended(x, y) - 1.0;
+    let a0 = ndc(half, half);
+    let (ax, ay) = (ndc(2.0 * half, half) - a0, ndc(half, 2.0 * half) - a0);
+    let l = a[2] + ax.abs() * a[0] + ay.abs() * a[1] + a0.abs() * a[3];
+    let q = Format::Unorm(24).quantum(0.5);
+    let unit = 0.5 * l / 16_777_216.0;
+    (0..SIZE * SIZE)
+        .filter_map(|i| {
+            let exact = plane.depth_inside(i % SIZE, i / SIZE)?;
+            let d = view.distance_at_depth(exact);
+            Some(((stored[i] - exact).abs() - q).max(0.0) * d / unit)
+        })
+        .fold(0.0, f64::max)
 }
 
 /// Per pixel of a tile, `|stored − exact|` in D24 quanta against the first of the scene's
@@ -1474,8 +1515,9 @@ const NEAR_VIEW: View = View {
     squash: 0.5625,
 };
 
-/// Ground planes whose triangles reach 1000 units behind and ahead of the camera, as eye-space
-/// corners: sloped ones seen from 10 units, and a floor 1.7 units below the eye.
+/// Ground planes whose triangles reach 1000 (or 10⁴) units behind and ahead of the camera, as
+/// eye-space corners: sloped ones seen from 10 units, and floors 1.7 units below the eye seen
+/// level and pitched down, turned about the vertical.
 fn near_grounds() -> Vec<[[f64; 3]; 3]> {
     let mut out = Vec::new();
     for slope in [-0.5, 1.0, 3.0] {
@@ -1484,11 +1526,31 @@ fn near_grounds() -> Vec<[[f64; 3]; 3]> {
         let ahead = if slope < 0.0 { 1000.0 } else { -1000.0 };
         out.push([on(-1000.0, -ahead), on(1000.0, -ahead), on(0.0, ahead)]);
     }
-    out.push([
-        [-1000.0, -1.7, 1000.0],
-        [1000.0, -1.7, 1000.0],
-        [0.0, -1.7, -1000.0],
-    ]);
+    // Floors 1.7 units below the eye, seen level and pitched down, turned about the vertical,
+    // reaching 1000 and 10⁴ units: the ground engines draw.
+    for (reach, yaw, pitch) in [
+        (1000.0f64, 0.0f64, 0.0f64),
+        (1000.0, 0.3, 0.05),
+        (1000.0, 0.9, 0.2),
+        (1000.0, 1.3, 0.6),
+        (10000.0, 0.2, 0.02),
+        (10000.0, 0.7, 0.35),
+    ] {
+        let (sy, cy) = yaw.sin_cos();
+        let (sp, cp) = pitch.sin_cos();
+        // World (x, −1.7, z) turned by yaw about y, then pitched down about x.
+        let eye = |x: f64, z: f64| {
+            let (x, z) = (cy * x + sy * z, -sy * x + cy * z);
+            let y = -1.7;
+            [x, cp * y - sp * z, sp * y + cp * z]
+        };
+        // A triangle around the camera holding the disc of radius `reach` (ahead, whatever yaw).
+        out.push([
+            eye(-1.8 * reach, reach),
+            eye(1.8 * reach, reach),
+            eye(0.0, -2.0 * reach),
+        ]);
+    }
     out
 }
 

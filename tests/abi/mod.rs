@@ -82,6 +82,7 @@ unsafe impl Send for Inputs {}
 unsafe impl Sync for Inputs {}
 
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    eye_first: 0,
     viewport_x: 0,
     viewport_y: 0,
     world_reach: 0.0,
@@ -103,6 +104,7 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
+    eye_first: 0,
     viewport_y: 0,
     world_reach: 0.0,
     depth_range_far: 0.0,
@@ -754,6 +756,7 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
+        eye_first: 0,
         viewport_y: 0,
         world_reach: 0.0,
         depth_range_far: 0.0,

@@ -273,7 +273,7 @@ def _attach_corners(record, pointer, count, keepalive):
 
 
 def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits,
-           profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+           profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     l, r, b, t, n, f = frustum
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
@@ -289,17 +289,18 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
     scene = _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
                                  1 if exact_depth else 0, subpixel_bits)
     scene.base_reach = base_reach
-    _attach_pipeline(scene, depth_test, viewport_origin, depth_range, world_reach)
+    _attach_pipeline(scene, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     _attach_profile(scene, profile)
     _attach_corners(scene, pointer, count, keepalive)
     return scene
 
 
-def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_reach):
+def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_reach, eye_first):
     """Fills the fields the C records share for the engine's pipeline: ``depth_func`` (a
     :class:`DepthTest`, its name or GL enum; ``None``: the convention's strict test),
     ``viewport_x``/``viewport_y`` (``glViewport``'s origin), ``depth_range_near``/``far``
-    (``glDepthRange``) and ``world_reach`` (0 for eye-space vertices)."""
+    (``glDepthRange``), ``world_reach`` (0 for eye-space vertices) and ``eye_first`` (the
+    shader computes ``proj * (view * p)``)."""
     record.depth_func = 0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF
     x, y = viewport_origin
     for name, value in (("viewport_origin x", x), ("viewport_origin y", y)):
@@ -308,6 +309,7 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     record.viewport_x, record.viewport_y = x, y
     record.depth_range_near, record.depth_range_far = depth_range
     record.world_reach = world_reach
+    record.eye_first = 1 if eye_first else 0
 
 
 def _attach_profile(record, profile):
@@ -326,7 +328,7 @@ def _attach_profile(record, profile):
 
 
 def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-              subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+              subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
     between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
     interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
@@ -358,18 +360,18 @@ def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exa
     slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend(_ctypes.byref(scene), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_matrix(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                     subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+                     subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     return _matrix(lambda out: _lib().zshift_recommend_matrix(_ctypes.byref(scene), out))
 
 
@@ -577,7 +579,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
 
 
 def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                   subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+                   subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
     :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
     :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
@@ -589,19 +591,19 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     Raises :class:`ZshiftError`: as :func:`recommend`; ``DOMAIN`` for an unknown clip.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend_clip(_ctypes.byref(scene), _enum(clip, Clip), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                          subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+                          subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(_ctypes.byref(scene), _enum(clip, Clip), out))
 
 
@@ -656,7 +658,7 @@ class _Decal(_ctypes.Structure):
         ("depth_func", _ctypes.c_uint32),  # 0: the convention's strict test
         ("viewport_x", _ctypes.c_uint32), ("viewport_y", _ctypes.c_uint32),
         ("depth_range_near", _ctypes.c_double), ("depth_range_far", _ctypes.c_double),
-        ("world_reach", _ctypes.c_double),
+        ("world_reach", _ctypes.c_double), ("eye_first", _ctypes.c_uint32),
     ]
 
 
@@ -699,7 +701,7 @@ def _engine_matrix(m):
 
 
 def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile=None, base_reach=0.0,
-           corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+           corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
     subpixel_bits = _subpixel_bits(subpixel_bits, profile)
@@ -712,7 +714,7 @@ def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bi
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
     decal = _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0,
                    base_reach)
-    _attach_pipeline(decal, depth_test, viewport_origin, depth_range, world_reach)
+    _attach_pipeline(decal, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     _attach_profile(decal, profile)
     _attach_corners(decal, pointer, count, keepalive)
     return decal
@@ -742,7 +744,7 @@ def offset_matrix_ndc(m, clip, ndc):
 
 
 def decal_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                 subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+                 subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """The decal's matrix for the engine's own projection ``m``: the recommended offset
     (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
     ``m``'s own offset element, every other element bit-identical. The engine never restates its
@@ -750,16 +752,16 @@ def decal_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, 
     enum). Raises :class:`ZshiftError` naming the element or field."""
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
-                   corners, depth_test, viewport_origin, depth_range, world_reach)
+                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), out))
 
 
 def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                         subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0):
+                         subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
     """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
-                   corners, depth_test, viewport_origin, depth_range, world_reach)
+                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
     out = _library.ZshiftRecommendation()
     _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
@@ -810,6 +812,7 @@ class _ZshiftProfile(_ctypes.Structure):
         ("facing_reversed", _ctypes.c_double),
         ("error_ulps_reversed", _ctypes.c_double),
         ("facing_chain", _ctypes.c_int32),
+        ("clip_ulps", _ctypes.c_double),
     ]
 
 

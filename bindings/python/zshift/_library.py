@@ -109,7 +109,7 @@ class ZshiftScene(ctypes.Structure):
         # world_reach (0: eye-space vertices).
         ("viewport_x", ctypes.c_uint32), ("viewport_y", ctypes.c_uint32),
         ("depth_range_near", ctypes.c_double), ("depth_range_far", ctypes.c_double),
-        ("world_reach", ctypes.c_double),
+        ("world_reach", ctypes.c_double), ("eye_first", ctypes.c_uint32),
     ]
 
 
