@@ -817,7 +817,13 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     // convex combination of its ends' L-values, no more than at the vertices (a base vertex is
     // within √3·R of the camera). Computed eye-first, the error is an eye-space vector that only
     // counts through the form on eye coordinates; one combined matrix errs per clip coordinate.
-    let (world_l, world_w) = world_clip_errors(scene, &m, &form, 3f64.sqrt() * reach);
+    let (world_l, world_w) = vertex::world_error(
+        &form,
+        scene.footprint.is_some(),
+        &m,
+        &scene.pipeline,
+        3f64.sqrt() * reach,
+    );
     let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k])) + world_l;
     let w_low = d1 - gamma * reach - world_w;
     if w_low.is_nan() || w_low <= 0.5 * d1 {
@@ -830,33 +836,6 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
         mapping.window_per_ndc() * l / w_low,
         "the clipping term overflows f64",
     )
-}
-
-/// The world-space transform's contribution to `|L(e)|` and to `|e_w|` of a vertex within
-/// `extent` of the camera (0 for eye-space vertices): `γ_E·A·|g|₁` and `γ_E·A` when the eye
-/// position is computed first and the form is exact (`g` the form on eye coordinates), else
-/// `L(γ_W·B)` and `γ_W·B_w` ([`crate::model::vertex`]).
-fn world_clip_errors(
-    scene: &Scene,
-    m: &[f64; 16],
-    form: &PlaneForm,
-    extent: f64,
-) -> (f64, f64) {
-    let reach = scene.pipeline.world_reach;
-    if reach == 0.0 {
-        return (0.0, 0.0);
-    }
-    if scene.pipeline.eye_first && scene.footprint.is_some() {
-        let a = vertex::EYE_FIRST_ROUNDINGS
-            * F32_UNIT_ROUNDOFF
-            * 3f64.sqrt()
-            * (4.0 * reach + extent);
-        let g: f64 = form.on_eye(m).iter().map(|c| c.abs()).sum();
-        // w = ∓z_eye: its error is the eye z's, at most a.
-        return (a * g, a);
-    }
-    let e = vertex::world_errors(m, reach, extent);
-    (form.bound(e), e[3])
 }
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
@@ -939,7 +918,7 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
         return Err(domain("the plane slope |dz/dx| + |dz/dy| must be >= 0")
             .with_value("slope", scene.slope));
     }
-    if scene.exact_depth && scene.pipeline.world_reach > 0.0 {
+    if scene.exact_depth && scene.pipeline.world_space() {
         return Err(domain(
             "exact_depth needs vertices in eye space: with world_reach > 0 the f32 model-view computes each vertex's z",
         )
@@ -1412,22 +1391,17 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
             F32_UNIT_ROUNDOFF * (scale(scene) / scene.depth_range[0]) * (1.0 + scene.slope * e)
         }
     };
-    let reach = scene.pipeline.world_reach;
-    if reach == 0.0 {
+    if !scene.pipeline.world_space() {
         return Ok(eye);
     }
     // One combined matrix errs in each clip coordinate independently; the eye position computed
     // first errs in eye space, and only its part off the plane counts (needs the exact form).
-    let world_rounding = if scene.pipeline.eye_first && scene.footprint.is_some() {
-        vertex::world_rounding_eye_first
-    } else {
-        vertex::world_rounding
-    };
     let world = per_ndc
-        * world_rounding(
+        * vertex::world_rounding(
             &form,
+            scene.footprint.is_some(),
             &m,
-            reach,
+            &scene.pipeline,
             scene.depth_range[0],
             tangents_of(&scene.frustum),
         );

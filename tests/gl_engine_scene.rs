@@ -212,8 +212,55 @@ impl Case {
         }
     }
 
-    /// The largest |x|, |y| or |z| of the ground's eye-space vertices.
+    /// What the engine passes as `base_reach`: the largest |x|, |y| or |z| of the eye-space
+    /// vertices of the ground triangles under the decal, or 0 when those lie inside the frustum
+    /// (the rasterizer clips none of them). One quad: its corners. A grid: the cells the decal
+    /// touches (a decal system knows them: it projects onto them).
     fn base_reach(&self) -> f64 {
+        if !self.grid {
+            return self.quad_reach();
+        }
+        let step = 2.0 * GROUND / 64.0;
+        let [cx, cz] = self.decal_centre();
+        let half = self.size / 2.0;
+        let cell = |v: f64| ((v - (self.translate - GROUND)) / step).floor();
+        let (i0, i1) = (cell(cx - half), cell(cx + half));
+        let (j0, j1) = (cell(cz - half), cell(cz + half));
+        let fr = self.frustum();
+        let (l, r, b, t, n, f) = fr.parameters();
+        let mut reach = 0.0f64;
+        let mut clipped = false;
+        for i in i0 as i64..=i1 as i64 + 1 {
+            for j in j0 as i64..=j1 as i64 + 1 {
+                let x = self.translate - GROUND + step * i as f64;
+                let z = self.translate - GROUND + step * j as f64;
+                let e = self.eye([x, 0.0, z]);
+                let d = -e[2];
+                let inside = d > n
+                    && d < f
+                    && e[0] / d > l / n
+                    && e[0] / d < r / n
+                    && e[1] / d > b / n
+                    && e[1] / d < t / n;
+                clipped |= !inside;
+                reach = e.iter().fold(reach, |a, c| a.max(c.abs()));
+            }
+        }
+        if clipped {
+            reach
+        } else {
+            0.0
+        }
+    }
+
+    /// The world-space box of the ground and the decal: what an engine knows of its meshes.
+    fn world_box(&self) -> [[f64; 3]; 2] {
+        let g = self.translate;
+        [[g - GROUND, 0.0, g - GROUND], [g + GROUND, 0.0, g + GROUND]]
+    }
+
+    /// The largest |x|, |y| or |z| of the ground quad's eye-space corners.
+    fn quad_reach(&self) -> f64 {
         let g = self.translate;
         [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
             .iter()
@@ -410,8 +457,9 @@ fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Opti
             slope: shape.slope,
             exact_depth: false,
             snapping: Snapping::SubpixelBits(8),
-            base: Base::Clipped {
-                reach: case.base_reach(),
+            base: match case.base_reach() {
+                0.0 => Base::InsideFrustum,
+                reach => Base::Clipped { reach },
             },
             profile: Some(*profile),
             footprint: Some(shape.footprint),
@@ -420,6 +468,8 @@ fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Opti
                 world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
                 // The shader computes proj * (view * p): the eye position first.
                 eye_first: true,
+                view: Some(case.view()),
+                world_box: Some(case.world_box()),
                 viewport_origin: case.origin,
                 depth_range: case.depth_range,
             },

@@ -174,6 +174,16 @@ pub struct ZshiftDecal {
     /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
     /// left-to-right proj * view * model * p).
     pub eye_first: u32,
+    /// The float matrix the vertex shader applies to the positions it receives to make eye
+    /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+    /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
+    /// bound from world_reach over every rotation: far tighter for a ground under a level
+    /// camera, and far from the world origin (README, "The scene every engine draws").
+    pub view_matrix: *const f32,
+    /// With view_matrix: the box of every base and decal position the shader receives (their
+    /// world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+    /// view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+    pub world_box: [f64; 6],
 }
 
 /// Converts the caller's decal to the Rust model's (every field checked) and hands it to
@@ -261,6 +271,7 @@ fn with_decal<R>(
             [d.depth_range_near, d.depth_range_far],
             d.world_reach,
             d.eye_first != 0,
+            (d.view_matrix, d.world_box),
         )?,
     })
 }
@@ -333,6 +344,8 @@ impl ZshiftDecal {
                 depth_range_far: read(addr_of!((*p).depth_range_far)),
                 world_reach: read(addr_of!((*p).world_reach)),
                 eye_first: read(addr_of!((*p).eye_first)),
+                view_matrix: read(addr_of!((*p).view_matrix)),
+                world_box: read(addr_of!((*p).world_box)),
             }
         }
     }

@@ -117,6 +117,16 @@ pub struct ZshiftScene {
     /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
     /// left-to-right proj * view * model * p).
     pub eye_first: u32,
+    /// The float matrix the vertex shader applies to the positions it receives to make eye
+    /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+    /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
+    /// bound from world_reach over every rotation: far tighter for a ground under a level
+    /// camera, and far from the world origin (README, "The scene every engine draws").
+    pub view_matrix: *const f32,
+    /// With view_matrix: the box of every base and decal position the shader receives (their
+    /// world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+    /// view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+    pub world_box: [f64; 6],
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -241,6 +251,8 @@ impl ZshiftScene {
                 depth_range_far: read(addr_of!((*p).depth_range_far)),
                 world_reach: read(addr_of!((*p).world_reach)),
                 eye_first: read(addr_of!((*p).eye_first)),
+                view_matrix: read(addr_of!((*p).view_matrix)),
+                world_box: read(addr_of!((*p).world_box)),
             }
         }
     }
@@ -379,22 +391,45 @@ fn with_model<R>(
             [s.depth_range_near, s.depth_range_far],
             s.world_reach,
             s.eye_first != 0,
+            (s.view_matrix, s.world_box),
         )?,
     })
 }
 
 /// The model's [`crate::model::Pipeline`] from a C record's fields (`ZshiftScene`,
-/// `ZshiftDecal`): a depth range of `[0, 0]` (a zeroed struct) is `glDepthRange(0, 1)`; the
+/// `ZshiftDecal`): a depth range of `[0, 0]` (a zeroed struct) is `glDepthRange(0, 1)`; a NULL
+/// view matrix is none (its box ignored), a view matrix with an all-zero box is refused; the
 /// model checks every field ([`crate::model::Pipeline::check`]).
 pub(super) fn pipeline_from_c(
     viewport_origin: [u32; 2],
     depth_range: [f64; 2],
     world_reach: f64,
     eye_first: bool,
+    (view_matrix, world_box): (*const f32, [f64; 6]),
 ) -> Result<crate::model::Pipeline> {
+    let view = if view_matrix.is_null() {
+        None
+    } else {
+        if world_box == [0.0; 6] {
+            return Err(crate::domain::domain(
+                "world_box must be given with view_matrix: the box of every base and decal position the shader receives",
+            ));
+        }
+        // SAFETY: not NULL; the caller promises 16 readable floats; no alignment needed.
+        Some(std::array::from_fn(|i| unsafe {
+            view_matrix.add(i).read_unaligned()
+        }))
+    };
     let pipeline = crate::model::Pipeline {
         world_reach,
         eye_first,
+        view,
+        world_box: view.map(|_| {
+            [
+                [world_box[0], world_box[1], world_box[2]],
+                [world_box[3], world_box[4], world_box[5]],
+            ]
+        }),
         viewport_origin,
         depth_range: if depth_range == [0.0, 0.0] {
             [0.0, 1.0]

@@ -42,6 +42,15 @@ pub struct Pipeline {
     /// conservative default) also covers one model-view-projection matrix (`mvp * p`, or GLSL's
     /// left-to-right `proj * view * model * p`), whose clip coordinates err independently.
     pub eye_first: bool,
+    /// The f32 matrix the vertex shader applies to the positions it receives to make eye
+    /// coordinates (the view, or model-view, matrix; column-major), with
+    /// [`Pipeline::world_box`]: the model then knows each eye coordinate's rounding exactly
+    /// instead of bounding it from `world_reach` over every rotation. `None`: not given.
+    pub view: Option<[f32; 16]>,
+    /// The box `[lo, hi]` of every base and decal position the shader receives (in the space
+    /// `view` maps from; a ground's and decal's world-space bounding box), with
+    /// [`Pipeline::view`]. `None`: not given.
+    pub world_box: Option<[[f64; 3]; 2]>,
     /// `glViewport`'s `x` and `y`: the viewport's lower-left corner in the framebuffer, pixels.
     pub viewport_origin: [u32; 2],
     /// `glDepthRange(near, far)` (Direct3D: `MinDepth`, `MaxDepth`), `0 ≤ near < far ≤ 1`.
@@ -53,6 +62,8 @@ impl Default for Pipeline {
         Self {
             world_reach: 0.0,
             eye_first: false,
+            view: None,
+            world_box: None,
             viewport_origin: [0, 0],
             depth_range: [0.0, 1.0],
         }
@@ -75,10 +86,16 @@ impl Pipeline {
         stored / self.span()
     }
 
+    /// Whether vertices reach the shader in world (or model) space: `world_reach > 0` or the
+    /// view matrix given.
+    pub fn world_space(&self) -> bool {
+        self.world_reach > 0.0 || self.view.is_some()
+    }
+
     /// Whether this is the default pipeline (the one the probe's facing figures were measured
     /// with: eye-space vertices, `glDepthRange(0, 1)`).
     pub fn is_default_depth(&self) -> bool {
-        self.world_reach == 0.0 && self.depth_range == [0.0, 1.0]
+        !self.world_space() && self.depth_range == [0.0, 1.0]
     }
 
     /// Checks every field, naming the bad one as the C field is spelled.
@@ -96,6 +113,7 @@ impl Pipeline {
             )
             .with_value("world_reach", w));
         }
+        self.check_matrices()?;
         let [near, far] = self.depth_range;
         for (name, x) in [("depth_range_near", near), ("depth_range_far", far)] {
             finite(x, "a glDepthRange end is NaN or infinite").map_err(|e| e.with_value(name, x))?;
@@ -113,5 +131,33 @@ impl Pipeline {
             .with_value("depth_range_far", far));
         }
         Ok(())
+    }
+
+    /// The view matrix and the box: both or neither, finite, the box ordered.
+    fn check_matrices(&self) -> Result<()> {
+        match (self.view, self.world_box) {
+            (None, None) => Ok(()),
+            (Some(v), Some([lo, hi])) => {
+                for x in v {
+                    let x = f64::from(x);
+                    finite(x, "an element of the view matrix is NaN or infinite")
+                        .map_err(|e| e.with_value("view_matrix", x))?;
+                }
+                for k in 0..3 {
+                    finite(lo[k], "a world_box coordinate is NaN or infinite")
+                        .and_then(|_| finite(hi[k], "a world_box coordinate is NaN or infinite"))?;
+                    if lo[k] > hi[k] {
+                        return Err(domain(
+                            "world_box must be [min x, min y, min z, max x, max y, max z] with each min <= its max",
+                        )
+                        .with_value("world_box min", lo[k]));
+                    }
+                }
+                Ok(())
+            }
+            _ => Err(domain(
+                "view_matrix and world_box go together: pass both (the model then knows each eye coordinate's rounding) or neither",
+            )),
+        }
     }
 }

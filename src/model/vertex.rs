@@ -45,13 +45,21 @@
 //! ground only feels an error of eye `y`), so this is far smaller than the independent clip
 //! errors of one combined matrix.
 //!
+//! **With the engine's matrices.** Knowing the view (or model-view) matrix `V` the shader
+//! applies and the box `[lo, hi]` of the positions it maps
+//! ([`crate::model::Pipeline::view`], [`crate::model::Pipeline::world_box`]), the magnitudes
+//! are exact per eye coordinate: `Aₖ = Σⱼ |Vₖⱼ|·max(|loⱼ|, |hiⱼ|) + |Vₖ₃|`. Level ground
+//! (world `y = 0`) under a level camera has `A_y = |V₁₃|`, the camera's height, however large
+//! the ground and far the camera from the origin: the error off the ground stays small where
+//! the scalar bound must assume the worst rotation.
+//!
 //! `A` splits into a part that does not shrink with distance, `4√3·W`, and one proportional to
 //! `w`, `√3·ρ·w`. Through the form, the first gives at most `L(γ_W·B(4√3·W))/d₁` at a pixel of
 //! depth `d ≥ d₁` (the weights `μᵢ` sum to 1), the second at most `L(γ_W·B'(√3·ρ))` (the
 //! weights `μᵢ·wᵢ/d` sum to 1; `B'` without the translation column). Camera-relative rendering
 //! (vertices sent relative to the camera, `W` about the scene's own size) removes the first.
 
-use super::PlaneForm;
+use super::{Pipeline, PlaneForm};
 
 /// `u = 2⁻²⁴`, the unit roundoff of f32.
 const U: f64 = 1.0 / 16_777_216.0;
@@ -68,58 +76,71 @@ pub fn eye_rounding(form: &PlaneForm, m: &[f64; 16], tangents: [f64; 2]) -> f64 
     U * (g[0].abs() * tangents[0] + g[1].abs() * tangents[1] + g[2].abs())
 }
 
-/// `Bₖ = Σᵢ₍₃₎ |Pₖᵢ|·a + |Pₖ₃|·translation` for `k = x, y, z, w`: the magnitude of the terms of
-/// clip coordinate `k` for eye coordinates of magnitude `a` (module docs).
-pub fn clip_magnitudes(m: &[f64; 16], a: f64, translation: f64) -> [f64; 4] {
-    [0, 1, 2, 3].map(|row| {
-        (0..3).map(|col| m[4 * col + row].abs()).sum::<f64>() * a
-            + m[12 + row].abs() * translation
-    })
-}
-
-/// The clip-space error bound `γ_W·Bₖ` of a vertex whose distance from the camera is at most
-/// `extent`, transformed from world space with the camera and model origins within
-/// `world_reach` of the world origin (module docs): `A = √3·(4W + extent)`.
-pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
-    let a = 3f64.sqrt() * (4.0 * world_reach + extent);
-    clip_magnitudes(m, a, 1.0).map(|b| WORLD_ROUNDINGS * U * b)
-}
-
 /// `γ_E`: the roundings of a world-space vertex through an f32 model-view matrix when the eye
 /// position is computed first (module docs), in units of the magnitude `A`.
 pub(crate) const EYE_FIRST_ROUNDINGS: f64 = 10.0;
 
-/// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum, from
-/// the f32 model-view transform of world-space vertices when the eye position is computed first
-/// (module docs): `γ_E·|g|₁·√3·(4W/nearest + ρ)`, `g = form.on_eye(m)` (the exact form).
-pub fn world_rounding_eye_first(
+/// The magnitudes `Aₖ` of the terms each eye coordinate `k` sums, for a vertex within `extent`
+/// of the camera: with the engine's view matrix `V` and the box of the vertices it maps,
+/// `Σⱼ |Vₖⱼ|·max(|loⱼ|, |hiⱼ|) + |Vₖ₃|` exactly (whatever the extent); else, from the scalar
+/// `world_reach` `W`, `√3·(4W + extent)` (module docs).
+pub fn eye_magnitudes(pipeline: &Pipeline, extent: f64) -> [f64; 3] {
+    match (pipeline.view, pipeline.world_box) {
+        (Some(v), Some([lo, hi])) => [0, 1, 2].map(|k| {
+            (0..3)
+                .map(|j| f64::from(v[4 * j + k]).abs() * lo[j].abs().max(hi[j].abs()))
+                .sum::<f64>()
+                + f64::from(v[12 + k]).abs()
+        }),
+        _ => [3f64.sqrt() * (4.0 * pipeline.world_reach + extent); 3],
+    }
+}
+
+/// For a vertex within `extent` of the camera, transformed from world space as `pipeline`
+/// says: the bound on `|L(e)|` of its clip-space error `e` through the plane's `form`, and on
+/// `|e_w|`. Eye-first with the exact form: `γ_E·Σₖ |gₖ|·Aₖ` (`g` the form on eye coordinates)
+/// and `γ_E·A_z`; otherwise one combined matrix, `L(γ_W·B)` and `γ_W·B_w` with
+/// `Bᵢ = Σₖ |Pᵢₖ|·Aₖ + |Pᵢ₃|` (module docs). `(0, 0)` for eye-space vertices.
+pub fn world_error(
     form: &PlaneForm,
+    exact_form: bool,
     m: &[f64; 16],
-    world_reach: f64,
-    nearest: f64,
-    tangents: [f64; 2],
-) -> f64 {
-    let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
-    let g: f64 = form.on_eye(m).iter().map(|c| c.abs()).sum();
-    EYE_FIRST_ROUNDINGS * U * g * 3f64.sqrt() * (4.0 * world_reach / nearest + rho)
+    pipeline: &Pipeline,
+    extent: f64,
+) -> (f64, f64) {
+    if !pipeline.world_space() {
+        return (0.0, 0.0);
+    }
+    let a = eye_magnitudes(pipeline, extent);
+    if pipeline.eye_first && exact_form {
+        let g = form.on_eye(m);
+        let l: f64 = (0..3).map(|k| g[k].abs() * a[k]).sum();
+        let gamma = EYE_FIRST_ROUNDINGS * U;
+        return (gamma * l, gamma * a[2]);
+    }
+    let b = [0, 1, 2, 3].map(|row| {
+        (0..3).map(|k| m[4 * k + row].abs() * a[k]).sum::<f64>() + m[12 + row].abs()
+    });
+    let e = b.map(|x| WORLD_ROUNDINGS * U * x);
+    (form.bound(e), e[3])
 }
 
 /// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum,
-/// from the f32 transform of world-space vertices (module docs):
-/// `L(γ_W·B(4√3·W))/nearest + L(γ_W·B'(√3·ρ))`, `ρ = √(1 + eₓ² + e_y²)` from `tangents`.
-/// `form` may hold bounds on the magnitudes of the plane's coefficients (only their sizes are
-/// used).
+/// from the f32 transform of world-space vertices ([`world_error`]): the part that does not
+/// grow with the vertex's distance over `nearest`, plus the growing part at `ρ` per unit of
+/// depth (`ρ = √(1 + eₓ² + e_y²)` from `tangents`; the weights `μᵢ·wᵢ/d` sum to 1).
 pub fn world_rounding(
     form: &PlaneForm,
+    exact_form: bool,
     m: &[f64; 16],
-    world_reach: f64,
+    pipeline: &Pipeline,
     nearest: f64,
     tangents: [f64; 2],
 ) -> f64 {
     let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
-    let fixed = clip_magnitudes(m, 4.0 * 3f64.sqrt() * world_reach, 1.0);
-    let growing = clip_magnitudes(m, 3f64.sqrt() * rho, 0.0);
-    WORLD_ROUNDINGS * U * (form.bound(fixed) / nearest + form.bound(growing))
+    let (fixed, _) = world_error(form, exact_form, m, pipeline, 0.0);
+    let (at_rho, _) = world_error(form, exact_form, m, pipeline, rho);
+    fixed / nearest + (at_rho - fixed)
 }
 
 #[cfg(test)]

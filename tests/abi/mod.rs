@@ -82,6 +82,8 @@ unsafe impl Send for Inputs {}
 unsafe impl Sync for Inputs {}
 
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
+    view_matrix: std::ptr::null(),
+    world_box: [0.0; 6],
     eye_first: 0,
     viewport_x: 0,
     viewport_y: 0,
@@ -104,6 +106,8 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
+    view_matrix: std::ptr::null(),
+    world_box: [0.0; 6],
     eye_first: 0,
     viewport_y: 0,
     world_reach: 0.0,
@@ -756,6 +760,8 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
+        view_matrix: std::ptr::null(),
+        world_box: [0.0; 6],
         eye_first: 0,
         viewport_y: 0,
         world_reach: 0.0,
