@@ -382,6 +382,20 @@ typedef struct {
    left-to-right proj * view * model * p).
    */
   uint32_t eye_first;
+  /*
+   The float matrix the vertex shader applies to the positions it receives to make eye
+   coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+   world_box it tells the model each eye coordinate's rounding exactly, instead of the
+   bound from world_reach over every rotation: far tighter for a ground under a level
+   camera, and far from the world origin (README, "The scene every engine draws").
+   */
+  const float *view_matrix;
+  /*
+   With view_matrix: the box of every base and decal position the shader receives (their
+   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+   view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+   */
+  double world_box[6];
 } ZshiftDecal;
 
 /*
@@ -612,6 +626,20 @@ typedef struct {
    left-to-right proj * view * model * p).
    */
   uint32_t eye_first;
+  /*
+   The float matrix the vertex shader applies to the positions it receives to make eye
+   coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+   world_box it tells the model each eye coordinate's rounding exactly, instead of the
+   bound from world_reach over every rotation: far tighter for a ground under a level
+   camera, and far from the world origin (README, "The scene every engine draws").
+   */
+  const float *view_matrix;
+  /*
+   With view_matrix: the box of every base and decal position the shader receives (their
+   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+   view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+   */
+  double world_box[6];
 } ZshiftScene;
 
 /*

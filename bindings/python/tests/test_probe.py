@@ -85,7 +85,7 @@ class ProbeTest(unittest.TestCase):
         clipped = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, profile=p, base_reach=1000.0, **front)
         self.assertEqual((inside.snap, inside.clip), (0.0, 0.0))
         self.assertGreater(clipped.clip, 0.0)
-        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4, (0.0,) * 4, 0.0, 0.0, 0]))
+        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4, (0.0,) * 4, 0.0, 0.0, 0, 0.0]))
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.recommend(profile=zeroed, **args)
         self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)

@@ -273,7 +273,7 @@ def _attach_corners(record, pointer, count, keepalive):
 
 
 def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits,
-           profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+           profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     l, r, b, t, n, f = frustum
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
@@ -289,18 +289,20 @@ def _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, su
     scene = _library.ZshiftScene(l, r, b, t, n, f, width, height, depth_format, near, far, slope,
                                  1 if exact_depth else 0, subpixel_bits)
     scene.base_reach = base_reach
-    _attach_pipeline(scene, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+    _attach_pipeline(scene, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     _attach_profile(scene, profile)
     _attach_corners(scene, pointer, count, keepalive)
     return scene
 
 
-def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_reach, eye_first):
+def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box):
     """Fills the fields the C records share for the engine's pipeline: ``depth_func`` (a
     :class:`DepthTest`, its name or GL enum; ``None``: the convention's strict test),
     ``viewport_x``/``viewport_y`` (``glViewport``'s origin), ``depth_range_near``/``far``
-    (``glDepthRange``), ``world_reach`` (0 for eye-space vertices) and ``eye_first`` (the
-    shader computes ``proj * (view * p)``)."""
+    (``glDepthRange``), ``world_reach`` (0 for eye-space vertices), ``eye_first`` (the
+    shader computes ``proj * (view * p)``), and ``view_matrix`` with ``world_box`` (the
+    shader's view matrix, 16 floats column-major, and the world-space box
+    ``((min x, min y, min z), (max x, max y, max z))`` of the base and decal)."""
     record.depth_func = 0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF
     x, y = viewport_origin
     for name, value in (("viewport_origin x", x), ("viewport_origin y", y)):
@@ -310,6 +312,15 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     record.depth_range_near, record.depth_range_far = depth_range
     record.world_reach = world_reach
     record.eye_first = 1 if eye_first else 0
+    if (view_matrix is None) != (world_box is None):
+        raise TypeError("view_matrix and world_box go together: pass both (16 floats, and "
+                        "((min x, min y, min z), (max x, max y, max z))) or neither")
+    if view_matrix is not None:
+        view = _engine_matrix(view_matrix)
+        (x0, y0, z0), (x1, y1, z1) = world_box
+        record.world_box = (_ctypes.c_double * 6)(x0, y0, z0, x1, y1, z1)
+        record._view_keepalive = view
+        record.view_matrix = _ctypes.cast(view, _ctypes.c_void_p)
 
 
 def _attach_profile(record, profile):
@@ -328,7 +339,7 @@ def _attach_profile(record, profile):
 
 
 def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-              subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+              subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting
     between a decal and its coplanar base (quantum, f32 rounding of transform, vertices and
     interpolation, sub-pixel snapping; seeds 000, 002, 004), as a :data:`Recommendation`.
@@ -360,18 +371,18 @@ def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exa
     slope, ``subpixel_bits`` < -1 or > 32); ``OVERFLOW``.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend(_ctypes.byref(scene), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_matrix(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                     subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+                     subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """The decal's projection for :func:`recommend`'s offset: :func:`frustum` with element 10
     scaled by ``1 + epsilon`` and rounded outward. Arguments and errors as :func:`recommend`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     return _matrix(lambda out: _lib().zshift_recommend_matrix(_ctypes.byref(scene), out))
 
 
@@ -579,7 +590,7 @@ def range_offset(n, f, clip, format, kind, lo, hi, steps):
 
 
 def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                   subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+                   subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """:func:`recommend` for a scene drawn under ``clip`` (a :class:`Clip`), as a
     :data:`Recommendation` (``zshift_recommend_clip``). ``Clip.NEG_ONE_TO_ONE`` gives
     :func:`recommend`; ``Clip.ZERO_TO_ONE`` (glClipControl GL_ZERO_TO_ONE, GL_LESS) a constant NDC
@@ -591,19 +602,19 @@ def recommend_clip(frustum, viewport, depth_format, decal_depths, clip, slope=0.
     Raises :class:`ZshiftError`: as :func:`recommend`; ``DOMAIN`` for an unknown clip.
     """
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     out = _library.ZshiftRecommendation()
     _check(_lib().zshift_recommend_clip(_ctypes.byref(scene), _enum(clip, Clip), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 
 def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, slope=0.0, exact_depth=False,
-                          subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+                          subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """The decal's projection for :func:`recommend_clip`'s offset: :func:`projection` under
     ``clip`` with element 10 lowered ([-1, 1], [0, 1]) or element 14 scaled by ``1 + epsilon``
     (reversed), rounded outward. Arguments and errors as :func:`recommend_clip`."""
     scene = _scene(frustum, viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile,
-                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   base_reach, corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(_ctypes.byref(scene), _enum(clip, Clip), out))
 
 
@@ -659,6 +670,7 @@ class _Decal(_ctypes.Structure):
         ("viewport_x", _ctypes.c_uint32), ("viewport_y", _ctypes.c_uint32),
         ("depth_range_near", _ctypes.c_double), ("depth_range_far", _ctypes.c_double),
         ("world_reach", _ctypes.c_double), ("eye_first", _ctypes.c_uint32),
+        ("view_matrix", _ctypes.c_void_p), ("world_box", _ctypes.c_double * 6),
     ]
 
 
@@ -701,7 +713,7 @@ def _engine_matrix(m):
 
 
 def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile=None, base_reach=0.0,
-           corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+           corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     width, height = viewport
     near, far, slope, pointer, count, keepalive = _corner_fields(decal_depths, slope, corners)
     subpixel_bits = _subpixel_bits(subpixel_bits, profile)
@@ -714,7 +726,7 @@ def _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bi
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [{low}, {high}) ({name} = {value!r})")
     decal = _Decal(width, height, fmt & 0xFFFFFFFF, subpixel_bits, near, far, slope, 1 if exact_depth else 0,
                    base_reach)
-    _attach_pipeline(decal, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+    _attach_pipeline(decal, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     _attach_profile(decal, profile)
     _attach_corners(decal, pointer, count, keepalive)
     return decal
@@ -744,7 +756,7 @@ def offset_matrix_ndc(m, clip, ndc):
 
 
 def decal_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                 subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+                 subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """The decal's matrix for the engine's own projection ``m``: the recommended offset
     (``zshift_decal_matrix``; the model of :func:`recommend_clip`, or its orthographic form) in
     ``m``'s own offset element, every other element bit-identical. The engine never restates its
@@ -752,16 +764,16 @@ def decal_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, 
     enum). Raises :class:`ZshiftError` naming the element or field."""
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
-                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     return _matrix(lambda out: _front_door().zshift_decal_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), out))
 
 
 def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths=None, slope=0.0, exact_depth=False,
-                         subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False):
+                         subpixel_bits=None, profile=None, base_reach=0.0, corners=None, depth_test=None, viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """The :data:`Recommendation` behind :func:`decal_matrix` (``zshift_recommend_for_matrix``)."""
     mat = _engine_matrix(m)
     decal = _decal(viewport, depth_format, decal_depths, slope, exact_depth, subpixel_bits, profile, base_reach,
-                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first)
+                   corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     out = _library.ZshiftRecommendation()
     _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), _ctypes.byref(out)))
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))

@@ -110,6 +110,8 @@ class ZshiftScene(ctypes.Structure):
         ("viewport_x", ctypes.c_uint32), ("viewport_y", ctypes.c_uint32),
         ("depth_range_near", ctypes.c_double), ("depth_range_far", ctypes.c_double),
         ("world_reach", ctypes.c_double), ("eye_first", ctypes.c_uint32),
+        # const float *view_matrix (NULL: not given) and the world box it maps (min xyz, max xyz).
+        ("view_matrix", ctypes.c_void_p), ("world_box", ctypes.c_double * 6),
     ]
 
 
