@@ -123,9 +123,10 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 
 /*
  The version of this C ABI. It changes when a declaration in this header changes
- incompatibly.
+ incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
+ the decal's depth test and the clipper's measured error; rebuild against this header).
  */
-#define ZSHIFT_ABI_VERSION 1
+#define ZSHIFT_ABI_VERSION 2
 
 /*
  `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float

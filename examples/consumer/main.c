@@ -5,6 +5,9 @@
 #include <string.h>
 #include <zshift.h>
 
+static int ground_decal(const float proj[16], float decal_out[16]); /* below */
+
+
 int main(void) {
   float proj[16], decal[16];
   ZshiftDecal d;
@@ -27,5 +30,32 @@ int main(void) {
   }
   printf("zshift %s, C ABI %d: element 10 %.9g -> %.9g\n", zshift_version(), ZSHIFT_ABI_VERSION,
          (double)proj[10], (double)decal[10]);
+  if (decal[10] <= proj[10]) return 1;
+  if (ground_decal(proj, decal) != 0) return 1;
+  printf("ground decal: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
   return decal[10] > proj[10] ? 0 : 1;
 }
+
+/* [quickstart-ground-c] */
+/* A 2x2 decal on the ground, 10 units ahead of a level camera 1.7 units above it; the ground
+   (+-1000 units, drawn as one quad) runs behind the camera. `proj` is the engine's projection. */
+static int ground_decal(const float proj[16], float decal_out[16]) {
+  const float corners[12] = {-1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -9.0f, /* eye space: after the view matrix */
+                             1.0f, -1.7f, -11.0f, -1.0f, -1.7f, -11.0f};
+  ZshiftDecal d;
+  memset(&d, 0, sizeof d);
+  d.viewport_width = 1920; /* glViewport(x, y, w, h): also set viewport_x, viewport_y if not 0 */
+  d.viewport_height = 1080;
+  d.format = ZSHIFT_FORMAT_UNORM24_STENCIL8; /* GL_DEPTH24_STENCIL8, as attached */
+  d.subpixel_bits = 8;                       /* glGetIntegerv(GL_SUBPIXEL_BITS) */
+  d.depth_func = ZSHIFT_DEPTH_TEST_LEQUAL;   /* the decal pass's glDepthFunc */
+  d.decal_corners = corners;                 /* any plane, level ground included */
+  d.decal_corner_count = 4;
+  d.base_reach = 1415.0; /* the ground's largest eye-space |x|, |y|, |z|: the rasterizer clips it */
+  if (zshift_decal_matrix(proj, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &d, decal_out) != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error()); /* the field, its value, what to do */
+    return 1;
+  }
+  return 0;
+}
+/* [/quickstart-ground-c] */

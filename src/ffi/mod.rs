@@ -59,8 +59,9 @@ pub use probe::*;
 pub use recommend::*;
 
 /// The version of this C ABI. It changes when a declaration in this header changes
-/// incompatibly.
-pub const ZSHIFT_ABI_VERSION: u32 = 1;
+/// incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
+/// the decal's depth test and the clipper's measured error; rebuild against this header).
+pub const ZSHIFT_ABI_VERSION: u32 = 2;
 
 /// The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 ///

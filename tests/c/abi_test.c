@@ -766,7 +766,7 @@ static void test_versions(void) {
   const char *version = zshift_version();
   CHECK(version != NULL && strcmp(version, EXPECTED_VERSION) == 0, "zshift_version() is \"%s\", Cargo.toml says \"%s\"",
         version ? version : "(null)", EXPECTED_VERSION);
-  CHECK(ZSHIFT_ABI_VERSION == 1, "ZSHIFT_ABI_VERSION is %d; this test was written for 1", ZSHIFT_ABI_VERSION);
+  CHECK(ZSHIFT_ABI_VERSION == 2, "ZSHIFT_ABI_VERSION is %d; this test was written for 2", ZSHIFT_ABI_VERSION);
 }
 
 /* The detail of an error names the input, its value and the rule; it is per thread, replaced by
@@ -1007,10 +1007,69 @@ static void test_decal_corners(void) {
   CHECK(untouched(out, sizeof out), "a refused call with corners wrote its output");
 }
 
+/* The scene every engine draws: a 2x2 decal on the ground 1.7 below a level camera, 10 ahead,
+   through the engine's own matrix, on a packed GL_DEPTH24_STENCIL8 attachment, every pass drawn
+   with GL_LEQUAL, the vertices in world space through a view matrix 10^4 from the origin. A
+   level camera is answered (the ground contains the view direction; its window plane is
+   ordinary); the pipeline fields are checked and refused with the field named, out untouched. */
+static void test_engine_scene(void) {
+  float m[16], out[16], plain_out[16];
+  const float corners[12] = {-1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -11.0f, -1.0f, -1.7f, -11.0f};
+  float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1e4f, -1.7f, -1e4f, 1};
+  ZshiftDecal decal;
+  ZshiftRecommendation strict, equal, far_away, known;
+  engine_perspective(1.0471976f, 16.0f / 9.0f, 0.1f, 1000.0f, m);
+  memset(&decal, 0, sizeof decal);
+  decal.viewport_width = 1920;
+  decal.viewport_height = 1080;
+  decal.format = ZSHIFT_FORMAT_UNORM24_STENCIL8;
+  decal.subpixel_bits = 8;
+  decal.decal_corners = corners;
+  decal.decal_corner_count = 4;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &strict), ZSHIFT_OK);
+  CHECK(strict.window_offset > 0.0 && strict.bleed_gap < 0.09, "level camera: offset %g, gap %g", strict.window_offset,
+        strict.bleed_gap);
+  /* GL_LEQUAL: one quantum less offset (a tie passes), one more in the gap. */
+  decal.depth_func = ZSHIFT_DEPTH_TEST_LEQUAL;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &equal), ZSHIFT_OK);
+  CHECK(equal.window_offset < strict.window_offset && equal.quantum == strict.quantum,
+        "GL_LEQUAL: offset %g against GL_LESS's %g", equal.window_offset, strict.window_offset);
+  /* World space, the camera 10^4 from the origin: the scalar bound, then the matrices. */
+  decal.world_reach = 1e4;
+  decal.eye_first = 1;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &far_away), ZSHIFT_OK);
+  decal.view_matrix = view;
+  decal.world_box[0] = 9e3;
+  decal.world_box[2] = 9e3;
+  decal.world_box[3] = 1.1e4;
+  decal.world_box[5] = 1.1e4;
+  CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &known), ZSHIFT_OK);
+  CHECK(equal.vertex < far_away.vertex && known.vertex < far_away.vertex,
+        "world space: vertex term %g (eye space %g, with the matrices %g)", far_away.vertex, equal.vertex, known.vertex);
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, plain_out), ZSHIFT_OK);
+  /* Refusals name the field; out is untouched. */
+  memset(out, PATTERN, sizeof out);
+  memset(decal.world_box, 0, sizeof decal.world_box);
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("a view matrix without its box", "world_box");
+  decal.view_matrix = NULL;
+  decal.depth_range_near = 0.7;
+  decal.depth_range_far = 0.5;
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("a reversed depth range", "depth_range_far");
+  decal.depth_range_near = 0.0;
+  decal.depth_range_far = 0.0;
+  decal.world_reach = -1.0;
+  CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("a negative world_reach", "world_reach");
+  CHECK(untouched(out, sizeof out), "refused engine scenes wrote their output");
+}
+
 int main(void) {
   test_last_error();
   test_front_door();
   test_decal_corners();
+  test_engine_scene();
   test_frustum();
   test_load_offset_matrix();
   test_epsilon();

@@ -31,6 +31,26 @@ class QuickStart(unittest.TestCase):
         self.assertEqual(printed.getvalue(),
                          "DOMAIN - the shifted depth Pz + delta must stay in front of the eye (< 0) (Pz + delta = 50)\n")
 
+    def test_ground_quickstart(self):
+        import zshift
+        engine_projection = zshift.frustum(-0.1778, 0.1778, -0.1, 0.1, 0.1, 1000.0)
+        # [quickstart-ground-python]
+        # A 2x2 decal on the ground, 10 ahead of a level camera 1.7 above it; the ground (+-1000,
+        # one quad) runs behind the camera. Corners in eye space (after the view matrix).
+        decal = zshift.decal_matrix(
+            engine_projection, zshift.Clip.NEG_ONE_TO_ONE,
+            viewport=(1920, 1080), depth_format=zshift.Format.UNORM24_STENCIL8,
+            corners=[(-1, -1.7, -9), (1, -1.7, -9), (1, -1.7, -11), (-1, -1.7, -11)],
+            base_reach=1415.0,  # the ground's largest eye-space |x|, |y|, |z|: the rasterizer clips it
+            depth_test="LEQUAL",  # the decal pass's glDepthFunc
+            subpixel_bits=8)  # glGetIntegerv(GL_SUBPIXEL_BITS)
+        # World-space vertices through a float view matrix: add world_reach= (the camera's
+        # distance from the origin), or view_matrix= and world_box= for the exact terms.
+        # [/quickstart-ground-python]
+        self.assertGreater(decal[10], engine_projection[10], "the decal moved toward the camera")
+        self.assertEqual([decal[i] for i in range(16) if i != 10],
+                         [engine_projection[i] for i in range(16) if i != 10])
+
 
 if __name__ == "__main__":
     unittest.main()
