@@ -423,6 +423,10 @@ struct Outcome {
     ratio: Option<f64>,
     gap_over_distance: f64,
     terms: Option<zshift::recommend::ErrorTerms>,
+    /// The offset (f32 steps of the offset element) over the one for the ground cut to the frustum.
+    over_cut: Option<f64>,
+    /// The offset in f32 steps of the offset element.
+    steps: f64,
 }
 
 fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Option<Outcome>, String> {
@@ -474,7 +478,18 @@ fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Opti
                 depth_range: case.depth_range,
             },
         };
-        recommend(&plain, case.at.clip, &decal).map(|rec| (rec, shape.depth_range[0]))
+        // The same decal over the ground cut to the frustum in f64 (nothing left to clip): what
+        // the honest description of the ground as drawn is compared with.
+        let cut = recommend(
+            &plain,
+            case.at.clip,
+            &Decal {
+                base: Base::InsideFrustum,
+                ..decal
+            },
+        )
+        .ok();
+        recommend(&plain, case.at.clip, &decal).map(|rec| (rec, shape.depth_range[0], cut))
     });
     let mut out = Outcome::default();
     match asked {
@@ -482,7 +497,10 @@ fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Opti
             out.refused = Some(e.to_string());
             out.drawable = r.smallest_working()?.is_some();
         }
-        Ok((rec, d1)) => {
+        Ok((rec, d1, cut)) => {
+            let steps = |m: &[f32; 16]| f64::from(steps_between(&plain, m, case.reversed()).max(1));
+            out.over_cut = cut.map(|c| steps(&rec.matrix) / steps(&c.matrix));
+            out.steps = steps(&rec.matrix);
             out.lost = r.lost(&rec.matrix)?.hit;
             out.bled = r.bled(&rec.matrix, rec.bleed_gap, d1)?.map_or(0, |c| c.hit);
             out.gap_over_distance = rec.bleed_gap / d1;
@@ -567,6 +585,9 @@ fn the_scene_every_engine_draws() {
     let verbose = std::env::var("ZSHIFT_ENGINE_SCENES_VERBOSE").is_ok();
     let mut failures = Vec::new();
     let mut table = std::collections::BTreeMap::<String, Vec<Outcome>>::new();
+    // Per translation from the world origin (probed profile, the ground as one quad or a grid):
+    // what camera-relative rendering buys.
+    let mut by_translation = std::collections::BTreeMap::<u64, Vec<(f64, f64)>>::new();
     let (mut drawn, mut skipped) = (0, 0);
     for case in cases() {
         for (name, profile) in [("worst", &worst), ("probed", &probed)] {
@@ -582,14 +603,20 @@ fn the_scene_every_engine_draws() {
                 failures.push(format!("{name} {}: lost {} bled {}", case.label(), out.lost, out.bled));
             }
             let ground = if case.grid { "grid" } else { "quad" };
+            if name == "probed" && out.refused.is_none() {
+                by_translation
+                    .entry(case.translate as u64)
+                    .or_default()
+                    .push((out.gap_over_distance, out.steps));
+            }
             let key = format!("{:16} {:6} {}", case.at.label, name, ground);
             table.entry(key).or_default().push(out);
         }
     }
     println!("{drawn} scenes drawn, {skipped} skipped (decal off screen or under 4 pixels)");
     println!(
-        "{:30} {:>6} {:>8} {:>10} {:>10} {:>10} {:>12} {:>12}",
-        "class", "scenes", "refused", "drawable", "ratio med", "ratio max", "gap/d med", "gap/d max"
+        "{:30} {:>6} {:>8} {:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
+        "class", "scenes", "refused", "drawable", "ratio med", "ratio max", "gap/d med", "gap/d max", "/cut med,max"
     );
     let mut refused_drawable = 0;
     for (key, outs) in &table {
@@ -603,12 +630,17 @@ fn the_scene_every_engine_draws() {
             .map(|o| o.gap_over_distance)
             .collect();
         let rmax = ratios.iter().copied().fold(f64::NAN, f64::max);
+        let mut over_cut: Vec<f64> = outs.iter().filter_map(|o| o.over_cut).collect();
+        let cut_max = over_cut.iter().copied().fold(f64::NAN, f64::max);
+        let cut_median = median(&mut over_cut);
         let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
         println!(
-            "{key:30} {:>6} {refused:>8} {drawable:>10} {:>10.1} {rmax:>10.1} {:>12.2e} {gmax:>12.2e}",
+            "{key:30} {:>6} {refused:>8} {drawable:>10} {:>10.1} {rmax:>10.1} {:>12.2e} {gmax:>12.2e} {:>6.1},{:<6.1}",
             outs.len(),
             median(&mut ratios),
-            median(&mut gaps)
+            median(&mut gaps),
+            cut_median,
+            cut_max
         );
     }
     if verbose {
@@ -619,6 +651,14 @@ fn the_scene_every_engine_draws() {
         }
     }
     println!("refused although bisection finds a working offset: {refused_drawable}");
+    println!("probed profile, by the camera's distance from the world origin (view matrix and box given):");
+    println!("{:>8} {:>6} {:>12} {:>12} {:>14}", "T", "scenes", "gap/d med", "gap/d max", "steps median");
+    for (t, rows) in &by_translation {
+        let mut gaps: Vec<f64> = rows.iter().map(|r| r.0).collect();
+        let mut steps: Vec<f64> = rows.iter().map(|r| r.1).collect();
+        let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
+        println!("{t:>8} {:>6} {:>12.2e} {gmax:>12.2e} {:>14.0}", rows.len(), median(&mut gaps), median(&mut steps));
+    }
     assert!(drawn > 100, "too few scenes drawn: {drawn}");
     assert!(failures.is_empty(), "{} scenes lost or bled pixels:\n{}", failures.len(), failures.join("\n"));
 }
