@@ -6,15 +6,18 @@
  *   1. zshift_decal_matrix(proj, clip, &decal, out)     the decal's projection: your own matrix
  *        (the one the base is drawn with) with the offset that ends z-fighting on a real
  *        rasterizer, for what you know about the decal (ZshiftDecal: viewport, depth format,
- *        sub-pixel bits, its eye distances and slope; base_reach if the base crosses the near
- *        plane; profile = NULL, or what zshift_probe measured once in your own GL context for
- *        a tighter offset). Only one element changes.
+ *        sub-pixel bits, depth_func; its eye-space corners in decal_corners (any plane, ground
+ *        under a level camera included) or its eye distances and slope; base_reach if the
+ *        rasterizer clips the base; world_reach or view_matrix + world_box if vertices are in
+ *        world space; viewport_x/y, depth_range_near/far if not 0 / 0..1; profile = NULL, or
+ *        what zshift_probe measured once in your own GL context for a tighter offset). Only
+ *        one element changes.
  *   2. zshift_offset_matrix(proj, clip, delta, d, out)  the same, for an eye-space shift `delta`
  *        toward the camera at eye distance `d` that you choose (stacked decal layers, a known gap).
  *   3. zshift_last_error()                               when a call returns other than ZSHIFT_OK:
  *        which input, its value and why, e.g. "... must be greater than 0 (n = -1)".
  *
- *   Draw the base with proj, the decal with out, same depth test. Every call returns a
+ *   Draw the base with proj, the decal with out, the depth test you named. Every call returns a
  *   ZshiftStatus and writes its output only on success; none keeps state but the per-thread
  *   last error. Link with -lzshift (pkg-config zshift); C++: zshift.hpp; Python: import zshift.
  *
