@@ -501,6 +501,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
         &mapping_of(scene, ClipDepth::NegOneToOne)?,
         scene.depth_range[0],
         window_offset,
+        &terms,
     )?;
     let planes = scene.frustum.planes();
     let m10 = planes.sum_over_span();
@@ -840,8 +841,15 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
-/// which happens when the clipping term `C` of a large clipped base dwarfs the decal's depth.
-fn check_in_range(mapping: &DepthMapping, d1: f64, offset_at_d1: f64) -> Result<()> {
+/// which happens when the clipping term `C` of a large clipped base, or the vertex term of
+/// world-space vertices far from the origin, dwarfs the decal's depth. The message names the
+/// larger of the two and what to do about it.
+fn check_in_range(
+    mapping: &DepthMapping,
+    d1: f64,
+    offset_at_d1: f64,
+    terms: &ErrorTerms,
+) -> Result<()> {
     let moved_from = |w1: f64| {
         if mapping.is_reversed() {
             w1 + offset_at_d1
@@ -859,10 +867,15 @@ fn check_in_range(mapping: &DepthMapping, d1: f64, offset_at_d1: f64) -> Result<
     };
     if (0.0..=1.0).contains(&moved) {
         Ok(())
+    } else if terms.clip >= terms.vertex {
+        Err(crate::error::Error::new(
+            crate::ErrorKind::Unresolvable,
+            "the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python) and pass base_reach = 0, pass a probed profile (zshift_probe), or move the near plane out",
+        ))
     } else {
         Err(crate::error::Error::new(
             crate::ErrorKind::Unresolvable,
-            "the offset this scene needs moves the decal past the near plane (the f32 clipping term of a large clipped base): cut the base to the frustum with clip_to_frustum and pass Base::InsideFrustum",
+            "the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin): pass view_matrix and world_box (C fields; Python keywords) for the exact term, render relative to the camera, or move the near plane out",
         ))
     }
 }
@@ -938,7 +951,7 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
         }
         if scene.exact_depth {
             return Err(domain(
-                "exact_depth needs a base the rasterizer does not clip (Base::InsideFrustum)",
+                "exact_depth needs a base the rasterizer does not clip: base_reach must be 0 (Rust: Base::InsideFrustum)",
             ));
         }
     }
@@ -1176,7 +1189,7 @@ pub(crate) fn recommend_clip_building(
             window_offset
         }
     };
-    check_in_range(&mapping, d1, offset_at(d1))?;
+    check_in_range(&mapping, d1, offset_at(d1), &terms)?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
     let mut bleed_gap = 0.0f64;
@@ -1767,7 +1780,7 @@ mod tests {
     /// frustum adds nothing. A reach so large that the offset would push the decal past the
     /// near plane is refused as unresolvable, never answered.
     #[test]
-    fn the_clip_term_grows_with_the_base_and_is_refused_when_useless() {
+    fn the_clip_term_grows_with_the_base_and_is_refused_when_unbounded() {
         let inside = scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped);
         let clipped = |reach| Scene {
             base: Base::Clipped { reach },
@@ -1780,10 +1793,15 @@ mod tests {
         );
         assert!(c1 > 0.0 && c2 > 9.0 * c1, "{c1} {c2}");
         assert!(recommend(&clipped(1e3)).unwrap().window_offset > c1);
-        assert_eq!(
-            recommend(&clipped(1e7)).unwrap_err().kind(),
-            ErrorKind::Unresolvable
-        );
+        // A costly base is answered, and the bleed gap says what it costs (an occluder in the
+        // nearer part of the way to the eye is painted over) ...
+        let costly = recommend(&clipped(1e7)).unwrap();
+        assert!(costly.bleed_gap > 0.5 * inside.depth_range[1], "{costly:?}");
+        // ... until the f32 clipper's error reaches the decal's own distance: refused, and the
+        // message says what to do in C and Python.
+        let e = recommend(&clipped(1e8)).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Domain);
+        assert!(e.to_string().contains("zshift_clip_to_frustum") && e.to_string().contains("base_reach"), "{e}");
     }
 
     /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a
