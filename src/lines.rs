@@ -307,41 +307,55 @@ fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
         return Err(domain("line_width must lie in [1, 64] pixels").with_value("line_width", w));
     }
     if !(1..=64).contains(&edges.samples) {
-        return Err(domain("samples (MSAA samples per pixel) must lie in 1..=64")
-            .with_integer("samples", i64::from(edges.samples)));
+        return Err(
+            domain("samples (MSAA samples per pixel) must lie in 1..=64")
+                .with_integer("samples", i64::from(edges.samples)),
+        );
     }
     let sep = edges.hidden_separation;
     finite(sep, "hidden_separation is NaN or infinite")
         .map_err(|e| e.with_value("hidden_separation", sep))?;
     if sep < 0.0 {
-        return Err(domain("hidden_separation must be >= 0 (0: no promise asked)")
-            .with_value("hidden_separation", sep));
+        return Err(
+            domain("hidden_separation must be >= 0 (0: no promise asked)")
+                .with_value("hidden_separation", sep),
+        );
     }
     match edges.face_slope {
         FaceSlope::WindowGradient(g) => {
             finite(g, "face_slope (window gradient) is NaN or infinite")
                 .map_err(|e| e.with_value("face_slope", g))?;
             if g < 0.0 {
-                return Err(domain("face_slope (window gradient per pixel) must be >= 0")
-                    .with_value("face_slope", g));
+                return Err(
+                    domain("face_slope (window gradient per pixel) must be >= 0")
+                        .with_value("face_slope", g),
+                );
             }
         }
         FaceSlope::Angle(a) => {
             finite(a, "face_slope (angle) is NaN or infinite")
                 .map_err(|e| e.with_value("face_slope", a))?;
             if !(0.0..std::f64::consts::FRAC_PI_2).contains(&a) {
-                return Err(domain("face_slope (angle from the view axis) must lie in [0, pi/2) radians")
-                    .with_value("face_slope", a));
+                return Err(domain(
+                    "face_slope (angle from the view axis) must lie in [0, pi/2) radians",
+                )
+                .with_value("face_slope", a));
             }
         }
     }
     let [d1, d2] = edges.depth_range;
     let planes = frustum.planes();
-    planes.check_distance(d1).map_err(|e| e.with_value("depth_near", d1))?;
-    planes.check_distance(d2).map_err(|e| e.with_value("depth_far", d2))?;
+    planes
+        .check_distance(d1)
+        .map_err(|e| e.with_value("depth_near", d1))?;
+    planes
+        .check_distance(d2)
+        .map_err(|e| e.with_value("depth_far", d2))?;
     if d1 > d2 {
-        return Err(domain("the mesh's depth range must be [nearest, farthest]: depth_far must be >= depth_near")
-            .with_value("depth_far", d2));
+        return Err(domain(
+            "the mesh's depth range must be [nearest, farthest]: depth_far must be >= depth_near",
+        )
+        .with_value("depth_far", d2));
     }
     Ok(())
 }
@@ -435,7 +449,11 @@ fn unchecked_gap(
             let pipeline = edges.pipeline;
             let need = budget + strict_q(terms.quantum) + 2.0 * U * (1.0 + w_hi);
             let r_of = |api: BiasApi, w: f64| -> Result<f64> {
-                Ok(pipeline.per_unit(resolvable_difference(api, edges.format, pipeline.actual(w))?))
+                Ok(pipeline.per_unit(resolvable_difference(
+                    api,
+                    edges.format,
+                    pipeline.actual(w),
+                )?))
             };
             let quanta = edges.profile.resolvable[crate::recommend::profile_index(edges.format)];
             let r_gl = quanta * r_of(BiasApi::OpenGl, w_lo)?;
@@ -533,13 +551,19 @@ mod tests {
         assert!((r.line_term - 1e-3).abs() < 1e-15);
         let b = 2.0 * (r.terms.plane + r.terms.snap);
         assert!((r.window_offset - (1e-3 + b)).abs() < 1e-15, "{r:?}");
-        assert!(r.matrix[10].abs() < m[10].abs(), "element 10 moved toward 0");
+        assert!(
+            r.matrix[10].abs() < m[10].abs(),
+            "element 10 moved toward 0"
+        );
         let gw = 2.0 * r.window_offset + r.terms.quantum;
         let (n, f) = (1.0f64, 1000.0f64);
         let big_f = f / (f - n);
         let w = |d: f64| big_f * (1.0 - n / d);
         let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
-        assert!((r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap, "{r:?}");
+        assert!(
+            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
+            "{r:?}"
+        );
     }
 
     /// (a): factor Δ, units (B + 2u(1 + w))/r; D3D rounded up; width 3 reaches 2 pixels.
@@ -554,7 +578,10 @@ mod tests {
         assert_eq!(r.d3d_bias[1], 2.0);
         assert_eq!(r.d3d_bias[0], r.d3d_bias[0].ceil());
         let q = 1.0 / 65535.0;
-        assert!(r.polygon_offset[1] > 0.0 && r.polygon_offset[1] < 2.0, "{r:?}");
+        assert!(
+            r.polygon_offset[1] > 0.0 && r.polygon_offset[1] < 2.0,
+            "{r:?}"
+        );
         assert!(r.polygon_offset[1] * q >= 2.0 * (r.terms.plane + r.terms.snap));
         assert_eq!(r.matrix, m);
     }
@@ -599,7 +626,9 @@ mod tests {
         e.face_slope = FaceSlope::Angle(1.0);
         e.depth_range = [50.0, 5.0];
         assert_eq!(
-            recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap_err().kind(),
+            recommend(&m, clip, &e, EdgeMethod::Matrix)
+                .unwrap_err()
+                .kind(),
             ErrorKind::Domain
         );
     }

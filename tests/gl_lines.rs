@@ -71,7 +71,8 @@ struct Mesh {
 
 fn finish(name: &'static str, verts: Vec<[f32; 3]>, tris: Vec<[u32; 3]>) -> Mesh {
     let mut index: HashMap<[u32; 2], usize> = HashMap::new();
-    let (mut edges, mut edge_tris, mut tri_edges) = (Vec::new(), Vec::<Vec<usize>>::new(), Vec::new());
+    let (mut edges, mut edge_tris, mut tri_edges) =
+        (Vec::new(), Vec::<Vec<usize>>::new(), Vec::new());
     for (t, tri) in tris.iter().enumerate() {
         let mut te = [0; 3];
         for k in 0..3 {
@@ -87,7 +88,14 @@ fn finish(name: &'static str, verts: Vec<[f32; 3]>, tris: Vec<[u32; 3]>) -> Mesh
         }
         tri_edges.push(te);
     }
-    Mesh { name, verts, tris, edges, edge_tris, tri_edges }
+    Mesh {
+        name,
+        verts,
+        tris,
+        edges,
+        edge_tris,
+        tri_edges,
+    }
 }
 
 /// A UV sphere of radius `r` centred at eye depth `d`, 24 × 12, poles dropped to rings.
@@ -250,11 +258,19 @@ impl Renderer {
                 let s = gl.create_shader(kind).unwrap();
                 gl.shader_source(s, src);
                 gl.compile_shader(s);
-                assert!(gl.get_shader_compile_status(s), "{}", gl.get_shader_info_log(s));
+                assert!(
+                    gl.get_shader_compile_status(s),
+                    "{}",
+                    gl.get_shader_info_log(s)
+                );
                 gl.attach_shader(program, s);
             }
             gl.link_program(program);
-            assert!(gl.get_program_link_status(program), "{}", gl.get_program_info_log(program));
+            assert!(
+                gl.get_program_link_status(program),
+                "{}",
+                gl.get_program_info_log(program)
+            );
             let vao = gl.create_vertex_array().unwrap();
             let vbo = gl.create_buffer().unwrap();
             let ebo = gl.create_buffer().unwrap();
@@ -263,12 +279,22 @@ impl Renderer {
             gl.enable_vertex_attrib_array(0);
             gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
             gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
-            Renderer { program, vao, vbo, ebo }
+            Renderer {
+                program,
+                vao,
+                vbo,
+                ebo,
+            }
         }
     }
 
     fn load(&self, gl: &glow::Context, mesh: &Mesh) {
-        let bytes: Vec<u8> = mesh.verts.iter().flatten().flat_map(|v| v.to_ne_bytes()).collect();
+        let bytes: Vec<u8> = mesh
+            .verts
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_ne_bytes())
+            .collect();
         unsafe {
             gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo));
             gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STATIC_DRAW);
@@ -278,7 +304,16 @@ impl Renderer {
     /// Draws `indices` as `mode` (`TRIANGLES` or `LINES`) with `proj`; `id` 0 flat colour, 1/2
     /// primitive IDs forward / reversed.
     #[allow(clippy::too_many_arguments)]
-    fn draw(&self, gl: &glow::Context, indices: &[u32], mode: u32, proj: &[f32; 16], color: [u8; 3], id: i32, count: i32) {
+    fn draw(
+        &self,
+        gl: &glow::Context,
+        indices: &[u32],
+        mode: u32,
+        proj: &[f32; 16],
+        color: [u8; 3],
+        id: i32,
+        count: i32,
+    ) {
         let bytes: Vec<u8> = indices.iter().flat_map(|v| v.to_ne_bytes()).collect();
         unsafe {
             gl.use_program(Some(self.program));
@@ -368,18 +403,28 @@ impl Scene<'_> {
                 None => g.disable(glow::POLYGON_OFFSET_FILL),
             }
         }
-        self.r.draw(g, &self.tri_idx, glow::TRIANGLES, &self.m, FACE, 0, 0);
+        self.r
+            .draw(g, &self.tri_idx, glow::TRIANGLES, &self.m, FACE, 0, 0);
         unsafe {
             g.disable(glow::POLYGON_OFFSET_FILL);
             g.depth_func(if reversed { glow::GEQUAL } else { glow::LEQUAL });
         }
         match self.kind {
             LineKind::Lines => {
-                self.r.draw(g, &self.line_idx, glow::LINES, &d.edge_matrix, EDGE, 0, 0);
+                self.r
+                    .draw(g, &self.line_idx, glow::LINES, &d.edge_matrix, EDGE, 0, 0);
             }
             LineKind::PolygonMode => unsafe {
                 g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
-                self.r.draw(g, &self.tri_idx, glow::TRIANGLES, &d.edge_matrix, EDGE, 0, 0);
+                self.r.draw(
+                    g,
+                    &self.tri_idx,
+                    glow::TRIANGLES,
+                    &d.edge_matrix,
+                    EDGE,
+                    0,
+                    0,
+                );
                 g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
             },
         }
@@ -402,10 +447,21 @@ fn read(gl: &Gl) -> Vec<[u8; 4]> {
         g.finish();
         g.read_buffer(glow::COLOR_ATTACHMENT0);
         g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-        g.read_pixels(0, 0, n as i32, n as i32, glow::RGBA, glow::UNSIGNED_BYTE, glow::PixelPackData::Slice(Some(&mut bytes)));
+        g.read_pixels(
+            0,
+            0,
+            n as i32,
+            n as i32,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+            glow::PixelPackData::Slice(Some(&mut bytes)),
+        );
     }
     gl.check("glReadPixels").unwrap();
-    bytes.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+    bytes
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
 }
 
 /// The edges that drew each pixel: two ID renders (forward and reversed order).
@@ -435,8 +491,14 @@ fn edge_ids(scene: &Scene, p: &Projected) -> Vec<Vec<usize>> {
                 g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
             }
         }
-        let prim = if scene.kind == LineKind::Lines { glow::LINES } else { glow::TRIANGLES };
-        scene.r.draw(g, &ordered, prim, &scene.m, EDGE, mode, prims as i32);
+        let prim = if scene.kind == LineKind::Lines {
+            glow::LINES
+        } else {
+            glow::TRIANGLES
+        };
+        scene
+            .r
+            .draw(g, &ordered, prim, &scene.m, EDGE, mode, prims as i32);
         unsafe {
             g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
             g.enable(glow::DEPTH_TEST);
@@ -457,7 +519,8 @@ fn edge_ids(scene: &Scene, p: &Projected) -> Vec<Vec<usize>> {
                     let te = scene.mesh.tri_edges[t];
                     *te.iter()
                         .min_by(|&&a, &&b| {
-                            seg_dist(scene.mesh, p, a, x, y).total_cmp(&seg_dist(scene.mesh, p, b, x, y))
+                            seg_dist(scene.mesh, p, a, x, y)
+                                .total_cmp(&seg_dist(scene.mesh, p, b, x, y))
                         })
                         .unwrap()
                 }
@@ -478,17 +541,28 @@ fn seg_dist(mesh: &Mesh, p: &Projected, e: usize, x: f64, y: f64) -> f64 {
 }
 
 /// Visible and hidden-beyond-`gap` pixels (module docs).
-fn classify(scene: &Scene, p: &Projected, rf: &Reference, ids: &[Vec<usize>], b: f64, g: f64, gap: f64) -> Classes {
+fn classify(
+    scene: &Scene,
+    p: &Projected,
+    rf: &Reference,
+    ids: &[Vec<usize>],
+    b: f64,
+    g: f64,
+    gap: f64,
+) -> Classes {
     let n = SIZE as usize;
     let near_vertex = |x: usize, y: usize| {
-        p.xy.iter().any(|v| (v[0] - x as f64 - 0.5).abs() < 2.0 && (v[1] - y as f64 - 0.5).abs() < 2.0)
+        p.xy.iter()
+            .any(|v| (v[0] - x as f64 - 0.5).abs() < 2.0 && (v[1] - y as f64 - 0.5).abs() < 2.0)
     };
     let (mut visible, mut hidden) = (Vec::new(), Vec::new());
     for (i, edges) in ids.iter().enumerate() {
         if edges.is_empty() {
             continue;
         }
-        let Some((t, inv_front)) = rf.front[i] else { continue };
+        let Some((t, inv_front)) = rf.front[i] else {
+            continue;
+        };
         if b * rf.tri_grad[t] > g {
             continue;
         }
@@ -512,7 +586,9 @@ fn classify(scene: &Scene, p: &Projected, rf: &Reference, ids: &[Vec<usize>], b:
                 None => false,
             };
             let around = (x.saturating_sub(1)..=(x + 1).min(n - 1))
-                .flat_map(|xx| (y.saturating_sub(1)..=(y + 1).min(n - 1)).map(move |yy| yy * n + xx))
+                .flat_map(|xx| {
+                    (y.saturating_sub(1)..=(y + 1).min(n - 1)).map(move |yy| yy * n + xx)
+                })
                 .all(hidden_here);
             if adjacent || !around || steep_edge {
                 all_hidden = false;
@@ -539,7 +615,11 @@ fn classify(scene: &Scene, p: &Projected, rf: &Reference, ids: &[Vec<usize>], b:
 
 /// The draw for `method` with every offset scaled by `s` (s = 1: zshift's).
 fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDepth, s: f64) -> Draw {
-    let sign = if clip == ClipDepth::ReversedZeroToOne { -1.0 } else { 1.0 };
+    let sign = if clip == ClipDepth::ReversedZeroToOne {
+        -1.0
+    } else {
+        1.0
+    };
     match rec.method {
         EdgeMethod::PolygonOffset => Draw {
             face_offset: Some((
@@ -553,7 +633,11 @@ fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDept
             edge_matrix: if clip == ClipDepth::ReversedZeroToOne {
                 let mut out = *m;
                 out[14] = (f64::from(m[14]) * (1.0 + s * rec.relative_epsilon)) as f32;
-                if s == 1.0 { rec.matrix } else { out }
+                if s == 1.0 {
+                    rec.matrix
+                } else {
+                    out
+                }
             } else if s == 1.0 {
                 rec.matrix
             } else {
@@ -586,7 +670,13 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-const PEERS: [(&str, f32, f32); 5] = [("(1,1)", 1.0, 1.0), ("(2,2)", 2.0, 2.0), ("(0,4)", 0.0, 4.0), ("(0,8)", 0.0, 8.0), ("(1,0)", 1.0, 0.0)];
+const PEERS: [(&str, f32, f32); 5] = [
+    ("(1,1)", 1.0, 1.0),
+    ("(2,2)", 2.0, 2.0),
+    ("(0,4)", 0.0, 4.0),
+    ("(0,8)", 0.0, 8.0),
+    ("(1,0)", 1.0, 0.0),
+];
 const SEED_SHIFTS: [f64; 2] = [1e-3, 1e-2];
 
 #[test]
@@ -598,14 +688,21 @@ fn edges_over_faces_sweep() {
     } else {
         Snapping::SubpixelBits(gl.subpixel_bits())
     };
-    let profile = RasterizerProfile { snapping, ..RasterizerProfile::worst_case() };
+    let profile = RasterizerProfile {
+        snapping,
+        ..RasterizerProfile::worst_case()
+    };
     let mut classes: Vec<(String, Class)> = Vec::new();
     let mut failures = Vec::new();
     for fmt in DepthFormat::ALL {
         gl.set_target(SIZE, SIZE, fmt).unwrap();
         for conv in [Conv::Std, Conv::ZeroOne, Conv::Reversed] {
-            gl.clip_control(if conv == Conv::Std { GlClip::NegativeOneToOne } else { GlClip::ZeroToOne })
-                .unwrap_or_else(|e| panic!("glClipControl is needed: {e}"));
+            gl.clip_control(if conv == Conv::Std {
+                GlClip::NegativeOneToOne
+            } else {
+                GlClip::ZeroToOne
+            })
+            .unwrap_or_else(|e| panic!("glClipControl is needed: {e}"));
             for ratio in [10.0f64, 1e3, 1e6] {
                 let n = 1.0f64;
                 let f = n * ratio;
@@ -622,26 +719,64 @@ fn edges_over_faces_sweep() {
                         let p = project(&mesh, &mf);
                         let rf = reference(&mesh, &p);
                         let b = f * n / (f - n);
-                        let (dmin, dmax) = mesh.verts.iter().fold((f64::MAX, 0.0f64), |(a, c), v| {
-                            (a.min(-f64::from(v[2])), c.max(-f64::from(v[2])))
-                        });
+                        let (dmin, dmax) =
+                            mesh.verts.iter().fold((f64::MAX, 0.0f64), |(a, c), v| {
+                                (a.min(-f64::from(v[2])), c.max(-f64::from(v[2])))
+                            });
                         renderer.load(gl.glow(), &mesh);
                         let tri_idx: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
                         let line_idx: Vec<u32> = mesh.edges.iter().flatten().copied().collect();
                         for kind in [LineKind::Lines, LineKind::PolygonMode] {
-                            let scene = Scene { gl: &gl, r: &renderer, mesh: &mesh, m, conv, kind, tri_idx: tri_idx.clone(), line_idx: line_idx.clone() };
+                            let scene = Scene {
+                                gl: &gl,
+                                r: &renderer,
+                                mesh: &mesh,
+                                m,
+                                conv,
+                                kind,
+                                tri_idx: tri_idx.clone(),
+                                line_idx: line_idx.clone(),
+                            };
                             let ids = edge_ids(&scene, &p);
                             for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
-                                let mut edges = Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
+                                let mut edges =
+                                    Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
                                 edges.kind = kind;
                                 edges.profile = profile;
                                 edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
-                                edges.depth_test = if conv == Conv::Reversed { DepthTest::GreaterEqual } else { DepthTest::LessEqual };
-                                let label = format!("{} {} {} {}", conv.name(), fmt.name(), if kind == LineKind::Lines { "lines" } else { "polymode" }, if method == EdgeMethod::Matrix { "(b) matrix" } else { "(a) polygon offset" });
+                                edges.depth_test = if conv == Conv::Reversed {
+                                    DepthTest::GreaterEqual
+                                } else {
+                                    DepthTest::LessEqual
+                                };
+                                let label = format!(
+                                    "{} {} {} {}",
+                                    conv.name(),
+                                    fmt.name(),
+                                    if kind == LineKind::Lines {
+                                        "lines"
+                                    } else {
+                                        "polymode"
+                                    },
+                                    if method == EdgeMethod::Matrix {
+                                        "(b) matrix"
+                                    } else {
+                                        "(a) polygon offset"
+                                    }
+                                );
                                 let idx = match classes.iter().position(|(l, _)| *l == label) {
                                     Some(i) => i,
                                     None => {
-                                        classes.push((label.clone(), Class { peers: vec![(0, 0); PEERS.len() + SEED_SHIFTS.len()], ..Default::default() }));
+                                        classes.push((
+                                            label.clone(),
+                                            Class {
+                                                peers: vec![
+                                                    (0, 0);
+                                                    PEERS.len() + SEED_SHIFTS.len()
+                                                ],
+                                                ..Default::default()
+                                            },
+                                        ));
                                         classes.len() - 1
                                     }
                                 };
@@ -652,7 +787,10 @@ fn edges_over_faces_sweep() {
                                     Err(e) => {
                                         class.refused += 1;
                                         if e.kind() != zshift::ErrorKind::Unresolvable {
-                                            failures.push(format!("{label} {} f/n {ratio} {pos}: {e}", mesh.name));
+                                            failures.push(format!(
+                                                "{label} {} f/n {ratio} {pos}: {e}",
+                                                mesh.name
+                                            ));
                                         }
                                         continue;
                                     }
@@ -669,7 +807,8 @@ fn edges_over_faces_sweep() {
                                     failures.push(format!("{label} {} f/n {ratio} {pos}: {lost} of {} visible lost, {shown} of {} hidden shown (gap {:.3e}, {rec:?})", mesh.name, c.visible.len(), c.hidden.len(), rec.hidden_gap));
                                 }
                                 // The smallest working scale of zshift's offset (0 lost), in log2 steps.
-                                let works = |s: f64| scene.count(&scaled(&rec, &m, clip, s), &c).0 == 0;
+                                let works =
+                                    |s: f64| scene.count(&scaled(&rec, &m, clip, s), &c).0 == 0;
                                 let (mut lo, mut hi) = (-24.0f64, 0.0f64);
                                 if works(lo.exp2()) {
                                     // Edges survive with no offset to speak of (a tie passes):
@@ -679,7 +818,11 @@ fn edges_over_faces_sweep() {
                                 } else {
                                     for _ in 0..9 {
                                         let mid = 0.5 * (lo + hi);
-                                        if works(mid.exp2()) { hi = mid } else { lo = mid }
+                                        if works(mid.exp2()) {
+                                            hi = mid
+                                        } else {
+                                            lo = mid
+                                        }
                                     }
                                 }
                                 if hi.is_finite() {
@@ -690,14 +833,25 @@ fn edges_over_faces_sweep() {
                                     class.peer_scenes += 1;
                                     let sign = if conv == Conv::Reversed { -1.0 } else { 1.0 };
                                     for (k, &(_, fa, un)) in PEERS.iter().enumerate() {
-                                        let draw = Draw { face_offset: Some((sign * fa, sign * un)), edge_matrix: m };
+                                        let draw = Draw {
+                                            face_offset: Some((sign * fa, sign * un)),
+                                            edge_matrix: m,
+                                        };
                                         let (l, s) = scene.count(&draw, &c);
                                         class.peers[k].0 += l;
                                         class.peers[k].1 += s;
                                     }
                                     for (k, &delta) in SEED_SHIFTS.iter().enumerate() {
-                                        let em = zshift::matrix_in::offset_shift(&m, clip, delta, d).unwrap_or(m);
-                                        let (l, s) = scene.count(&Draw { face_offset: None, edge_matrix: em }, &c);
+                                        let em =
+                                            zshift::matrix_in::offset_shift(&m, clip, delta, d)
+                                                .unwrap_or(m);
+                                        let (l, s) = scene.count(
+                                            &Draw {
+                                                face_offset: None,
+                                                edge_matrix: em,
+                                            },
+                                            &c,
+                                        );
                                         class.peers[PEERS.len() + k].0 += l;
                                         class.peers[PEERS.len() + k].1 += s;
                                     }
@@ -713,14 +867,40 @@ fn edges_over_faces_sweep() {
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (label, c) in &mut classes {
         let pct = |x: usize, of: usize| 100.0 * x as f64 / of.max(1) as f64;
-        let peers: Vec<String> = c.peers.iter().map(|&(l, s)| if c.peer_scenes == 0 { "–".to_string() } else { format!("{:.1}%/{:.1}%", pct(l, c.visible), pct(s, c.hidden)) }).collect();
+        let peers: Vec<String> = c
+            .peers
+            .iter()
+            .map(|&(l, s)| {
+                if c.peer_scenes == 0 {
+                    "–".to_string()
+                } else {
+                    format!("{:.1}%/{:.1}%", pct(l, c.visible), pct(s, c.hidden))
+                }
+            })
+            .collect();
         let max = c.ratios.iter().copied().fold(0.0, f64::max);
-        println!("| {label} | {} | {} | {} of {} | {} of {} | {:.2}, {:.1}; {} | {} |", c.scenes, c.answered, c.lost, c.visible, c.shown, c.hidden, median(&mut c.ratios), max, c.none_needed, peers.join(" | "));
+        println!(
+            "| {label} | {} | {} | {} of {} | {} of {} | {:.2}, {:.1}; {} | {} |",
+            c.scenes,
+            c.answered,
+            c.lost,
+            c.visible,
+            c.shown,
+            c.hidden,
+            median(&mut c.ratios),
+            max,
+            c.none_needed,
+            peers.join(" | ")
+        );
     }
-    assert!(failures.is_empty(), "{} scenes failed:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} scenes failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 fn zshift_format(f: DepthFormat) -> Format {
     Format::from_gl_internal_format(f.gl_enum()).unwrap()
 }
-
