@@ -157,6 +157,18 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 #define ZSHIFT_NEAR_CLIP_PLANE_PRESERVING 2
 
 /*
+ Faces pushed back with glPolygonOffset (D3D DepthBias/SlopeScaledDepthBias, Vulkan
+ depthBiasConstantFactor/SlopeFactor), edges drawn unoffset.
+ */
+#define ZSHIFT_EDGES_POLYGON_OFFSET 0
+
+/*
+ Edges pulled forward through the projection matrix (element 10, or 14 under reversed Z),
+ faces unoffset: the one offset that moves GL_LINES.
+ */
+#define ZSHIFT_EDGES_MATRIX 1
+
+/*
  The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 
  A plain 32-bit integer, so any value a caller passes to `zshift_status_message` is valid.
@@ -659,6 +671,129 @@ typedef void (*ZshiftGlProc)(void);
  add the `user` argument); wrap SDL_GL_GetProcAddress or wglGetProcAddress likewise.
  */
 typedef ZshiftGlProc (*ZshiftGlLoader)(const char *name, void *user);
+
+/*
+ What an engine knows about a mesh whose edges it draws over its faces, for
+ `zshift_edge_offset` and `zshift_edge_planes`. Fill every field: an all-zero record is
+ refused (viewport 0).
+ */
+typedef struct {
+  /*
+   `glViewport` width in pixels (nonzero).
+   */
+  uint32_t viewport_width;
+  /*
+   `glViewport` height in pixels (nonzero).
+   */
+  uint32_t viewport_height;
+  /*
+   The depth attachment's format (ZSHIFT_FORMAT_*).
+   */
+  ZshiftFormat format;
+  /*
+   GL_SUBPIXEL_BITS of the worst-case profile used when `profile` is NULL (0..=32), or
+   ZSHIFT_SUBPIXEL_UNSNAPPED (-1) for a rasterizer that sets depth up unsnapped (llvmpipe).
+   */
+  int32_t subpixel_bits;
+  /*
+   The mesh's nearest eye depth (-z), inside the matrix's [n, f].
+   */
+  double depth_near;
+  /*
+   The mesh's farthest eye depth (-z), >= depth_near.
+   */
+  double depth_far;
+  /*
+   glLineWidth in pixels, 1 to 64.
+   */
+  double line_width;
+  /*
+   0: GL_LINES; 1: the faces drawn again in glPolygonMode(GL_LINE).
+   */
+  uint32_t polygon_mode;
+  /*
+   MSAA samples per pixel (1 without multisampling), 1..=64.
+   */
+  uint32_t samples;
+  /*
+   The steepest face whose edges must be kept, as the largest angle between a face's normal
+   and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead.
+   */
+  double face_angle;
+  /*
+   With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
+   (what glPolygonOffset's factor multiplies), >= 0.
+   */
+  double face_gradient;
+  /*
+   The eye depth behind a front face from which hidden edges must not show; 0 for no
+   promise. Where the hidden-line gap exceeds it the call fails with
+   ZSHIFT_ERR_UNRESOLVABLE (`zshift_edge_planes` then gives planes that would work).
+   */
+  double hidden_separation;
+  /*
+   The edge pass's depth test: ZSHIFT_DEPTH_TEST_LEQUAL or _LESS, under reversed Z _GEQUAL
+   or _GREATER; 0: GL_LEQUAL (GL_GEQUAL reversed), the usual edge pass.
+   */
+  ZshiftDepthTest depth_func;
+  /*
+   The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+   `subpixel_bits`.
+   */
+  const ZshiftProfile *profile;
+} ZshiftEdges;
+
+/*
+ The offset for a mesh's edges by one method, in every form an engine applies it.
+ */
+typedef struct {
+  /*
+   ZSHIFT_EDGES_MATRIX: the edges' projection, the engine's own with the offset applied to
+   element 10 (14 reversed), rounded outward; ZSHIFT_EDGES_POLYGON_OFFSET: `m` unchanged.
+   */
+  float matrix[16];
+  /*
+   glPolygonOffset(factor, units) for the faces (magnitudes: positive pushes away under
+   [-1, 1] and [0, 1]; negate both under reversed Z); 0 for the matrix method.
+   */
+  double polygon_offset[2];
+  /*
+   Direct3D DepthBias (integer, rounded up) and SlopeScaledDepthBias; 0 for the matrix method.
+   */
+  double d3d_bias[2];
+  /*
+   Vulkan depthBiasConstantFactor and depthBiasSlopeFactor; 0 for the matrix method.
+   */
+  double vulkan_bias[2];
+  /*
+   The NDC offset applied to element 10 (negative: toward the camera); 0 otherwise.
+   */
+  double ndc_offset;
+  /*
+   The relative epsilon of element 14 under reversed Z; 0 otherwise.
+   */
+  double relative_epsilon;
+  /*
+   The largest window-depth offset between edge and face the method applies.
+   */
+  double window_offset;
+  /*
+   The line term g*(w + 1)/2, window depth.
+   */
+  double line_term;
+  /*
+   (w + 1)/2: how far (pixels) from the pixel a line fragment's depth is taken.
+   */
+  double line_reach;
+  /*
+   g: the window-depth gradient per pixel of the steepest face that matters.
+   */
+  double face_gradient;
+  /*
+   Hidden edges behind a front face by at least this eye depth never show.
+   */
+  double hidden_gap;
+} ZshiftEdgeOffset;
 
 /*
  Success: the output was written.
@@ -1350,6 +1485,43 @@ ZshiftStatus zshift_profile_worst_case(ZshiftProfile *out);
  `loader` must return, for each name, NULL or that entry point of the current context.
  */
 ZshiftStatus zshift_probe(ZshiftGlLoader loader, void *user, ZshiftProfile *out);
+
+/*
+ Writes the offset that keeps every edge of `edges`' mesh in front of its own faces (faces up
+ to the face-slope limit) by `method` (ZSHIFT_EDGES_POLYGON_OFFSET or ZSHIFT_EDGES_MATRIX),
+ with the hidden-line gap it costs; `m` is the engine's perspective projection (16 floats,
+ column-major) under `clip`. The model: a line fragment's depth is taken up to (w + 1)/2 pixels
+ from the pixel along the face's steeper axis (the line term), plus the decal model's terms for
+ face and edge (docs/edges.md).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `edges` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE;
+ ZSHIFT_ERR_DOMAIN for a bad field (zshift_last_error() names it: viewport_width,
+ line_width, samples, polygon_mode, face_angle, face_gradient, hidden_separation,
+ depth_near/depth_far, depth_func, method) or an orthographic `m`; ZSHIFT_ERR_UNRESOLVABLE
+ when the hidden-line gap exceeds hidden_separation (no offset keeps every visible edge and
+ hides every hidden one) or the offset would pull the nearest edge past the near plane;
+ ZSHIFT_ERR_OVERFLOW. `*out` is untouched on error.
+ */
+ZshiftStatus zshift_edge_offset(const float *m,
+                                ZshiftClip clip,
+                                const ZshiftEdges *edges,
+                                uint32_t method,
+                                ZshiftEdgeOffset *out);
+
+/*
+ Writes near and far planes (out[0], out[1]) with which `zshift_edge_offset` answers for
+ `edges` by `method`: the tight planes of the mesh's depth range (zshift_tight_planes), with a
+ near plane a little closer where the matrix offset needs room, and `m`'s side planes. For the
+ ZSHIFT_ERR_UNRESOLVABLE of `zshift_edge_offset`.
+
+ Errors: as `zshift_edge_offset`; ZSHIFT_ERR_UNRESOLVABLE when even these planes leave the
+ gap above hidden_separation (use a deeper depth format). `out` is untouched on error.
+ */
+ZshiftStatus zshift_edge_planes(const float *m,
+                                ZshiftClip clip,
+                                const ZshiftEdges *edges,
+                                uint32_t method,
+                                double *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -25,6 +25,7 @@
 //! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |
 //! | [`polygon_offset`] | eye-space δ ↔ `glPolygonOffset` units, D3D `DepthBias`, Vulkan `depthBiasConstantFactor` | 004 |
 //! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
+//! | [`lines`] | edges over their own faces (wireframe on shaded, outlines, hidden-line drawing): polygon offset for the faces or a matrix offset for the edges, and the hidden-line gap | 004 |
 //! | [`decal`] | what an engine knows about a decal besides its matrix (the recommendation's input) | |
 //! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
 //! | [`orthographic`] | `glOrtho` for every clip convention, its constant offset through element 14, its (constant) depth step | |
@@ -41,9 +42,10 @@ mod double_double;
 pub mod error;
 pub mod ffi;
 pub mod footprint;
+pub mod lines;
 pub mod matrix_in;
-pub mod model;
 pub mod median;
+pub mod model;
 pub mod offset;
 pub mod orthographic;
 pub mod plan;

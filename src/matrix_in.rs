@@ -246,7 +246,7 @@ fn orthographic(e: &[f64; 16], clip: ClipDepth) -> Result<Recognized> {
 
 /// `m` with element `i` moved away from its value by `offset` (double-double), rounded outward.
 #[inline(always)]
-fn moved(m: &[f32; 16], i: usize, offset: DoubleDouble) -> Result<[f32; 16]> {
+pub(crate) fn moved(m: &[f32; 16], i: usize, offset: DoubleDouble) -> Result<[f32; 16]> {
     let mut out = *m;
     // Decided from the offset's leading f64 (within 2⁻⁵³ of it) where it can be, as
     // `crate::offset::outward_of_ratio` shows; else from the double-double value.
@@ -417,7 +417,7 @@ pub use crate::decal::Decal;
 /// and y rows (`x_ndc = m0·x/d + s·m8`), sorted so `l < r` and `b < t` (a y flip changes no
 /// footprint), and the recognised planes (`f = +∞` for a tweaked projection).
 #[inline(always)]
-fn frustum_of(m: &[f32; 16], r: &Recognized, handedness: f64) -> Result<Frustum> {
+pub(crate) fn frustum_of(m: &[f32; 16], r: &Recognized, handedness: f64) -> Result<Frustum> {
     let n = r.near;
     let side = |scale: f32, shear: f32| {
         let (scale, shear) = (f64::from(scale), f64::from(shear));

@@ -774,7 +774,7 @@ fn tangents_of(frustum: &Frustum) -> [f64; 2] {
 }
 
 /// `e = max(|l|, |r|, |b|, |t|)/n`, the largest tangent of the frustum's half extents.
-fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
+pub(crate) fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
     // (|r + l|/|r − l| + 1)/(2n/|r − l|) = (|r + l| + |r − l|)/(2n) = max(|l|, |r|)/n: the
     // same value from the parameters, without building the matrix.
     let (l, r, b, t, n, _) = frustum.parameters();
@@ -844,7 +844,7 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
 /// which happens when the clipping term `C` of a large clipped base, or the vertex term of
 /// world-space vertices far from the origin, dwarfs the decal's depth. The message names the
 /// larger of the two and what to do about it.
-fn check_in_range(
+pub(crate) fn check_in_range(
     mapping: &DepthMapping,
     d1: f64,
     offset_at_d1: f64,
@@ -1355,7 +1355,7 @@ fn framebuffer_extent(scene: &Scene) -> [f64; 2] {
 
 /// `q` in unit window depth at unit window depth `w`: the format's spacing at the stored depth
 /// `near + (far − near)·w` of `glDepthRange`, over `far − near`.
-fn unit_quantum(scene: &Scene, w: f64) -> Result<f64> {
+pub(crate) fn unit_quantum(scene: &Scene, w: f64) -> Result<f64> {
     let p = scene.pipeline;
     Ok(p.per_unit(quantum(scene.format, p.actual(w))?))
 }
@@ -1423,12 +1423,12 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
 
 /// `b = f·n/(f − n)` (`n` for `f = ∞`): every `glFrustum`-family mapping stores
 /// `w(d) = α ± b/d`, so `|dw/dd| = b/d²` and the window gradients match the standard ones.
-fn scale(scene: &Scene) -> f64 {
+pub(crate) fn scale(scene: &Scene) -> f64 {
     let planes = scene.frustum.planes();
     planes.near() * planes.far_over_span()
 }
 
-fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
+pub(crate) fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
     // A Frustum's planes are checked.
     Ok(DepthMapping::of_planes(scene.frustum.planes(), clip))
 }
@@ -1464,9 +1464,20 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
 /// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
 /// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
 fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
+    reversed_epsilon_with(scene, mapping, terms, 0.0)
+}
+
+/// [`reversed_epsilon`] with `extra`, a constant window-depth error beside the budget (the line
+/// term of [`crate::lines`]), added to the budget at every depth.
+pub(crate) fn reversed_epsilon_with(
+    scene: &Scene,
+    mapping: &DepthMapping,
+    terms: &ErrorTerms,
+    extra: f64,
+) -> Result<f64> {
     let b = scale(scene);
     let [d1, d2] = scene.depth_range;
-    let budget = terms.budget();
+    let budget = terms.budget() + extra;
     let strict = if terms.strict { 1.0 } else { 0.0 };
     let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {

@@ -635,6 +635,46 @@ inline Recommendation recommend_for_matrix(const float *m, Clip clip, Decal deca
   return recommend_for_matrix(m, clip, decal);
 }
 
+// ---- Edges over their own faces (zshift_edge_offset, docs/edges.md) ----
+
+/// What an engine knows about a mesh whose edges it draws over its faces (ZshiftEdges).
+using Edges = ZshiftEdges;
+/// The offset for the edges by one method (ZshiftEdgeOffset).
+using EdgeOffset = ZshiftEdgeOffset;
+
+/// Which way edges are kept in front of their faces.
+enum class EdgeMethod : std::uint32_t {
+  /// Faces pushed back with glPolygonOffset (D3D/Vulkan depth bias), edges unoffset.
+  polygon_offset = ZSHIFT_EDGES_POLYGON_OFFSET,
+  /// Edges pulled forward through the projection matrix (the one offset that moves GL_LINES).
+  matrix = ZSHIFT_EDGES_MATRIX,
+};
+
+/// The offset that keeps a mesh's edges in front of its own faces, with the hidden-line gap it
+/// costs (zshift_edge_offset). Throws Error: a bad field (what() names it), an orthographic
+/// `m`, Status::unresolvable where the gap exceeds hidden_separation (see edge_planes()).
+inline EdgeOffset edge_offset(const float *m, Clip clip, const Edges &edges, EdgeMethod method) {
+  EdgeOffset out{};
+  detail::check(zshift_edge_offset(m, detail::to_c(clip), &edges, static_cast<std::uint32_t>(method), &out));
+  return out;
+}
+/// edge_offset() of a Matrix.
+inline EdgeOffset edge_offset(const Matrix &m, Clip clip, const Edges &edges, EdgeMethod method) {
+  return edge_offset(m.data(), clip, edges, method);
+}
+
+/// Near and far planes with which edge_offset() answers (zshift_edge_planes). Throws Error: as
+/// edge_offset(); Status::unresolvable when even the tightest planes do not.
+inline std::array<double, 2> edge_planes(const float *m, Clip clip, const Edges &edges, EdgeMethod method) {
+  std::array<double, 2> out{};
+  detail::check(zshift_edge_planes(m, detail::to_c(clip), &edges, static_cast<std::uint32_t>(method), out.data()));
+  return out;
+}
+/// edge_planes() of a Matrix.
+inline std::array<double, 2> edge_planes(const Matrix &m, Clip clip, const Edges &edges, EdgeMethod method) {
+  return edge_planes(m.data(), clip, edges, method);
+}
+
 }  // namespace zshift
 
 #endif  // ZSHIFT_HPP

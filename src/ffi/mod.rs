@@ -47,9 +47,12 @@ mod plan;
 
 mod probe;
 
+mod lines;
+
 pub use builders::*;
 pub use kinds::*;
 pub use last_error::zshift_last_error;
+pub use lines::*;
 pub use matrix_in::*;
 pub use offset::*;
 pub use plan::*;

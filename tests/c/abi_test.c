@@ -1065,7 +1065,80 @@ static void test_engine_scene(void) {
   CHECK(untouched(out, sizeof out), "refused engine scenes wrote their output");
 }
 
+/* Edges over their own faces: the matrix method moves only element 10 by the NDC offset it
+ * reports; the polygon-offset method's factor is (w + 1)/2 and its D3D bias an integer; the
+ * hidden-line gap refuses a separation below it; every error leaves the output untouched and
+ * names the field. */
+static ZshiftEdges edges_for(void) {
+  ZshiftEdges e;
+  memset(&e, 0, sizeof e);
+  e.viewport_width = 512;
+  e.viewport_height = 512;
+  e.format = ZSHIFT_FORMAT_UNORM24;
+  e.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+  e.depth_near = 10.0;
+  e.depth_far = 20.0;
+  e.line_width = 1.0;
+  e.samples = 1;
+  e.face_gradient = 1e-3;
+  return e;
+}
+
+static void test_edges(void) {
+  float m[16];
+  ZshiftEdges e = edges_for();
+  ZshiftEdgeOffset a, b, out;
+  double planes[2];
+  engine_perspective(1.0471976f, 1.0f, 1.0f, 1000.0f, m);
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
+  CHECK(only_element_changed(m, b.matrix, 10), "zshift_edge_offset: more than element 10 changed");
+  CHECK(b.ndc_offset < 0 && (long double)b.matrix[10] - m[10] >= -b.ndc_offset * (1 - 1e-12L),
+        "edges: element 10 moved by %.9g for an NDC offset %.9g", (double)(b.matrix[10] - m[10]), b.ndc_offset);
+  CHECK(b.line_reach == 1.0 && b.line_term == 1e-3 && b.window_offset > b.line_term, "edges: line term %g", b.line_term);
+  CHECK(b.hidden_gap > 0 && b.hidden_gap < 20.0, "edges: gap %g", b.hidden_gap);
+  e.line_width = 3.0;
+  e.polygon_mode = 1;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_POLYGON_OFFSET, &a), ZSHIFT_OK);
+  CHECK(a.polygon_offset[0] == 2.0 && a.d3d_bias[1] == 2.0 && a.vulkan_bias[1] == 2.0, "edges: factor %g", a.polygon_offset[0]);
+  CHECK(a.d3d_bias[0] == (double)(long)a.d3d_bias[0] && a.d3d_bias[0] >= a.polygon_offset[1], "edges: D3D bias %g", a.d3d_bias[0]);
+  CHECK(memcmp(a.matrix, m, sizeof m) == 0, "edges: the polygon-offset method changed the matrix");
+  /* Refusal below the gap, and planes that answer. */
+  e = edges_for();
+  e.face_gradient = 1e-9;
+  e.format = ZSHIFT_FORMAT_UNORM16;
+  engine_perspective(1.0471976f, 1.0f, 0.01f, 100.0f, m);
+  e.depth_near = 50.0;
+  e.depth_far = 60.0;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
+  e.hidden_separation = b.hidden_gap / 2;
+  memset(&out, PATTERN, sizeof out);
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_UNRESOLVABLE);
+  CHECK(untouched(&out, sizeof out), "zshift_edge_offset wrote its output on a refusal");
+  expect_detail("edges refusal", "hidden_separation");
+  CHECK_STATUS(zshift_edge_planes(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, planes), ZSHIFT_OK);
+  CHECK(planes[0] > 40.0 && planes[0] <= 50.0 && planes[1] >= 60.0, "edges: planes %g %g", planes[0], planes[1]);
+  /* Bad fields are named; NULLs refused. */
+  e = edges_for();
+  e.line_width = 0.5;
+  memset(&out, PATTERN, sizeof out);
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("edges line_width", "line_width");
+  CHECK(untouched(&out, sizeof out), "zshift_edge_offset wrote its output on error");
+  e = edges_for();
+  e.face_angle = 0.5;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("edges both slopes", "face_gradient");
+  e = edges_for();
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, 7u, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("edges method", "method");
+  CHECK_STATUS(zshift_edge_offset(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_edge_planes(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, NULL), ZSHIFT_ERR_NULL_POINTER);
+}
+
 int main(void) {
+  test_edges();
   test_last_error();
   test_front_door();
   test_decal_corners();

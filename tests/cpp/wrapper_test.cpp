@@ -288,7 +288,34 @@ static void test_recommend_clip() {
                [&] { zshift::recommend_clip(s, static_cast<Clip>(9)); });
 }
 
+// edge_offset() and edge_planes() return what the C calls write; a bad field throws.
+static void test_edges() {
+  const auto m = zshift::frustum(-0.5, 0.5, -0.5, 0.5, 1.0, 1000.0);
+  zshift::Edges e{};
+  e.viewport_width = e.viewport_height = 512;
+  e.format = ZSHIFT_FORMAT_UNORM24;
+  e.subpixel_bits = ZSHIFT_SUBPIXEL_UNSNAPPED;
+  e.depth_near = 10.0;
+  e.depth_far = 20.0;
+  e.line_width = 1.0;
+  e.samples = 1;
+  e.face_gradient = 1e-3;
+  const auto b = zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix);
+  ZshiftEdgeOffset c{};
+  CHECK(zshift_edge_offset(m.data(), ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &c) == ZSHIFT_OK, "C call");
+  CHECK(std::memcmp(&b, &c, sizeof b) == 0 && b.line_reach == 1.0 && b.matrix[10] > m[10], "edge_offset()");
+  const auto a = zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::polygon_offset);
+  CHECK(a.polygon_offset[0] == 1.0 && a.polygon_offset[1] > 0.0, "polygon offset (%g, %g)", a.polygon_offset[0],
+        a.polygon_offset[1]);
+  const auto planes = zshift::edge_planes(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix);
+  CHECK(planes[0] > 0.0 && planes[0] <= 10.0 && planes[1] >= 20.0, "edge_planes() %g %g", planes[0], planes[1]);
+  e.line_width = 0.5;
+  check_throws("edge_offset(line_width 0.5)", zshift::Status::domain,
+               [&] { zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix); });
+}
+
 int main() {
+  test_edges();
   test_matrices();
   test_scalars();
   test_recommend();

@@ -892,3 +892,116 @@ def probe(get_proc_address):
     out = _ZshiftProfile()
     _check(_probe_lib().zshift_probe(callback, None, _ctypes.byref(out)))
     return _profile(out)
+
+
+# ---- Edges over their own faces (src/lines.rs, docs/edges.md) ----
+
+
+class EdgeMethod(_enum_module.IntEnum):
+    """How edges are kept in front of their faces: ``POLYGON_OFFSET`` pushes the faces back with
+    glPolygonOffset (D3D/Vulkan depth bias); ``MATRIX`` pulls the edges forward through the
+    projection matrix (the one offset that moves GL_LINES)."""
+
+    POLYGON_OFFSET = 0
+    MATRIX = 1
+
+
+class _Edges(_ctypes.Structure):
+    """The C ``ZshiftEdges`` (include/zshift.h), field for field."""
+
+    _fields_ = [
+        ("viewport_width", _ctypes.c_uint32), ("viewport_height", _ctypes.c_uint32),
+        ("format", _ctypes.c_uint32), ("subpixel_bits", _ctypes.c_int32),
+        ("depth_near", _ctypes.c_double), ("depth_far", _ctypes.c_double),
+        ("line_width", _ctypes.c_double), ("polygon_mode", _ctypes.c_uint32), ("samples", _ctypes.c_uint32),
+        ("face_angle", _ctypes.c_double), ("face_gradient", _ctypes.c_double),
+        ("hidden_separation", _ctypes.c_double),
+        ("depth_func", _ctypes.c_uint32),
+        ("profile", _ctypes.c_void_p),
+    ]
+
+
+class _EdgeOffset(_ctypes.Structure):
+    """The C ``ZshiftEdgeOffset``."""
+
+    _fields_ = [
+        ("matrix", _ctypes.c_float * 16), ("polygon_offset", _ctypes.c_double * 2),
+        ("d3d_bias", _ctypes.c_double * 2), ("vulkan_bias", _ctypes.c_double * 2),
+        ("ndc_offset", _ctypes.c_double), ("relative_epsilon", _ctypes.c_double),
+        ("window_offset", _ctypes.c_double), ("line_term", _ctypes.c_double), ("line_reach", _ctypes.c_double),
+        ("face_gradient", _ctypes.c_double), ("hidden_gap", _ctypes.c_double),
+    ]
+
+
+EdgeOffset = _collections.namedtuple("EdgeOffset", [name for name, _ in _EdgeOffset._fields_])
+EdgeOffset.__doc__ = """The offset for a mesh's edges (``zshift_edge_offset``): ``matrix`` (16 floats, the edges'
+projection for :attr:`EdgeMethod.MATRIX`), ``polygon_offset`` (factor, units for the faces),
+``d3d_bias`` (DepthBias, SlopeScaledDepthBias), ``vulkan_bias`` (constant, slope), ``ndc_offset``,
+``relative_epsilon``, ``window_offset``, ``line_term``, ``line_reach``, ``face_gradient`` and
+``hidden_gap`` (eye depth behind a front face from which hidden edges never show)."""
+
+
+def _edges_lib():
+    lib = _lib()
+    if not getattr(lib, "_zshift_edges", False):
+        matrix, edges = _ctypes.POINTER(_ctypes.c_float), _ctypes.POINTER(_Edges)
+        lib.zshift_edge_offset.argtypes = [matrix, _ctypes.c_int32, edges, _ctypes.c_uint32,
+                                           _ctypes.POINTER(_EdgeOffset)]
+        lib.zshift_edge_planes.argtypes = [matrix, _ctypes.c_int32, edges, _ctypes.c_uint32,
+                                           _ctypes.POINTER(_ctypes.c_double)]
+        lib.zshift_edge_offset.restype = lib.zshift_edge_planes.restype = _ctypes.c_int32
+        lib._zshift_edges = True
+    return lib
+
+
+def _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle, face_gradient,
+           hidden_separation, depth_test, subpixel_bits, profile):
+    width, height = viewport
+    for name, value in (("viewport width", width), ("viewport height", height), ("samples", samples)):
+        if not isinstance(value, int) or not 0 <= value < 2**32:
+            raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [0, 2**32) ({name} = {value!r})")
+    subpixel_bits = _subpixel_bits(subpixel_bits, profile)
+    record = _Edges(width, height, _enum(depth_format, Format, "depth_format") & 0xFFFFFFFF, subpixel_bits,
+                    depth_range[0], depth_range[1], line_width, 1 if polygon_mode else 0, samples,
+                    face_angle, face_gradient, hidden_separation,
+                    0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF)
+    _attach_profile(record, profile)
+    return record
+
+
+def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width=1.0, polygon_mode=False,
+                samples=1, face_angle=0.0, face_gradient=0.0, hidden_separation=0.0, depth_test=None,
+                subpixel_bits=None, profile=None):
+    """The offset that keeps a mesh's edges in front of its own faces (``zshift_edge_offset``):
+    ``m`` the engine's perspective projection (16 floats, column-major) under ``clip``, the mesh
+    over eye depths ``depth_range`` (nearest, farthest), ``method`` an :class:`EdgeMethod`, edges as
+    GL_LINES of ``line_width`` pixels (or ``polygon_mode`` lines), the steepest face that matters as
+    ``face_angle`` (radians from the view axis) or ``face_gradient`` (window depth per pixel), and
+    ``hidden_separation`` the eye depth from which hidden edges must not show (0: no promise).
+    Returns an :data:`EdgeOffset`. Raises :class:`ZshiftError` naming the field (``UNRESOLVABLE``
+    where the hidden-line gap exceeds ``hidden_separation``: see :func:`edge_planes`)."""
+    mat = _engine_matrix(m)
+    record = _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle,
+                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile)
+    out = _EdgeOffset()
+    _check(_edges_lib().zshift_edge_offset(mat, _enum(clip, Clip), _ctypes.byref(record),
+                                           _enum(method, EdgeMethod, "method"), _ctypes.byref(out)))
+    return EdgeOffset(*[tuple(getattr(out, name)) if name in ("matrix", "polygon_offset", "d3d_bias", "vulkan_bias")
+                        else getattr(out, name) for name, _ in _EdgeOffset._fields_])
+
+
+def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width=1.0, polygon_mode=False,
+                samples=1, face_angle=0.0, face_gradient=0.0, hidden_separation=0.0, depth_test=None,
+                subpixel_bits=None, profile=None):
+    """Near and far planes with which :func:`edge_offset` answers (``zshift_edge_planes``): the
+    tight planes of ``depth_range``. Arguments as :func:`edge_offset`; returns ``(near, far)``."""
+    mat = _engine_matrix(m)
+    record = _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle,
+                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile)
+    out = (_ctypes.c_double * 2)()
+    _check(_edges_lib().zshift_edge_planes(mat, _enum(clip, Clip), _ctypes.byref(record),
+                                           _enum(method, EdgeMethod, "method"), out))
+    return (out[0], out[1])
+
+
+__all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes"]

@@ -1,0 +1,71 @@
+"""Edges over their own faces through the Python binding (zshift.edge_offset, zshift.edge_planes):
+the references are computed here, not read from the library."""
+
+import math
+import unittest
+
+import zshift
+
+
+def perspective(n, f):
+    # glFrustum(-n/2, n/2, -n/2, n/2, n, f), column-major.
+    m = [0.0] * 16
+    m[0] = m[5] = 2.0
+    m[10] = -(f + n) / (f - n)
+    m[11] = -1.0
+    m[14] = -2.0 * f * n / (f - n)
+    return m
+
+
+class Edges(unittest.TestCase):
+    M = perspective(1.0, 1000.0)
+
+    def offset(self, method, **kw):
+        args = dict(face_gradient=1e-3, subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
+        args.update(kw)
+        return zshift.edge_offset(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM24,
+                                  (10.0, 20.0), method, **args)
+
+    def test_matrix_method_moves_element_10_by_at_least_its_offset(self):
+        r = self.offset(zshift.EdgeMethod.MATRIX)
+        self.assertEqual(r.line_reach, 1.0)
+        self.assertAlmostEqual(r.line_term, 1e-3, delta=1e-15)
+        self.assertLess(r.ndc_offset, 0.0)
+        self.assertGreaterEqual(r.matrix[10] - self.M[10], -r.ndc_offset * (1 - 1e-9))
+        self.assertEqual([x for i, x in enumerate(r.matrix) if i != 10],
+                         [float(__import__("ctypes").c_float(x).value) for i, x in enumerate(self.M) if i != 10])
+        # The gap: window separation 2*offset + q at d = 20, through w(d) = F(1 - n/d).
+        f, n, d = 1000.0, 1.0, 20.0
+        big_f = f / (f - n)
+        w = big_f * (1 - n / d) - (2 * r.window_offset + 1 / (2**24 - 1))
+        front = n / (1 - w / big_f)
+        self.assertAlmostEqual(r.hidden_gap, d - front, delta=1e-6 * r.hidden_gap)
+
+    def test_polygon_offset_factor_is_half_the_width_plus_one(self):
+        r = self.offset(zshift.EdgeMethod.POLYGON_OFFSET, line_width=3.0, polygon_mode=True)
+        self.assertEqual(r.polygon_offset[0], 2.0)
+        self.assertEqual(r.d3d_bias[0], math.ceil(r.d3d_bias[0]))
+        self.assertEqual(r.vulkan_bias[1], 2.0)
+
+    def test_refusal_and_planes(self):
+        m = perspective(0.01, 100.0)
+        kw = dict(face_gradient=1e-9, subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
+        free = zshift.edge_offset(m, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM16, (50.0, 60.0),
+                                  zshift.EdgeMethod.MATRIX, **kw)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.edge_offset(m, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM16, (50.0, 60.0),
+                               zshift.EdgeMethod.MATRIX, hidden_separation=free.hidden_gap / 2, **kw)
+        self.assertEqual(caught.exception.status, zshift.Status.UNRESOLVABLE)
+        near, far = zshift.edge_planes(m, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM16,
+                                       (50.0, 60.0), zshift.EdgeMethod.MATRIX,
+                                       hidden_separation=free.hidden_gap / 2, **kw)
+        self.assertTrue(40.0 < near <= 50.0 and far >= 60.0, (near, far))
+
+    def test_bad_field_is_named(self):
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            self.offset(zshift.EdgeMethod.MATRIX, line_width=0.5)
+        self.assertIn("line_width", str(caught.exception))
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,289 @@
+//! Edges drawn over their own faces (src/lines.rs): wireframe on shaded, outlines, hidden-line
+//! drawing. Two ways: the faces pushed back with polygon offset, or the edges pulled forward
+//! through the projection matrix (the one offset that reaches GL_LINES).
+
+use super::{
+    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
+    ZshiftFormat, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
+};
+use crate::domain::{domain, finite};
+use crate::error::Result;
+use crate::lines::{EdgeMethod, EdgeRecommendation, Edges, FaceSlope, LineKind};
+use crate::projection::ClipDepth;
+use crate::recommend::{DepthTest, Snapping};
+
+/// Faces pushed back with glPolygonOffset (D3D DepthBias/SlopeScaledDepthBias, Vulkan
+/// depthBiasConstantFactor/SlopeFactor), edges drawn unoffset.
+pub const ZSHIFT_EDGES_POLYGON_OFFSET: u32 = 0;
+/// Edges pulled forward through the projection matrix (element 10, or 14 under reversed Z),
+/// faces unoffset: the one offset that moves GL_LINES.
+pub const ZSHIFT_EDGES_MATRIX: u32 = 1;
+
+/// What an engine knows about a mesh whose edges it draws over its faces, for
+/// `zshift_edge_offset` and `zshift_edge_planes`. Fill every field: an all-zero record is
+/// refused (viewport 0).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftEdges {
+    /// `glViewport` width in pixels (nonzero).
+    pub viewport_width: u32,
+    /// `glViewport` height in pixels (nonzero).
+    pub viewport_height: u32,
+    /// The depth attachment's format (ZSHIFT_FORMAT_*).
+    pub format: ZshiftFormat,
+    /// GL_SUBPIXEL_BITS of the worst-case profile used when `profile` is NULL (0..=32), or
+    /// ZSHIFT_SUBPIXEL_UNSNAPPED (-1) for a rasterizer that sets depth up unsnapped (llvmpipe).
+    pub subpixel_bits: i32,
+    /// The mesh's nearest eye depth (-z), inside the matrix's [n, f].
+    pub depth_near: f64,
+    /// The mesh's farthest eye depth (-z), >= depth_near.
+    pub depth_far: f64,
+    /// glLineWidth in pixels, 1 to 64.
+    pub line_width: f64,
+    /// 0: GL_LINES; 1: the faces drawn again in glPolygonMode(GL_LINE).
+    pub polygon_mode: u32,
+    /// MSAA samples per pixel (1 without multisampling), 1..=64.
+    pub samples: u32,
+    /// The steepest face whose edges must be kept, as the largest angle between a face's normal
+    /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead.
+    pub face_angle: f64,
+    /// With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
+    /// (what glPolygonOffset's factor multiplies), >= 0.
+    pub face_gradient: f64,
+    /// The eye depth behind a front face from which hidden edges must not show; 0 for no
+    /// promise. Where the hidden-line gap exceeds it the call fails with
+    /// ZSHIFT_ERR_UNRESOLVABLE (`zshift_edge_planes` then gives planes that would work).
+    pub hidden_separation: f64,
+    /// The edge pass's depth test: ZSHIFT_DEPTH_TEST_LEQUAL or _LESS, under reversed Z _GEQUAL
+    /// or _GREATER; 0: GL_LEQUAL (GL_GEQUAL reversed), the usual edge pass.
+    pub depth_func: ZshiftDepthTest,
+    /// The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
+    /// `subpixel_bits`.
+    pub profile: *const super::probe::ZshiftProfile,
+}
+
+/// The offset for a mesh's edges by one method, in every form an engine applies it.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftEdgeOffset {
+    /// ZSHIFT_EDGES_MATRIX: the edges' projection, the engine's own with the offset applied to
+    /// element 10 (14 reversed), rounded outward; ZSHIFT_EDGES_POLYGON_OFFSET: `m` unchanged.
+    pub matrix: [f32; 16],
+    /// glPolygonOffset(factor, units) for the faces (magnitudes: positive pushes away under
+    /// [-1, 1] and [0, 1]; negate both under reversed Z); 0 for the matrix method.
+    pub polygon_offset: [f64; 2],
+    /// Direct3D DepthBias (integer, rounded up) and SlopeScaledDepthBias; 0 for the matrix method.
+    pub d3d_bias: [f64; 2],
+    /// Vulkan depthBiasConstantFactor and depthBiasSlopeFactor; 0 for the matrix method.
+    pub vulkan_bias: [f64; 2],
+    /// The NDC offset applied to element 10 (negative: toward the camera); 0 otherwise.
+    pub ndc_offset: f64,
+    /// The relative epsilon of element 14 under reversed Z; 0 otherwise.
+    pub relative_epsilon: f64,
+    /// The largest window-depth offset between edge and face the method applies.
+    pub window_offset: f64,
+    /// The line term g*(w + 1)/2, window depth.
+    pub line_term: f64,
+    /// (w + 1)/2: how far (pixels) from the pixel a line fragment's depth is taken.
+    pub line_reach: f64,
+    /// g: the window-depth gradient per pixel of the steepest face that matters.
+    pub face_gradient: f64,
+    /// Hidden edges behind a front face by at least this eye depth never show.
+    pub hidden_gap: f64,
+}
+
+fn edges_of(e: &ZshiftEdges) -> Result<Edges> {
+    if e.viewport_width == 0 || e.viewport_height == 0 {
+        return Err(domain(
+            "ZshiftEdges.viewport_width and viewport_height must be nonzero (an all-zero ZshiftEdges is refused)",
+        )
+        .with_integer(
+            if e.viewport_width == 0 { "viewport_width" } else { "viewport_height" },
+            0,
+        ));
+    }
+    let snapping =
+        match e.subpixel_bits {
+            ZSHIFT_SUBPIXEL_UNSNAPPED => Snapping::Unsnapped,
+            b @ 0..=32 => Snapping::SubpixelBits(b as u32),
+            b => return Err(domain(
+                "ZshiftEdges.subpixel_bits must lie in 0..=32 or be ZSHIFT_SUBPIXEL_UNSNAPPED (-1)",
+            )
+            .with_integer("subpixel_bits", i64::from(b))),
+        };
+    let kind = match e.polygon_mode {
+        0 => LineKind::Lines,
+        1 => LineKind::PolygonMode,
+        k => {
+            return Err(domain(
+                "ZshiftEdges.polygon_mode must be 0 (GL_LINES) or 1 (polygon-mode lines)",
+            )
+            .with_integer("polygon_mode", i64::from(k)))
+        }
+    };
+    for (name, x) in [
+        ("face_angle", e.face_angle),
+        ("face_gradient", e.face_gradient),
+    ] {
+        finite(x, "a ZshiftEdges face slope is NaN or infinite")
+            .map_err(|err| err.with_value(name, x))?;
+    }
+    let face_slope = if e.face_angle != 0.0 {
+        if e.face_gradient != 0.0 {
+            return Err(domain(
+                "give ZshiftEdges.face_angle or face_gradient, not both (the other 0)",
+            )
+            .with_value("face_gradient", e.face_gradient));
+        }
+        FaceSlope::Angle(e.face_angle)
+    } else {
+        FaceSlope::WindowGradient(e.face_gradient)
+    };
+    let profile = if e.profile.is_null() {
+        crate::recommend::RasterizerProfile {
+            snapping,
+            ..crate::recommend::RasterizerProfile::worst_case()
+        }
+    } else {
+        super::probe::profile_or_worst(e.profile, snapping)?
+    };
+    let depth_test = match e.depth_func.value {
+        0 => None,
+        func => Some(DepthTest::from_gl(func).map_err(|err| err.with_code("depth_func", func))?),
+    };
+    Ok(Edges {
+        viewport: [e.viewport_width, e.viewport_height],
+        format: format_named(e.format.value, "format")?,
+        depth_test: depth_test.unwrap_or(DepthTest::LessEqual),
+        line_width: e.line_width,
+        kind,
+        samples: e.samples,
+        depth_range: [e.depth_near, e.depth_far],
+        face_slope,
+        hidden_separation: e.hidden_separation,
+        profile,
+        pipeline: crate::model::Pipeline::default(),
+    })
+}
+
+fn method_of(method: u32) -> Result<EdgeMethod> {
+    match method {
+        ZSHIFT_EDGES_POLYGON_OFFSET => Ok(EdgeMethod::PolygonOffset),
+        ZSHIFT_EDGES_MATRIX => Ok(EdgeMethod::Matrix),
+        k => Err(domain(
+            "method must be ZSHIFT_EDGES_POLYGON_OFFSET (0) or ZSHIFT_EDGES_MATRIX (1)",
+        )
+        .with_integer("method", i64::from(k))),
+    }
+}
+
+/// The model's input under `clip`: the default edge test follows the convention.
+fn input(clip: ClipDepth, e: &ZshiftEdges) -> Result<Edges> {
+    let mut edges = edges_of(e)?;
+    if e.depth_func.value == 0 && clip == ClipDepth::ReversedZeroToOne {
+        edges.depth_test = DepthTest::GreaterEqual;
+    }
+    Ok(edges)
+}
+
+fn read_inputs(
+    m: *const f32,
+    edges: *const ZshiftEdges,
+) -> std::result::Result<([f32; 16], ZshiftEdges), ZshiftStatus> {
+    if m.is_null() {
+        return Err(null_pointer("m"));
+    }
+    if edges.is_null() {
+        return Err(null_pointer("edges"));
+    }
+    // SAFETY: not NULL; the caller promises 16 readable floats and a readable ZshiftEdges;
+    // read_unaligned copies them before anything is computed and needs no alignment.
+    Ok(unsafe {
+        (
+            m.cast::<[f32; 16]>().read_unaligned(),
+            edges.read_unaligned(),
+        )
+    })
+}
+
+impl From<EdgeRecommendation> for ZshiftEdgeOffset {
+    fn from(r: EdgeRecommendation) -> Self {
+        ZshiftEdgeOffset {
+            matrix: r.matrix,
+            polygon_offset: r.polygon_offset,
+            d3d_bias: r.d3d_bias,
+            vulkan_bias: r.vulkan_bias,
+            ndc_offset: r.ndc_offset,
+            relative_epsilon: r.relative_epsilon,
+            window_offset: r.window_offset,
+            line_term: r.line_term,
+            line_reach: r.line_reach,
+            face_gradient: r.face_gradient,
+            hidden_gap: r.hidden_gap,
+        }
+    }
+}
+
+/// Writes the offset that keeps every edge of `edges`' mesh in front of its own faces (faces up
+/// to the face-slope limit) by `method` (ZSHIFT_EDGES_POLYGON_OFFSET or ZSHIFT_EDGES_MATRIX),
+/// with the hidden-line gap it costs; `m` is the engine's perspective projection (16 floats,
+/// column-major) under `clip`. The model: a line fragment's depth is taken up to (w + 1)/2 pixels
+/// from the pixel along the face's steeper axis (the line term), plus the decal model's terms for
+/// face and edge (docs/edges.md).
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `edges` or `out` is NULL; ZSHIFT_ERR_NOT_FINITE;
+/// ZSHIFT_ERR_DOMAIN for a bad field (zshift_last_error() names it: viewport_width,
+/// line_width, samples, polygon_mode, face_angle, face_gradient, hidden_separation,
+/// depth_near/depth_far, depth_func, method) or an orthographic `m`; ZSHIFT_ERR_UNRESOLVABLE
+/// when the hidden-line gap exceeds hidden_separation (no offset keeps every visible edge and
+/// hides every hidden one) or the offset would pull the nearest edge past the near plane;
+/// ZSHIFT_ERR_OVERFLOW. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_edge_offset(
+    m: *const f32,
+    clip: ZshiftClip,
+    edges: *const ZshiftEdges,
+    method: u32,
+    out: *mut ZshiftEdgeOffset,
+) -> ZshiftStatus {
+    let (m, e) = match read_inputs(m, edges) {
+        Ok(x) => x,
+        Err(status) => return status,
+    };
+    // SAFETY (store): `checked` has refused NULL; the caller promises a writable
+    // ZshiftEdgeOffset; write_unaligned needs no alignment.
+    checked(
+        out,
+        move || {
+            let clip = clip_of(clip)?;
+            let r = crate::lines::recommend(&m, clip, &input(clip, &e)?, method_of(method)?)?;
+            Ok(ZshiftEdgeOffset::from(r))
+        },
+        |out, record| unsafe { out.write_unaligned(record) },
+    )
+}
+
+/// Writes near and far planes (out[0], out[1]) with which `zshift_edge_offset` answers for
+/// `edges` by `method`: the tight planes of the mesh's depth range (zshift_tight_planes), with a
+/// near plane a little closer where the matrix offset needs room, and `m`'s side planes. For the
+/// ZSHIFT_ERR_UNRESOLVABLE of `zshift_edge_offset`.
+///
+/// Errors: as `zshift_edge_offset`; ZSHIFT_ERR_UNRESOLVABLE when even these planes leave the
+/// gap above hidden_separation (use a deeper depth format). `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_edge_planes(
+    m: *const f32,
+    clip: ZshiftClip,
+    edges: *const ZshiftEdges,
+    method: u32,
+    out: *mut f64,
+) -> ZshiftStatus {
+    let (m, e) = match read_inputs(m, edges) {
+        Ok(x) => x,
+        Err(status) => return status,
+    };
+    checked_array(out, move || {
+        let clip = clip_of(clip)?;
+        crate::lines::working_planes(&m, clip, &input(clip, &e)?, method_of(method)?)
+    })
+}

@@ -1,0 +1,635 @@
+//! Edges drawn over their own faces: wireframe on shaded, outlined polygons, hidden-line
+//! drawing (seed 004's second and third coplanar problems).
+//!
+//! A mesh is drawn twice: its faces (filled; in a hidden-line drawing with the background
+//! colour), then its edges, as `GL_LINES` of width `w` or as the faces again in
+//! `glPolygonMode(GL_LINE)`. An edge lies in the plane of the faces it borders, so without an
+//! offset its fragments tie with the faces' and lose about half of them. Two offsets are in use,
+//! and this module computes both ([`EdgeMethod`]) from what the engine knows ([`Edges`]):
+//!
+//! * **(a) faces pushed back** with `glPolygonOffset(factor, units)` (Direct3D `DepthBias` and
+//!   `SlopeScaledDepthBias`, Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`), edges
+//!   drawn unoffset;
+//! * **(b) edges pulled forward** through the projection matrix (element 10 under `[−1, 1]` and
+//!   `[0, 1]`, element 14 scaled under reversed Z: [`crate::matrix_in`]'s outward rounding), faces
+//!   drawn unoffset. `glPolygonOffset` does not move `GL_LINES` primitives (it applies to
+//!   polygons, also in `GL_LINE` polygon mode): this is the one offset that reaches them.
+//!
+//! # The line term
+//! A line fragment's depth is the line's depth at a point near the pixel, not the face's plane at
+//! the pixel centre. A `GL_LINES` segment is rasterized along its major axis: in each column (an
+//! x-major line) the fragments take the line's depth at that column, and their centres lie up to
+//! about `w/2` pixels across the line (the diamond-exit rule for `w = 1`, a `w`-pixel run for a
+//! wide line); multisampled lines are rectangles `w` wide whose samples take the line's depth at
+//! their projection on it. The face's window depth is the plane `z = z₀ + gₓ·x + g_y·y`, and the
+//! line lies in it, so at a fragment
+//!
+//! `|z_line − z_face| ≤ |g_minor|·Δ ≤ M·Δ`,  `M = max(|gₓ|, |g_y|)`, `Δ = (w + 1)/2`,   (L)
+//!
+//! `g_minor` the gradient along the minor axis. `Δ = (w + 1)/2` keeps half a pixel of the
+//! rasterizer's freedom beyond the ideal `w/2`: llvmpipe was measured at 0.50–0.52 pixel for
+//! 1-pixel lines, 0.72 for polygon-mode lines (its unfilled stage re-draws the triangle's edges
+//! with their own set-up) and 1.52 for width 3. `M` is exactly the slope term of
+//! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
+//! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
+//! constant for the whole mesh, so it must pay `L = g·Δ` for the steepest face that matters:
+//! [`FaceSlope`] says which that is (faces steeper than it are grazing, a few pixels wide on
+//! screen; their edges are not guaranteed).
+//!
+//! # The shared terms
+//! Face and edge depths are computed by two primitives of one mesh: each is off its exact plane
+//! by the decal model's plane error `E` and snapping `S` ([`crate::recommend`]: `T`, `V`, `I`,
+//! `S`, the quantum `q`, the depth test; [`crate::model`]). They are reused, not rederived: the
+//! mesh becomes a [`Scene`] whose depth range is the mesh's extent and whose slope is the eye
+//! slope of a face of window gradient `g` crossing the view axis at the mesh's nearest depth
+//! (`s = g·d₁/(F·min((r − l)/W, (t − b)/H))`, so every face of gradient up to `g` is within the
+//! scene's bounds, as a decal's plane is in the decal model), inside the frustum. With
+//! `B = 2(E + S)` (face and edge), the edge survives at every pixel of a face of gradient at most
+//! `g` when
+//!
+//! (b) `Δw ≥ L + B + q_s`,  (a) `factor = Δ`, `units·r ≥ B + q_s + 2u·(1 + w_max)`,
+//!
+//! `q_s = q` under `GL_LESS`/`GL_GREATER` edges and 0 under `GL_LEQUAL`/`GL_GEQUAL` (a tie
+//! passes), `2u·(1 + w_max)` the f32 roundings of the bias itself, `r` the profile's
+//! [`RasterizerProfile::resolvable`] times the format's spacing at the mesh's smallest window
+//! depth (D32F's `r` follows the primitive's largest depth: the smallest is the safe count).
+//! Under reversed Z the matrix offset is relative (`ε·b/d` at depth `d`), carried to every depth
+//! of the mesh as the decal's is.
+//!
+//! # The hidden-line gap
+//! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
+//! front face's stored depth (pushed back by up to `Δ·g + units·r_max` under (a), or against
+//! the edge's pull `Δw` under (b)), each off its plane by `E + S`, and the hidden edge's own
+//! fragment off its line by up to `L` (the sampling point's freedom along the line, for an edge
+//! whose faces are within `g`); under an `…EQUAL` test a tie shows. So a hidden edge whose exact
+//! window depth at the pixel is behind the front face's by
+//!
+//! `G_w = offset + B + L + q_t`  (`q_t = q` under `…EQUAL`, 0 strict)
+//!
+//! never shows. [`EdgeRecommendation::hidden_gap`] is `G_w` as an eye depth (`−z`) at the worse
+//! of the mesh's nearest and farthest depths. An engine that needs hidden edges hidden from a
+//! given separation on (a hidden-line drawing of a thin part) passes it as
+//! [`Edges::hidden_separation`]; where the gap exceeds it no offset does both, and
+//! [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`]); [`working_planes`] then gives the
+//! tight near and far planes of the mesh's extent ([`crate::plan::tight_planes`]) when they would
+//! make the offset work.
+//!
+//! # What is not modelled
+//! Antialiased (smooth) lines, whose coverage reaches further; lines clipped by the rasterizer
+//! (an edge crossing the near plane: cut the mesh to the frustum as a decal's base is);
+//! orthographic projections (refused: their depth is linear, a separate model);
+//! `GL_POLYGON_OFFSET_LINE` on polygon-mode edges (pulling edges forward also pulls back-face
+//! outlines over front faces).
+
+use crate::domain::{domain, finite, representable};
+use crate::error::{Error, ErrorKind, Result};
+use crate::matrix_in::{recognize, Shape};
+use crate::model::Pipeline;
+use crate::polygon_offset::{resolvable_difference, BiasApi};
+use crate::precision::{DepthFormat, DepthMapping};
+use crate::projection::{ClipDepth, Frustum};
+use crate::recommend::{Base, DepthTest, ErrorTerms, RasterizerProfile, Scene};
+
+/// `u = 2⁻²⁴`, the unit roundoff of f32.
+const U: f64 = 1.0 / 16_777_216.0;
+
+/// How the edges are drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LineKind {
+    /// `GL_LINES` (or line strips and loops) of [`Edges::line_width`].
+    #[default]
+    Lines,
+    /// The faces drawn again under `glPolygonMode(GL_FRONT_AND_BACK, GL_LINE)`.
+    PolygonMode,
+}
+
+/// The steepest face whose edges must be kept: faces steeper than it are grazing (a few pixels
+/// across on screen) and their edges are not guaranteed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FaceSlope {
+    /// The largest window-depth gradient per pixel `max(|∂w/∂x|, |∂w/∂y|)` (unit window depth,
+    /// the quantity `glPolygonOffset`'s factor multiplies), `≥ 0`.
+    WindowGradient(f64),
+    /// The largest angle between a face's normal and the view axis, radians in `[0, π/2)`: its
+    /// window gradient at the mesh's nearest depth, anywhere on screen, is the bound.
+    Angle(f64),
+}
+
+/// Which of the two ways of drawing edges over faces (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EdgeMethod {
+    /// (a) faces pushed back with polygon offset, edges unoffset.
+    PolygonOffset,
+    /// (b) edges pulled forward through the projection matrix, faces unoffset.
+    Matrix,
+}
+
+/// What an engine knows about a mesh whose edges it draws over its faces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Edges {
+    /// Viewport width and height in pixels.
+    pub viewport: [u32; 2],
+    /// The depth attachment's format.
+    pub format: DepthFormat,
+    /// The edge pass's depth test (`GL_LEQUAL` is usual: a tie keeps the edge; reversed Z:
+    /// `GL_GEQUAL`/`GL_GREATER`).
+    pub depth_test: DepthTest,
+    /// Line width in pixels (`glLineWidth`), `1 ≤ w ≤ 64`; polygon-mode lines take it too.
+    pub line_width: f64,
+    /// `GL_LINES` or polygon-mode lines.
+    pub kind: LineKind,
+    /// MSAA samples per pixel (1 without multisampling), `1..=64`. The bound (L) holds for both
+    /// (a multisampled line's sample takes the line's depth at its projection on the line).
+    pub samples: u32,
+    /// The mesh's nearest and farthest eye depth (`−z`), inside the frustum.
+    pub depth_range: [f64; 2],
+    /// The steepest face that matters.
+    pub face_slope: FaceSlope,
+    /// The eye depth behind a front face from which a hidden edge must not show; 0 when the
+    /// engine needs no such promise (then no scene is refused on its account).
+    pub hidden_separation: f64,
+    /// The rasterizer ([`RasterizerProfile::worst_case`] unless probed).
+    pub profile: RasterizerProfile,
+    /// World-space vertices, viewport origin, `glDepthRange` ([`Pipeline::default`]).
+    pub pipeline: Pipeline,
+}
+
+impl Edges {
+    /// A mesh over `depth_range` in a `viewport` with `format`: 1-pixel `GL_LINES` under
+    /// `GL_LEQUAL`, no MSAA, faces up to 75° from the view axis, no hidden separation, the
+    /// worst-case profile, the default pipeline.
+    pub fn new(viewport: [u32; 2], format: DepthFormat, depth_range: [f64; 2]) -> Self {
+        Self {
+            viewport,
+            format,
+            depth_test: DepthTest::LessEqual,
+            line_width: 1.0,
+            kind: LineKind::Lines,
+            samples: 1,
+            depth_range,
+            face_slope: FaceSlope::Angle(75f64.to_radians()),
+            hidden_separation: 0.0,
+            profile: RasterizerProfile::worst_case(),
+            pipeline: Pipeline::default(),
+        }
+    }
+}
+
+/// The offset for a mesh's edges by one [`EdgeMethod`], in every form an engine applies it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeRecommendation {
+    /// The method these values are for.
+    pub method: EdgeMethod,
+    /// (a) `glPolygonOffset(factor, units)` magnitudes for the faces (positive pushes away under
+    /// `GL_LESS`/`GL_LEQUAL`; negate both under reversed Z), units counted in the profile's
+    /// `r`; `[0, 0]` for (b).
+    pub polygon_offset: [f64; 2],
+    /// (a) Direct3D 10–12 `DepthBias` (an integer, rounded up) and `SlopeScaledDepthBias`; zero
+    /// for (b).
+    pub d3d_bias: [f64; 2],
+    /// (a) Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`; zero for (b).
+    pub vulkan_bias: [f64; 2],
+    /// (b) the edges' projection matrix: the engine's own with the offset applied to element 10
+    /// (`[−1, 1]`, `[0, 1]`) or 14 (reversed Z), rounded outward, every other element
+    /// bit-identical; (a) the engine's matrix unchanged.
+    pub matrix: [f32; 16],
+    /// (b) the constant NDC offset applied (negative: toward the camera) under `[−1, 1]` and
+    /// `[0, 1]`; 0 otherwise.
+    pub ndc_offset: f64,
+    /// (b) the relative `ε` of element 14 under reversed Z; 0 otherwise.
+    pub relative_epsilon: f64,
+    /// The largest window-depth offset between edge and face the method applies over the mesh
+    /// (unit window depth; (a) at the steepest face that matters).
+    pub window_offset: f64,
+    /// The line term `L = g·Δ` (unit window depth).
+    pub line_term: f64,
+    /// `Δ = (w + 1)/2`, pixels: how far from the pixel a line fragment's depth is taken.
+    pub line_reach: f64,
+    /// `g`: the window-depth gradient per pixel of the steepest face that matters.
+    pub face_gradient: f64,
+    /// Hidden edges behind a front face by at least this eye depth (`−z`, at the same pixel)
+    /// never show.
+    pub hidden_gap: f64,
+    /// The decal model's terms for the mesh (face and edge each), window-depth units.
+    pub terms: ErrorTerms,
+}
+
+/// The offset that keeps every edge of a face within [`Edges::face_slope`] in front of it, by
+/// `method`, with the hidden-line gap it costs; `m` the engine's projection (column-major f32,
+/// perspective) under `clip`.
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] / [`ErrorKind::Domain`] for a bad input (the detail names the
+/// field: `line_width`, `samples`, `face_slope`, `hidden_separation`, the mesh's
+/// `depth_range`, or as [`crate::matrix_in::recommend`]); [`ErrorKind::Domain`] for an
+/// orthographic matrix; [`ErrorKind::Unresolvable`] when the hidden-line gap exceeds
+/// `hidden_separation` (no offset keeps every visible edge and hides every hidden one: see
+/// [`working_planes`]), or the offset would move the nearest edge past the near plane;
+/// [`ErrorKind::Overflow`] if a result overflows.
+pub fn recommend(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    edges: &Edges,
+    method: EdgeMethod,
+) -> Result<EdgeRecommendation> {
+    let rec = unchecked_gap(m, clip, edges, method)?;
+    let sep = edges.hidden_separation;
+    if sep > 0.0 && rec.hidden_gap > sep {
+        return Err(Error::new(
+            ErrorKind::Unresolvable,
+            "no offset keeps every visible edge and hides every hidden edge at hidden_separation: the hidden-line gap exceeds it (zshift_edge_planes / working_planes gives near and far planes that would work, or use a deeper depth format)",
+        )
+        .with_value("hidden_separation", sep));
+    }
+    Ok(rec)
+}
+
+/// Near and far planes that make [`recommend`] answer for `edges` by `method`: the tight planes
+/// of the mesh's extent ([`crate::plan::tight_planes`]) with `m`'s side planes (the same
+/// `l/n`, `r/n`, `b/n`, `t/n`).
+///
+/// # Errors
+/// As [`recommend`]; [`ErrorKind::Unresolvable`] when even the tight planes leave the gap above
+/// `hidden_separation` (a deeper format, or reversed Z with D32F, is then the remedy).
+pub fn working_planes(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    edges: &Edges,
+    method: EdgeMethod,
+) -> Result<[f64; 2]> {
+    let frustum = frustum_of(m, clip)?;
+    check(edges, &frustum)?;
+    let [d1, d2] = edges.depth_range;
+    let (l, r, b, t, n, _) = frustum.parameters();
+    let b_of = |f: &Frustum| f.planes().near() * f.planes().far_over_span();
+    // The tightest planes first; the matrix offset pulls the nearest edge toward the eye, so a
+    // near plane a little closer may be needed to leave it room.
+    let mut last = None;
+    for room in [1.0, 0.999, 0.99, 0.9, 0.5] {
+        let planes = crate::plan::tight_planes(d1 * room, d2)?;
+        let k = planes.near() / n;
+        let tight = Frustum::new(l * k, r * k, b * k, t * k, planes.near(), planes.far())?;
+        let mt = crate::projection::projection(&tight, clip)?;
+        // A window gradient belongs to the planes: the same faces under other planes have it
+        // scaled by b'/b (window depth is α ± b/d); an angle does not change.
+        let mut moved = *edges;
+        if let FaceSlope::WindowGradient(g) = edges.face_slope {
+            moved.face_slope = FaceSlope::WindowGradient(g * (b_of(&tight) / b_of(&frustum)));
+        }
+        match recommend(&mt, clip, &moved, method) {
+            Ok(_) => return Ok([planes.near(), planes.far()]),
+            Err(e) if e.kind() == ErrorKind::Unresolvable => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    let _ = last;
+    Err(Error::new(
+        ErrorKind::Unresolvable,
+        "even the tightest near and far planes of the mesh's depth range leave the hidden-line gap above hidden_separation: use a deeper depth format (D24, D32F with reversed Z)",
+    )
+    .with_value("hidden_separation", edges.hidden_separation))
+}
+
+fn frustum_of(m: &[f32; 16], clip: ClipDepth) -> Result<Frustum> {
+    let r = recognize(m, clip)?;
+    let Shape::Perspective { handedness, .. } = r.shape else {
+        return Err(domain(
+            "edges over faces need a perspective projection (an orthographic matrix's depth is linear: not modelled here)",
+        ));
+    };
+    crate::matrix_in::frustum_of(m, &r, handedness)
+}
+
+fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
+    let w = edges.line_width;
+    finite(w, "line_width is NaN or infinite").map_err(|e| e.with_value("line_width", w))?;
+    if !(1.0..=64.0).contains(&w) {
+        return Err(domain("line_width must lie in [1, 64] pixels").with_value("line_width", w));
+    }
+    if !(1..=64).contains(&edges.samples) {
+        return Err(
+            domain("samples (MSAA samples per pixel) must lie in 1..=64")
+                .with_integer("samples", i64::from(edges.samples)),
+        );
+    }
+    let sep = edges.hidden_separation;
+    finite(sep, "hidden_separation is NaN or infinite")
+        .map_err(|e| e.with_value("hidden_separation", sep))?;
+    if sep < 0.0 {
+        return Err(
+            domain("hidden_separation must be >= 0 (0: no promise asked)")
+                .with_value("hidden_separation", sep),
+        );
+    }
+    match edges.face_slope {
+        FaceSlope::WindowGradient(g) => {
+            finite(g, "face_slope (window gradient) is NaN or infinite")
+                .map_err(|e| e.with_value("face_slope", g))?;
+            if g < 0.0 {
+                return Err(
+                    domain("face_slope (window gradient per pixel) must be >= 0")
+                        .with_value("face_slope", g),
+                );
+            }
+        }
+        FaceSlope::Angle(a) => {
+            finite(a, "face_slope (angle) is NaN or infinite")
+                .map_err(|e| e.with_value("face_slope", a))?;
+            if !(0.0..std::f64::consts::FRAC_PI_2).contains(&a) {
+                return Err(domain(
+                    "face_slope (angle from the view axis) must lie in [0, pi/2) radians",
+                )
+                .with_value("face_slope", a));
+            }
+        }
+    }
+    let [d1, d2] = edges.depth_range;
+    let planes = frustum.planes();
+    planes
+        .check_distance(d1)
+        .map_err(|e| e.with_value("depth_near", d1))?;
+    planes
+        .check_distance(d2)
+        .map_err(|e| e.with_value("depth_far", d2))?;
+    if d1 > d2 {
+        return Err(domain(
+            "the mesh's depth range must be [nearest, farthest]: depth_far must be >= depth_near",
+        )
+        .with_value("depth_far", d2));
+    }
+    Ok(())
+}
+
+/// The eye slope `s` of the scene whose bounds cover every face of window gradient up to `g`,
+/// and `g` itself (module docs, "The shared terms").
+fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
+    let (l, r, b, t, _, _) = frustum.parameters();
+    let [w, h] = edges.viewport.map(f64::from);
+    let (ex, ey) = ((r - l).abs() / w, (t - b).abs() / h);
+    let big_f = frustum.planes().far_over_span();
+    let d1 = edges.depth_range[0];
+    match edges.face_slope {
+        FaceSlope::WindowGradient(g) => Ok((g * d1 / (big_f * ex.min(ey)), g)),
+        FaceSlope::Angle(a) => {
+            // |sₓ|, |s_y| ≤ tan a, |sₓ| + |s_y| ≤ √2·tan a; gradient per axis s_k·F·e_k/d_a with
+            // |1/d_a| ≤ (1 + s·e)/d₁ (crate::recommend, term S).
+            let tan = a.tan();
+            let s = std::f64::consts::SQRT_2 * tan;
+            let e = crate::recommend::half_extent_tangent(frustum)?;
+            let g = tan * big_f * ex.max(ey) / d1 * (1.0 + s * e);
+            Ok((s, representable(g, "the face gradient overflows f64")?))
+        }
+    }
+}
+
+fn unchecked_gap(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    edges: &Edges,
+    method: EdgeMethod,
+) -> Result<EdgeRecommendation> {
+    let frustum = frustum_of(m, clip)?;
+    check(edges, &frustum)?;
+    let (slope, g) = slopes(edges, &frustum)?;
+    let reversed = clip == ClipDepth::ReversedZeroToOne;
+    if edges.depth_test.is_reversed() != reversed {
+        return Err(domain(if reversed {
+            "reversed Z needs the edge pass's depth test GL_GREATER or GL_GEQUAL"
+        } else {
+            "this clip convention needs the edge pass's depth test GL_LESS or GL_LEQUAL"
+        })
+        .with_code("depth_test", edges.depth_test.gl_enum()));
+    }
+    let scene = Scene {
+        frustum,
+        viewport: edges.viewport,
+        format: edges.format,
+        depth_range: edges.depth_range,
+        slope,
+        exact_depth: false,
+        depth_test: edges.depth_test,
+        base: Base::InsideFrustum,
+        profile: edges.profile,
+        footprint: None,
+        pipeline: edges.pipeline,
+    };
+    let terms = crate::recommend::clip_error_terms(&scene, clip)?;
+    let mapping = crate::recommend::mapping_of(&scene, clip)?;
+    let reach = (edges.line_width + 1.0) / 2.0;
+    let line = representable(g * reach, "the line term overflows f64")?;
+    let budget = terms.budget();
+    let [d1, d2] = edges.depth_range;
+    let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
+    let (w_lo, w_hi) = (w1.min(w2), w1.max(w2));
+    let fits = |x: f64| representable(x, "an edge offset overflows f64");
+    let q_at = |d: f64| -> Result<f64> {
+        crate::recommend::unit_quantum(&scene, mapping.window_depth(d)?)
+    };
+    // The window offset between edge and face at depth d (used by the gap), and the outputs.
+    let mut out = EdgeRecommendation {
+        method,
+        polygon_offset: [0.0; 2],
+        d3d_bias: [0.0; 2],
+        vulkan_bias: [0.0; 2],
+        matrix: *m,
+        ndc_offset: 0.0,
+        relative_epsilon: 0.0,
+        window_offset: 0.0,
+        line_term: line,
+        line_reach: reach,
+        face_gradient: g,
+        hidden_gap: 0.0,
+        terms,
+    };
+    let strict_q = |q: f64| if terms.strict { q } else { 0.0 };
+    let offset_at: Box<dyn Fn(f64) -> Result<f64>> = match method {
+        EdgeMethod::PolygonOffset => {
+            // units·r ≥ B + q_s + the bias's own roundings, r counted at the smallest window
+            // depth (D32F's r follows the primitive's largest depth, so it is never smaller).
+            let pipeline = edges.pipeline;
+            let need = budget + strict_q(terms.quantum) + 2.0 * U * (1.0 + w_hi);
+            let r_of = |api: BiasApi, w: f64| -> Result<f64> {
+                Ok(pipeline.per_unit(resolvable_difference(
+                    api,
+                    edges.format,
+                    pipeline.actual(w),
+                )?))
+            };
+            let quanta = edges.profile.resolvable[crate::recommend::profile_index(edges.format)];
+            let r_gl = quanta * r_of(BiasApi::OpenGl, w_lo)?;
+            let units = fits(need / r_gl)?;
+            let d3d = (need / r_of(BiasApi::Direct3d, w_lo)?).ceil();
+            let vk = need / r_of(BiasApi::Vulkan, w_lo)?;
+            out.polygon_offset = [reach, units];
+            out.d3d_bias = [fits(d3d)?, reach];
+            out.vulkan_bias = [fits(vk)?, reach];
+            // The push at the steepest face that matters, with r at the largest depth.
+            let r_hi = quanta * r_of(BiasApi::OpenGl, w_hi)?;
+            let push = fits(reach * g + units * r_hi)?;
+            out.window_offset = push;
+            Box::new(move |_| Ok(push))
+        }
+        EdgeMethod::Matrix if reversed => {
+            let eps = crate::recommend::reversed_epsilon_with(&scene, &mapping, &terms, line)?;
+            let b = crate::recommend::scale(&scene);
+            out.relative_epsilon = eps;
+            out.matrix = crate::matrix_in::moved(
+                m,
+                14,
+                crate::double_double::DoubleDouble::product(f64::from(m[14]), eps),
+            )?;
+            out.window_offset = fits(eps * (b / d1))?;
+            crate::recommend::check_in_range(&mapping, d1, out.window_offset, &terms)?;
+            Box::new(move |d| Ok(eps * (b / d)))
+        }
+        EdgeMethod::Matrix => {
+            let dw = fits(line + budget + strict_q(terms.quantum))?;
+            crate::recommend::check_in_range(&mapping, d1, dw, &terms)?;
+            let c = dw / mapping.window_per_ndc();
+            out.ndc_offset = -c;
+            // offset_ndc's c is toward the camera.
+            out.matrix = crate::matrix_in::offset_ndc(m, clip, c)?;
+            out.window_offset = dw;
+            Box::new(move |_| Ok(dw))
+        }
+    };
+    // The gap, as an eye depth, at the worse of the mesh's ends.
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let mut gap = 0.0f64;
+    for d in [d1, d2] {
+        let q = q_at(d)?;
+        let tie = if terms.strict { 0.0 } else { q };
+        let gw = offset_at(d)? + budget + line + tie;
+        let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
+            Ok(x) => x.min(d),
+            Err(_) => d,
+        };
+        gap = gap.max(g_eye);
+    }
+    out.hidden_gap = fits(gap)?;
+    Ok(out)
+}
+
+/// The window depth of eye distance `d` under `clip` for the planes of `m` (a helper for
+/// reports and tests: the mapping [`recommend`] uses).
+///
+/// # Errors
+/// As [`crate::matrix_in::recognize`] and [`DepthMapping::window_depth`].
+pub fn window_depth(m: &[f32; 16], clip: ClipDepth, d: f64) -> Result<f64> {
+    let frustum = frustum_of(m, clip)?;
+    DepthMapping::of_planes(frustum.planes(), clip).window_depth(d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::projection::projection;
+
+    fn matrix(n: f64, f: f64, clip: ClipDepth) -> [f32; 16] {
+        let t = n * 0.5;
+        projection(&Frustum::new(-t, t, -t, t, n, f).unwrap(), clip).unwrap()
+    }
+
+    fn edges(format: DepthFormat, d: [f64; 2], clip: ClipDepth) -> Edges {
+        let mut e = Edges::new([512, 512], format, d);
+        e.face_slope = FaceSlope::WindowGradient(1e-3);
+        if clip == ClipDepth::ReversedZeroToOne {
+            e.depth_test = DepthTest::GreaterEqual;
+        }
+        e
+    }
+
+    /// Independent reference for (b) under [−1, 1]: Δw = gΔ + 2(E + S) (LEQUAL), the gap at d₂
+    /// from Walker's w(d) = F(1 − n/d) solved for the eye depth.
+    #[test]
+    fn matrix_offset_is_line_term_plus_budget() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 1000.0, clip);
+        let e = edges(DepthFormat::Unorm24, [10.0, 20.0], clip);
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert_eq!(r.line_reach, 1.0);
+        assert!((r.line_term - 1e-3).abs() < 1e-15);
+        let b = 2.0 * (r.terms.plane + r.terms.snap);
+        assert!((r.window_offset - (1e-3 + b)).abs() < 1e-15, "{r:?}");
+        assert!(
+            r.matrix[10].abs() < m[10].abs(),
+            "element 10 moved toward 0"
+        );
+        let gw = 2.0 * r.window_offset + r.terms.quantum;
+        let (n, f) = (1.0f64, 1000.0f64);
+        let big_f = f / (f - n);
+        let w = |d: f64| big_f * (1.0 - n / d);
+        let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
+        assert!(
+            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
+            "{r:?}"
+        );
+    }
+
+    /// (a): factor Δ, units (B + 2u(1 + w))/r; D3D rounded up; width 3 reaches 2 pixels.
+    #[test]
+    fn polygon_offset_factor_is_the_line_reach() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm16, [5.0, 50.0], clip);
+        e.line_width = 3.0;
+        let r = recommend(&m, clip, &e, EdgeMethod::PolygonOffset).unwrap();
+        assert_eq!(r.polygon_offset[0], 2.0);
+        assert_eq!(r.d3d_bias[1], 2.0);
+        assert_eq!(r.d3d_bias[0], r.d3d_bias[0].ceil());
+        let q = 1.0 / 65535.0;
+        assert!(
+            r.polygon_offset[1] > 0.0 && r.polygon_offset[1] < 2.0,
+            "{r:?}"
+        );
+        assert!(r.polygon_offset[1] * q >= 2.0 * (r.terms.plane + r.terms.snap));
+        assert_eq!(r.matrix, m);
+    }
+
+    #[test]
+    fn refuses_where_the_gap_exceeds_the_separation_and_finds_planes() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(0.01, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm16, [50.0, 60.0], clip);
+        e.face_slope = FaceSlope::WindowGradient(1e-9);
+        let free = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        e.hidden_separation = free.hidden_gap * 0.5;
+        let err = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::Unresolvable);
+        let [n, f] = working_planes(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert!(n > 40.0 && n <= 50.0 && f >= 60.0, "{n} {f}");
+    }
+
+    #[test]
+    fn reversed_matrix_offset_is_relative() {
+        let clip = ClipDepth::ReversedZeroToOne;
+        let m = matrix(0.1, f64::INFINITY, clip);
+        let e = edges(DepthFormat::Float32, [10.0, 1000.0], clip);
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert!(r.relative_epsilon > 0.0 && r.ndc_offset == 0.0);
+        assert!(r.matrix[14] > m[14]);
+        assert_eq!(r.matrix[10], m[10]);
+    }
+
+    #[test]
+    fn bad_inputs_name_their_field() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        e.line_width = 0.5;
+        let err = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap_err();
+        assert_eq!(err.input().unwrap().0, "line_width");
+        e.line_width = 1.0;
+        e.face_slope = FaceSlope::Angle(2.0);
+        let err = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap_err();
+        assert_eq!(err.input().unwrap().0, "face_slope");
+        e.face_slope = FaceSlope::Angle(1.0);
+        e.depth_range = [50.0, 5.0];
+        assert_eq!(
+            recommend(&m, clip, &e, EdgeMethod::Matrix)
+                .unwrap_err()
+                .kind(),
+            ErrorKind::Domain
+        );
+    }
+}

@@ -1,0 +1,906 @@
+//! Edges drawn over their own faces on a real rasterizer (headless EGL; Mesa llvmpipe in CI):
+//! `zshift::lines` against a reference of which face is in front at every edge pixel.
+//!
+//! Meshes: a UV sphere and a tilted torus (eye-space f32 vertices, every triangle edge drawn),
+//! f/n 10, 10³ and 10⁶, the mesh near, in the middle and far in the depth range, on D16, D24 and
+//! D32F under `[−1, 1]`, `[0, 1]` and reversed Z; faces `GL_LESS` (`GL_GREATER`), edges
+//! `GL_LEQUAL` (`GL_GEQUAL`); 1-pixel `GL_LINES` and polygon-mode lines; both methods (faces
+//! pushed back by `glPolygonOffset`, edges pulled forward through element 10/14); the worst-case
+//! profile (unsnapped, as llvmpipe sets its depth plane up).
+//!
+//! **Reference** (f64, from the f32 vertices and the f64 matrix, nothing from `zshift::lines`):
+//! an exact z-buffer of the faces at every pixel centre (which triangle is in front and its
+//! `1/d`), and for every edge that drew a pixel (two ID renders with `gl_PrimitiveID`, forward
+//! and reversed order) its exact depth at the pixel (the point of the edge at the pixel's
+//! major-axis coordinate). A pixel is **visible** when the front face contains the edge, or the
+//! edge is in front of the front face; **hidden beyond the gap** when every edge that drew it lies
+//! behind the front face by more than zshift's hidden-line gap (eye depth). Pixels on faces
+//! steeper than the face-slope limit (window gradient above the model's `g`), of edges whose own
+//! gradient along the line exceeds `g`, and within 2 pixels of a vertex (where more than two
+//! edges meet) are not counted. Asserted: 0 visible pixels lost and 0 hidden pixels shown in
+//! every scene zshift answers. Printed: the peers' constants beside zshift, and zshift's offset ÷
+//! the smallest working one (bisection on a common scale of the offset) per class.
+//!
+//! `cargo test --release --test gl_lines -- --nocapture` prints the table. Fails (never skips)
+//! without GL.
+
+use std::collections::HashMap;
+
+use glow::HasContext;
+use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
+use zshift::precision::DepthFormat as Format;
+use zshift::projection::{projection, projection_f64, ClipDepth, Frustum};
+use zshift::recommend::{DepthTest, RasterizerProfile, Snapping};
+use zshift_harness::{ClipDepth as GlClip, DepthFormat, Gl, Profile};
+
+const SIZE: u32 = 256;
+const BG: [u8; 3] = [0, 0, 0];
+const FACE: [u8; 3] = [0, 0, 255];
+const EDGE: [u8; 3] = [255, 255, 255];
+/// The face-slope limit the engine passes: faces up to 60° from the view axis.
+const ANGLE_DEG: f64 = 60.0;
+
+const VS: &str = "#version 330 core
+layout(location = 0) in vec3 eye;
+uniform mat4 proj;
+void main() { gl_Position = proj * vec4(eye, 1.0); }
+";
+const FS: &str = "#version 330 core
+uniform vec4 color;
+uniform int id_mode;
+uniform int id_count;
+out vec4 frag;
+void main() {
+    if (id_mode == 0) { frag = color; return; }
+    int id = id_mode == 1 ? gl_PrimitiveID : id_count - 1 - gl_PrimitiveID;
+    id += 1;
+    frag = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), 255.0) / 255.0;
+}
+";
+
+struct Mesh {
+    name: &'static str,
+    verts: Vec<[f32; 3]>,
+    tris: Vec<[u32; 3]>,
+    edges: Vec<[u32; 2]>,
+    /// Triangles of each edge.
+    edge_tris: Vec<Vec<usize>>,
+    /// Edge of each triangle side (0-1, 1-2, 2-0).
+    tri_edges: Vec<[usize; 3]>,
+}
+
+fn finish(name: &'static str, verts: Vec<[f32; 3]>, tris: Vec<[u32; 3]>) -> Mesh {
+    let mut index: HashMap<[u32; 2], usize> = HashMap::new();
+    let (mut edges, mut edge_tris, mut tri_edges) =
+        (Vec::new(), Vec::<Vec<usize>>::new(), Vec::new());
+    for (t, tri) in tris.iter().enumerate() {
+        let mut te = [0; 3];
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            let key = [a.min(b), a.max(b)];
+            let e = *index.entry(key).or_insert_with(|| {
+                edges.push(key);
+                edge_tris.push(Vec::new());
+                edges.len() - 1
+            });
+            edge_tris[e].push(t);
+            te[k] = e;
+        }
+        tri_edges.push(te);
+    }
+    Mesh {
+        name,
+        verts,
+        tris,
+        edges,
+        edge_tris,
+        tri_edges,
+    }
+}
+
+/// A UV sphere of radius `r` centred at eye depth `d`, 24 × 12, poles dropped to rings.
+fn sphere(r: f64, d: f64) -> Mesh {
+    let (nu, nv) = (24, 12);
+    let mut verts = Vec::new();
+    for j in 0..=nv {
+        let v = std::f64::consts::PI * j as f64 / nv as f64;
+        for i in 0..nu {
+            let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64 + 0.3;
+            // Tilted 20° about x so that the poles are not on the axis.
+            let (x, y, z) = (r * v.sin() * u.cos(), r * v.cos(), r * v.sin() * u.sin());
+            let (c, s) = (0.35f64.cos(), 0.35f64.sin());
+            verts.push([x as f32, (c * y - s * z) as f32, (s * y + c * z - d) as f32]);
+        }
+    }
+    let mut tris = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let a = (j * nu + i) as u32;
+            let b = (j * nu + (i + 1) % nu) as u32;
+            let c = a + nu as u32;
+            let e = b + nu as u32;
+            if j > 0 {
+                tris.push([a, b, e]);
+            }
+            if j < nv - 1 {
+                tris.push([a, e, c]);
+            }
+        }
+    }
+    finish("sphere", verts, tris)
+}
+
+/// A torus of major radius `r`, minor `0.35r`, 24 × 12, tilted 55° toward the camera.
+fn torus(r: f64, d: f64) -> Mesh {
+    let (nu, nv) = (24, 12);
+    let mut verts = Vec::new();
+    for j in 0..nv {
+        let v = 2.0 * std::f64::consts::PI * j as f64 / nv as f64;
+        for i in 0..nu {
+            let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
+            let rr = r + 0.35 * r * v.cos();
+            let (x, y, z) = (rr * u.cos(), 0.35 * r * v.sin(), rr * u.sin());
+            let (c, s) = (0.96f64.cos(), 0.96f64.sin());
+            verts.push([x as f32, (c * y - s * z) as f32, (s * y + c * z - d) as f32]);
+        }
+    }
+    let mut tris = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let a = (j * nu + i) as u32;
+            let b = (j * nu + (i + 1) % nu) as u32;
+            let c = (((j + 1) % nv) * nu + i) as u32;
+            let e = (((j + 1) % nv) * nu + (i + 1) % nu) as u32;
+            tris.push([a, b, e]);
+            tris.push([a, e, c]);
+        }
+    }
+    finish("torus", verts, tris)
+}
+
+/// The exact geometry of a mesh under a frustum: window x, y and 1/d of every vertex.
+struct Projected {
+    xy: Vec<[f64; 2]>,
+    inv_d: Vec<f64>,
+}
+
+fn project(mesh: &Mesh, m: &[f64; 16]) -> Projected {
+    let s = f64::from(SIZE);
+    let mut xy = Vec::new();
+    let mut inv_d = Vec::new();
+    for v in &mesh.verts {
+        let [x, y, z] = v.map(f64::from);
+        let w = -z;
+        let xn = (m[0] * x + m[8] * z) / w;
+        let yn = (m[5] * y + m[9] * z) / w;
+        xy.push([(xn + 1.0) * s / 2.0, (yn + 1.0) * s / 2.0]);
+        inv_d.push(1.0 / w);
+    }
+    Projected { xy, inv_d }
+}
+
+/// The reference z-buffer: per pixel the front triangle and its 1/d at the centre; per triangle
+/// the gradient of 1/d per pixel.
+struct Reference {
+    front: Vec<Option<(usize, f64)>>,
+    tri_grad: Vec<f64>,
+}
+
+fn reference(mesh: &Mesh, p: &Projected) -> Reference {
+    let n = SIZE as usize;
+    let mut front: Vec<Option<(usize, f64)>> = vec![None; n * n];
+    let mut tri_grad = Vec::new();
+    for (t, tri) in mesh.tris.iter().enumerate() {
+        let [a, b, c] = tri.map(|i| i as usize);
+        let (pa, pb, pc) = (p.xy[a], p.xy[b], p.xy[c]);
+        let area = (pb[0] - pa[0]) * (pc[1] - pa[1]) - (pc[0] - pa[0]) * (pb[1] - pa[1]);
+        let (ia, ib, ic) = (p.inv_d[a], p.inv_d[b], p.inv_d[c]);
+        if area == 0.0 {
+            tri_grad.push(f64::INFINITY);
+            continue;
+        }
+        // 1/d is affine on screen: gradient from the three vertices.
+        let gx = ((ib - ia) * (pc[1] - pa[1]) - (ic - ia) * (pb[1] - pa[1])) / area;
+        let gy = ((ic - ia) * (pb[0] - pa[0]) - (ib - ia) * (pc[0] - pa[0])) / area;
+        tri_grad.push(gx.abs().max(gy.abs()));
+        let x0 = pa[0].min(pb[0]).min(pc[0]).floor().max(0.0) as usize;
+        let x1 = (pa[0].max(pb[0]).max(pc[0]).ceil() as usize).min(n);
+        let y0 = pa[1].min(pb[1]).min(pc[1]).floor().max(0.0) as usize;
+        let y1 = (pa[1].max(pb[1]).max(pc[1]).ceil() as usize).min(n);
+        for y in y0..y1 {
+            for x in x0..x1 {
+                let q = [x as f64 + 0.5, y as f64 + 0.5];
+                let w0 = ((pb[0] - q[0]) * (pc[1] - q[1]) - (pc[0] - q[0]) * (pb[1] - q[1])) / area;
+                let w1 = ((pc[0] - q[0]) * (pa[1] - q[1]) - (pa[0] - q[0]) * (pc[1] - q[1])) / area;
+                let w2 = 1.0 - w0 - w1;
+                if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
+                    continue;
+                }
+                let inv = w0 * ia + w1 * ib + w2 * ic;
+                let slot = &mut front[y * n + x];
+                if slot.is_none_or(|(_, best)| inv > best) {
+                    *slot = Some((t, inv));
+                }
+            }
+        }
+    }
+    Reference { front, tri_grad }
+}
+
+/// 1/d of edge `e` at the pixel's major-axis coordinate, and its along-line 1/d gradient per
+/// major-axis pixel.
+fn edge_at(mesh: &Mesh, p: &Projected, e: usize, x: usize, y: usize) -> (f64, f64) {
+    let [a, b] = mesh.edges[e].map(|i| i as usize);
+    let (pa, pb) = (p.xy[a], p.xy[b]);
+    let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+    let (t, major) = if dx.abs() >= dy.abs() {
+        ((x as f64 + 0.5 - pa[0]) / dx, dx.abs())
+    } else {
+        ((y as f64 + 0.5 - pa[1]) / dy, dy.abs())
+    };
+    let t = t.clamp(0.0, 1.0);
+    let inv = p.inv_d[a] + t * (p.inv_d[b] - p.inv_d[a]);
+    (inv, (p.inv_d[b] - p.inv_d[a]).abs() / major.max(1e-9))
+}
+
+struct Renderer {
+    program: glow::Program,
+    vao: glow::VertexArray,
+    vbo: glow::Buffer,
+    ebo: glow::Buffer,
+}
+
+impl Renderer {
+    fn new(gl: &glow::Context) -> Renderer {
+        unsafe {
+            let program = gl.create_program().unwrap();
+            for (kind, src) in [(glow::VERTEX_SHADER, VS), (glow::FRAGMENT_SHADER, FS)] {
+                let s = gl.create_shader(kind).unwrap();
+                gl.shader_source(s, src);
+                gl.compile_shader(s);
+                assert!(
+                    gl.get_shader_compile_status(s),
+                    "{}",
+                    gl.get_shader_info_log(s)
+                );
+                gl.attach_shader(program, s);
+            }
+            gl.link_program(program);
+            assert!(
+                gl.get_program_link_status(program),
+                "{}",
+                gl.get_program_info_log(program)
+            );
+            let vao = gl.create_vertex_array().unwrap();
+            let vbo = gl.create_buffer().unwrap();
+            let ebo = gl.create_buffer().unwrap();
+            gl.bind_vertex_array(Some(vao));
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
+            gl.enable_vertex_attrib_array(0);
+            gl.vertex_attrib_pointer_f32(0, 3, glow::FLOAT, false, 12, 0);
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
+            Renderer {
+                program,
+                vao,
+                vbo,
+                ebo,
+            }
+        }
+    }
+
+    fn load(&self, gl: &glow::Context, mesh: &Mesh) {
+        let bytes: Vec<u8> = mesh
+            .verts
+            .iter()
+            .flatten()
+            .flat_map(|v| v.to_ne_bytes())
+            .collect();
+        unsafe {
+            gl.bind_buffer(glow::ARRAY_BUFFER, Some(self.vbo));
+            gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STATIC_DRAW);
+        }
+    }
+
+    /// Draws `indices` as `mode` (`TRIANGLES` or `LINES`) with `proj`; `id` 0 flat colour, 1/2
+    /// primitive IDs forward / reversed.
+    #[allow(clippy::too_many_arguments)]
+    fn draw(
+        &self,
+        gl: &glow::Context,
+        indices: &[u32],
+        mode: u32,
+        proj: &[f32; 16],
+        color: [u8; 3],
+        id: i32,
+        count: i32,
+    ) {
+        let bytes: Vec<u8> = indices.iter().flat_map(|v| v.to_ne_bytes()).collect();
+        unsafe {
+            gl.use_program(Some(self.program));
+            gl.bind_vertex_array(Some(self.vao));
+            gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(self.ebo));
+            gl.buffer_data_u8_slice(glow::ELEMENT_ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
+            let p = gl.get_uniform_location(self.program, "proj");
+            gl.uniform_matrix_4_f32_slice(p.as_ref(), false, proj);
+            let c = gl.get_uniform_location(self.program, "color");
+            let [r, g, b] = color.map(|x| f32::from(x) / 255.0);
+            gl.uniform_4_f32(c.as_ref(), r, g, b, 1.0);
+            let m = gl.get_uniform_location(self.program, "id_mode");
+            gl.uniform_1_i32(m.as_ref(), id);
+            let k = gl.get_uniform_location(self.program, "id_count");
+            gl.uniform_1_i32(k.as_ref(), count);
+            gl.draw_elements(mode, indices.len() as i32, glow::UNSIGNED_INT, 0);
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Conv {
+    Std,
+    ZeroOne,
+    Reversed,
+}
+
+impl Conv {
+    fn clip(self) -> ClipDepth {
+        match self {
+            Conv::Std => ClipDepth::NegOneToOne,
+            Conv::ZeroOne => ClipDepth::ZeroToOne,
+            Conv::Reversed => ClipDepth::ReversedZeroToOne,
+        }
+    }
+    fn name(self) -> &'static str {
+        match self {
+            Conv::Std => "[-1,1]",
+            Conv::ZeroOne => "[0,1]",
+            Conv::Reversed => "rev",
+        }
+    }
+}
+
+/// How one scene's faces and edges are drawn.
+#[derive(Clone, Copy)]
+struct Draw {
+    face_offset: Option<(f32, f32)>,
+    edge_matrix: [f32; 16],
+}
+
+/// Pixels to count in a scene (indices into the image).
+struct Classes {
+    visible: Vec<usize>,
+    hidden: Vec<usize>,
+}
+
+struct Scene<'a> {
+    gl: &'a Gl,
+    r: &'a Renderer,
+    mesh: &'a Mesh,
+    m: [f32; 16],
+    conv: Conv,
+    kind: LineKind,
+    tri_idx: Vec<u32>,
+    line_idx: Vec<u32>,
+}
+
+impl Scene<'_> {
+    fn render(&self, d: &Draw) -> Vec<[u8; 4]> {
+        let g = self.gl.glow();
+        let reversed = self.conv == Conv::Reversed;
+        unsafe {
+            g.color_mask(true, true, true, true);
+            g.depth_mask(true);
+            g.clear_color(0.0, 0.0, 0.0, 1.0);
+            g.clear_depth_f64(if reversed { 0.0 } else { 1.0 });
+            g.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            g.enable(glow::DEPTH_TEST);
+            g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
+            g.depth_func(if reversed { glow::GREATER } else { glow::LESS });
+            match d.face_offset {
+                Some((f, u)) => {
+                    g.enable(glow::POLYGON_OFFSET_FILL);
+                    g.polygon_offset(f, u);
+                }
+                None => g.disable(glow::POLYGON_OFFSET_FILL),
+            }
+        }
+        self.r
+            .draw(g, &self.tri_idx, glow::TRIANGLES, &self.m, FACE, 0, 0);
+        unsafe {
+            g.disable(glow::POLYGON_OFFSET_FILL);
+            g.depth_func(if reversed { glow::GEQUAL } else { glow::LEQUAL });
+        }
+        match self.kind {
+            LineKind::Lines => {
+                self.r
+                    .draw(g, &self.line_idx, glow::LINES, &d.edge_matrix, EDGE, 0, 0);
+            }
+            LineKind::PolygonMode => unsafe {
+                g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
+                self.r.draw(
+                    g,
+                    &self.tri_idx,
+                    glow::TRIANGLES,
+                    &d.edge_matrix,
+                    EDGE,
+                    0,
+                    0,
+                );
+                g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
+            },
+        }
+        read(self.gl)
+    }
+
+    fn count(&self, d: &Draw, c: &Classes) -> (usize, usize) {
+        let img = self.render(d);
+        let lost = c.visible.iter().filter(|&&i| img[i][..3] != EDGE).count();
+        let shown = c.hidden.iter().filter(|&&i| img[i][..3] == EDGE).count();
+        (lost, shown)
+    }
+}
+
+fn read(gl: &Gl) -> Vec<[u8; 4]> {
+    let n = SIZE as usize;
+    let mut bytes = vec![0u8; n * n * 4];
+    unsafe {
+        let g = gl.glow();
+        g.finish();
+        g.read_buffer(glow::COLOR_ATTACHMENT0);
+        g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+        g.read_pixels(
+            0,
+            0,
+            n as i32,
+            n as i32,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+            glow::PixelPackData::Slice(Some(&mut bytes)),
+        );
+    }
+    gl.check("glReadPixels").unwrap();
+    bytes
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
+}
+
+/// The edges that drew each pixel: two ID renders (forward and reversed order).
+fn edge_ids(scene: &Scene, p: &Projected) -> Vec<Vec<usize>> {
+    let g = scene.gl.glow();
+    let n = SIZE as usize;
+    let mut ids = vec![Vec::new(); n * n];
+    for mode in [1, 2] {
+        unsafe {
+            g.color_mask(true, true, true, true);
+            g.clear_color(0.0, 0.0, 0.0, 0.0);
+            g.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            g.disable(glow::DEPTH_TEST);
+        }
+        let (idx, prims) = match scene.kind {
+            LineKind::Lines => (&scene.line_idx, scene.mesh.edges.len()),
+            LineKind::PolygonMode => (&scene.tri_idx, scene.mesh.tris.len()),
+        };
+        let ordered: Vec<u32> = if mode == 1 {
+            idx.clone()
+        } else {
+            let k = if scene.kind == LineKind::Lines { 2 } else { 3 };
+            idx.chunks(k).rev().flatten().copied().collect()
+        };
+        unsafe {
+            if scene.kind == LineKind::PolygonMode {
+                g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
+            }
+        }
+        let prim = if scene.kind == LineKind::Lines {
+            glow::LINES
+        } else {
+            glow::TRIANGLES
+        };
+        scene
+            .r
+            .draw(g, &ordered, prim, &scene.m, EDGE, mode, prims as i32);
+        unsafe {
+            g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
+            g.enable(glow::DEPTH_TEST);
+        }
+        let img = read(scene.gl);
+        for (i, px) in img.iter().enumerate() {
+            let id = px[0] as usize | (px[1] as usize) << 8 | (px[2] as usize) << 16;
+            if id == 0 {
+                continue;
+            }
+            let prim = id - 1;
+            let e = match scene.kind {
+                LineKind::Lines => prim,
+                LineKind::PolygonMode => {
+                    // The triangle's side nearest the pixel centre.
+                    let (x, y) = ((i % n) as f64 + 0.5, (i / n) as f64 + 0.5);
+                    let t = prim;
+                    let te = scene.mesh.tri_edges[t];
+                    *te.iter()
+                        .min_by(|&&a, &&b| {
+                            seg_dist(scene.mesh, p, a, x, y)
+                                .total_cmp(&seg_dist(scene.mesh, p, b, x, y))
+                        })
+                        .unwrap()
+                }
+            };
+            if !ids[i].contains(&e) {
+                ids[i].push(e);
+            }
+        }
+    }
+    ids
+}
+
+fn seg_dist(mesh: &Mesh, p: &Projected, e: usize, x: f64, y: f64) -> f64 {
+    let [a, b] = mesh.edges[e].map(|i| p.xy[i as usize]);
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let t = (((x - a[0]) * dx + (y - a[1]) * dy) / (dx * dx + dy * dy).max(1e-300)).clamp(0.0, 1.0);
+    ((a[0] + t * dx - x).powi(2) + (a[1] + t * dy - y).powi(2)).sqrt()
+}
+
+/// Visible and hidden-beyond-`gap` pixels (module docs).
+fn classify(
+    scene: &Scene,
+    p: &Projected,
+    rf: &Reference,
+    ids: &[Vec<usize>],
+    b: f64,
+    g: f64,
+    gap: f64,
+) -> Classes {
+    let n = SIZE as usize;
+    let near_vertex = |x: usize, y: usize| {
+        p.xy.iter()
+            .any(|v| (v[0] - x as f64 - 0.5).abs() < 2.0 && (v[1] - y as f64 - 0.5).abs() < 2.0)
+    };
+    let (mut visible, mut hidden) = (Vec::new(), Vec::new());
+    for (i, edges) in ids.iter().enumerate() {
+        if edges.is_empty() {
+            continue;
+        }
+        let Some((t, inv_front)) = rf.front[i] else {
+            continue;
+        };
+        if b * rf.tri_grad[t] > g {
+            continue;
+        }
+        let (x, y) = (i % n, i / n);
+        let mut any_visible = false;
+        let mut all_hidden = true;
+        for &e in edges {
+            let (inv_e, along) = edge_at(scene.mesh, p, e, x, y);
+            let adjacent = scene.mesh.edge_tris[e].contains(&t);
+            let in_front = inv_e >= inv_front;
+            let steep_edge = b * along > g;
+            if (adjacent || in_front) && !steep_edge {
+                any_visible = true;
+            }
+            // Hidden beyond the gap at this pixel and its 8 neighbours (an occluding fold whose
+            // boundary crosses the pixel is not a place where the front face is known).
+            let hidden_here = |j: usize| match rf.front[j] {
+                Some((tj, inv_j)) => {
+                    !scene.mesh.edge_tris[e].contains(&tj) && 1.0 / inv_e - 1.0 / inv_j > gap
+                }
+                None => false,
+            };
+            let around = (x.saturating_sub(1)..=(x + 1).min(n - 1))
+                .flat_map(|xx| {
+                    (y.saturating_sub(1)..=(y + 1).min(n - 1)).map(move |yy| yy * n + xx)
+                })
+                .all(hidden_here);
+            if adjacent || !around || steep_edge {
+                all_hidden = false;
+            }
+        }
+        // A visible edge (an edge of a front face of the pixel or a neighbour) within reach of
+        // the pixel may have drawn it unseen by the two ID renders (three edges meet there).
+        let visible_near = (x.saturating_sub(1)..=(x + 1).min(n - 1))
+            .flat_map(|xx| (y.saturating_sub(1)..=(y + 1).min(n - 1)).map(move |yy| yy * n + xx))
+            .filter_map(|j| rf.front[j])
+            .any(|(tj, _)| {
+                scene.mesh.tri_edges[tj]
+                    .iter()
+                    .any(|&e| seg_dist(scene.mesh, p, e, x as f64 + 0.5, y as f64 + 0.5) < 1.5)
+            });
+        if any_visible {
+            visible.push(i);
+        } else if all_hidden && !near_vertex(x, y) && !visible_near {
+            hidden.push(i);
+        }
+    }
+    Classes { visible, hidden }
+}
+
+/// The draw for `method` with every offset scaled by `s` (s = 1: zshift's).
+fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDepth, s: f64) -> Draw {
+    let sign = if clip == ClipDepth::ReversedZeroToOne {
+        -1.0
+    } else {
+        1.0
+    };
+    match rec.method {
+        EdgeMethod::PolygonOffset => Draw {
+            face_offset: Some((
+                (sign * s * rec.polygon_offset[0]) as f32,
+                (sign * s * rec.polygon_offset[1]) as f32,
+            )),
+            edge_matrix: *m,
+        },
+        EdgeMethod::Matrix => Draw {
+            face_offset: None,
+            edge_matrix: if clip == ClipDepth::ReversedZeroToOne {
+                let mut out = *m;
+                out[14] = (f64::from(m[14]) * (1.0 + s * rec.relative_epsilon)) as f32;
+                if s == 1.0 {
+                    rec.matrix
+                } else {
+                    out
+                }
+            } else if s == 1.0 {
+                rec.matrix
+            } else {
+                zshift::matrix_in::offset_ndc(m, clip, -s * rec.ndc_offset).unwrap()
+            },
+        },
+    }
+}
+
+#[derive(Default)]
+struct Class {
+    scenes: usize,
+    answered: usize,
+    refused: usize,
+    lost: usize,
+    shown: usize,
+    visible: usize,
+    hidden: usize,
+    ratios: Vec<f64>,
+    none_needed: usize,
+    peer_scenes: usize,
+    peers: Vec<(usize, usize)>,
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+const PEERS: [(&str, f32, f32); 5] = [
+    ("(1,1)", 1.0, 1.0),
+    ("(2,2)", 2.0, 2.0),
+    ("(0,4)", 0.0, 4.0),
+    ("(0,8)", 0.0, 8.0),
+    ("(1,0)", 1.0, 0.0),
+];
+const SEED_SHIFTS: [f64; 2] = [1e-3, 1e-2];
+
+#[test]
+fn edges_over_faces_sweep() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
+    let renderer = Renderer::new(gl.glow());
+    let snapping = if gl.renderer().contains("llvmpipe") {
+        Snapping::Unsnapped
+    } else {
+        Snapping::SubpixelBits(gl.subpixel_bits())
+    };
+    let profile = RasterizerProfile {
+        snapping,
+        ..RasterizerProfile::worst_case()
+    };
+    let mut classes: Vec<(String, Class)> = Vec::new();
+    let mut failures = Vec::new();
+    for fmt in DepthFormat::ALL {
+        gl.set_target(SIZE, SIZE, fmt).unwrap();
+        for conv in [Conv::Std, Conv::ZeroOne, Conv::Reversed] {
+            gl.clip_control(if conv == Conv::Std {
+                GlClip::NegativeOneToOne
+            } else {
+                GlClip::ZeroToOne
+            })
+            .unwrap_or_else(|e| panic!("glClipControl is needed: {e}"));
+            for ratio in [10.0f64, 1e3, 1e6] {
+                let n = 1.0f64;
+                let f = n * ratio;
+                for (pos, frac) in [("near", 0.15), ("mid", 0.5), ("far", 0.85)] {
+                    let d = (n * ratio.powf(frac)).max(1.6 * n).min(0.7 * f);
+                    for make in [sphere as fn(f64, f64) -> Mesh, torus] {
+                        let radius = 0.3 * d;
+                        let mesh = make(radius, d);
+                        let t = 0.5 * n;
+                        let frustum = Frustum::new(-t, t, -t, t, n, f).unwrap();
+                        let clip = conv.clip();
+                        let m = projection(&frustum, clip).unwrap();
+                        let mf = projection_f64(&frustum, clip).unwrap();
+                        let p = project(&mesh, &mf);
+                        let rf = reference(&mesh, &p);
+                        let b = f * n / (f - n);
+                        let (dmin, dmax) =
+                            mesh.verts.iter().fold((f64::MAX, 0.0f64), |(a, c), v| {
+                                (a.min(-f64::from(v[2])), c.max(-f64::from(v[2])))
+                            });
+                        renderer.load(gl.glow(), &mesh);
+                        let tri_idx: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
+                        let line_idx: Vec<u32> = mesh.edges.iter().flatten().copied().collect();
+                        for kind in [LineKind::Lines, LineKind::PolygonMode] {
+                            let scene = Scene {
+                                gl: &gl,
+                                r: &renderer,
+                                mesh: &mesh,
+                                m,
+                                conv,
+                                kind,
+                                tri_idx: tri_idx.clone(),
+                                line_idx: line_idx.clone(),
+                            };
+                            let ids = edge_ids(&scene, &p);
+                            for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
+                                let mut edges =
+                                    Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
+                                edges.kind = kind;
+                                edges.profile = profile;
+                                edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
+                                edges.depth_test = if conv == Conv::Reversed {
+                                    DepthTest::GreaterEqual
+                                } else {
+                                    DepthTest::LessEqual
+                                };
+                                let label = format!(
+                                    "{} {} {} {}",
+                                    conv.name(),
+                                    fmt.name(),
+                                    if kind == LineKind::Lines {
+                                        "lines"
+                                    } else {
+                                        "polymode"
+                                    },
+                                    if method == EdgeMethod::Matrix {
+                                        "(b) matrix"
+                                    } else {
+                                        "(a) polygon offset"
+                                    }
+                                );
+                                let idx = match classes.iter().position(|(l, _)| *l == label) {
+                                    Some(i) => i,
+                                    None => {
+                                        classes.push((
+                                            label.clone(),
+                                            Class {
+                                                peers: vec![
+                                                    (0, 0);
+                                                    PEERS.len() + SEED_SHIFTS.len()
+                                                ],
+                                                ..Default::default()
+                                            },
+                                        ));
+                                        classes.len() - 1
+                                    }
+                                };
+                                let class = &mut classes[idx].1;
+                                class.scenes += 1;
+                                let rec = match recommend(&m, clip, &edges, method) {
+                                    Ok(r) => r,
+                                    Err(e) => {
+                                        class.refused += 1;
+                                        if e.kind() != zshift::ErrorKind::Unresolvable {
+                                            failures.push(format!(
+                                                "{label} {} f/n {ratio} {pos}: {e}",
+                                                mesh.name
+                                            ));
+                                        }
+                                        continue;
+                                    }
+                                };
+                                class.answered += 1;
+                                let g = rec.face_gradient;
+                                let c = classify(&scene, &p, &rf, &ids, b, g, rec.hidden_gap);
+                                class.visible += c.visible.len();
+                                class.hidden += c.hidden.len();
+                                let (lost, shown) = scene.count(&scaled(&rec, &m, clip, 1.0), &c);
+                                class.lost += lost;
+                                class.shown += shown;
+                                if lost + shown > 0 {
+                                    failures.push(format!("{label} {} f/n {ratio} {pos}: {lost} of {} visible lost, {shown} of {} hidden shown (gap {:.3e}, {rec:?})", mesh.name, c.visible.len(), c.hidden.len(), rec.hidden_gap));
+                                }
+                                // The smallest working scale of zshift's offset (0 lost), in log2 steps.
+                                let works =
+                                    |s: f64| scene.count(&scaled(&rec, &m, clip, s), &c).0 == 0;
+                                let (mut lo, mut hi) = (-24.0f64, 0.0f64);
+                                if works(lo.exp2()) {
+                                    // Edges survive with no offset to speak of (a tie passes):
+                                    // no smallest working offset to compare with.
+                                    class.none_needed += 1;
+                                    hi = f64::NAN;
+                                } else {
+                                    for _ in 0..9 {
+                                        let mid = 0.5 * (lo + hi);
+                                        if works(mid.exp2()) {
+                                            hi = mid
+                                        } else {
+                                            lo = mid
+                                        }
+                                    }
+                                }
+                                if hi.is_finite() {
+                                    class.ratios.push((-hi).exp2());
+                                }
+                                // The peers, against the same pixels.
+                                if kind == LineKind::Lines || method == EdgeMethod::PolygonOffset {
+                                    class.peer_scenes += 1;
+                                    let sign = if conv == Conv::Reversed { -1.0 } else { 1.0 };
+                                    for (k, &(_, fa, un)) in PEERS.iter().enumerate() {
+                                        let draw = Draw {
+                                            face_offset: Some((sign * fa, sign * un)),
+                                            edge_matrix: m,
+                                        };
+                                        let (l, s) = scene.count(&draw, &c);
+                                        class.peers[k].0 += l;
+                                        class.peers[k].1 += s;
+                                    }
+                                    for (k, &delta) in SEED_SHIFTS.iter().enumerate() {
+                                        let em =
+                                            zshift::matrix_in::offset_shift(&m, clip, delta, d)
+                                                .unwrap_or(m);
+                                        let (l, s) = scene.count(
+                                            &Draw {
+                                                face_offset: None,
+                                                edge_matrix: em,
+                                            },
+                                            &c,
+                                        );
+                                        class.peers[PEERS.len() + k].0 += l;
+                                        class.peers[PEERS.len() + k].1 += s;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!("\n| class | scenes | answered | visible px lost | hidden px shown (beyond gap) | zshift ÷ smallest working (median, max; scenes needing none) | (1,1) lost/shown | (2,2) | (0,4) | (0,8) | (1,0) | δ=1e-3 | δ=1e-2 |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for (label, c) in &mut classes {
+        let pct = |x: usize, of: usize| 100.0 * x as f64 / of.max(1) as f64;
+        let peers: Vec<String> = c
+            .peers
+            .iter()
+            .map(|&(l, s)| {
+                if c.peer_scenes == 0 {
+                    "–".to_string()
+                } else {
+                    format!("{:.1}%/{:.1}%", pct(l, c.visible), pct(s, c.hidden))
+                }
+            })
+            .collect();
+        let max = c.ratios.iter().copied().fold(0.0, f64::max);
+        println!(
+            "| {label} | {} | {} | {} of {} | {} of {} | {:.2}, {:.1}; {} | {} |",
+            c.scenes,
+            c.answered,
+            c.lost,
+            c.visible,
+            c.shown,
+            c.hidden,
+            median(&mut c.ratios),
+            max,
+            c.none_needed,
+            peers.join(" | ")
+        );
+    }
+    assert!(
+        failures.is_empty(),
+        "{} scenes failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+fn zshift_format(f: DepthFormat) -> Format {
+    Format::from_gl_internal_format(f.gl_enum()).unwrap()
+}
