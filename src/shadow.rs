@@ -255,12 +255,14 @@ pub struct ShadowBias {
     /// WebGPU's `depthBiasSlopeScale` and `depthBiasClamp`.
     pub webgpu_slope_clamp: [f32; 2],
     /// Receiver side: the world distance to move the receiver toward the light, at the
-    /// farthest receiver.
+    /// farthest receiver (+∞ where no such offset exists: a spot light whose rays can graze the
+    /// limit, or whose depth range ends within the bias behind the farthest receiver).
     pub along_light: f64,
-    /// Receiver side: the world distance to move the receiver along its normal.
+    /// Receiver side: the world distance to move the receiver along its normal (+∞ where the
+    /// bias reaches past a spot light's far plane at the farthest receiver).
     pub along_normal: f64,
     /// The most a caster within the limit angle is biased, as a distance along the light: a
-    /// caster thinner than this casts no shadow.
+    /// caster thinner than this casts no shadow (+∞ without a clamp).
     pub leak_thickness: f64,
     /// How far from a wall standing on the ground its shadow starts, at the light's elevation:
     /// `leak_thickness·cos e`.
@@ -549,16 +551,15 @@ fn receiver_offsets(map: &ShadowMap, terms: &ShadowTerms) -> Result<(f64, f64, f
             let (sx, sy) = ((r - l).abs() / w_px, (t - b).abs() / h_px);
             let psi_xy = sx * ex / (1.0 + ex * ex).sqrt() + sy * ey / (1.0 + ey * ey).sqrt();
             // Eye shift for a window change β at d₂: β·d²/(b − β·d).
+            // (+∞ where β reaches the end of the depth range: no receiver-side offset along the
+            // light gives that window change there.)
             let shift = |beta: f64| -> Result<f64> {
                 let den = bb - beta * d2;
-                if den <= 0.0 {
-                    return Err(Error::new(
-                        ErrorKind::Unresolvable,
-                        "the shadow bias at the farthest receiver reaches past the light's far plane (tighten the light's near/far)",
-                    )
-                    .with_value("receiver_far", d2));
-                }
-                Ok(beta * d2 * d2 / den)
+                Ok(if den <= 0.0 {
+                    f64::INFINITY
+                } else {
+                    beta * d2 * d2 / den
+                })
             };
             let base = terms.constant + terms.snap + terms.reach * bb / (n * d2) * psi_xy;
             let per_tan = terms.reach * bb / (n * d2) * sx.hypot(sy);
@@ -569,7 +570,9 @@ fn receiver_offsets(map: &ShadowMap, terms: &ShadowTerms) -> Result<(f64, f64, f
             // value at the limit, below).
             let psi = ex.hypot(ey).atan();
             let ray = (theta + psi).min(std::f64::consts::FRAC_PI_2);
-            let d = if ray < std::f64::consts::FRAC_PI_2 && ray > 0.0 {
+            let d = if k.is_infinite() {
+                f64::INFINITY
+            } else if ray < std::f64::consts::FRAC_PI_2 && ray > 0.0 {
                 (shift(base + per_tan * ray.tan())? * along - k) / ray.tan()
             } else {
                 shift(per_tan)? * along
@@ -577,6 +580,9 @@ fn receiver_offsets(map: &ShadowMap, terms: &ShadowTerms) -> Result<(f64, f64, f
             (k, d, ray)
         }
     };
+    if !(k_l.is_finite() && d_l.is_finite()) {
+        return Ok((f64::INFINITY, f64::INFINITY, f64::INFINITY));
+    }
     let along_light = if ray_limit >= std::f64::consts::FRAC_PI_2 {
         f64::INFINITY
     } else {
