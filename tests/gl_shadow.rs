@@ -826,8 +826,10 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             count(&px, &truth)
         };
         // The smallest acne-free constant bias in the lookup (bisection, geometric, below 1).
-        let smallest = {
-            let mut hi = 1e-6;
+        let smallest = if acne_at(&mut gl, 0.0).acne == 0 {
+            Some(0.0)
+        } else {
+            let mut hi = 1e-9;
             while acne_at(&mut gl, hi).acne > 0 && hi < 1.0 {
                 hi = (hi * 4.0).min(1.0);
             }
@@ -873,7 +875,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                         let clamp = c.abs();
                         if clamp > 0.0 { k.min(clamp) } else { k }
                     };
-                    if let Some(s) = smallest {
+                    if let Some(s) = smallest.filter(|&s| s > 0.0) {
                         tallies[t].1.ratios.push(on_ground / s);
                     }
                     if verbose {
@@ -885,7 +887,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 }
                 Err(e) if e.kind() == ErrorKind::Unresolvable => {
                     refusals += 1;
-                    if let Some(s) = smallest {
+                    if let Some(s) = smallest.filter(|&s| s < 1.0) {
                         failures.push(format!("{} ({pname}): refused ({e}) but {s:.3e} is acne-free", case.label()));
                     }
                 }
