@@ -281,7 +281,7 @@ pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     let terms = shadow_terms(map)?;
     let needed = terms.constant + terms.snap + terms.footprint;
     // An infinite footprint (a spot light whose rays can graze) sets no clamp: not a refusal.
-    if (needed.is_finite() && needed >= 1.0) || !(terms.constant < 1.0) {
+    if (needed.is_finite() && needed >= 1.0) || terms.constant.is_nan() || terms.constant >= 1.0 {
         return Err(Error::new(
             ErrorKind::Unresolvable,
             if terms.footprint > terms.constant {
@@ -309,7 +309,8 @@ pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     let d3d_r = resolvable_difference(BiasApi::Direct3d, map.format, w_small)?;
     let vk_r = resolvable_difference(BiasApi::Vulkan, map.format, w_small)?;
     let gl_units = units_of(gl_r);
-    if !(units_of(vk_r) <= f64::from(i32::MAX)) {
+    let vk_count = units_of(vk_r);
+    if vk_count.is_nan() || vk_count > f64::from(i32::MAX) {
         return Err(Error::new(
             ErrorKind::Unresolvable,
             "on D32F the polygon-offset unit vanishes at the receivers' smallest window depth: keep receivers off window depth 0 (the far plane under reversed Z, the near plane otherwise) or bias on the receiver side",
@@ -318,7 +319,7 @@ pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     }
     let int_units = |x: f64, what: &'static str| -> Result<i32> {
         let c = x.ceil();
-        if !(c <= f64::from(i32::MAX)) {
+        if c.is_nan() || c > f64::from(i32::MAX) {
             return Err(Error::new(ErrorKind::Overflow, what));
         }
         Ok(c as i32)

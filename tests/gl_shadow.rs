@@ -63,7 +63,11 @@ fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 fn norm(a: [f64; 3]) -> [f64; 3] {
     let l = dot(a, a).sqrt();
@@ -76,8 +80,22 @@ fn look_at(eye: [f64; 3], at: [f64; 3], up: [f64; 3]) -> M4 {
     let s = norm(cross(f, up));
     let u = cross(s, f);
     [
-        s[0], u[0], -f[0], 0.0, s[1], u[1], -f[1], 0.0, s[2], u[2], -f[2], 0.0,
-        -dot(s, eye), -dot(u, eye), dot(f, eye), 1.0,
+        s[0],
+        u[0],
+        -f[0],
+        0.0,
+        s[1],
+        u[1],
+        -f[1],
+        0.0,
+        s[2],
+        u[2],
+        -f[2],
+        0.0,
+        -dot(s, eye),
+        -dot(u, eye),
+        dot(f, eye),
+        1.0,
     ]
 }
 
@@ -130,7 +148,11 @@ impl Case {
             self.resolution,
             self.format.name(),
             self.clip,
-            if self.pcf == 1 { "nearest".into() } else { format!("PCF{0}x{0}", self.pcf) }
+            if self.pcf == 1 {
+                "nearest".into()
+            } else {
+                format!("PCF{0}x{0}", self.pcf)
+            }
         )
     }
 }
@@ -168,7 +190,11 @@ fn light_of(case: &Case) -> Light {
     let h = (2.0 * GROUND * GROUND).sqrt() + 2.0;
     let distance = 2.5 * h + 1.0;
     let position = to_light.map(|c| c * distance);
-    let up = if case.elevation > 80.0 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let up = if case.elevation > 80.0 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
     let view = look_at(position, [0.0; 3], up);
     let eye: Vec<[f64; 4]> = corners().iter().map(|&p| apply(&view, p)).collect();
     let depth = |p: &[f64; 4]| -p[2];
@@ -187,7 +213,13 @@ fn light_of(case: &Case) -> Light {
             let o = Ortho::new(-xs, xs, -ys, ys, n, f).unwrap();
             let m = zshift::orthographic::ortho_f64(&o, case.clip);
             let m32 = zshift::orthographic::ortho(&o, case.clip).unwrap();
-            (LightProjection::Orthographic(o), m, m32, 2.0 * xs.max(ys) / f64::from(case.resolution), f - n)
+            (
+                LightProjection::Orthographic(o),
+                m,
+                m32,
+                2.0 * xs.max(ys) / f64::from(case.resolution),
+                f - n,
+            )
         }
         Kind::Spot => {
             let tx = eye.iter().map(|p| p[0].abs() / -p[2]).fold(0.0, f64::max) * 1.01;
@@ -195,10 +227,26 @@ fn light_of(case: &Case) -> Light {
             let fr = Frustum::new(-tx * n, tx * n, -ty * n, ty * n, n, f).unwrap();
             let m = zshift::projection::projection_f64(&fr, case.clip).unwrap();
             let m32 = zshift::projection::projection(&fr, case.clip).unwrap();
-            (LightProjection::Perspective(fr), m, m32, 2.0 * tx.max(ty) * distance / f64::from(case.resolution), f - n)
+            (
+                LightProjection::Perspective(fr),
+                m,
+                m32,
+                2.0 * tx.max(ty) * distance / f64::from(case.resolution),
+                f - n,
+            )
         }
     };
-    Light { position, to_light, view, proj, proj32, projection, receivers, texel_world, range }
+    Light {
+        position,
+        to_light,
+        view,
+        proj,
+        proj32,
+        projection,
+        receivers,
+        texel_world,
+        range,
+    }
 }
 
 /// Ground and box triangles with their normals.
@@ -207,18 +255,29 @@ fn meshes() -> (Vec<[f32; 6]>, Vec<[f32; 6]>) {
     let up = [0.0, 1.0, 0.0f32];
     let v = |p: [f32; 3], n: [f32; 3]| [p[0], p[1], p[2], n[0], n[1], n[2]];
     let ground = vec![
-        v([-g, 0.0, -g], up), v([-g, 0.0, g], up), v([g, 0.0, g], up),
-        v([-g, 0.0, -g], up), v([g, 0.0, g], up), v([g, 0.0, -g], up),
+        v([-g, 0.0, -g], up),
+        v([-g, 0.0, g], up),
+        v([g, 0.0, g], up),
+        v([-g, 0.0, -g], up),
+        v([g, 0.0, g], up),
+        v([g, 0.0, -g], up),
     ];
     let mut boxed = Vec::new();
     let c = |i: usize| -> [f32; 3] {
-        [BOX[i & 1][0] as f32, BOX[(i >> 1) & 1][1] as f32, BOX[(i >> 2) & 1][2] as f32]
+        [
+            BOX[i & 1][0] as f32,
+            BOX[(i >> 1) & 1][1] as f32,
+            BOX[(i >> 2) & 1][2] as f32,
+        ]
     };
     // Faces as corner indices (bit 0 x, bit 1 y, bit 2 z) and normals.
     let faces: [([usize; 4], [f32; 3]); 6] = [
-        ([0, 2, 6, 4], [-1.0, 0.0, 0.0]), ([1, 5, 7, 3], [1.0, 0.0, 0.0]),
-        ([0, 4, 5, 1], [0.0, -1.0, 0.0]), ([2, 3, 7, 6], [0.0, 1.0, 0.0]),
-        ([0, 1, 3, 2], [0.0, 0.0, -1.0]), ([4, 6, 7, 5], [0.0, 0.0, 1.0]),
+        ([0, 2, 6, 4], [-1.0, 0.0, 0.0]),
+        ([1, 5, 7, 3], [1.0, 0.0, 0.0]),
+        ([0, 4, 5, 1], [0.0, -1.0, 0.0]),
+        ([2, 3, 7, 6], [0.0, 1.0, 0.0]),
+        ([0, 1, 3, 2], [0.0, 0.0, -1.0]),
+        ([4, 6, 7, 5], [0.0, 0.0, 1.0]),
     ];
     for (q, n) in faces {
         for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
@@ -374,8 +433,18 @@ impl Rig {
         g.bind_framebuffer(glow::FRAMEBUFFER, Some(camera_fbo));
         let colour = g.create_renderbuffer()?;
         g.bind_renderbuffer(glow::RENDERBUFFER, Some(colour));
-        g.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, CAMERA as i32, CAMERA as i32);
-        g.framebuffer_renderbuffer(glow::FRAMEBUFFER, glow::COLOR_ATTACHMENT0, glow::RENDERBUFFER, Some(colour));
+        g.renderbuffer_storage(
+            glow::RENDERBUFFER,
+            glow::RGBA8,
+            CAMERA as i32,
+            CAMERA as i32,
+        );
+        g.framebuffer_renderbuffer(
+            glow::FRAMEBUFFER,
+            glow::COLOR_ATTACHMENT0,
+            glow::RENDERBUFFER,
+            Some(colour),
+        );
         let mut f = gl.proc_address("glPolygonOffsetClamp");
         if f.is_null() {
             f = gl.proc_address("glPolygonOffsetClampEXT");
@@ -384,7 +453,8 @@ impl Rig {
             return Err("glPolygonOffsetClamp(EXT) is not available: the sweep needs it to apply zshift's clamp".into());
         }
         // SAFETY: the GL entry point glPolygonOffsetClamp(float, float, float).
-        let clamp_fn = std::mem::transmute::<*const std::ffi::c_void, extern "system" fn(f32, f32, f32)>(f);
+        let clamp_fn =
+            std::mem::transmute::<*const std::ffi::c_void, extern "system" fn(f32, f32, f32)>(f);
         Ok(Rig {
             caster,
             camera,
@@ -407,19 +477,39 @@ impl Rig {
     }
 
     /// Renders the map of `case` with `bias` into a new depth texture.
-    unsafe fn map(&self, gl: &mut Gl, case: &Case, light: &Light, bias: CasterBias) -> Result<(glow::Texture, glow::Framebuffer), String> {
-        gl.clip_control(if case.clip == ClipDepth::NegOneToOne { GlClip::NegativeOneToOne } else { GlClip::ZeroToOne })?;
+    unsafe fn map(
+        &self,
+        gl: &mut Gl,
+        case: &Case,
+        light: &Light,
+        bias: CasterBias,
+    ) -> Result<(glow::Texture, glow::Framebuffer), String> {
+        gl.clip_control(if case.clip == ClipDepth::NegOneToOne {
+            GlClip::NegativeOneToOne
+        } else {
+            GlClip::ZeroToOne
+        })?;
         let g = gl.glow();
         let n = case.resolution as i32;
         let tex = g.create_texture()?;
         g.bind_texture(glow::TEXTURE_2D, Some(tex));
         g.tex_storage_2d(glow::TEXTURE_2D, 1, case.format.gl_enum(), n, n);
-        for (p, v) in [(glow::TEXTURE_MIN_FILTER, glow::NEAREST), (glow::TEXTURE_MAG_FILTER, glow::NEAREST), (glow::TEXTURE_COMPARE_MODE, glow::NONE)] {
+        for (p, v) in [
+            (glow::TEXTURE_MIN_FILTER, glow::NEAREST),
+            (glow::TEXTURE_MAG_FILTER, glow::NEAREST),
+            (glow::TEXTURE_COMPARE_MODE, glow::NONE),
+        ] {
             g.tex_parameter_i32(glow::TEXTURE_2D, p, v as i32);
         }
         let fbo = g.create_framebuffer()?;
         g.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-        g.framebuffer_texture_2d(glow::FRAMEBUFFER, glow::DEPTH_ATTACHMENT, glow::TEXTURE_2D, Some(tex), 0);
+        g.framebuffer_texture_2d(
+            glow::FRAMEBUFFER,
+            glow::DEPTH_ATTACHMENT,
+            glow::TEXTURE_2D,
+            Some(tex),
+            0,
+        );
         g.draw_buffer(glow::NONE);
         g.read_buffer(glow::NONE);
         let status = g.check_framebuffer_status(glow::FRAMEBUFFER);
@@ -460,7 +550,15 @@ impl Rig {
     }
 
     /// Looks the ground up from the camera through `map`: per pixel (passing taps, taps).
-    unsafe fn look(&self, gl: &mut Gl, case: &Case, light: &Light, camera: &M4, map: glow::Texture, bias: ReceiverBias) -> Result<Vec<[u8; 2]>, String> {
+    unsafe fn look(
+        &self,
+        gl: &mut Gl,
+        case: &Case,
+        light: &Light,
+        camera: &M4,
+        map: glow::Texture,
+        bias: ReceiverBias,
+    ) -> Result<Vec<[u8; 2]>, String> {
         gl.clip_control(GlClip::NegativeOneToOne)?;
         let g = gl.glow();
         g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.camera_fbo));
@@ -480,7 +578,14 @@ impl Rig {
         let lp = light_uniform(case, light);
         g.uniform_3_f32(u("light_pos").as_ref(), lp[0], lp[1], lp[2]);
         g.uniform_1_i32(u("spot").as_ref(), (case.kind == Kind::Spot) as i32);
-        g.uniform_1_i32(u("clip").as_ref(), match case.clip { ClipDepth::NegOneToOne => 0, ClipDepth::ZeroToOne => 1, ClipDepth::ReversedZeroToOne => 2 });
+        g.uniform_1_i32(
+            u("clip").as_ref(),
+            match case.clip {
+                ClipDepth::NegOneToOne => 0,
+                ClipDepth::ZeroToOne => 1,
+                ClipDepth::ReversedZeroToOne => 2,
+            },
+        );
         g.uniform_1_i32(u("k").as_ref(), case.pcf as i32);
         g.uniform_1_f32(u("beta").as_ref(), bias.beta);
         g.uniform_1_f32(u("r_light").as_ref(), bias.along_light);
@@ -491,9 +596,20 @@ impl Rig {
         let mut bytes = vec![0u8; CAMERA * CAMERA * 4];
         g.read_buffer(glow::COLOR_ATTACHMENT0);
         g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-        g.read_pixels(0, 0, CAMERA as i32, CAMERA as i32, glow::RGBA, glow::UNSIGNED_BYTE, glow::PixelPackData::Slice(Some(&mut bytes)));
+        g.read_pixels(
+            0,
+            0,
+            CAMERA as i32,
+            CAMERA as i32,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+            glow::PixelPackData::Slice(Some(&mut bytes)),
+        );
         zshift_harness::check_gl_errors(g, "camera pass")?;
-        Ok(bytes.chunks_exact(4).map(|c| if c[2] == 255 { [c[0], c[1]] } else { [0, 0] }).collect())
+        Ok(bytes
+            .chunks_exact(4)
+            .map(|c| if c[2] == 255 { [c[0], c[1]] } else { [0, 0] })
+            .collect())
     }
 }
 
@@ -507,7 +623,13 @@ fn light_uniform(case: &Case, light: &Light) -> [f32; 3] {
 
 /// The exact answer per camera pixel: None (not counted: off the ground, under the box, off the
 /// map, or near a shadow edge), Some(true) lit, Some(false) shadowed.
-fn reference(case: &Case, light: &Light, camera: &M4, eye: [f64; 3], reach: f64) -> Vec<Option<bool>> {
+fn reference(
+    case: &Case,
+    light: &Light,
+    camera: &M4,
+    eye: [f64; 3],
+    reach: f64,
+) -> Vec<Option<bool>> {
     let inverse = invert(camera);
     let light_vp = mul(&light.proj, &light.view);
     let light_inv = invert(&light_vp);
@@ -555,8 +677,12 @@ fn reference(case: &Case, light: &Light, camera: &M4, eye: [f64; 3], reach: f64)
             let d = sub(far, eye);
             let t = -eye[1] / d[1];
             let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
-            let inside_box = p[0] >= BOX[0][0] - 0.05 && p[0] <= BOX[1][0] + 0.05 && p[2] >= BOX[0][2] - 0.05 && p[2] <= BOX[1][2] + 0.05;
-            if !(t > 0.0) || p[0].abs() > GROUND * 0.98 || p[2].abs() > GROUND * 0.98 || inside_box {
+            let inside_box = p[0] >= BOX[0][0] - 0.05
+                && p[0] <= BOX[1][0] + 0.05
+                && p[2] >= BOX[0][2] - 0.05
+                && p[2] <= BOX[1][2] + 0.05;
+            if t.is_nan() || t <= 0.0 || p[0].abs() > GROUND * 0.98 || p[2].abs() > GROUND * 0.98 || inside_box
+            {
                 out.push(None);
                 continue;
             }
@@ -593,17 +719,20 @@ fn invert(m: &M4) -> M4 {
         a[r][4 + r] = 1.0;
     }
     for c in 0..4 {
-        let p = (c..4).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs())).unwrap();
+        let p = (c..4)
+            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+            .unwrap();
         a.swap(c, p);
         let d = a[c][c];
-        for k in 0..8 {
-            a[c][k] /= d;
+        for x in a[c].iter_mut() {
+            *x /= d;
         }
-        for r in 0..4 {
+        let pivot = a[c];
+        for (r, row) in a.iter_mut().enumerate() {
             if r != c {
-                let f = a[r][c];
-                for k in 0..8 {
-                    a[r][k] -= f * a[c][k];
+                let f = row[c];
+                for (x, p) in row.iter_mut().zip(pivot) {
+                    *x -= f * p;
                 }
             }
         }
@@ -643,10 +772,18 @@ fn count(pixels: &[[u8; 2]], truth: &[Option<bool>]) -> Count {
 fn ground_slope(case: &Case, light: &Light) -> f64 {
     let vp = mul(&light.proj, &light.view);
     let n = f64::from(case.resolution);
-    let per_ndc = if case.clip == ClipDepth::NegOneToOne { 0.5 } else { 1.0 };
+    let per_ndc = if case.clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
     let w = |p: [f64; 3]| {
         let c = apply(&vp, p);
-        [(c[0] / c[3] * 0.5 + 0.5) * n, (c[1] / c[3] * 0.5 + 0.5) * n, c[2] / c[3] * per_ndc]
+        [
+            (c[0] / c[3] * 0.5 + 0.5) * n,
+            (c[1] / c[3] * 0.5 + 0.5) * n,
+            c[2] / c[3] * per_ndc,
+        ]
     };
     let (a, b, c) = (w([0.0, 0.0, 0.0]), w([0.5, 0.0, 0.0]), w([0.0, 0.0, 0.5]));
     // Solve z = z0 + gx·x + gy·y through the three.
@@ -665,12 +802,20 @@ fn cases(full: bool) -> Vec<Case> {
     let ratios = [10.0, 1e3, 1e5];
     let sizes = [256, 1024, 2048];
     let formats = [F::D16, F::D24, F::D32F];
-    let clips = [ClipDepth::NegOneToOne, ClipDepth::ZeroToOne, ClipDepth::ReversedZeroToOne];
+    let clips = [
+        ClipDepth::NegOneToOne,
+        ClipDepth::ZeroToOne,
+        ClipDepth::ReversedZeroToOne,
+    ];
     let mut i = 0usize;
     for kind in [Kind::Directional, Kind::Spot] {
         for &elevation in &elevations {
             for pcf in [1, 3] {
-                let combos: Vec<usize> = if full { (0..81).collect() } else { (0..6).map(|j| (i * 7 + j * 13) % 81).collect() };
+                let combos: Vec<usize> = if full {
+                    (0..81).collect()
+                } else {
+                    (0..6).map(|j| (i * 7 + j * 13) % 81).collect()
+                };
                 for c in combos {
                     v.push(Case {
                         kind,
@@ -697,46 +842,92 @@ struct Engine {
 }
 
 fn soft(case: &Case) -> f32 {
-    if case.pcf > 1 { 2.5 } else { 1.0 }
+    if case.pcf > 1 {
+        2.5
+    } else {
+        1.0
+    }
 }
 
 /// The engines' defaults, as NOTES.md describes them (signs flipped under reversed Z, where the
 /// API's bias moves depth the other way).
 fn engines() -> [Engine; 5] {
-    let flip = |case: &Case| if case.clip == ClipDepth::ReversedZeroToOne { -1.0f32 } else { 1.0 };
+    let flip = |case: &Case| {
+        if case.clip == ClipDepth::ReversedZeroToOne {
+            -1.0f32
+        } else {
+            1.0
+        }
+    };
     let _ = flip;
     [
         Engine {
             name: "Unity URP",
             caster: |c, l| {
-                let s = if c.clip == ClipDepth::ReversedZeroToOne { -1.0 } else { 1.0 };
+                let s = if c.clip == ClipDepth::ReversedZeroToOne {
+                    -1.0
+                } else {
+                    1.0
+                };
                 let t = l.texel_world as f32 * soft(c);
-                CasterBias { offset: Some((2.5 * s, 1.0 * s, 0.0)), along_light: -t, along_normal: -t }
+                CasterBias {
+                    offset: Some((2.5 * s, 1.0 * s, 0.0)),
+                    along_light: -t,
+                    along_normal: -t,
+                }
             },
             receiver: |_, _| ReceiverBias::default(),
         },
         Engine {
             name: "Godot 4",
             caster: |_, _| CasterBias::default(),
-            receiver: |_, l| ReceiverBias { beta: 0.0, along_light: (0.001 * l.range) as f32, along_normal: l.texel_world as f32, sine: false },
+            receiver: |_, l| ReceiverBias {
+                beta: 0.0,
+                along_light: (0.001 * l.range) as f32,
+                along_normal: l.texel_world as f32,
+                sine: false,
+            },
         },
         Engine {
             name: "Filament",
             caster: |c, _| {
-                let s = if c.clip == ClipDepth::ReversedZeroToOne { -1.0 } else { 1.0 };
-                CasterBias { offset: Some((2.0 * s, 0.5 * s, 0.0)), along_light: 0.0, along_normal: 0.0 }
+                let s = if c.clip == ClipDepth::ReversedZeroToOne {
+                    -1.0
+                } else {
+                    1.0
+                };
+                CasterBias {
+                    offset: Some((2.0 * s, 0.5 * s, 0.0)),
+                    along_light: 0.0,
+                    along_normal: 0.0,
+                }
             },
-            receiver: |_, l| ReceiverBias { beta: 0.0, along_light: 0.001, along_normal: l.texel_world as f32, sine: true },
+            receiver: |_, l| ReceiverBias {
+                beta: 0.0,
+                along_light: 0.001,
+                along_normal: l.texel_world as f32,
+                sine: true,
+            },
         },
         Engine {
             name: "bevy",
             caster: |_, _| CasterBias::default(),
-            receiver: |_, l| ReceiverBias { beta: 0.0, along_light: 0.02, along_normal: 1.8 * l.texel_world as f32, sine: false },
+            receiver: |_, l| ReceiverBias {
+                beta: 0.0,
+                along_light: 0.02,
+                along_normal: 1.8 * l.texel_world as f32,
+                sine: false,
+            },
         },
         Engine {
             name: "three.js",
             caster: |_, _| CasterBias::default(),
-            receiver: |_, _| ReceiverBias { beta: 0.0005, along_light: 0.0, along_normal: 0.0, sine: false },
+            receiver: |_, _| ReceiverBias {
+                beta: 0.0005,
+                along_light: 0.0,
+                along_normal: 0.0,
+                sine: false,
+            },
         },
     ]
 }
@@ -764,14 +955,22 @@ impl Tally {
         }
         self.worst_acne = self.worst_acne.max(acne);
         // Leak counted where the box's shadow covers at least 50 counted pixels.
-        let leak = if c.shadowed >= 50 { c.leak as f64 / c.shadowed as f64 } else { 0.0 };
+        let leak = if c.shadowed >= 50 {
+            c.leak as f64 / c.shadowed as f64
+        } else {
+            0.0
+        };
         self.leak_sum += leak;
         self.leak_worst = self.leak_worst.max(leak);
     }
     fn row(&self, name: &str) -> String {
         let mut r = self.ratios.clone();
         r.sort_by(f64::total_cmp);
-        let med = if r.is_empty() { f64::NAN } else { r[r.len() / 2] };
+        let med = if r.is_empty() {
+            f64::NAN
+        } else {
+            r[r.len() / 2]
+        };
         let max = r.last().copied().unwrap_or(f64::NAN);
         format!(
             "| {name} | {} of {} | {:.2} % | {:.2} % | {:.2} % | {} |",
@@ -780,7 +979,11 @@ impl Tally {
             100.0 * self.worst_acne,
             100.0 * self.leak_sum / self.leak_scenes.max(1) as f64,
             100.0 * self.leak_worst,
-            if r.is_empty() { "—".to_string() } else { format!("{med:.2} (max {max:.2})") }
+            if r.is_empty() {
+                "—".to_string()
+            } else {
+                format!("{med:.2} (max {max:.2})")
+            }
         )
     }
 }
@@ -798,7 +1001,8 @@ fn tally(tallies: &mut Vec<(String, Tally)>, name: &str, class: &str) -> usize {
 
 #[test]
 fn zshift_shadow_bias_is_acne_free_where_it_answers() {
-    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context for the shadow sweep: {e}"));
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no GL context for the shadow sweep: {e}"));
     let probed = gl_common::probed(&gl);
     let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
     let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
@@ -807,7 +1011,11 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let eye = [-9.0, 9.0, 8.0];
     let camera = {
         let v = look_at(eye, [0.5, 0.0, 0.0], [0.0, 1.0, 0.0]);
-        let p = zshift::projection::projection_f64(&Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(), ClipDepth::NegOneToOne).unwrap();
+        let p = zshift::projection::projection_f64(
+            &Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(),
+            ClipDepth::NegOneToOne,
+        )
+        .unwrap();
         mul(&p, &v)
     };
     let mut failures = Vec::new();
@@ -816,13 +1024,39 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let started = std::time::Instant::now();
     for case in &all {
         let light = light_of(case);
-        let reach = if case.pcf == 1 { 0.5 } else { case.pcf as f64 / 2.0 };
+        let reach = if case.pcf == 1 {
+            0.5
+        } else {
+            case.pcf as f64 / 2.0
+        };
         let truth = reference(case, &light, &camera, eye, reach);
-        let class = format!("{} {}", if case.kind == Kind::Spot { "spot" } else { "directional" }, if case.pcf == 1 { "nearest" } else { "PCF 3x3" });
+        let class = format!(
+            "{} {}",
+            if case.kind == Kind::Spot {
+                "spot"
+            } else {
+                "directional"
+            },
+            if case.pcf == 1 { "nearest" } else { "PCF 3x3" }
+        );
         let world_reach = light.position.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }.unwrap_or_else(|e| panic!("{e}"));
+        let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
+            .unwrap_or_else(|e| panic!("{e}"));
         let acne_at = |gl: &mut Gl, beta: f64| -> Count {
-            let px = unsafe { rig.look(gl, case, &light, &camera, unbiased.0, ReceiverBias { beta: beta as f32, ..Default::default() }) }.unwrap_or_else(|e| panic!("{e}"));
+            let px = unsafe {
+                rig.look(
+                    gl,
+                    case,
+                    &light,
+                    &camera,
+                    unbiased.0,
+                    ReceiverBias {
+                        beta: beta as f32,
+                        ..Default::default()
+                    },
+                )
+            }
+            .unwrap_or_else(|e| panic!("{e}"));
             count(&px, &truth)
         };
         // The smallest acne-free constant bias in the lookup (bisection, geometric, below 1).
@@ -839,19 +1073,30 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 let mut lo = hi / 4.0;
                 for _ in 0..10 {
                     let mid = (lo * hi).sqrt();
-                    if acne_at(&mut gl, mid).acne > 0 { lo = mid } else { hi = mid }
+                    if acne_at(&mut gl, mid).acne > 0 {
+                        lo = mid
+                    } else {
+                        hi = mid
+                    }
                 }
                 Some(hi)
             }
         };
         let slope = ground_slope(case, &light);
-        for (pname, profile) in [("worst", RasterizerProfile::worst_case()), ("probed", probed)] {
+        for (pname, profile) in [
+            ("worst", RasterizerProfile::worst_case()),
+            ("probed", probed),
+        ] {
             let map = ShadowMap {
                 light: light.projection,
                 clip: case.clip,
                 resolution: [case.resolution; 2],
                 format: gl_common::format_of(case.format),
-                lookup: if case.pcf == 1 { Lookup::Nearest } else { Lookup::Pcf(case.pcf) },
+                lookup: if case.pcf == 1 {
+                    Lookup::Nearest
+                } else {
+                    Lookup::Pcf(case.pcf)
+                },
                 limit_angle_deg: 90.0 - case.elevation,
                 receiver_depths: light.receivers,
                 world_reach,
@@ -862,8 +1107,22 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             match shadow_bias(&map) {
                 Ok(bias) => {
                     let [f, u, c] = bias.gl_polygon_offset;
-                    let m = unsafe { rig.map(&mut gl, case, &light, CasterBias { offset: Some((f as f32, u as f32, c as f32)), ..Default::default() }) }.unwrap_or_else(|e| panic!("{e}"));
-                    let px = unsafe { rig.look(&mut gl, case, &light, &camera, m.0, ReceiverBias::default()) }.unwrap_or_else(|e| panic!("{e}"));
+                    let m = unsafe {
+                        rig.map(
+                            &mut gl,
+                            case,
+                            &light,
+                            CasterBias {
+                                offset: Some((f as f32, u as f32, c as f32)),
+                                ..Default::default()
+                            },
+                        )
+                    }
+                    .unwrap_or_else(|e| panic!("{e}"));
+                    let px = unsafe {
+                        rig.look(&mut gl, case, &light, &camera, m.0, ReceiverBias::default())
+                    }
+                    .unwrap_or_else(|e| panic!("{e}"));
                     unsafe {
                         gl.glow().delete_framebuffer(m.1);
                         gl.glow().delete_texture(m.0);
@@ -873,7 +1132,11 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                     let on_ground = {
                         let k = bias.terms.constant + bias.terms.slope_factor * slope;
                         let clamp = c.abs();
-                        if clamp > 0.0 { k.min(clamp) } else { k }
+                        if clamp > 0.0 {
+                            k.min(clamp)
+                        } else {
+                            k
+                        }
                     };
                     if let Some(s) = smallest.filter(|&s| s > 0.0) {
                         tallies[t].1.ratios.push(on_ground / s);
@@ -882,13 +1145,22 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                         println!("{} {pname}: acne {}/{} leak {}/{} bias {on_ground:.3e} smallest {smallest:?}", case.label(), got.acne, got.lit, got.leak, got.shadowed);
                     }
                     if got.acne > 0 {
-                        failures.push(format!("{} ({pname}): {} acne pixels of {} lit at {:?}", case.label(), got.acne, got.lit, bias.gl_polygon_offset));
+                        failures.push(format!(
+                            "{} ({pname}): {} acne pixels of {} lit at {:?}",
+                            case.label(),
+                            got.acne,
+                            got.lit,
+                            bias.gl_polygon_offset
+                        ));
                     }
                 }
                 Err(e) if e.kind() == ErrorKind::Unresolvable => {
                     refusals += 1;
                     if let Some(s) = smallest.filter(|&s| s < 1.0) {
-                        failures.push(format!("{} ({pname}): refused ({e}) but {s:.3e} is acne-free", case.label()));
+                        failures.push(format!(
+                            "{} ({pname}): refused ({e}) but {s:.3e} is acne-free",
+                            case.label()
+                        ));
                     }
                 }
                 Err(e) => failures.push(format!("{} ({pname}): {e}", case.label())),
@@ -902,11 +1174,23 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 rb.beta = rb.beta.abs();
             }
             let tex = if cb.offset.is_some() || cb.along_light != 0.0 || cb.along_normal != 0.0 {
-                Some(unsafe { rig.map(&mut gl, case, &light, cb) }.unwrap_or_else(|e| panic!("{e}")))
+                Some(
+                    unsafe { rig.map(&mut gl, case, &light, cb) }.unwrap_or_else(|e| panic!("{e}")),
+                )
             } else {
                 None
             };
-            let px = unsafe { rig.look(&mut gl, case, &light, &camera, tex.map_or(unbiased.0, |m| m.0), rb) }.unwrap_or_else(|e| panic!("{e}"));
+            let px = unsafe {
+                rig.look(
+                    &mut gl,
+                    case,
+                    &light,
+                    &camera,
+                    tex.map_or(unbiased.0, |m| m.0),
+                    rb,
+                )
+            }
+            .unwrap_or_else(|e| panic!("{e}"));
             if let Some(m) = tex {
                 unsafe {
                     gl.glow().delete_framebuffer(m.1);
@@ -923,11 +1207,22 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
         }
     }
     tallies.sort_by(|a, b| a.0.cmp(&b.0));
-    println!("shadow sweep: {} scenes, {} refusals, {:.1} s on {}", all.len(), refusals, started.elapsed().as_secs_f64(), gl.renderer());
+    println!(
+        "shadow sweep: {} scenes, {} refusals, {:.1} s on {}",
+        all.len(),
+        refusals,
+        started.elapsed().as_secs_f64(),
+        gl.renderer()
+    );
     println!("| bias [class] | scenes with acne | worst acne (% of lit) | mean leak (% of shadowed) | worst leak | bias ÷ smallest acne-free (median) |");
     println!("|---|---|---|---|---|---|");
     for (name, t) in &tallies {
         println!("{}", t.row(name));
     }
-    assert!(failures.is_empty(), "{} failures:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

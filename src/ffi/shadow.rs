@@ -169,7 +169,7 @@ impl From<ShadowBias> for ZshiftShadowBias {
 }
 
 impl ZshiftShadowMap {
-    fn to_map(&self) -> Result<ShadowMap> {
+    fn to_map(self) -> Result<ShadowMap> {
         let light = match self.light {
             ZSHIFT_LIGHT_ORTHOGRAPHIC => LightProjection::Orthographic(Ortho::new(
                 self.l, self.r, self.b, self.t, self.n, self.f,
@@ -190,8 +190,10 @@ impl ZshiftShadowMap {
             ZSHIFT_LOOKUP_PCF => Lookup::Pcf(self.pcf_size),
             ZSHIFT_LOOKUP_RADIUS => Lookup::Radius(self.kernel_radius),
             other => {
-                return Err(domain("ZshiftShadowMap.lookup is not a ZSHIFT_LOOKUP_* value")
-                    .with_integer("lookup", i64::from(other)))
+                return Err(
+                    domain("ZshiftShadowMap.lookup is not a ZSHIFT_LOOKUP_* value")
+                        .with_integer("lookup", i64::from(other)),
+                )
             }
         };
         Ok(ShadowMap {
@@ -224,16 +226,26 @@ pub extern "C" fn zshift_shadow_bias(
     map: *const ZshiftShadowMap,
     out: *mut ZshiftShadowBias,
 ) -> ZshiftStatus {
-    if map.is_null() {
+    let Some(record) = map_from_c(map) else {
         return null_pointer("map");
-    }
-    // SAFETY: not NULL; the caller promises a readable ZshiftShadowMap; read_unaligned needs no
-    // alignment and the struct is plain data.
-    let record = unsafe { map.read_unaligned() };
+    };
     checked(
         out,
-        move || Ok(ZshiftShadowBias::from(crate::shadow::shadow_bias(&record.to_map()?)?)),
+        move || {
+            Ok(ZshiftShadowBias::from(crate::shadow::shadow_bias(
+                &record.to_map()?,
+            )?))
+        },
         // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftShadowBias.
         |out, value| unsafe { out.write_unaligned(value) },
     )
+}
+
+/// The caller's map, copied (`read_unaligned`: no alignment needed), or `None` for NULL.
+fn map_from_c(map: *const ZshiftShadowMap) -> Option<ZshiftShadowMap> {
+    if map.is_null() {
+        return None;
+    }
+    // SAFETY: not NULL; the caller promises a readable ZshiftShadowMap; the struct is plain data.
+    Some(unsafe { map.read_unaligned() })
 }
