@@ -169,6 +169,36 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 #define ZSHIFT_EDGES_MATRIX 1
 
 /*
+ `ZshiftShadowMap.light`: a directional light or a cascade, `glOrtho(l, r, b, t, n, f)`.
+ */
+#define ZSHIFT_LIGHT_ORTHOGRAPHIC 0
+
+/*
+ `ZshiftShadowMap.light`: a spot light, `glFrustum(l, r, b, t, n, f)` (finite f).
+ */
+#define ZSHIFT_LIGHT_PERSPECTIVE 1
+
+/*
+ `ZshiftShadowMap.lookup`: one texel, the one containing the sample point.
+ */
+#define ZSHIFT_LOOKUP_NEAREST 0
+
+/*
+ `ZshiftShadowMap.lookup`: hardware depth comparison with linear filtering (2x2 texels).
+ */
+#define ZSHIFT_LOOKUP_HARDWARE_2X2 1
+
+/*
+ `ZshiftShadowMap.lookup`: `pcf_size` x `pcf_size` PCF of nearest taps one texel apart.
+ */
+#define ZSHIFT_LOOKUP_PCF 2
+
+/*
+ `ZshiftShadowMap.lookup`: taps up to `kernel_radius` texels from the point per axis.
+ */
+#define ZSHIFT_LOOKUP_RADIUS 3
+
+/*
  The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 
  A plain 32-bit integer, so any value a caller passes to `zshift_status_message` is valid.
@@ -794,6 +824,207 @@ typedef struct {
    */
   double hidden_gap;
 } ZshiftEdgeOffset;
+
+/*
+ What an engine knows about one shadow map, for `zshift_shadow_bias`.
+
+ The light's projection in its own view space (right-handed, looking down -z), with the
+ map's clip convention `clip` (reversed: GL_GEQUAL comparison, map cleared to 0).
+ */
+typedef struct {
+  /*
+   ZSHIFT_LIGHT_ORTHOGRAPHIC or ZSHIFT_LIGHT_PERSPECTIVE.
+   */
+  int32_t light;
+  /*
+   The projection's left extent (`glOrtho`/`glFrustum` l).
+   */
+  double l;
+  /*
+   Right extent.
+   */
+  double r;
+  /*
+   Bottom extent.
+   */
+  double b;
+  /*
+   Top extent.
+   */
+  double t;
+  /*
+   Near plane distance.
+   */
+  double n;
+  /*
+   Far plane distance (finite).
+   */
+  double f;
+  /*
+   The map's clip convention.
+   */
+  ZshiftClip clip;
+  /*
+   The map's width in texels.
+   */
+  uint32_t width;
+  /*
+   The map's height in texels.
+   */
+  uint32_t height;
+  /*
+   The map's depth format, a ZSHIFT_FORMAT_* value (its GL internal format enum).
+   */
+  uint32_t format;
+  /*
+   ZSHIFT_LOOKUP_NEAREST, _HARDWARE_2X2, _PCF or _RADIUS.
+   */
+  int32_t lookup;
+  /*
+   The kernel size k of ZSHIFT_LOOKUP_PCF (>= 1); ignored otherwise.
+   */
+  uint32_t pcf_size;
+  /*
+   The kernel radius in texels of ZSHIFT_LOOKUP_RADIUS (>= 0); ignored otherwise.
+   */
+  double kernel_radius;
+  /*
+   The limit angle in degrees, [0, 90), between the light (a spot light's axis) and a
+   surface normal beyond which a surface counts as facing away (acne allowed there).
+   */
+  double limit_angle_deg;
+  /*
+   The receivers' nearest light-space depth (-z in the light's view), >= n.
+   */
+  double receiver_near;
+  /*
+   The receivers' farthest light-space depth, <= f.
+   */
+  double receiver_far;
+  /*
+   The largest world coordinate of the light's position and of every model origin (0 for
+   vertices already in the light's view space).
+   */
+  double world_reach;
+  /*
+   The light's elevation above the ground in degrees, (0, 90], for `peter_panning` only.
+   */
+  double elevation_deg;
+  /*
+   The rasterizer's profile (`zshift_probe`), or NULL for the worst case.
+   */
+  const ZshiftProfile *profile;
+} ZshiftShadowMap;
+
+/*
+ The recommendation of `zshift_shadow_bias`: the error terms (unit window depth of the map),
+ the caster-side bias in every API's units (signed as the API adds it: positive under
+ [-1, 1] and [0, 1], negative reversed; a clamp of 0 means none), the receiver-side
+ alternatives and the cost (world units; +INFINITY where none exists).
+ */
+typedef struct {
+  /*
+   a: texels per axis from the sample point to the farthest texel centre read.
+   */
+  double reach;
+  /*
+   q: the format's quantum.
+   */
+  double quantum;
+  /*
+   E: the caster's rasterization error.
+   */
+  double caster;
+  /*
+   S: sub-pixel snapping at the limit angle (carried by the slope factor).
+   */
+  double snap;
+  /*
+   T + V: the lookup's rounding of the receiver's light-space depth.
+   */
+  double lookup;
+  /*
+   R: the read-back rounding of a UNORM texel.
+   */
+  double read;
+  /*
+   K = q + E + (T + V) + R, the constant part.
+   */
+  double constant;
+  /*
+   F: the texel footprint at the limit angle and nearest receiver (+INFINITY: no clamp).
+   */
+  double footprint;
+  /*
+   The slope factor per unit of max(|dz/dx|, |dz/dy|) before f32 rounding: 2a + 2^-b.
+   */
+  double slope_factor;
+  /*
+   glPolygonOffset factor (also glPolygonOffsetClamp's).
+   */
+  double gl_factor;
+  /*
+   glPolygonOffset units (against the profile's resolvable r).
+   */
+  double gl_units;
+  /*
+   glPolygonOffsetClamp clamp (0: none).
+   */
+  double gl_clamp;
+  /*
+   Direct3D DepthBias.
+   */
+  int32_t d3d_depth_bias;
+  /*
+   Direct3D SlopeScaledDepthBias.
+   */
+  float d3d_slope_scaled;
+  /*
+   Direct3D DepthBiasClamp.
+   */
+  float d3d_clamp;
+  /*
+   Vulkan depthBiasConstantFactor.
+   */
+  float vk_constant;
+  /*
+   Vulkan depthBiasSlopeFactor.
+   */
+  float vk_slope;
+  /*
+   Vulkan depthBiasClamp.
+   */
+  float vk_clamp;
+  /*
+   WebGPU DepthBiasState depthBias.
+   */
+  int32_t webgpu_depth_bias;
+  /*
+   WebGPU depthBiasSlopeScale.
+   */
+  float webgpu_slope_scale;
+  /*
+   WebGPU depthBiasClamp.
+   */
+  float webgpu_clamp;
+  /*
+   Receiver side: the world distance to move a receiver toward the light.
+   */
+  double along_light;
+  /*
+   Receiver side: the world distance to move a receiver along its normal.
+   */
+  double along_normal;
+  /*
+   The most a caster within the limit angle is biased along the light: thinner casters
+   cast no shadow.
+   */
+  double leak_thickness;
+  /*
+   How far from a wall standing on the ground its shadow starts, at `elevation_deg`.
+   */
+  double peter_panning;
+} ZshiftShadowBias;
 
 /*
  Success: the output was written.
@@ -1522,6 +1753,20 @@ ZshiftStatus zshift_edge_planes(const float *m,
                                 const ZshiftEdges *edges,
                                 uint32_t method,
                                 double *out);
+
+/*
+ Writes the smallest caster-side shadow bias that keeps every receiver within the limit
+ angle free of acne on the rasterizer `map->profile` describes (NULL: the worst case), in
+ every API's units, with its receiver-side alternatives and its cost (docs/shadows.md).
+
+ Errors: ZSHIFT_ERR_NULL_POINTER (map or out NULL), ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
+ (bad projection, receivers outside [n, f], an angle outside [0, 90), an unknown enum, a
+ profile that fails its checks: zshift_last_error() names the field),
+ ZSHIFT_ERR_UNRESOLVABLE (the bias would span the map's whole depth range at that angle; the
+ detail names the remedy: higher resolution, smaller kernel, smaller limit angle, tighter
+ near/far), ZSHIFT_ERR_OVERFLOW (an integer bias does not fit). `*out` untouched on error.
+ */
+ZshiftStatus zshift_shadow_bias(const ZshiftShadowMap *map, ZshiftShadowBias *out);
 
 #ifdef __cplusplus
 } /* extern "C" */

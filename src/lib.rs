@@ -29,6 +29,7 @@
 //! | [`decal`] | what an engine knows about a decal besides its matrix (the recommendation's input) | |
 //! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
 //! | [`orthographic`] | `glOrtho` for every clip convention, its constant offset through element 14, its (constant) depth step | |
+//! | [`shadow`] | shadow-map bias: the smallest acne-free caster bias in every API's units, receiver-side offsets, peter-panning | 004 |
 //! | [`rounding`] | how matrices reach f32: the nearest f32 of the exact element (proven fast test, exact fallback), offsets outward | |
 //! | [`ffi`] | the C ABI (`include/zshift.h`): status codes, checks, panic boundary | |
 
@@ -56,6 +57,7 @@ pub mod profile;
 pub mod projection;
 pub mod recommend;
 pub mod rounding;
+pub mod shadow;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};

@@ -675,6 +675,29 @@ inline std::array<double, 2> edge_planes(const Matrix &m, Clip clip, const Edges
   return edge_planes(m.data(), clip, edges, method);
 }
 
+/// What an engine knows about one shadow map (ZshiftShadowMap): the light's projection
+/// (ZSHIFT_LIGHT_*, l..f), clip, map size and format, the lookup (ZSHIFT_LOOKUP_*), the limit
+/// angle, the receivers' light-space depths, world_reach, elevation, profile (NULL: worst case).
+using ShadowMap = ZshiftShadowMap;
+/// The shadow bias in every API's units, its receiver-side alternatives and cost
+/// (ZshiftShadowBias).
+using ShadowBias = ZshiftShadowBias;
+
+/// The smallest caster-side shadow bias keeping every receiver within the limit angle free of
+/// acne (zshift_shadow_bias; docs/shadows.md). Throws Error: a bad field (the detail names it),
+/// Status::unresolvable with the remedy when no bias is acne-free at that angle.
+inline ShadowBias shadow_bias(const ShadowMap &map) {
+  ShadowBias out{};
+  detail::check(zshift_shadow_bias(&map, &out));
+  return out;
+}
+
+/// shadow_bias() with the rasterizer's profile (from probe()).
+inline ShadowBias shadow_bias(ShadowMap map, const Profile &profile) {
+  map.profile = &profile;
+  return shadow_bias(map);
+}
+
 }  // namespace zshift
 
 #endif  // ZSHIFT_HPP

@@ -48,6 +48,7 @@ mod plan;
 mod probe;
 
 mod lines;
+mod shadow;
 
 pub use builders::*;
 pub use kinds::*;
@@ -60,6 +61,7 @@ pub use polygon_offset::*;
 pub use precision::*;
 pub use probe::*;
 pub use recommend::*;
+pub use shadow::*;
 
 /// The version of this C ABI. It changes when a declaration in this header changes
 /// incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,

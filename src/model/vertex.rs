@@ -118,11 +118,24 @@ pub fn world_error(
         let gamma = EYE_FIRST_ROUNDINGS * U;
         return (gamma * l, gamma * a[2]);
     }
-    let b = [0, 1, 2, 3].map(|row| {
-        (0..3).map(|k| m[4 * k + row].abs() * a[k]).sum::<f64>() + m[12 + row].abs()
-    });
-    let e = b.map(|x| WORLD_ROUNDINGS * U * x);
+    let e = combined_errors(m, a);
     (form.bound(e), e[3])
+}
+
+/// The clip-space error bound `γ_W·Bₖ`, `Bₖ = Σᵢ |Pₖᵢ|·Aᵢ + |Pₖ₃|`, of a vertex whose eye
+/// coordinates sum terms of magnitude `a` through one combined f32 matrix (module docs).
+fn combined_errors(m: &[f64; 16], a: [f64; 3]) -> [f64; 4] {
+    [0, 1, 2, 3].map(|row| {
+        let b = (0..3).map(|k| m[4 * k + row].abs() * a[k]).sum::<f64>() + m[12 + row].abs();
+        WORLD_ROUNDINGS * U * b
+    })
+}
+
+/// [`combined_errors`] from the scalar `world_reach` alone, for a vertex within `extent` of the
+/// camera: `A = √3·(4W + extent)` (the conservative path, for problems that know no plane form
+/// on eye coordinates, such as a shadow map's receivers).
+pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
+    combined_errors(m, [3f64.sqrt() * (4.0 * world_reach + extent); 3])
 }
 
 /// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum,

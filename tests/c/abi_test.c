@@ -1137,6 +1137,69 @@ static void test_edges(void) {
   CHECK_STATUS(zshift_edge_planes(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, NULL), ZSHIFT_ERR_NULL_POINTER);
 }
 
+/* ---- shadow bias: a directional light's map (zshift_shadow_bias) ---- */
+
+static ZshiftShadowMap shadow_map(void) {
+  ZshiftShadowMap m;
+  memset(&m, 0, sizeof m);
+  m.light = ZSHIFT_LIGHT_ORTHOGRAPHIC;
+  m.l = -8; m.r = 8; m.b = -8; m.t = 8; m.n = 2; m.f = 30;
+  m.clip = ZSHIFT_CLIP_NEG_ONE_TO_ONE;
+  m.width = 1024; m.height = 1024;
+  m.format = ZSHIFT_FORMAT_UNORM24.value;
+  m.lookup = ZSHIFT_LOOKUP_PCF;
+  m.pcf_size = 3;
+  m.limit_angle_deg = 60;
+  m.receiver_near = 2; m.receiver_far = 30;
+  m.world_reach = 0;
+  m.elevation_deg = 30;
+  m.profile = NULL;
+  return m;
+}
+
+static void test_shadow_bias(void) {
+  ZshiftShadowMap m = shadow_map();
+  ZshiftShadowBias out, untouched_out;
+  long double texel = 16.0L / 1024.0L, a = 1.5L;
+  /* The footprint at 60 degrees: a * tan(60) * texel diagonal / (f - n), computed here. */
+  long double footprint = a * sqrtl(3.0L) * texel * sqrtl(2.0L) / 28.0L;
+  CHECK_STATUS(zshift_shadow_bias(&m, &out), ZSHIFT_OK);
+  CHECK(relative_error(out.footprint, footprint) < 1e-12, "shadow footprint %.17g vs %.17Lg", out.footprint, footprint);
+  CHECK(out.gl_factor >= 3.0 + 1.0 / 256 && out.gl_factor < (3.0 + 1.0 / 256) * 1.000001, "gl factor %.9g", out.gl_factor);
+  CHECK(out.d3d_depth_bias > 0 && out.d3d_depth_bias / 16777215.0 >= out.constant, "D3D DepthBias %d for %.9g", out.d3d_depth_bias, out.constant);
+  CHECK(out.webgpu_depth_bias >= out.d3d_depth_bias, "WebGPU %d < D3D %d", out.webgpu_depth_bias, out.d3d_depth_bias);
+  CHECK(out.gl_clamp >= out.constant + out.snap + out.footprint && out.d3d_clamp == (float)out.gl_clamp, "clamp %.9g", out.gl_clamp);
+  CHECK(out.along_normal > 0 && out.along_normal <= out.along_light && out.peter_panning < out.leak_thickness, "receiver side");
+  /* Errors: NULL pointers, a bad field named in the detail, output untouched. */
+  CHECK_STATUS(zshift_shadow_bias(NULL, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shadow_bias(&m, NULL), ZSHIFT_ERR_NULL_POINTER);
+  memset(&untouched_out, PATTERN, sizeof untouched_out);
+  m.limit_angle_deg = 90;
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "limit_angle_deg") != NULL, "detail: %s", zshift_last_error());
+  CHECK(untouched(&untouched_out, sizeof untouched_out), "zshift_shadow_bias wrote its output on error");
+  m = shadow_map();
+  m.receiver_far = 31;
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "receiver_far") != NULL, "detail: %s", zshift_last_error());
+  m = shadow_map();
+  m.lookup = 7;
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "lookup") != NULL, "detail: %s", zshift_last_error());
+  m = shadow_map();
+  m.width = 64; m.height = 64; m.pcf_size = 5; m.limit_angle_deg = 89.9;
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_UNRESOLVABLE);
+  CHECK(strstr(zshift_last_error(), "resolution") != NULL, "detail: %s", zshift_last_error());
+  CHECK(untouched(&untouched_out, sizeof untouched_out), "zshift_shadow_bias wrote its output on error");
+  /* Reversed Z flips the signs. */
+  m = shadow_map();
+  m.clip = ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE;
+  m.format = ZSHIFT_FORMAT_FLOAT32.value;
+  m.receiver_far = 28;
+  CHECK_STATUS(zshift_shadow_bias(&m, &out), ZSHIFT_OK);
+  CHECK(out.gl_factor < 0 && out.gl_units < 0 && out.d3d_depth_bias < 0 && out.vk_clamp < 0, "reversed signs");
+}
+
 int main(void) {
   test_edges();
   test_last_error();
@@ -1154,6 +1217,7 @@ int main(void) {
   test_bias_and_planning();
   test_recommend();
   test_recommend_clip();
+  test_shadow_bias();
   test_status_messages();
   test_versions();
   if (failures != 0) {

@@ -314,6 +314,32 @@ static void test_edges() {
                [&] { zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix); });
 }
 
+static void test_shadow_bias() {
+  zshift::ShadowMap map{};
+  map.light = ZSHIFT_LIGHT_ORTHOGRAPHIC;
+  map.l = -8; map.r = 8; map.b = -8; map.t = 8; map.n = 2; map.f = 30;
+  map.clip = ZSHIFT_CLIP_NEG_ONE_TO_ONE;
+  map.width = 1024; map.height = 1024;
+  map.format = 0x81A6;  // GL_DEPTH_COMPONENT24
+  map.lookup = ZSHIFT_LOOKUP_NEAREST;
+  map.limit_angle_deg = 45;
+  map.receiver_near = 2; map.receiver_far = 30;
+  map.elevation_deg = 45;
+  ZshiftShadowBias c{};
+  CHECK(zshift_shadow_bias(&map, &c) == ZSHIFT_OK, "C zshift_shadow_bias failed");
+  zshift::ShadowBias b = zshift::shadow_bias(map);
+  CHECK(std::memcmp(&b, &c, sizeof c) == 0, "shadow_bias() differs from the C call");
+  // Nearest: a = 1/2, footprint 0.5 * tan 45 * texel diagonal / (f - n).
+  double footprint = 0.5 * (16.0 / 1024.0) * std::sqrt(2.0) / 28.0;
+  CHECK(std::fabs(b.footprint / footprint - 1.0) < 1e-12, "footprint %.17g vs %.17g", b.footprint, footprint);
+  CHECK(b.gl_factor >= 1.0 + 1.0 / 256 && b.d3d_depth_bias > 0, "factor %g, DepthBias %d", b.gl_factor, b.d3d_depth_bias);
+  zshift::Profile worst = zshift::profile_worst_case();
+  zshift::ShadowBias w = zshift::shadow_bias(map, worst);
+  CHECK(std::memcmp(&w, &b, sizeof b) == 0, "shadow_bias(map, worst case) differs from the NULL profile");
+  map.limit_angle_deg = 90;
+  check_throws("shadow_bias(limit 90)", zshift::Status::domain, [&] { zshift::shadow_bias(map); });
+}
+
 int main() {
   test_edges();
   test_matrices();
@@ -323,6 +349,7 @@ int main() {
   test_recommend_clip();
   test_messages();
   test_clip_to_frustum();
+  test_shadow_bias();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
     return 1;

@@ -562,3 +562,46 @@ class FrontDoor(unittest.TestCase):
             zshift.decal_matrix(reversed_m, zshift.Clip.REVERSED_ZERO_TO_ONE, (0, 720), zshift.Format.FLOAT32,
                                 (40.0, 60.0), subpixel_bits=8)
         self.assertIn("viewport", str(caught.exception))
+
+
+class ShadowBiasTest(unittest.TestCase):
+    """zshift.shadow_bias: a directional light's map, references computed here."""
+
+    ARGS = dict(light=zshift.Light.ORTHOGRAPHIC, projection=(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0),
+                clip=zshift.Clip.NEG_ONE_TO_ONE, resolution=(1024, 1024),
+                depth_format=zshift.Format.UNORM24, limit_angle_deg=60.0, receiver_depths=(2.0, 30.0),
+                lookup=zshift.Lookup.PCF, pcf_size=3, elevation_deg=30.0)
+
+    def test_footprint_factor_and_units(self):
+        import math
+        bias = zshift.shadow_bias(**self.ARGS)
+        footprint = 1.5 * math.tan(math.radians(60.0)) * (16.0 / 1024.0) * math.sqrt(2.0) / 28.0
+        self.assertAlmostEqual(bias.footprint / footprint, 1.0, places=10)
+        self.assertGreaterEqual(bias.gl_factor, 3.0 + 1.0 / 256.0)
+        self.assertGreaterEqual(bias.d3d_depth_bias / 16777215.0, bias.constant)
+        self.assertGreaterEqual(bias.gl_clamp, bias.constant + bias.snap + bias.footprint)
+        self.assertLess(bias.along_normal, bias.along_light)
+        self.assertAlmostEqual(bias.peter_panning / bias.leak_thickness, math.cos(math.radians(30.0)), places=9)
+
+    def test_refusals_and_bad_fields(self):
+        args = dict(self.ARGS, resolution=(64, 64), pcf_size=5, limit_angle_deg=89.9)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias(**args)
+        self.assertEqual(caught.exception.status, zshift.Status.UNRESOLVABLE)
+        self.assertIn("resolution", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias(**dict(self.ARGS, receiver_depths=(1.0, 30.0)))
+        self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
+        self.assertIn("receiver_near", str(caught.exception))
+        with self.assertRaises(TypeError):
+            zshift.shadow_bias(**dict(self.ARGS, lookup=zshift.Clip.ZERO_TO_ONE))
+
+    def test_a_profile_changes_the_units(self):
+        worst = zshift.profile_worst_case()
+        llvmpipe = worst._replace(resolvable=(2.0, 2.0, 2.0, 1.0), subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
+        a = zshift.shadow_bias(**self.ARGS, profile=worst)
+        b = zshift.shadow_bias(**self.ARGS, profile=llvmpipe)
+        self.assertEqual(a, zshift.shadow_bias(**self.ARGS))
+        self.assertLess(b.gl_units, a.gl_units)
+        self.assertEqual(b.snap, 0.0)
+        self.assertEqual(b.slope_factor, 3.0)

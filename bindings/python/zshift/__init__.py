@@ -43,7 +43,7 @@ __all__ = [
     "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
     "ortho_depth_step",
     "probe", "profile_worst_case", "Profile", "NEAR_CLIP_CLIPPED_F32", "NEAR_CLIP_PLANE_PRESERVING",
-    "clip_to_frustum",
+    "clip_to_frustum", "shadow_bias", "ShadowBias", "Light", "Lookup",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
@@ -444,7 +444,7 @@ class DepthTest(_enum_module.IntEnum):
 
 
 _ARGUMENT_NAMES = {"Clip": "clip", "Format": "format", "BiasApi": "api", "OffsetKind": "kind",
-                   "DepthTest": "depth_test"}
+                   "DepthTest": "depth_test", "Light": "light", "Lookup": "lookup"}
 
 
 def _enum(value, kind, name=None):
@@ -1005,3 +1005,97 @@ def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width
 
 
 __all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes"]
+
+
+# ---- Shadow-map bias (docs/shadows.md) ----
+
+
+class Light(_enum_module.IntEnum):
+    """The light's projection (``ZSHIFT_LIGHT_*``): a directional light or cascade
+    (``glOrtho``), or a spot light (``glFrustum``)."""
+
+    ORTHOGRAPHIC = 0
+    PERSPECTIVE = 1
+
+
+class Lookup(_enum_module.IntEnum):
+    """How the lookup reads the map (``ZSHIFT_LOOKUP_*``): one texel, hardware 2x2 comparison,
+    ``pcf_size`` x ``pcf_size`` PCF, or taps within ``kernel_radius`` texels."""
+
+    NEAREST = 0
+    HARDWARE_2X2 = 1
+    PCF = 2
+    RADIUS = 3
+
+
+class _ShadowMap(_ctypes.Structure):
+    """The C ``ZshiftShadowMap`` (include/zshift.h), field for field."""
+
+    _fields_ = [
+        ("light", _ctypes.c_int32),
+        ("l", _ctypes.c_double), ("r", _ctypes.c_double), ("b", _ctypes.c_double),
+        ("t", _ctypes.c_double), ("n", _ctypes.c_double), ("f", _ctypes.c_double),
+        ("clip", _ctypes.c_int32), ("width", _ctypes.c_uint32), ("height", _ctypes.c_uint32),
+        ("format", _ctypes.c_uint32), ("lookup", _ctypes.c_int32), ("pcf_size", _ctypes.c_uint32),
+        ("kernel_radius", _ctypes.c_double), ("limit_angle_deg", _ctypes.c_double),
+        ("receiver_near", _ctypes.c_double), ("receiver_far", _ctypes.c_double),
+        ("world_reach", _ctypes.c_double), ("elevation_deg", _ctypes.c_double),
+        ("profile", _ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
+    ]
+
+
+class _ShadowBias(_ctypes.Structure):
+    """The C ``ZshiftShadowBias``, field for field."""
+
+    _fields_ = [(name, _ctypes.c_double) for name in (
+        "reach", "quantum", "caster", "snap", "lookup", "read", "constant", "footprint",
+        "slope_factor", "gl_factor", "gl_units", "gl_clamp")] + [
+        ("d3d_depth_bias", _ctypes.c_int32), ("d3d_slope_scaled", _ctypes.c_float),
+        ("d3d_clamp", _ctypes.c_float), ("vk_constant", _ctypes.c_float),
+        ("vk_slope", _ctypes.c_float), ("vk_clamp", _ctypes.c_float),
+        ("webgpu_depth_bias", _ctypes.c_int32), ("webgpu_slope_scale", _ctypes.c_float),
+        ("webgpu_clamp", _ctypes.c_float)] + [(name, _ctypes.c_double) for name in (
+        "along_light", "along_normal", "leak_thickness", "peter_panning")]
+
+
+#: What :func:`shadow_bias` returns: the C ``ZshiftShadowBias``'s fields.
+ShadowBias = _collections.namedtuple("ShadowBias", [name for name, _ in _ShadowBias._fields_])
+
+
+def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
+                lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0, world_reach=0.0,
+                elevation_deg=90.0, profile=None):
+    """The smallest caster-side shadow bias that keeps every receiver within ``limit_angle_deg``
+    of the light free of acne (``zshift_shadow_bias``), in every API's units, with the
+    receiver-side alternatives and the cost; a :data:`ShadowBias`.
+
+    ``light`` a :class:`Light`; ``projection`` the light's ``(l, r, b, t, n, f)``; ``clip`` a
+    :class:`Clip`; ``resolution`` ``(width, height)`` in texels; ``depth_format`` a
+    :class:`Format`; ``receiver_depths`` the receivers' ``(nearest, farthest)`` light-space depth
+    inside ``[n, f]``; ``lookup`` a :class:`Lookup` (``pcf_size`` for ``Lookup.PCF``,
+    ``kernel_radius`` for ``Lookup.RADIUS``); ``profile`` from :func:`probe` or ``None`` for the
+    worst case. Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
+    is acne-free at that angle)."""
+    record = _ShadowMap()
+    record.light = _enum(light, Light)
+    record.l, record.r, record.b, record.t, record.n, record.f = projection
+    record.clip = _enum(clip, Clip)
+    record.width, record.height = resolution
+    record.format = _enum(depth_format, Format, "depth_format") & 0xFFFFFFFF
+    record.lookup = _enum(lookup, Lookup)
+    if not isinstance(pcf_size, int) or not 0 <= pcf_size < 2**32:
+        raise ZshiftError(Status.DOMAIN, f"pcf_size must be an integer in [0, 2**32) (pcf_size = {pcf_size!r})")
+    record.pcf_size = pcf_size
+    record.kernel_radius = kernel_radius
+    record.limit_angle_deg = limit_angle_deg
+    record.receiver_near, record.receiver_far = receiver_depths
+    record.world_reach = world_reach
+    record.elevation_deg = elevation_deg
+    _attach_profile(record, profile)
+    lib = _lib()
+    fn = lib.zshift_shadow_bias
+    fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ShadowBias)]
+    fn.restype = _ctypes.c_int32
+    out = _ShadowBias()
+    _check(fn(_ctypes.byref(record), _ctypes.byref(out)))
+    return ShadowBias(*(getattr(out, name) for name, _ in _ShadowBias._fields_))

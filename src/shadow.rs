@@ -1,0 +1,796 @@
+//! Shadow-map bias: the smallest caster-side bias (in every API's units) that keeps a receiver
+//! from shadowing itself ("acne"), from what an engine knows about its light and map, and what
+//! that bias costs (peter-panning).
+//!
+//! # The problem
+//! A shadow map stores, per texel, the window depth (in the light's view) of the nearest
+//! caster at the texel's centre. A receiver point `p` is lit when its own light-space depth,
+//! computed in the lookup shader, is not behind the stored depth of the texels its lookup reads.
+//! For a surface that is its own caster the two depths are of one surface, computed differently
+//! and at different places — the coplanar question of the seeds (004 lists shadows among the
+//! problems of coplanar primitives), with two new terms: the texel's footprint and the lookup.
+//!
+//! # The model
+//! All terms in unit window depth of the map; `u = 2⁻²⁴`. `p` is lit (standard conventions,
+//! `GL_LEQUAL` comparison; reversed Z mirrors every sign) when
+//!
+//! `z_r(p) + e_r ≤ z_c(c) + e_c + e_q + β`
+//!
+//! with `z_r(p)` the exact depth of the receiver at `p`, `z_c(c)` the exact depth of the same
+//! surface at the centre `c` of a texel the lookup reads, `e_r` the lookup's rounding, `e_c`
+//! the caster's rasterization error, `e_q` the storage and read-back rounding and `β` the bias.
+//! No pixel is darkened by its own surface when `β` covers every term:
+//!
+//! `β ≥ F + S + K`,   `K = q + E + (T + V) + R`                                     (B1)
+//!
+//! * `F`, **the texel footprint**: `z_r(p) − z_c(c) = g·(c − p)` on a plane whose window depth
+//!   has gradient `g = (gₓ, g_y)` per map texel (a plane's window depth is affine in the map's
+//!   pixels, under an orthographic and a perspective light alike). Every texel centre a lookup
+//!   reads lies within `a` texels of `p` per axis: `a = ½` for nearest sampling (the centre of
+//!   the texel containing `p`), `1` for hardware 2×2 comparison (the four texels around `p`),
+//!   `k/2` for `k×k` PCF of nearest taps (taps `(k−1)/2` texels out, each to its own texel's
+//!   centre), `ρ + ½` for a kernel of radius `ρ` texels. So `F ≤ a·(|gₓ| + |g_y|)`.
+//!   * **Caster side**, the polygon-offset slope term adds `factor·m`, `m` the caster's own
+//!     `max(|gₓ|, |g_y|)` (GL, D3D; Vulkan allows up to `√(gₓ² + g_y²)`, which only adds). Since
+//!     `|gₓ| + |g_y| ≤ 2·max(|gₓ|, |g_y|)`, **`factor = 2a` covers `F` at every angle**, for
+//!     the plane that is its own caster; the rasterizer computes `m·factor` in f32 from
+//!     gradients set up to a relative `3u` (as in the decal's `I`), so the factor is taken
+//!     `2a·(1 + 6u)`, rounded up to f32.
+//!   * **At the limit angle** (for the clamp, the receiver-side offsets and the refusal), `g`
+//!     follows from the angle `θ` between the light and the surface normal. *Orthographic*
+//!     (texel `sₓ = (r − l)/W`, `s_y = (t − b)/H` in light units, depth `1/(f − n)` per unit):
+//!     the plane's depth runs `tan θ` per unit along its steepest direction, so
+//!     `|gₓ| + |g_y| ≤ tan θ·(|cos φ|·sₓ + |sin φ|·s_y)/(f − n) ≤ tan θ·σ/(f − n)`,
+//!     `σ = √(sₓ² + s_y²)` the texel diagonal. *Perspective* (`w = F − b/d`, `b = fn/(f − n)`;
+//!     `sₓ`, `s_y` the texel at the near plane): on the plane through `p` with unit normal `N`,
+//!     `1/d = N·(kₓ, k_y, −1)/(N·p)` along the ray of tangents `k`, and a texel moves `k` by
+//!     `s/n`, so `|gₓ| + |g_y| = b·(|Nₓ|sₓ + |N_y|s_y)/(n·|p|·cos θ_ray)` with `θ_ray` the angle
+//!     between the normal and the ray to `p`. Writing `N = −cos θ·r̂ + sin θ·t̂` (`r̂` the ray,
+//!     `t̂ ⊥ r̂`) and `|p| ≥ d`: `|gₓ| + |g_y| ≤ b/(n·d)·(Ψ + tan θ_ray·σ)`, with
+//!     `Ψ = sₓ·eₓ/√(1 + eₓ²) + s_y·e_y/√(1 + e_y²)` (a surface facing the ray still has a
+//!     gradient off the axis; `eₓ`, `e_y` the frustum's largest half-extent tangents). For a spot
+//!     light the limit angle is taken to the light's **axis** (a ground plane has one angle to
+//!     it), so `θ_ray ≤ θ + ψ`, `ψ = atan √(eₓ² + e_y²)` the widest ray's angle; at
+//!     `θ + ψ ≥ 90°` no clamp is set. The largest `F` is at the nearest receiver, `d₁`.
+//! * `q`, `E = T + V + I`, `S`: **the caster's own error**, one primitive of the decal model —
+//!   [`crate::recommend`] (perspective light) or [`crate::orthographic`] (orthographic light),
+//!   with the map as viewport, the receivers' light depths as the decal's range and the
+//!   eye-space slope `√2·tan θ` of a plane at the limit angle to the light's axis (a measured
+//!   profile enters as it does there). `q` bounds the storage: the stored value is within one
+//!   quantum of the computed one. `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤ 2^−b·m` grows with the caster's
+//!   own slope `m` (below), so the slope factor carries it (`2a + 2^−b`) and the constant
+//!   `K` leaves it out. With world-space vertices (`world_reach > 0`), `V` is the
+//!   larger of the eye-space term and the f32 model-view term of [`crate::model::vertex`].
+//! * `T + V`: **the lookup's own rounding**. The shader computes the receiver's light-space
+//!   position `P·(V·p)` in f32 from its world position, divides by `w` and maps to window depth:
+//!   the same f32 steps, on the same coordinates, as the caster's vertex transform, bounded by the
+//!   same `T + V`. This assumes the receiver's position reaches the fragment on its surface to
+//!   within the rounding of its coordinates (a world position interpolated from the vertices of
+//!   a flat face, as engines pass it); interpolation error that moves the point *along* its
+//!   surface only changes `p`, which `F` already allows for anywhere.
+//! * `R`: **the read-back**: a UNORM texel sampled as float is rounded once, `u·w_max`
+//!   (0 on D32F, whose texel is the f32 stored).
+//!
+//! No term is a fudge factor: each bounds one step, as in [`crate::recommend`].
+//!
+//! # Outputs
+//! The constant part `K` goes to each API's units against its own resolvable difference `r`
+//! ([`crate::polygon_offset::resolvable_difference`]: Mesa's `1/(2^m − 1)` for GL over the
+//! profile's `resolvable` factor, D3D's `1/(2^m − 1)`, Vulkan's and WebGPU's `2^−m` (the smaller
+//! candidate, so the larger count); on D32F `2^(e − 23)` at the receivers' smallest window
+//! depth, where it is smallest), rounded up (integers away from zero). The slope part is
+//! `factor = 2a` (above). The clamp (`DepthBiasClamp`, Vulkan's `depthBiasClamp`,
+//! `glPolygonOffsetClamp`) is `K + S + F(θ_max)`: the bias never exceeds what the limit angle needs,
+//! and surfaces beyond it (facing away, hidden by shading) are left to acne; 0 means "no clamp"
+//! in every API, which is what a spot light gets when its rays can graze.
+//!
+//! **Receiver-side alternatives** (an engine biasing in the lookup shader): along the light,
+//! the world distance whose depth change is `K + S + F(θ_max)` at the farthest receiver
+//! (orthographic: `·(f − n)`; perspective: the eye shift `δ = β·d²/(b − β·d)` along the ray,
+//! times `√(1 + e²)` for the widest ray). Along the normal by `δ_N`, a point lies
+//! `δ_N/cos θ` in front of its surface along the light, which must reach `K_L + D_L·tan θ`
+//! (`K_L` the constant, `D_L` the footprint per `tan θ`, as distances along the light):
+//! `δ_N = max over θ ≤ θ_max of K_L·cos θ + D_L·sin θ`, at most `√(K_L² + D_L²)` — finite at
+//! every angle, which is why engines bias along the normal.
+//!
+//! **The cost**: a caster biased by `δ_L` along the light is lit through a thickness `δ_L`
+//! ([`ShadowBias::leak_thickness`]), and its shadow on ground lit at elevation `e` starts
+//! `δ_L·cos e` away from a wall standing on it ([`ShadowBias::peter_panning`]), with `δ_L` the
+//! clamp (the most any caster within the limit angle gets).
+//!
+//! **Refusal.** When `K + S + F(θ_max)` reaches the map's whole depth range (1), the bias would lift
+//! every caster past the far plane: no bias both ends acne at that angle and still shadows
+//! anything. [`shadow_bias`] then refuses with [`crate::ErrorKind::Unresolvable`], naming the
+//! remedy for the larger part: a higher resolution, a smaller kernel or a smaller limit angle
+//! for `F`; a tighter near/far or a deeper format for `K`.
+
+use crate::domain::{domain, finite};
+use crate::error::{Error, ErrorKind, Result};
+use crate::model::{vertex, PlaneForm};
+use crate::orthographic::Ortho;
+use crate::polygon_offset::{resolvable_difference, BiasApi};
+use crate::precision::DepthFormat;
+use crate::profile::RasterizerProfile;
+use crate::projection::{ClipDepth, Frustum};
+use crate::recommend::{Base, DepthTest, Scene};
+
+/// `u = 2⁻²⁴`, the unit roundoff of f32.
+const U: f64 = 1.0 / 16_777_216.0;
+
+/// The light's projection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LightProjection {
+    /// A directional light or a cascade: `glOrtho(l, r, b, t, n, f)` in the light's view.
+    Orthographic(Ortho),
+    /// A spot light: `glFrustum(l, r, b, t, n, f)` in the light's view (finite `f`).
+    Perspective(Frustum),
+}
+
+/// How the lookup reads the map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Lookup {
+    /// One texel, the one containing the sample point.
+    Nearest,
+    /// Hardware depth comparison with linear filtering: the four texels around the point.
+    Hardware2x2,
+    /// `k×k` percentage-closer filtering of nearest taps one texel apart (`k` odd or even, ≥ 1).
+    Pcf(u32),
+    /// Taps up to `radius` texels from the point per axis (a Poisson disc, a rotated kernel),
+    /// each reading its nearest texel.
+    Radius(f64),
+}
+
+impl Lookup {
+    /// `a`: how far, in texels per axis, a texel centre the lookup reads can lie from the
+    /// sample point (module docs).
+    ///
+    /// # Errors
+    /// [`ErrorKind::Domain`] for `Pcf(0)` or a negative radius; [`ErrorKind::NotFinite`] for a
+    /// NaN or infinite radius.
+    pub fn reach(self) -> Result<f64> {
+        match self {
+            Lookup::Nearest => Ok(0.5),
+            Lookup::Hardware2x2 => Ok(1.0),
+            Lookup::Pcf(0) => Err(domain("a k x k PCF kernel needs k >= 1").with_integer("pcf", 0)),
+            Lookup::Pcf(k) => Ok(f64::from(k) / 2.0),
+            Lookup::Radius(r) => {
+                finite(r, "the kernel radius is NaN or infinite")
+                    .map_err(|e| e.with_value("kernel_radius", r))?;
+                if r < 0.0 {
+                    return Err(domain("the kernel radius must be >= 0 texels")
+                        .with_value("kernel_radius", r));
+                }
+                Ok(r + 0.5)
+            }
+        }
+    }
+}
+
+/// What an engine knows about one shadow map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowMap {
+    /// The light's projection (its view is a rigid transform of world space).
+    pub light: LightProjection,
+    /// The map's clip convention (reversed: `GL_GEQUAL` comparison, map cleared to 0).
+    pub clip: ClipDepth,
+    /// The map's width and height in texels.
+    pub resolution: [u32; 2],
+    /// The map's depth format.
+    pub format: DepthFormat,
+    /// How the lookup reads it.
+    pub lookup: Lookup,
+    /// The limit angle, in degrees, between the light (the direction of an orthographic light,
+    /// a spot light's axis) and a surface normal beyond which the surface counts as facing
+    /// away: `0 ≤ θ < 90`. Surfaces beyond it may show acne (shading hides them).
+    pub limit_angle_deg: f64,
+    /// The receivers' nearest and farthest light-space depth (`−z` in the light's view), inside
+    /// `[n, f]`: pass `[n, f]` when unknown.
+    pub receiver_depths: [f64; 2],
+    /// The largest world coordinate of the light's position and of every model origin (the
+    /// f32 model-view term, [`crate::model::vertex`]); 0 for vertices already in the light's
+    /// view space.
+    pub world_reach: f64,
+    /// The light's elevation above the ground, in degrees (`0 < e ≤ 90`), for the
+    /// peter-panning figure only.
+    pub elevation_deg: f64,
+    /// The rasterizer that draws the map ([`RasterizerProfile::worst_case`] unless measured).
+    pub profile: RasterizerProfile,
+}
+
+/// The terms of (B1), in unit window depth of the map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowTerms {
+    /// `a`: texels per axis from the sample point to the farthest texel centre read.
+    pub reach: f64,
+    /// `q`: the format's quantum at the receivers' largest window depth.
+    pub quantum: f64,
+    /// `E = T + V + I`: the caster's rasterization error (the decal model's per-primitive
+    /// terms).
+    pub caster: f64,
+    /// `S`: sub-pixel snapping of the caster at the limit angle (0 unsnapped). It grows with the
+    /// caster's slope, so the slope factor carries it (`2^−b` per unit of `m`) and only the
+    /// clamp counts it here.
+    pub snap: f64,
+    /// The slope factor per unit of `m = max(|gₓ|, |g_y|)`, before f32 rounding: `2a + 2^−b`
+    /// (`b` the profile's sub-pixel bits; `2a` unsnapped).
+    pub slope_factor: f64,
+    /// `T + V`: the lookup's rounding of the receiver's light-space depth.
+    pub lookup: f64,
+    /// `R`: rounding of a UNORM texel read back as float.
+    pub read: f64,
+    /// `K = q + E + (T + V) + R`.
+    pub constant: f64,
+    /// `F` at the limit angle and the nearest receiver (`+∞` where a spot light's rays can
+    /// reach 90°).
+    pub footprint: f64,
+}
+
+/// Direct3D 10–12's rasterizer-state depth bias.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct D3dBias {
+    /// `DepthBias` (INT).
+    pub depth_bias: i32,
+    /// `SlopeScaledDepthBias` (FLOAT).
+    pub slope_scaled: f32,
+    /// `DepthBiasClamp` (FLOAT; 0: none).
+    pub clamp: f32,
+}
+
+/// The recommendation for a [`ShadowMap`]. Signs are as each API adds the bias to the caster's
+/// depth: positive (away from the light) under `[−1, 1]` and `[0, 1]`, negative reversed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShadowBias {
+    /// The terms.
+    pub terms: ShadowTerms,
+    /// `glPolygonOffset(factor, units)` with the profile's `r`, and the clamp for
+    /// `glPolygonOffsetClamp` (0: none).
+    pub gl_polygon_offset: [f64; 3],
+    /// Direct3D's `DepthBias`, `SlopeScaledDepthBias`, `DepthBiasClamp`.
+    pub d3d: D3dBias,
+    /// Vulkan's `depthBiasConstantFactor`, `depthBiasSlopeFactor`, `depthBiasClamp` (default
+    /// `LEAST_REPRESENTABLE_VALUE_FORMAT` representation).
+    pub vulkan: [f32; 3],
+    /// WebGPU's `DepthBiasState`: `depthBias` (integer).
+    pub webgpu_depth_bias: i32,
+    /// WebGPU's `depthBiasSlopeScale` and `depthBiasClamp`.
+    pub webgpu_slope_clamp: [f32; 2],
+    /// Receiver side: the world distance to move the receiver toward the light, at the
+    /// farthest receiver (+∞ where no such offset exists: a spot light whose rays can graze the
+    /// limit, or whose depth range ends within the bias behind the farthest receiver).
+    pub along_light: f64,
+    /// Receiver side: the world distance to move the receiver along its normal (+∞ where the
+    /// bias reaches past a spot light's far plane at the farthest receiver).
+    pub along_normal: f64,
+    /// The most a caster within the limit angle is biased, as a distance along the light: a
+    /// caster thinner than this casts no shadow (+∞ without a clamp).
+    pub leak_thickness: f64,
+    /// How far from a wall standing on the ground its shadow starts, at the light's elevation:
+    /// `leak_thickness·cos e`.
+    pub peter_panning: f64,
+}
+
+/// The smallest caster-side bias that (B1) guarantees keeps every surface within the limit
+/// angle free of acne, in every API's units, with its receiver-side alternatives and its cost
+/// (module docs).
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] or [`ErrorKind::Domain`] for a bad input, naming it;
+/// [`ErrorKind::Unresolvable`] where the bias would span the map's whole depth range (the
+/// detail names the remedy); [`ErrorKind::Overflow`] where an integer bias does not fit.
+pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
+    let terms = shadow_terms(map)?;
+    let needed = terms.constant + terms.snap + terms.footprint;
+    // An infinite footprint (a spot light whose rays can graze) sets no clamp: not a refusal.
+    if (needed.is_finite() && needed >= 1.0) || terms.constant.is_nan() || terms.constant >= 1.0 {
+        return Err(Error::new(
+            ErrorKind::Unresolvable,
+            if terms.footprint > terms.constant {
+                "no shadow bias is acne-free at this limit angle: the texel footprint spans the map's depth range (raise the resolution, use a smaller kernel, or lower limit_angle_deg)"
+            } else {
+                "no shadow bias is acne-free: the rounding terms span the map's depth range (tighten the light's near/far or use a deeper format)"
+            },
+        )
+        .with_value("limit_angle_deg", map.limit_angle_deg));
+    }
+    let sign = if map.clip == ClipDepth::ReversedZeroToOne {
+        -1.0
+    } else {
+        1.0
+    };
+    let factor = round_up_f32(terms.slope_factor * (1.0 + 6.0 * U));
+    let clamp = if needed.is_finite() { needed } else { 0.0 };
+    let clamp32 = round_up_f32(clamp);
+    // The smallest resolvable difference over the receivers: UNORM's is constant; float's
+    // grows with depth, so take it at the smallest window depth.
+    let w_small = smallest_window_depth(map)?;
+    let units_of = |r: f64| -> f64 { terms.constant / r };
+    let gl_r = resolvable_difference(BiasApi::OpenGl, map.format, w_small)?
+        * map.profile.resolvable[crate::recommend::profile_index(map.format)];
+    let d3d_r = resolvable_difference(BiasApi::Direct3d, map.format, w_small)?;
+    let vk_r = resolvable_difference(BiasApi::Vulkan, map.format, w_small)?;
+    let gl_units = units_of(gl_r);
+    let vk_count = units_of(vk_r);
+    if vk_count.is_nan() || vk_count > f64::from(i32::MAX) {
+        return Err(Error::new(
+            ErrorKind::Unresolvable,
+            "on D32F the polygon-offset unit vanishes at the receivers' smallest window depth: keep receivers off window depth 0 (the far plane under reversed Z, the near plane otherwise) or bias on the receiver side",
+        )
+        .with_value("receiver_near", map.receiver_depths[0]));
+    }
+    let int_units = |x: f64, what: &'static str| -> Result<i32> {
+        let c = x.ceil();
+        if c.is_nan() || c > f64::from(i32::MAX) {
+            return Err(Error::new(ErrorKind::Overflow, what));
+        }
+        Ok(c as i32)
+    };
+    let d3d_units = int_units(
+        units_of(d3d_r),
+        "the Direct3D DepthBias does not fit in INT",
+    )?;
+    let webgpu_units = int_units(units_of(vk_r), "the WebGPU depthBias does not fit in i32")?;
+    let vk_units = round_up_f32(units_of(vk_r));
+    let isign = sign as i32;
+    let (along_light, along_normal, leak) = receiver_offsets(map, &terms)?;
+    let e = map.elevation_deg.to_radians();
+    Ok(ShadowBias {
+        terms,
+        gl_polygon_offset: [
+            sign * f64::from(factor),
+            sign * gl_units.ceil(),
+            sign * f64::from(clamp32),
+        ],
+        d3d: D3dBias {
+            depth_bias: isign * d3d_units,
+            slope_scaled: sign as f32 * factor,
+            clamp: sign as f32 * clamp32,
+        },
+        vulkan: [
+            sign as f32 * vk_units,
+            sign as f32 * factor,
+            sign as f32 * clamp32,
+        ],
+        webgpu_depth_bias: isign * webgpu_units,
+        webgpu_slope_clamp: [sign as f32 * factor, sign as f32 * clamp32],
+        along_light,
+        along_normal,
+        leak_thickness: leak,
+        peter_panning: leak * e.cos(),
+    })
+}
+
+/// The terms of (B1) for `map` (module docs).
+///
+/// # Errors
+/// As [`shadow_bias`], without the refusal.
+pub fn shadow_terms(map: &ShadowMap) -> Result<ShadowTerms> {
+    check(map)?;
+    let reach = map.lookup.reach()?;
+    let theta = map.limit_angle_deg.to_radians();
+    let slope = std::f64::consts::SQRT_2 * theta.tan();
+    let [d1, d2] = map.receiver_depths;
+    let [w_px, h_px] = map.resolution.map(f64::from);
+    let (caster, snap, lookup, quantum, footprint, w_max) = match map.light {
+        LightProjection::Perspective(frustum) => {
+            let scene = Scene {
+                frustum,
+                viewport: map.resolution,
+                format: map.format,
+                depth_range: [d1, d2],
+                slope,
+                exact_depth: false,
+                depth_test: if map.clip == ClipDepth::ReversedZeroToOne {
+                    DepthTest::Greater
+                } else {
+                    DepthTest::Less
+                },
+                base: Base::InsideFrustum,
+                profile: map.profile,
+                footprint: None,
+                pipeline: crate::model::Pipeline {
+                    world_reach: map.world_reach,
+                    ..Default::default()
+                },
+            };
+            let t = crate::recommend::clip_error_terms(&scene, map.clip)?;
+            let (l, r, b, top, n, f) = frustum.parameters();
+            let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
+            let (ex, ey) = (l.abs().max(r.abs()) / n, b.abs().max(top.abs()) / n);
+            let psi_xy = sx * ex / (1.0 + ex * ex).sqrt() + sy * ey / (1.0 + ey * ey).sqrt();
+            let psi = (ex.hypot(ey)).atan();
+            let bb = f * n / (f - n);
+            let ray = theta + psi;
+            let footprint = if ray >= std::f64::consts::FRAC_PI_2 {
+                f64::INFINITY
+            } else {
+                reach * bb / (n * d1) * (psi_xy + ray.tan() * sx.hypot(sy))
+            };
+            let mapping = crate::precision::DepthMapping::projection(n, f, map.clip)?;
+            let w_max = mapping.window_depth(d1)?.max(mapping.window_depth(d2)?);
+            (
+                t.plane,
+                t.snap,
+                t.transform + t.vertex,
+                t.quantum,
+                footprint,
+                w_max,
+            )
+        }
+        LightProjection::Orthographic(ortho) => {
+            let decal = crate::decal::Decal {
+                viewport: map.resolution,
+                format: map.format,
+                depth_range: [d1, d2],
+                slope,
+                exact_depth: false,
+                snapping: map.profile.snapping,
+                base: Base::InsideFrustum,
+                profile: Some(map.profile),
+                footprint: None,
+                depth_test: None,
+                pipeline: crate::model::Pipeline::default(),
+            };
+            let t = crate::orthographic::error_terms(
+                &crate::orthographic::Scene { ortho, decal },
+                map.clip,
+            )?;
+            let (l, r, b, top, n, f) = ortho.parameters();
+            let span = f - n;
+            let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
+            let vertex = if map.world_reach > 0.0 {
+                t.vertex.max(ortho_world_term(map, &ortho, slope)?)
+            } else {
+                t.vertex
+            };
+            let footprint = reach * theta.tan() * sx.hypot(sy) / span;
+            let w_max = ortho
+                .window_depth(map.clip, d1)?
+                .max(ortho.window_depth(map.clip, d2)?);
+            let plane = t.plane - t.vertex + vertex;
+            (
+                plane,
+                t.snap,
+                t.transform + vertex,
+                t.quantum,
+                footprint,
+                w_max,
+            )
+        }
+    };
+    let read = if map.format.is_unorm() {
+        U * w_max
+    } else {
+        0.0
+    };
+    let snap_factor = match map.profile.snapping {
+        crate::profile::Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32)),
+        crate::profile::Snapping::Unsnapped => 0.0,
+    };
+    Ok(ShadowTerms {
+        reach,
+        quantum,
+        caster,
+        snap,
+        slope_factor: 2.0 * reach + snap_factor,
+        lookup,
+        read,
+        constant: quantum + caster + lookup + read,
+        footprint,
+    })
+}
+
+/// The f32 model-view term of an orthographic light ([`crate::model::vertex`]): the form of a
+/// plane of slope `s` has `|aₓ| ≤ |A|·s·(r − l)/2`, `|a_y| ≤ |A|·s·(t − b)/2` (`A` the NDC
+/// depth per eye unit) and `|a₀| ≤ 1 + |aₓ| + |a_y|` (the map's centre is at most one NDC unit
+/// per axis from a point inside it); `w = 1`, and a point of the box lies within
+/// `√(X² + Y² + max(|n|, |f|)²)` of the light.
+fn ortho_world_term(map: &ShadowMap, ortho: &Ortho, slope: f64) -> Result<f64> {
+    let m = crate::orthographic::ortho_f64(ortho, map.clip);
+    let (l, r, b, t, n, f) = ortho.parameters();
+    let a = m[10].abs();
+    let (ax, ay) = (
+        a * slope * (r - l).abs() / 2.0,
+        a * slope * (t - b).abs() / 2.0,
+    );
+    let form = PlaneForm {
+        a0: 1.0 + ax + ay,
+        ax,
+        ay,
+    };
+    let extent = (l.abs().max(r.abs()).powi(2)
+        + b.abs().max(t.abs()).powi(2)
+        + n.abs().max(f.abs()).powi(2))
+    .sqrt();
+    let per_ndc = if map.clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let errors = vertex::world_errors(&m, map.world_reach, extent);
+    crate::domain::representable(
+        per_ndc * form.bound(errors),
+        "the vertex term overflows f64",
+    )
+}
+
+/// The receivers' smallest window depth in the map (where float depth's `r` is smallest).
+fn smallest_window_depth(map: &ShadowMap) -> Result<f64> {
+    let [d1, d2] = map.receiver_depths;
+    Ok(match map.light {
+        LightProjection::Perspective(frustum) => {
+            let (_, _, _, _, n, f) = frustum.parameters();
+            let mapping = crate::precision::DepthMapping::projection(n, f, map.clip)?;
+            mapping.window_depth(d1)?.min(mapping.window_depth(d2)?)
+        }
+        LightProjection::Orthographic(ortho) => ortho
+            .window_depth(map.clip, d1)?
+            .min(ortho.window_depth(map.clip, d2)?),
+    })
+}
+
+/// `(along_light, along_normal, leak_thickness)` (module docs), at the farthest receiver.
+fn receiver_offsets(map: &ShadowMap, terms: &ShadowTerms) -> Result<(f64, f64, f64)> {
+    let theta = map.limit_angle_deg.to_radians();
+    let d2 = map.receiver_depths[1];
+    // Constant and footprint-per-tan as distances along the light.
+    let (k_l, d_l, ray_limit) = match map.light {
+        LightProjection::Orthographic(ortho) => {
+            let span = ortho.far() - ortho.near();
+            let per_tan = if theta == 0.0 {
+                0.0
+            } else {
+                terms.footprint / theta.tan()
+            };
+            ((terms.constant + terms.snap) * span, per_tan * span, theta)
+        }
+        LightProjection::Perspective(frustum) => {
+            let (l, r, b, t, n, f) = frustum.parameters();
+            let bb = f * n / (f - n);
+            let (ex, ey) = (l.abs().max(r.abs()) / n, b.abs().max(t.abs()) / n);
+            let along = (1.0 + ex * ex + ey * ey).sqrt();
+            let (w_px, h_px) = (f64::from(map.resolution[0]), f64::from(map.resolution[1]));
+            let (sx, sy) = ((r - l).abs() / w_px, (t - b).abs() / h_px);
+            let psi_xy = sx * ex / (1.0 + ex * ex).sqrt() + sy * ey / (1.0 + ey * ey).sqrt();
+            // Eye shift for a window change β at d₂: β·d²/(b − β·d).
+            // (+∞ where β reaches the end of the depth range: no receiver-side offset along the
+            // light gives that window change there.)
+            let shift = |beta: f64| -> Result<f64> {
+                let den = bb - beta * d2;
+                Ok(if den <= 0.0 {
+                    f64::INFINITY
+                } else {
+                    beta * d2 * d2 / den
+                })
+            };
+            let base = terms.constant + terms.snap + terms.reach * bb / (n * d2) * psi_xy;
+            let per_tan = terms.reach * bb / (n * d2) * sx.hypot(sy);
+            let k = shift(base)? * along;
+            // The footprint's share, linear in the window change near 0: its eye size is the
+            // shift of base + per_tan less that of base, at tan θ = 1 (an upper bound by the
+            // convexity of the shift in β is not needed: d_l is used only with tan θ ≤ its
+            // value at the limit, below).
+            let psi = ex.hypot(ey).atan();
+            let ray = (theta + psi).min(std::f64::consts::FRAC_PI_2);
+            let d = if k.is_infinite() {
+                f64::INFINITY
+            } else if ray < std::f64::consts::FRAC_PI_2 && ray > 0.0 {
+                (shift(base + per_tan * ray.tan())? * along - k) / ray.tan()
+            } else {
+                shift(per_tan)? * along
+            };
+            (k, d, ray)
+        }
+    };
+    if !(k_l.is_finite() && d_l.is_finite()) {
+        return Ok((f64::INFINITY, f64::INFINITY, f64::INFINITY));
+    }
+    let along_light = if ray_limit >= std::f64::consts::FRAC_PI_2 {
+        f64::INFINITY
+    } else {
+        k_l + d_l * ray_limit.tan()
+    };
+    // max over θ ≤ limit of K·cos θ + D·sin θ: √(K² + D²) at atan(D/K) if inside, else at the
+    // limit.
+    let peak = d_l.atan2(k_l);
+    let along_normal = if peak <= ray_limit {
+        k_l.hypot(d_l)
+    } else {
+        k_l * ray_limit.cos() + d_l * ray_limit.sin()
+    };
+    Ok((along_light, along_normal, along_light))
+}
+
+/// The smallest f32 not below `x`.
+fn round_up_f32(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) >= x {
+        y
+    } else {
+        f32::from_bits(y.to_bits() + 1)
+    }
+}
+
+/// The rules: receivers inside `[n, f]` and ordered, a nonzero map, an angle in `[0, 90)`, an
+/// elevation in `(0, 90]`, a finite non-negative world reach, a finite far plane.
+///
+/// # Errors
+/// [`ErrorKind::NotFinite`] and [`ErrorKind::Domain`], naming the input.
+pub fn check(map: &ShadowMap) -> Result<()> {
+    if map.resolution.contains(&0) {
+        return Err(domain("the shadow map needs a nonzero width and height"));
+    }
+    let a = map.limit_angle_deg;
+    finite(a, "the limit angle is NaN or infinite")
+        .map_err(|e| e.with_value("limit_angle_deg", a))?;
+    if !(0.0..90.0).contains(&a) {
+        return Err(
+            domain("the limit angle must lie in [0, 90) degrees").with_value("limit_angle_deg", a)
+        );
+    }
+    let e = map.elevation_deg;
+    finite(e, "the light's elevation is NaN or infinite")
+        .map_err(|x| x.with_value("elevation_deg", e))?;
+    if !(e > 0.0 && e <= 90.0) {
+        return Err(domain("the light's elevation must lie in (0, 90] degrees")
+            .with_value("elevation_deg", e));
+    }
+    let w = map.world_reach;
+    finite(w, "world_reach is NaN or infinite").map_err(|x| x.with_value("world_reach", w))?;
+    if w < 0.0 {
+        return Err(domain("world_reach must be >= 0").with_value("world_reach", w));
+    }
+    let [d1, d2] = map.receiver_depths;
+    for (name, d) in [("receiver_near", d1), ("receiver_far", d2)] {
+        finite(d, "a receiver depth is NaN or infinite").map_err(|x| x.with_value(name, d))?;
+    }
+    let (n, f) = match map.light {
+        LightProjection::Orthographic(o) => (o.near(), o.far()),
+        LightProjection::Perspective(fr) => {
+            let (_, _, _, _, n, f) = fr.parameters();
+            if f.is_infinite() {
+                return Err(domain("a spot light's far plane must be finite").with_value("f", f));
+            }
+            (n, f)
+        }
+    };
+    if !(n <= d1 && d1 <= d2 && d2 <= f) {
+        return Err(domain(
+            "the receiver depths must satisfy n <= receiver_near <= receiver_far <= f",
+        )
+        .with_value(
+            if d1 > d2 || d1 < n {
+                "receiver_near"
+            } else {
+                "receiver_far"
+            },
+            if d1 > d2 || d1 < n { d1 } else { d2 },
+        ));
+    }
+    let r = map.profile.resolvable[crate::recommend::profile_index(map.format)];
+    if !(r.is_finite() && r > 0.0) {
+        return Err(
+            domain("the profile's resolvable r for this format must be finite and > 0")
+                .with_value("resolvable", r),
+        );
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ground_map(lookup: Lookup, angle: f64) -> ShadowMap {
+        ShadowMap {
+            light: LightProjection::Orthographic(
+                Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap(),
+            ),
+            clip: ClipDepth::NegOneToOne,
+            resolution: [1024, 1024],
+            format: DepthFormat::Unorm24,
+            lookup,
+            limit_angle_deg: angle,
+            receiver_depths: [2.0, 30.0],
+            world_reach: 0.0,
+            elevation_deg: 90.0 - angle,
+            profile: RasterizerProfile::worst_case(),
+        }
+    }
+
+    /// The slope factor is `2a`; the footprint at the limit is `a·tan θ·σ/(f − n)` (computed
+    /// here from the texel geometry, not from the code); the constant holds the quantum.
+    #[test]
+    fn footprint_and_factor_follow_the_kernel() {
+        for (lookup, a) in [
+            (Lookup::Nearest, 0.5),
+            (Lookup::Hardware2x2, 1.0),
+            (Lookup::Pcf(3), 1.5),
+            (Lookup::Radius(2.0), 2.5),
+        ] {
+            let map = ground_map(lookup, 60.0);
+            let bias = shadow_bias(&map).unwrap();
+            let texel = 16.0 / 1024.0;
+            let want = a * 3f64.sqrt() * texel * 2f64.sqrt() / 28.0;
+            assert!(
+                (bias.terms.footprint - want).abs() < 1e-12 * want,
+                "{lookup:?}"
+            );
+            let factor = 2.0 * a + 1.0 / 256.0; // 8 sub-pixel bits in the worst case
+            assert!(f64::from(bias.d3d.slope_scaled) >= factor);
+            assert!(f64::from(bias.d3d.slope_scaled) < factor * (1.0 + 1e-6));
+            assert!(bias.terms.constant > 1.0 / 16_777_215.0);
+            assert!(
+                bias.terms.constant < 20.0 / 16_777_215.0,
+                "{:?}",
+                bias.terms
+            );
+            // The clamp is the constant plus the footprint at the limit.
+            let clamp = f64::from(bias.d3d.clamp);
+            assert!(clamp >= bias.terms.constant + bias.terms.snap + bias.terms.footprint);
+            // Receiver side: along the light, the window bias times f − n.
+            let along = (bias.terms.constant + bias.terms.snap + bias.terms.footprint) * 28.0;
+            assert!((bias.along_light - along).abs() < 1e-9 * along);
+            assert!(bias.along_normal <= bias.along_light && bias.along_normal > 0.0);
+            // D3D's integer covers the constant in units of 1/(2^24 − 1).
+            assert!(f64::from(bias.d3d.depth_bias) / 16_777_215.0 >= bias.terms.constant);
+            assert!(bias.webgpu_depth_bias >= bias.d3d.depth_bias);
+        }
+    }
+
+    #[test]
+    fn reversed_z_flips_the_signs() {
+        let mut map = ground_map(Lookup::Nearest, 45.0);
+        map.clip = ClipDepth::ReversedZeroToOne;
+        map.format = DepthFormat::Float32;
+        // Receivers at the far plane have window depth 0, where float's unit vanishes.
+        let err = shadow_bias(&map).unwrap_err();
+        assert_eq!(
+            (err.kind(), err.input().unwrap().0),
+            (ErrorKind::Unresolvable, "receiver_near")
+        );
+        map.receiver_depths = [2.0, 28.0];
+        let bias = shadow_bias(&map).unwrap();
+        assert!(bias.gl_polygon_offset[0] < 0.0 && bias.gl_polygon_offset[1] < 0.0);
+        assert!(bias.d3d.depth_bias < 0 && bias.vulkan[2] < 0.0);
+        assert!(bias.along_light > 0.0);
+    }
+
+    #[test]
+    fn grazing_limits_are_refused_with_the_footprint_remedy() {
+        let mut map = ground_map(Lookup::Pcf(5), 89.9);
+        map.resolution = [64, 64];
+        let err = shadow_bias(&map).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::Unresolvable);
+        assert!(err.detail().contains("resolution"), "{err}");
+        map.limit_angle_deg = 90.0;
+        assert_eq!(shadow_bias(&map).unwrap_err().kind(), ErrorKind::Domain);
+        map.limit_angle_deg = 30.0;
+        map.receiver_depths = [1.0, 30.0];
+        let err = shadow_bias(&map).unwrap_err();
+        assert_eq!(err.input().unwrap().0, "receiver_near");
+        map.receiver_depths = [2.0, 30.0];
+        map.lookup = Lookup::Pcf(0);
+        assert_eq!(shadow_bias(&map).unwrap_err().input().unwrap().0, "pcf");
+    }
+
+    /// A spot light: the footprint shrinks with the nearest receiver's distance, and a wide
+    /// cone at a steep limit gets no clamp.
+    #[test]
+    fn spot_lights_take_the_ray_angle() {
+        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+        let mut map = ShadowMap {
+            light: LightProjection::Perspective(frustum),
+            receiver_depths: [10.0, 50.0],
+            ..ground_map(Lookup::Nearest, 30.0)
+        };
+        let near = shadow_bias(&map).unwrap();
+        map.receiver_depths = [20.0, 50.0];
+        let far = shadow_bias(&map).unwrap();
+        assert!((near.terms.footprint / far.terms.footprint - 2.0).abs() < 1e-9);
+        map.limit_angle_deg = 60.0; // 60° + atan(0.707) = 95°
+        let open = shadow_bias(&map).unwrap();
+        assert!(open.terms.footprint.is_infinite());
+        assert_eq!(open.d3d.clamp, 0.0);
+        assert!(open.along_normal.is_finite() && open.along_light.is_infinite());
+    }
+}
