@@ -39,6 +39,8 @@ pub struct Error {
     kind: ErrorKind,
     detail: &'static str,
     input: Option<(&'static str, Value)>,
+    /// The bound the input broke, by name and value (`n = 0.1`), where the check knew it.
+    bound: Option<(&'static str, u64)>,
 }
 
 impl Error {
@@ -47,6 +49,7 @@ impl Error {
             kind,
             detail,
             input: None,
+            bound: None,
         }
     }
 
@@ -54,6 +57,13 @@ impl Error {
     /// detail already names it) and its value.
     pub(crate) const fn with_value(mut self, name: &'static str, value: f64) -> Self {
         self.input = Some((name, Value::Real(value.to_bits())));
+        self
+    }
+
+    /// This error, quoting the bound the input broke: `name` (as the caller knows it, e.g. `n`,
+    /// the near plane) and its value.
+    pub(crate) const fn with_bound(mut self, name: &'static str, value: f64) -> Self {
+        self.bound = Some((name, value.to_bits()));
         self
     }
 
@@ -98,13 +108,19 @@ impl fmt::Display for Error {
     /// than 0 (n = -1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.detail)?;
-        match self.input {
+        let bound = |f: &mut fmt::Formatter<'_>| match self.bound {
+            Some((name, bits)) => write!(f, "; {name} = {}", f64::from_bits(bits)),
             None => Ok(()),
-            Some(("", Value::Real(bits))) => write!(f, " (got {})", f64::from_bits(bits)),
-            Some((name, Value::Real(bits))) => write!(f, " ({name} = {})", f64::from_bits(bits)),
-            Some((name, Value::Integer(i))) => write!(f, " ({name} = {i})"),
-            Some((name, Value::Code(c))) => write!(f, " ({name} = 0x{c:04X})"),
+        };
+        match self.input {
+            None => return Ok(()),
+            Some(("", Value::Real(bits))) => write!(f, " (got {}", f64::from_bits(bits))?,
+            Some((name, Value::Real(bits))) => write!(f, " ({name} = {}", f64::from_bits(bits))?,
+            Some((name, Value::Integer(i))) => write!(f, " ({name} = {i}")?,
+            Some((name, Value::Code(c))) => write!(f, " ({name} = 0x{c:04X}")?,
         }
+        bound(f)?;
+        f.write_str(")")
     }
 }
 

@@ -129,13 +129,16 @@ pub struct RasterizerProfile {
     pub near_clip: NearClip,
     /// Under [`NearClip::ClippedF32`]: the clipper's measured error in the model's own units.
     /// The term `C` of a clipped base is `(window/NDC)·γ·L(A)/d₁` ([`crate::recommend`], "The
-    /// base"), with `γ = (6 + 5·6)·u` bounding every rounding of six clip stages; the probe draws
-    /// ground planes reaching 1000 and 10⁴ units behind and ahead of the camera (sloped ones,
-    /// and floors seen level and pitched, turned about the vertical), clipped by the rasterizer
-    /// on D24, and finds every pixel within `clip_ulps·u·(window/NDC)·L(A)/d` of its exact plane
-    /// (less one quantum of conversion; all of the pixel's error is put down to the clipper).
-    /// A measured profile uses `γ = clip_ulps·u`. NaN where not measured. A sampled maximum over
-    /// the probe's grounds, not a proof (`tests/gl_engine_scene.rs` checks it on other grounds).
+    /// base"), with `γ = (6 + 5·6)·u` bounding every rounding of six clip stages. The probe draws,
+    /// on D24, ground planes reaching 1000 and 10⁴ units behind and ahead of the camera (floors
+    /// seen level and pitched, turned about the vertical, and sloped planes) and 48 planes in
+    /// random directions (slopes 0.3 to 10, crossing the view axis 1 to 40 units ahead, reaching
+    /// 100 times that), through a centred, an off-centre and an axis-off frustum; each once as
+    /// given (the rasterizer clips it) and once cut to the frustum in f64. Every pixel of the
+    /// first stayed within `clip_ulps·u·(window/NDC)·L(A)/d` of its plane beyond the second's
+    /// error at that pixel (less one quantum of conversion). A measured profile uses
+    /// `γ = clip_ulps·u` (0.835 on llvmpipe). NaN where not measured. A sampled maximum, not a
+    /// proof (`tests/gl_scenes.rs` and `tests/gl_engine_scene.rs` check it on other grounds).
     pub clip_ulps: f64,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
     /// The model uses `error_ulps` only from a measured profile; every other field always.

@@ -906,16 +906,38 @@ fn gap_for_window_difference(scene: &Scene, dw: f64, d: f64) -> f64 {
     d * (x / (1.0 + x))
 }
 
+/// Checks one of the decal's eye distances against the frustum, naming the field (C
+/// `decal_near`/`decal_far`; Python `decal_depths`), its value, and the plane it crossed.
+fn check_decal_distance(planes: &crate::domain::Planes, field: &'static str, d: f64) -> Result<()> {
+    finite(d, "a decal distance is NaN or infinite").map_err(|e| e.with_value(field, d))?;
+    if d < planes.near() {
+        return Err(domain(
+            "the decal's eye distance lies in front of the near plane: pass the decal's distances along the view axis (decal_near <= decal_far, Python decal_depths), or its corners",
+        )
+        .with_value(field, d)
+        .with_bound("near plane n", planes.near()));
+    }
+    if d > planes.far() {
+        return Err(domain(
+            "the decal's eye distance lies beyond the far plane: pass distances within the frustum (Python decal_depths), or its corners",
+        )
+        .with_value(field, d)
+        .with_bound("far plane f", planes.far()));
+    }
+    Ok(())
+}
+
 fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
     let planes = scene.frustum.planes();
     let [d1, d2] = scene.depth_range;
-    planes.check_distance(d1)?;
-    planes.check_distance(d2)?;
+    check_decal_distance(&planes, "decal_near", d1)?;
+    check_decal_distance(&planes, "decal_far", d2)?;
     if d1 > d2 {
         return Err(domain(
             "the decal's depth range must be [nearest, farthest]: decal_far must be >= decal_near",
         )
-        .with_value("decal_far", d2));
+        .with_value("decal_far", d2)
+        .with_bound("decal_near", d1));
     }
     if scene.viewport.contains(&0) {
         return Err(domain("the viewport must have a nonzero width and height"));

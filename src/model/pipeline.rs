@@ -128,7 +128,8 @@ impl Pipeline {
             return Err(domain(
                 "glDepthRange's far end must lie in (depth_range_near, 1] (pass 0 and 1 for the default)",
             )
-            .with_value("depth_range_far", far));
+            .with_value("depth_range_far", far)
+            .with_bound("depth_range_near", near));
         }
         Ok(())
     }

@@ -1419,14 +1419,70 @@ unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64, f64)> {
             .map(View::triangle)
             .collect(),
     });
+    // The clipper's error is also measured through off-centre frusta (the view axis inside and
+    // outside the screen), where other planes cut the grounds.
+    // And on planes in random directions (slopes 0.3 to 10, crossing the view axis 1 to 40 units
+    // ahead, reaching 100 times that behind and ahead), through all three frusta: the model
+    // takes the largest, a sampled maximum like error_ulps.
+    let random = random_clipped_grounds();
+    let views: Vec<[f64; 4]> = std::iter::once(CENTRED_NEAR_SIDES)
+        .chain(SKEWED_NEAR_SIDES)
+        .collect();
+    let extra: Vec<([[f64; 3]; 3], [f64; 4])> = grounds
+        .iter()
+        .flat_map(|g| SKEWED_NEAR_SIDES.iter().map(move |m| (*g, *m)))
+        .chain(
+            random
+                .iter()
+                .enumerate()
+                .map(|(i, g)| (*g, views[i % views.len()])),
+        )
+        .collect();
+    let (mut worst_given, mut worst_preclipped, mut clip_ulps) = (0.0f64, 0.0f64, 0.0f64);
+    // Each ground drawn as given and cut to the frustum in f64 first (nothing left for the
+    // rasterizer to clip): the clipper's error is the excess of the first over the second. At
+    // most TILES² tiles a draw.
+    for batch in extra.chunks(TILES * TILES / 2) {
+        let mut scenes = Vec::with_capacity(2 * batch.len());
+        for (g, sides) in batch {
+            let matrix = near_view_matrix(*sides);
+            scenes.push(Scene {
+                matrix,
+                triangles: vec![View::triangle(*g)],
+            });
+            scenes.push(Scene {
+                matrix,
+                triangles: cut_to_frustum(*g, *sides)
+                    .into_iter()
+                    .map(View::triangle)
+                    .collect(),
+            });
+        }
+        let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
+        for (i, (ground, _)) in batch.iter().enumerate() {
+            let unclipped = pixel_errors(&scenes[2 * i + 1], &stored[2 * i + 1]);
+            clip_ulps = clip_ulps.max(clipper_ulps(
+                &view,
+                ground,
+                &scenes[2 * i],
+                &stored[2 * i],
+                &unclipped,
+            ));
+        }
+    }
     let scenes: Vec<Scene> = given.chain(preclipped).collect();
     let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
-    let (mut worst_given, mut worst_preclipped, mut clip_ulps) = (0.0f64, 0.0f64, 0.0f64);
     let count = grounds.len();
     for i in 0..count {
-        clip_ulps = clip_ulps.max(clipper_ulps(&view, &grounds[i], &scenes[i], &stored[i]));
         let given_errors = pixel_errors(&scenes[i], &stored[i]);
         let preclipped_errors = pixel_errors(&scenes[count + i], &stored[count + i]);
+        clip_ulps = clip_ulps.max(clipper_ulps(
+            &view,
+            &grounds[i],
+            &scenes[i],
+            &stored[i],
+            &preclipped_errors,
+        ));
         let both: Vec<(f64, f64)> = given_errors
             .iter()
             .zip(&preclipped_errors)
@@ -1453,14 +1509,21 @@ unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64, f64)> {
 }
 
 /// The clipper's error on one ground drawn as given, in the model's own units
-/// ([`RasterizerProfile::clip_ulps`]): the largest `(|stored − exact| − q)⁺·d / (½·2⁻²⁴·L(A))`
-/// over the pixels, `d` the pixel's eye depth, `q` one D24 quantum of conversion, `A` the
+/// ([`RasterizerProfile::clip_ulps`]): the largest `(|stored − exact| − e − q)⁺·d / (½·2⁻²⁴·L(A))`
+/// over the pixels, `e` the error at the same pixel of the same ground cut to the frustum in
+/// f64 before drawing (`unclipped`: what the rasterizer errs without clipping), `d` the pixel's
+/// eye depth, `q` one D24 quantum of conversion, `A` the
 /// magnitudes of the ground's clip coordinates for its reach `R` (the largest eye coordinate of
 /// its corners: `A = ((|m0| + |m8|)·R, (|m5| + |m9|)·R, |m10|·R + |m14|, R)`), and `L` the
 /// ground plane's form on clip coordinates (`|aₓ|·A_x + |a_y|·A_y + A_z + |a₀|·A_w`, `aₓ`, `a_y`,
-/// `a₀` its NDC depth plane) — the model's term `C` with `clip_ulps·u` for its `γ`. Everything
-/// the pixel errs by is put down to the clipper, the plane's own error included.
-fn clipper_ulps(view: &View, ground: &[[f64; 3]; 3], scene: &Scene, stored: &[f64]) -> f64 {
+/// `a₀` its NDC depth plane) — the model's term `C` with `clip_ulps·u` for its `γ`.
+fn clipper_ulps(
+    view: &View,
+    ground: &[[f64; 3]; 3],
+    scene: &Scene,
+    stored: &[f64],
+    unclipped: &[Option<f64>],
+) -> f64 {
     let reach = ground.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
     let m = scene.matrix.map(f64::from);
     let a = [
@@ -1485,8 +1548,9 @@ fn clipper_ulps(view: &View, ground: &[[f64; 3]; 3], scene: &Scene, stored: &[f6
     (0..SIZE * SIZE)
         .filter_map(|i| {
             let exact = plane.depth_inside(i % SIZE, i / SIZE)?;
+            let own = unclipped[i]? * q;
             let d = view.distance_at_depth(exact);
-            Some(((stored[i] - exact).abs() - q).max(0.0) * d / unit)
+            Some(((stored[i] - exact).abs() - own - q).max(0.0) * d / unit)
         })
         .fold(0.0, f64::max)
 }
@@ -1503,6 +1567,80 @@ fn pixel_errors(scene: &Scene, stored: &[f64]) -> Vec<Option<f64>> {
                 .find_map(|p| p.depth_inside(i % SIZE, i / SIZE))?;
             Some((stored[i] - exact).abs() / q)
         })
+        .collect()
+}
+
+/// Planes in random directions for [`near_clip`]'s clipper figure: slopes 0.3, 1, 3 and 10 in
+/// random directions, crossing the view axis 1 to 40 units ahead, each a triangle holding the
+/// disc of radius 100 times that distance around the axis point (so it runs behind the camera).
+fn random_clipped_grounds() -> Vec<[[f64; 3]; 3]> {
+    let mut state: u64 = 0x0C11_2026_1126;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..48)
+        .map(|i| {
+            let slope = [0.3, 1.0, 3.0, 10.0][i % 4];
+            let angle = std::f64::consts::TAU * next();
+            let (sx, sy) = (slope * angle.cos(), slope * angle.sin());
+            let d = 10f64.powf(1.6 * next());
+            let reach = 100.0 * d;
+            let on = |x: f64, y: f64| [x, y, -d + sx * x + sy * y];
+            [
+                on(-1.8 * reach, reach),
+                on(1.8 * reach, reach),
+                on(0.0, -2.0 * reach),
+            ]
+        })
+        .collect()
+}
+
+/// The near-clip view's sides `(l, r, b, t)` on its near plane (n = 0.1, f = 1000).
+const CENTRED_NEAR_SIDES: [f64; 4] = [-0.1, 0.1, -0.05625, 0.05625];
+
+/// Off-centre sides with the near-clip view's `n` and `f`: the view axis on screen, off its
+/// centre, and the view axis off the screen.
+const SKEWED_NEAR_SIDES: [[f64; 4]; 2] = [
+    [-0.04, 0.13, -0.067, 0.034],
+    [0.015, 0.16, 0.006, 0.062],
+];
+
+/// `glFrustum(l, r, b, t, 0.1, 1000)` in f64, each element rounded to f32 (column-major).
+fn near_view_matrix([l, r, b, t]: [f64; 4]) -> [f32; 16] {
+    let (n, f) = (NEAR_VIEW.n, NEAR_VIEW.f);
+    [
+        2.0 * n / (r - l),
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        2.0 * n / (t - b),
+        0.0,
+        0.0,
+        (r + l) / (r - l),
+        (t + b) / (t - b),
+        -(f + n) / (f - n),
+        -1.0,
+        0.0,
+        0.0,
+        -2.0 * f * n / (f - n),
+        0.0,
+    ]
+    .map(|x| x as f32)
+}
+
+/// The part of eye-space triangle `t` inside the frustum of `sides` (n = 0.1, f = 1000), cut
+/// in f64 by [`crate::recommend::clip_to_frustum`], as a fan of triangles.
+fn cut_to_frustum(t: [[f64; 3]; 3], [l, r, b, tp]: [f64; 4]) -> Vec<[[f64; 3]; 3]> {
+    let Ok(frustum) = crate::projection::Frustum::new(l, r, b, tp, NEAR_VIEW.n, NEAR_VIEW.f) else {
+        return Vec::new();
+    };
+    let polygon = crate::recommend::clip_to_frustum(&frustum, &t).unwrap_or_default();
+    (2..polygon.len())
+        .map(|i| [polygon[0], polygon[i - 1], polygon[i]])
         .collect()
 }
 
