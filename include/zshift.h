@@ -8,8 +8,9 @@
  *        rasterizer, for what you know about the decal (ZshiftDecal: viewport, depth format,
  *        sub-pixel bits, depth_func; its eye-space corners in decal_corners (any plane, ground
  *        under a level camera included) or its eye distances and slope; base_reach if the
- *        rasterizer clips the base; world_reach or view_matrix + world_box if vertices are in
- *        world space; viewport_x/y, depth_range_near/far if not 0 / 0..1; profile = NULL, or
+ *        rasterizer clips the base; in `pipeline` (ZshiftPipeline, zeroed = defaults):
+ *        world_reach or view_matrix + world_box if vertices are in world space, viewport_x/y,
+ *        depth_range_near/far if not 0 / 0..1; profile = NULL, or
  *        what zshift_probe measured once in your own GL context for a tighter offset). Only
  *        one element changes.
  *   2. zshift_offset_matrix(proj, clip, delta, d, out)  the same, for an eye-space shift `delta`
@@ -311,6 +312,69 @@ typedef struct {
 } ZshiftProfile;
 
 /*
+ How the engine draws besides its projection matrix, shared by ZshiftScene and ZshiftDecal.
+ Zero-filled it is the default: the viewport at the framebuffer's origin, glDepthRange(0, 1),
+ vertices that reach the vertex shader in eye space.
+ */
+typedef struct {
+  /*
+   `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+   at the framebuffer's origin; split screens and editor panes have others). The
+   rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+   with the viewport's distance from it.
+   */
+  uint32_t viewport_x;
+  /*
+   `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+   */
+  uint32_t viewport_y;
+  /*
+   `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+   0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+   A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+   larger part of the NDC range.
+   */
+  double depth_range_near;
+  /*
+   `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+   */
+  double depth_range_far;
+  /*
+   0 when base and decal vertices reach the vertex shader in eye space (relative to the
+   camera, as camera-relative rendering sends them). Engines that keep vertices in world
+   space and transform them with a float view (model-view, or model-view-projection)
+   matrix on the GPU: the largest |coordinate| of the camera's position, and of every
+   model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
+   The float transform's roundings are relative to these magnitudes, not to the distance
+   from the camera; the offset gains that term.
+   */
+  double world_reach;
+  /*
+   With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+   applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+   projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+   counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+   conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+   left-to-right proj * view * model * p).
+   */
+  uint32_t eye_first;
+  /*
+   The float matrix the vertex shader applies to the positions it receives to make eye
+   coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+   world_box it tells the model each eye coordinate's rounding exactly, instead of the
+   bound from world_reach over every rotation: far tighter for a ground under a level
+   camera, and far from the world origin (README, "The scene every engine draws").
+   */
+  const float *view_matrix;
+  /*
+   With view_matrix: the box of every base and decal position the shader receives (their
+   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+   view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+   */
+  double world_box[6];
+} ZshiftPipeline;
+
+/*
  What an engine knows about a decal besides its projection matrix, for
  `zshift_recommend_for_matrix`. Fill every field: an all-zero ZshiftDecal is refused
  (viewport 0), and subpixel_bits = 0 is the most conservative value, not a default.
@@ -388,60 +452,11 @@ typedef struct {
    */
   ZshiftDepthTest depth_func;
   /*
-   `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
-   at the framebuffer's origin; split screens and editor panes have others). The
-   rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
-   with the viewport's distance from it.
+   How the engine draws besides the projection: the viewport's origin, glDepthRange,
+   world-space vertices (ZshiftPipeline; zeroed: the defaults). Perspective matrices only:
+   an orthographic one takes the zeroed record.
    */
-  uint32_t viewport_x;
-  /*
-   `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
-   */
-  uint32_t viewport_y;
-  /*
-   `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
-   0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
-   A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
-   larger part of the NDC range.
-   */
-  double depth_range_near;
-  /*
-   `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
-   */
-  double depth_range_far;
-  /*
-   0 when base and decal vertices reach the vertex shader in eye space (relative to the
-   camera, as camera-relative rendering sends them). Engines that keep vertices in world
-   space and transform them with a float view (model-view, or model-view-projection)
-   matrix on the GPU: the largest |coordinate| of the camera's position, and of every
-   model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
-   The float transform's roundings are relative to these magnitudes, not to the distance
-   from the camera; the offset gains that term.
-   */
-  double world_reach;
-  /*
-   With world_reach > 0: nonzero when the vertex shader computes the eye position first and
-   applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
-   projectionMatrix * mvPosition): only the part of its float error off the decal's plane
-   counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
-   conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
-   left-to-right proj * view * model * p).
-   */
-  uint32_t eye_first;
-  /*
-   The float matrix the vertex shader applies to the positions it receives to make eye
-   coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
-   world_box it tells the model each eye coordinate's rounding exactly, instead of the
-   bound from world_reach over every rotation: far tighter for a ground under a level
-   camera, and far from the world origin (README, "The scene every engine draws").
-   */
-  const float *view_matrix;
-  /*
-   With view_matrix: the box of every base and decal position the shader receives (their
-   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
-   view_matrix is NULL; all zeros with a view_matrix is refused (not given).
-   */
-  double world_box[6];
+  ZshiftPipeline pipeline;
 } ZshiftDecal;
 
 /*
@@ -632,60 +647,11 @@ typedef struct {
    */
   uint32_t decal_corner_count;
   /*
-   `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
-   at the framebuffer's origin; split screens and editor panes have others). The
-   rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
-   with the viewport's distance from it.
+   How the engine draws besides the projection: the viewport's origin, glDepthRange,
+   world-space vertices (a zeroed ZshiftPipeline: the viewport at the framebuffer's origin,
+   glDepthRange(0, 1), eye-space vertices).
    */
-  uint32_t viewport_x;
-  /*
-   `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
-   */
-  uint32_t viewport_y;
-  /*
-   `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
-   0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
-   A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
-   larger part of the NDC range.
-   */
-  double depth_range_near;
-  /*
-   `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
-   */
-  double depth_range_far;
-  /*
-   0 when base and decal vertices reach the vertex shader in eye space (relative to the
-   camera, as camera-relative rendering sends them). Engines that keep vertices in world
-   space and transform them with a float view (model-view, or model-view-projection)
-   matrix on the GPU: the largest |coordinate| of the camera's position, and of every
-   model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
-   The float transform's roundings are relative to these magnitudes, not to the distance
-   from the camera; the offset gains that term.
-   */
-  double world_reach;
-  /*
-   With world_reach > 0: nonzero when the vertex shader computes the eye position first and
-   applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
-   projectionMatrix * mvPosition): only the part of its float error off the decal's plane
-   counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
-   conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
-   left-to-right proj * view * model * p).
-   */
-  uint32_t eye_first;
-  /*
-   The float matrix the vertex shader applies to the positions it receives to make eye
-   coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
-   world_box it tells the model each eye coordinate's rounding exactly, instead of the
-   bound from world_reach over every rotation: far tighter for a ground under a level
-   camera, and far from the world origin (README, "The scene every engine draws").
-   */
-  const float *view_matrix;
-  /*
-   With view_matrix: the box of every base and decal position the shader receives (their
-   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
-   view_matrix is NULL; all zeros with a view_matrix is refused (not given).
-   */
-  double world_box[6];
+  ZshiftPipeline pipeline;
 } ZshiftScene;
 
 /*

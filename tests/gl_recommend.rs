@@ -178,14 +178,7 @@ fn c_scene_of(s: &zshift_harness::coplanar::Setup) -> zshift::ffi::ZshiftScene {
     let (l, r, b, t, n, f) = s.frustum();
     let (d1, d2) = s.decal_depth_range();
     zshift::ffi::ZshiftScene {
-        view_matrix: std::ptr::null(),
-        world_box: [0.0; 6],
-        eye_first: 0,
-        viewport_y: 0,
-        world_reach: 0.0,
-        depth_range_far: 0.0,
-        depth_range_near: 0.0,
-        viewport_x: 0,
+        pipeline: Default::default(),
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l,

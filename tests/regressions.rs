@@ -113,14 +113,7 @@ fn range_offset_that_overflows_is_an_error() {
 fn recommend_with_a_subnormal_near_plane_has_a_finite_bleed_gap() {
     // The input the sweep found (a wide, off-centre frustum; decal out to 1e300).
     let scene = ZshiftScene {
-        view_matrix: std::ptr::null(),
-        world_box: [0.0; 6],
-        eye_first: 0,
-        viewport_y: 0,
-        world_reach: 0.0,
-        depth_range_far: 0.0,
-        depth_range_near: 0.0,
-        viewport_x: 0,
+        pipeline: Default::default(),
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: -1e-300,
@@ -161,14 +154,7 @@ mod abi;
 fn recommend_never_returns_an_infinite_polygon_offset() {
     let scenes = [
         ZshiftScene {
-            view_matrix: std::ptr::null(),
-            world_box: [0.0; 6],
-            eye_first: 0,
-            viewport_y: 0,
-            world_reach: 0.0,
-            depth_range_far: 0.0,
-            depth_range_near: 0.0,
-            viewport_x: 0,
+            pipeline: Default::default(),
             decal_corners: std::ptr::null(),
             decal_corner_count: 0,
             l: -2464271192.763489,
@@ -190,14 +176,7 @@ fn recommend_never_returns_an_infinite_polygon_offset() {
             profile: std::ptr::null(),
         },
         ZshiftScene {
-            view_matrix: std::ptr::null(),
-            world_box: [0.0; 6],
-            eye_first: 0,
-            viewport_y: 0,
-            world_reach: 0.0,
-            depth_range_far: 0.0,
-            depth_range_near: 0.0,
-            viewport_x: 0,
+            pipeline: Default::default(),
             decal_corners: std::ptr::null(),
             decal_corner_count: 0,
             l: -7.645722780061472,
@@ -247,14 +226,7 @@ fn window_depth_at_the_top_of_f64_is_one() {
 #[test]
 fn reversed_float_recommendation_with_a_subnormal_window_depth_returns() {
     let scene = ZshiftScene {
-        view_matrix: std::ptr::null(),
-        world_box: [0.0; 6],
-        eye_first: 0,
-        viewport_y: 0,
-        world_reach: 0.0,
-        depth_range_far: 0.0,
-        depth_range_near: 0.0,
-        viewport_x: 0,
+        pipeline: Default::default(),
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: -1e-300,

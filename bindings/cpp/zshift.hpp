@@ -181,7 +181,7 @@ constexpr Scene make_scene(double l, double r, double b, double t, double n, dou
                            double slope, bool exact_depth, std::int32_t subpixel_bits) noexcept {
   return Scene{l, r, b, t, n, f, viewport_width, viewport_height, depth_format, decal_near,
                decal_far, slope, exact_depth ? 1u : 0u, subpixel_bits, ZshiftDepthTest{0u}, 0.0, nullptr,
-               nullptr, 0u, 0u, 0u, 0.0, 0.0, 0.0, 0u, nullptr, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}};
+               nullptr, 0u, ZshiftPipeline{0u, 0u, 0.0, 0.0, 0.0, 0u, nullptr, {0.0, 0.0, 0.0, 0.0, 0.0, 0.0}}};
 }
 
 /// The smallest offset zshift's error model of a real rasterizer guarantees ends z-fighting

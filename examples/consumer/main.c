@@ -44,7 +44,7 @@ static int ground_decal(const float proj[16], float decal_out[16]) {
                              1.0f, -1.7f, -11.0f, -1.0f, -1.7f, -11.0f};
   ZshiftDecal d;
   memset(&d, 0, sizeof d);
-  d.viewport_width = 1920; /* glViewport(x, y, w, h): also set viewport_x, viewport_y if not 0 */
+  d.viewport_width = 1920; /* glViewport(x, y, w, h): x, y in d.pipeline if not 0 */
   d.viewport_height = 1080;
   d.format = ZSHIFT_FORMAT_UNORM24_STENCIL8; /* GL_DEPTH24_STENCIL8, as attached */
   d.subpixel_bits = 8;                       /* glGetIntegerv(GL_SUBPIXEL_BITS) */

@@ -145,45 +145,10 @@ pub struct ZshiftDecal {
     /// so: a tie then passes, and the bleed gap is one quantum wider than under GL_LESS.
     /// Orthographic matrices: the strict tests only.
     pub depth_func: ZshiftDepthTest,
-    /// `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
-    /// at the framebuffer's origin; split screens and editor panes have others). The
-    /// rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
-    /// with the viewport's distance from it.
-    pub viewport_x: u32,
-    /// `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
-    pub viewport_y: u32,
-    /// `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
-    /// 0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
-    /// A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
-    /// larger part of the NDC range.
-    pub depth_range_near: f64,
-    /// `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
-    pub depth_range_far: f64,
-    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
-    /// camera, as camera-relative rendering sends them). Engines that keep vertices in world
-    /// space and transform them with a float view (model-view, or model-view-projection)
-    /// matrix on the GPU: the largest |coordinate| of the camera's position, and of every
-    /// model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
-    /// The float transform's roundings are relative to these magnitudes, not to the distance
-    /// from the camera; the offset gains that term.
-    pub world_reach: f64,
-    /// With world_reach > 0: nonzero when the vertex shader computes the eye position first and
-    /// applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
-    /// projectionMatrix * mvPosition): only the part of its float error off the decal's plane
-    /// counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
-    /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
-    /// left-to-right proj * view * model * p).
-    pub eye_first: u32,
-    /// The float matrix the vertex shader applies to the positions it receives to make eye
-    /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
-    /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
-    /// bound from world_reach over every rotation: far tighter for a ground under a level
-    /// camera, and far from the world origin (README, "The scene every engine draws").
-    pub view_matrix: *const f32,
-    /// With view_matrix: the box of every base and decal position the shader receives (their
-    /// world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
-    /// view_matrix is NULL; all zeros with a view_matrix is refused (not given).
-    pub world_box: [f64; 6],
+    /// How the engine draws besides the projection: the viewport's origin, glDepthRange,
+    /// world-space vertices (ZshiftPipeline; zeroed: the defaults). Perspective matrices only:
+    /// an orthographic one takes the zeroed record.
+    pub pipeline: super::ZshiftPipeline,
 }
 
 /// Converts the caller's decal to the Rust model's (every field checked) and hands it to
@@ -266,13 +231,7 @@ fn with_decal<R>(
                     .map_err(|e| e.with_code("depth_func", func))?,
             ),
         },
-        pipeline: super::recommend::pipeline_from_c(
-            [d.viewport_x, d.viewport_y],
-            [d.depth_range_near, d.depth_range_far],
-            d.world_reach,
-            d.eye_first != 0,
-            (d.view_matrix, d.world_box),
-        )?,
+        pipeline: super::recommend::pipeline_from_c(&d.pipeline)?,
     })
 }
 
@@ -338,14 +297,7 @@ impl ZshiftDecal {
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
                 depth_func: read(addr_of!((*p).depth_func)),
-                viewport_x: read(addr_of!((*p).viewport_x)),
-                viewport_y: read(addr_of!((*p).viewport_y)),
-                depth_range_near: read(addr_of!((*p).depth_range_near)),
-                depth_range_far: read(addr_of!((*p).depth_range_far)),
-                world_reach: read(addr_of!((*p).world_reach)),
-                eye_first: read(addr_of!((*p).eye_first)),
-                view_matrix: read(addr_of!((*p).view_matrix)),
-                world_box: read(addr_of!((*p).world_box)),
+                pipeline: read(addr_of!((*p).pipeline)),
             }
         }
     }

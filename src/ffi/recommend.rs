@@ -14,6 +14,76 @@ use crate::projection::{ClipDepth, Frustum};
 /// vertex positions (measured on Mesa llvmpipe): the sub-pixel snapping term is zero.
 pub const ZSHIFT_SUBPIXEL_UNSNAPPED: i32 = -1;
 
+/// How the engine draws besides its projection matrix, shared by ZshiftScene and ZshiftDecal.
+/// Zero-filled it is the default: the viewport at the framebuffer's origin, glDepthRange(0, 1),
+/// vertices that reach the vertex shader in eye space.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftPipeline {
+    /// `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
+    /// at the framebuffer's origin; split screens and editor panes have others). The
+    /// rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
+    /// with the viewport's distance from it.
+    pub viewport_x: u32,
+    /// `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
+    pub viewport_y: u32,
+    /// `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
+    /// 0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
+    /// A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
+    /// larger part of the NDC range.
+    pub depth_range_near: f64,
+    /// `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
+    pub depth_range_far: f64,
+    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
+    /// camera, as camera-relative rendering sends them). Engines that keep vertices in world
+    /// space and transform them with a float view (model-view, or model-view-projection)
+    /// matrix on the GPU: the largest |coordinate| of the camera's position, and of every
+    /// model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
+    /// The float transform's roundings are relative to these magnitudes, not to the distance
+    /// from the camera; the offset gains that term.
+    pub world_reach: f64,
+    /// With world_reach > 0: nonzero when the vertex shader computes the eye position first and
+    /// applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
+    /// projectionMatrix * mvPosition): only the part of its float error off the decal's plane
+    /// counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
+    /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
+    /// left-to-right proj * view * model * p).
+    pub eye_first: u32,
+    /// The float matrix the vertex shader applies to the positions it receives to make eye
+    /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
+    /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
+    /// bound from world_reach over every rotation: far tighter for a ground under a level
+    /// camera, and far from the world origin (README, "The scene every engine draws").
+    pub view_matrix: *const f32,
+    /// With view_matrix: the box of every base and decal position the shader receives (their
+    /// world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+    /// view_matrix is NULL; all zeros with a view_matrix is refused (not given).
+    pub world_box: [f64; 6],
+}
+
+impl Default for ZshiftPipeline {
+    /// The zero-filled record: the default pipeline.
+    fn default() -> Self {
+        Self::zeroed()
+    }
+}
+
+impl ZshiftPipeline {
+    /// The zero-filled record (the default pipeline), usable in constants.
+    pub const fn zeroed() -> Self {
+        Self {
+            viewport_x: 0,
+            viewport_y: 0,
+            depth_range_near: 0.0,
+            depth_range_far: 0.0,
+            world_reach: 0.0,
+            eye_first: 0,
+            view_matrix: std::ptr::null(),
+            world_box: [0.0; 6],
+        }
+    }
+}
+
 /// What a scene knows about one decal and the surface under it, for `zshift_recommend`.
 ///
 /// Convention: OpenGL right-handed eye space, NDC depth [-1, 1]; the base is drawn with
@@ -88,45 +158,10 @@ pub struct ZshiftScene {
     pub decal_corners: *const f32,
     /// How many corners `decal_corners` holds (3 to 64; 0 with NULL).
     pub decal_corner_count: u32,
-    /// `glViewport`'s x: the viewport's left edge in the framebuffer, pixels (0 for a viewport
-    /// at the framebuffer's origin; split screens and editor panes have others). The
-    /// rasterizer extrapolates each plane from the framebuffer's origin, so its rounding grows
-    /// with the viewport's distance from it.
-    pub viewport_x: u32,
-    /// `glViewport`'s y: the viewport's bottom edge in the framebuffer, pixels.
-    pub viewport_y: u32,
-    /// `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
-    /// 0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
-    /// A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
-    /// larger part of the NDC range.
-    pub depth_range_near: f64,
-    /// `glDepthRange`'s far end (Direct3D: MaxDepth); see depth_range_near.
-    pub depth_range_far: f64,
-    /// 0 when base and decal vertices reach the vertex shader in eye space (relative to the
-    /// camera, as camera-relative rendering sends them). Engines that keep vertices in world
-    /// space and transform them with a float view (model-view, or model-view-projection)
-    /// matrix on the GPU: the largest |coordinate| of the camera's position, and of every
-    /// model's origin, in world space (rigid matrices; with a uniform scale k, k times that).
-    /// The float transform's roundings are relative to these magnitudes, not to the distance
-    /// from the camera; the offset gains that term.
-    pub world_reach: f64,
-    /// With world_reach > 0: nonzero when the vertex shader computes the eye position first and
-    /// applies the projection to it (proj * (view * p), proj * (modelView * p), three.js's
-    /// projectionMatrix * mvPosition): only the part of its float error off the decal's plane
-    /// counts, a far smaller term (needs decal_corners). 0 (a zeroed struct) is the
-    /// conservative choice and also covers one model-view-projection matrix (mvp * p, or GLSL's
-    /// left-to-right proj * view * model * p).
-    pub eye_first: u32,
-    /// The float matrix the vertex shader applies to the positions it receives to make eye
-    /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
-    /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
-    /// bound from world_reach over every rotation: far tighter for a ground under a level
-    /// camera, and far from the world origin (README, "The scene every engine draws").
-    pub view_matrix: *const f32,
-    /// With view_matrix: the box of every base and decal position the shader receives (their
-    /// world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
-    /// view_matrix is NULL; all zeros with a view_matrix is refused (not given).
-    pub world_box: [f64; 6],
+    /// How the engine draws besides the projection: the viewport's origin, glDepthRange,
+    /// world-space vertices (a zeroed ZshiftPipeline: the viewport at the framebuffer's origin,
+    /// glDepthRange(0, 1), eye-space vertices).
+    pub pipeline: ZshiftPipeline,
 }
 
 /// The offset `zshift_recommend` computes, in every form an engine may apply it, with the
@@ -245,14 +280,7 @@ impl ZshiftScene {
                 profile: read(addr_of!((*p).profile)),
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
-                viewport_x: read(addr_of!((*p).viewport_x)),
-                viewport_y: read(addr_of!((*p).viewport_y)),
-                depth_range_near: read(addr_of!((*p).depth_range_near)),
-                depth_range_far: read(addr_of!((*p).depth_range_far)),
-                world_reach: read(addr_of!((*p).world_reach)),
-                eye_first: read(addr_of!((*p).eye_first)),
-                view_matrix: read(addr_of!((*p).view_matrix)),
-                world_box: read(addr_of!((*p).world_box)),
+                pipeline: read(addr_of!((*p).pipeline)),
             }
         }
     }
@@ -386,27 +414,17 @@ fn with_model<R>(
         depth_test,
         base,
         profile,
-        pipeline: pipeline_from_c(
-            [s.viewport_x, s.viewport_y],
-            [s.depth_range_near, s.depth_range_far],
-            s.world_reach,
-            s.eye_first != 0,
-            (s.view_matrix, s.world_box),
-        )?,
+        pipeline: pipeline_from_c(&s.pipeline)?,
     })
 }
 
-/// The model's [`crate::model::Pipeline`] from a C record's fields (`ZshiftScene`,
-/// `ZshiftDecal`): a depth range of `[0, 0]` (a zeroed struct) is `glDepthRange(0, 1)`; a NULL
-/// view matrix is none (its box ignored), a view matrix with an all-zero box is refused; the
-/// model checks every field ([`crate::model::Pipeline::check`]).
-pub(super) fn pipeline_from_c(
-    viewport_origin: [u32; 2],
-    depth_range: [f64; 2],
-    world_reach: f64,
-    eye_first: bool,
-    (view_matrix, world_box): (*const f32, [f64; 6]),
-) -> Result<crate::model::Pipeline> {
+/// The model's [`crate::model::Pipeline`] from the C record: a depth range of `[0, 0]` (a
+/// zeroed record) is `glDepthRange(0, 1)`; a NULL view matrix is none (its box ignored), a view
+/// matrix with an all-zero box is refused; the model checks every field
+/// ([`crate::model::Pipeline::check`]).
+pub(super) fn pipeline_from_c(p: &ZshiftPipeline) -> Result<crate::model::Pipeline> {
+    let (view_matrix, world_box) = (p.view_matrix, p.world_box);
+    let depth_range = [p.depth_range_near, p.depth_range_far];
     let view = if view_matrix.is_null() {
         None
     } else {
@@ -421,8 +439,8 @@ pub(super) fn pipeline_from_c(
         }))
     };
     let pipeline = crate::model::Pipeline {
-        world_reach,
-        eye_first,
+        world_reach: p.world_reach,
+        eye_first: p.eye_first != 0,
         view,
         world_box: view.map(|_| {
             [
@@ -430,7 +448,7 @@ pub(super) fn pipeline_from_c(
                 [world_box[3], world_box[4], world_box[5]],
             ]
         }),
-        viewport_origin,
+        viewport_origin: [p.viewport_x, p.viewport_y],
         depth_range: if depth_range == [0.0, 0.0] {
             [0.0, 1.0]
         } else {

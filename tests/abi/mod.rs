@@ -82,15 +82,8 @@ unsafe impl Send for Inputs {}
 unsafe impl Sync for Inputs {}
 
 const VALID_DECAL: ZshiftDecal = ZshiftDecal {
-    view_matrix: std::ptr::null(),
-    world_box: [0.0; 6],
-    eye_first: 0,
-    viewport_x: 0,
-    viewport_y: 0,
-    world_reach: 0.0,
+    pipeline: zshift::ffi::ZshiftPipeline::zeroed(),
     depth_func: zshift::ffi::ZshiftDepthTest { value: 0 },
-    depth_range_far: 0.0,
-    depth_range_near: 0.0,
     decal_corners: std::ptr::null(),
     decal_corner_count: 0,
     viewport_width: 1920,
@@ -106,14 +99,7 @@ const VALID_DECAL: ZshiftDecal = ZshiftDecal {
 };
 
 const VALID_SCENE: ZshiftScene = ZshiftScene {
-    view_matrix: std::ptr::null(),
-    world_box: [0.0; 6],
-    eye_first: 0,
-    viewport_y: 0,
-    world_reach: 0.0,
-    depth_range_far: 0.0,
-    depth_range_near: 0.0,
-    viewport_x: 0,
+    pipeline: zshift::ffi::ZshiftPipeline::zeroed(),
     decal_corners: std::ptr::null(),
     decal_corner_count: 0,
     l: -0.1,
@@ -206,6 +192,11 @@ impl Inputs {
             &mut self.decal.decal_near,
             &mut self.decal.decal_far,
             &mut self.decal.slope,
+            &mut s.pipeline.depth_range_near,
+            &mut s.pipeline.depth_range_far,
+            &mut s.pipeline.world_reach,
+            &mut self.decal.pipeline.depth_range_near,
+            &mut self.decal.pipeline.world_reach,
         ]
     }
 
@@ -224,6 +215,10 @@ impl Inputs {
             IntField::U(&mut s.depth_format),
             IntField::U(&mut s.exact_depth),
             IntField::I(&mut s.subpixel_bits),
+            IntField::U(&mut s.pipeline.viewport_x),
+            IntField::U(&mut s.pipeline.eye_first),
+            IntField::U(&mut self.decal.depth_func.value),
+            IntField::U(&mut self.decal.pipeline.viewport_y),
         ]
     }
 }
@@ -760,14 +755,7 @@ pub fn plausible(src: &mut impl Source) -> Inputs {
         ndc: src.log_uniform(1e-9, 1e-1),
     };
     i.scene = ZshiftScene {
-        view_matrix: std::ptr::null(),
-        world_box: [0.0; 6],
-        eye_first: 0,
-        viewport_y: 0,
-        world_reach: 0.0,
-        depth_range_far: 0.0,
-        depth_range_near: 0.0,
-        viewport_x: 0,
+        pipeline: Default::default(),
         decal_corners: std::ptr::null(),
         decal_corner_count: 0,
         l: i.l,

@@ -1035,31 +1035,31 @@ static void test_engine_scene(void) {
   CHECK(equal.window_offset < strict.window_offset && equal.quantum == strict.quantum,
         "GL_LEQUAL: offset %g against GL_LESS's %g", equal.window_offset, strict.window_offset);
   /* World space, the camera 10^4 from the origin: the scalar bound, then the matrices. */
-  decal.world_reach = 1e4;
-  decal.eye_first = 1;
+  decal.pipeline.world_reach = 1e4;
+  decal.pipeline.eye_first = 1;
   CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &far_away), ZSHIFT_OK);
-  decal.view_matrix = view;
-  decal.world_box[0] = 9e3;
-  decal.world_box[2] = 9e3;
-  decal.world_box[3] = 1.1e4;
-  decal.world_box[5] = 1.1e4;
+  decal.pipeline.view_matrix = view;
+  decal.pipeline.world_box[0] = 9e3;
+  decal.pipeline.world_box[2] = 9e3;
+  decal.pipeline.world_box[3] = 1.1e4;
+  decal.pipeline.world_box[5] = 1.1e4;
   CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &known), ZSHIFT_OK);
   CHECK(equal.vertex < far_away.vertex && known.vertex < far_away.vertex,
         "world space: vertex term %g (eye space %g, with the matrices %g)", far_away.vertex, equal.vertex, known.vertex);
   CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, plain_out), ZSHIFT_OK);
   /* Refusals name the field; out is untouched. */
   memset(out, PATTERN, sizeof out);
-  memset(decal.world_box, 0, sizeof decal.world_box);
+  memset(decal.pipeline.world_box, 0, sizeof decal.pipeline.world_box);
   CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
   expect_detail("a view matrix without its box", "world_box");
-  decal.view_matrix = NULL;
-  decal.depth_range_near = 0.7;
-  decal.depth_range_far = 0.5;
+  decal.pipeline.view_matrix = NULL;
+  decal.pipeline.depth_range_near = 0.7;
+  decal.pipeline.depth_range_far = 0.5;
   CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
   expect_detail("a reversed depth range", "depth_range_far");
-  decal.depth_range_near = 0.0;
-  decal.depth_range_far = 0.0;
-  decal.world_reach = -1.0;
+  decal.pipeline.depth_range_near = 0.0;
+  decal.pipeline.depth_range_far = 0.0;
+  decal.pipeline.world_reach = -1.0;
   CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
   expect_detail("a negative world_reach", "world_reach");
   CHECK(untouched(out, sizeof out), "refused engine scenes wrote their output");

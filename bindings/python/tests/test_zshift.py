@@ -313,14 +313,15 @@ class Recommend(unittest.TestCase):
         for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
                                  ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
             body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
-            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest|const ZshiftProfile|const float) \*?(\w+)(\[\d+\])?;",
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest|ZshiftPipeline|const ZshiftProfile|const float) \*?(\w+)(\[\d+\])?;",
                                 body, re.M)
             # An array field (double world_box[6]) is a ctypes array of its element type.
             fields = [(c_type + array, name) for c_type, name, array in fields]
             # ZshiftDepthTest is a struct of one uint32_t: the same layout; a pointer is a c_void_p.
             ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int",
                             "ZshiftDepthTest": "c_uint", "const ZshiftProfile": "c_void_p",
-                            "const float": "c_void_p", "double[6]": "c_double_Array_6"}
+                            "const float": "c_void_p", "double[6]": "c_double_Array_6",
+                            "ZshiftPipeline": "ZshiftPipeline"}
             self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
             for (c_type, name), (_, field_type) in zip(fields, cls._fields_):
                 self.assertEqual(field_type.__name__, ctypes_names[c_type], f"{struct_name}.{name}")

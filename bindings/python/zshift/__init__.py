@@ -308,19 +308,19 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     for name, value in (("viewport_origin x", x), ("viewport_origin y", y)):
         if not isinstance(value, int) or not 0 <= value < 2**32:
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [0, 2**32) ({name} = {value!r})")
-    record.viewport_x, record.viewport_y = x, y
-    record.depth_range_near, record.depth_range_far = depth_range
-    record.world_reach = world_reach
-    record.eye_first = 1 if eye_first else 0
+    record.pipeline.viewport_x, record.pipeline.viewport_y = x, y
+    record.pipeline.depth_range_near, record.pipeline.depth_range_far = depth_range
+    record.pipeline.world_reach = world_reach
+    record.pipeline.eye_first = 1 if eye_first else 0
     if (view_matrix is None) != (world_box is None):
         raise TypeError("view_matrix and world_box go together: pass both (16 floats, and "
                         "((min x, min y, min z), (max x, max y, max z))) or neither")
     if view_matrix is not None:
         view = _engine_matrix(view_matrix)
         (x0, y0, z0), (x1, y1, z1) = world_box
-        record.world_box = (_ctypes.c_double * 6)(x0, y0, z0, x1, y1, z1)
+        record.pipeline.world_box = (_ctypes.c_double * 6)(x0, y0, z0, x1, y1, z1)
         record._view_keepalive = view
-        record.view_matrix = _ctypes.cast(view, _ctypes.c_void_p)
+        record.pipeline.view_matrix = _ctypes.cast(view, _ctypes.c_void_p)
 
 
 def _attach_profile(record, profile):
@@ -667,10 +667,7 @@ class _Decal(_ctypes.Structure):
         ("profile", _ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
         ("decal_corners", _ctypes.c_void_p), ("decal_corner_count", _ctypes.c_uint32),  # const float *
         ("depth_func", _ctypes.c_uint32),  # 0: the convention's strict test
-        ("viewport_x", _ctypes.c_uint32), ("viewport_y", _ctypes.c_uint32),
-        ("depth_range_near", _ctypes.c_double), ("depth_range_far", _ctypes.c_double),
-        ("world_reach", _ctypes.c_double), ("eye_first", _ctypes.c_uint32),
-        ("view_matrix", _ctypes.c_void_p), ("world_box", _ctypes.c_double * 6),
+        ("pipeline", _library.ZshiftPipeline),
     ]
 
 

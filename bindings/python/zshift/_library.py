@@ -90,6 +90,19 @@ def load():
     )
 
 
+class ZshiftPipeline(ctypes.Structure):
+    """The C ``ZshiftPipeline``, field for field: glViewport's x, y; glDepthRange (0, 0: the
+    default 0, 1); world_reach (0: eye-space vertices); eye_first; the view matrix (NULL: not
+    given) and the world box it maps (min xyz, max xyz)."""
+
+    _fields_ = [
+        ("viewport_x", ctypes.c_uint32), ("viewport_y", ctypes.c_uint32),
+        ("depth_range_near", ctypes.c_double), ("depth_range_far", ctypes.c_double),
+        ("world_reach", ctypes.c_double), ("eye_first", ctypes.c_uint32),
+        ("view_matrix", ctypes.c_void_p), ("world_box", ctypes.c_double * 6),
+    ]
+
+
 class ZshiftScene(ctypes.Structure):
     """The C ``ZshiftScene`` (include/zshift.h), field for field."""
 
@@ -105,13 +118,8 @@ class ZshiftScene(ctypes.Structure):
         ("profile", ctypes.c_void_p),
         # const float *: the decal's eye-space corners (3 floats each), or NULL.
         ("decal_corners", ctypes.c_void_p), ("decal_corner_count", ctypes.c_uint32),
-        # The engine's pipeline: glViewport's x, y; glDepthRange (0, 0: the default 0, 1);
-        # world_reach (0: eye-space vertices).
-        ("viewport_x", ctypes.c_uint32), ("viewport_y", ctypes.c_uint32),
-        ("depth_range_near", ctypes.c_double), ("depth_range_far", ctypes.c_double),
-        ("world_reach", ctypes.c_double), ("eye_first", ctypes.c_uint32),
-        # const float *view_matrix (NULL: not given) and the world box it maps (min xyz, max xyz).
-        ("view_matrix", ctypes.c_void_p), ("world_box", ctypes.c_double * 6),
+        # The engine's pipeline (zeroed: the defaults).
+        ("pipeline", ZshiftPipeline),
     ]
 
 
