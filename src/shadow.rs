@@ -1042,7 +1042,7 @@ mod tests {
         assert_eq!(both, bias);
         // A corner outside the frustum is named.
         let mut wide = ground.clone();
-        wide[0].x = -40.0;
+        wide[1].x = 40.0;
         let err = shadow_bias_for_receivers(&map, &[&ground, &wide]).unwrap_err();
         assert!(err.to_string().contains("frustum"), "{err}");
     }
