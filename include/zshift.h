@@ -1787,7 +1787,7 @@ ZshiftStatus zshift_shadow_bias(const ZshiftShadowMap *map, ZshiftShadowBias *ou
 ZshiftStatus zshift_shadow_bias_receivers(const ZshiftShadowMap *map,
                                           const float *corners,
                                           const uint32_t *corner_counts,
-                                          size_t receiver_count,
+                                          uint32_t receiver_count,
                                           ZshiftShadowBias *out);
 
 #ifdef __cplusplus

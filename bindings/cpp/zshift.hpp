@@ -714,7 +714,7 @@ inline ShadowBias shadow_bias_receivers(const ShadowMap &map, const std::vector<
     for (const auto &c : r) corners.insert(corners.end(), c.begin(), c.end());
   }
   ShadowBias out{};
-  detail::check(zshift_shadow_bias_receivers(&map, corners.data(), counts.data(), counts.size(), &out));
+  detail::check(zshift_shadow_bias_receivers(&map, corners.data(), counts.data(), static_cast<std::uint32_t>(counts.size()), &out));
   return out;
 }
 

@@ -273,7 +273,7 @@ pub extern "C" fn zshift_shadow_bias_receivers(
     map: *const ZshiftShadowMap,
     corners: *const f32,
     corner_counts: *const u32,
-    receiver_count: usize,
+    receiver_count: u32,
     out: *mut ZshiftShadowBias,
 ) -> ZshiftStatus {
     let Some(record) = map_from_c(map) else {
@@ -289,16 +289,16 @@ pub extern "C" fn zshift_shadow_bias_receivers(
     checked(
         out,
         move || {
-            if receiver_count == 0 || receiver_count > MAX_RECEIVERS {
+            if receiver_count == 0 || receiver_count as usize > MAX_RECEIVERS {
                 return Err(domain("receiver_count must lie in 1..=65536")
-                    .with_integer("receiver_count", receiver_count as i64));
+                    .with_integer("receiver_count", i64::from(receiver_count)));
             }
             // SAFETY: not NULL; the caller promises `receiver_count` readable u32 (read
             // unaligned, copied).
-            let counts: Vec<u32> = (0..receiver_count)
+            let counts: Vec<u32> = (0..receiver_count as usize)
                 .map(|i| unsafe { (counts as *const u32).add(i).read_unaligned() })
                 .collect();
-            let mut polygons: Vec<Vec<glam::Vec3>> = Vec::with_capacity(receiver_count);
+            let mut polygons: Vec<Vec<glam::Vec3>> = Vec::with_capacity(receiver_count as usize);
             let mut at = 0usize;
             for (i, &c) in counts.iter().enumerate() {
                 if !(3..=MAX_RECEIVER_CORNERS).contains(&c) {

@@ -1132,7 +1132,7 @@ def shadow_bias_receivers(light, projection, clip, resolution, depth_format, rec
     lib = _lib()
     fn = lib.zshift_shadow_bias_receivers
     fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ctypes.c_float),
-                   _ctypes.POINTER(_ctypes.c_uint32), _ctypes.c_size_t, _ctypes.POINTER(_ShadowBias)]
+                   _ctypes.POINTER(_ctypes.c_uint32), _ctypes.c_uint32, _ctypes.POINTER(_ShadowBias)]
     fn.restype = _ctypes.c_int32
     out = _ShadowBias()
     _check(fn(_ctypes.byref(record), corners, counts, len(polygons), _ctypes.byref(out)))
