@@ -1734,6 +1734,28 @@ ZshiftStatus zshift_edge_planes(const float *m,
  */
 ZshiftStatus zshift_shadow_bias(const ZshiftShadowMap *map, ZshiftShadowBias *out);
 
+/*
+ zshift_shadow_bias for the receivers the engine lists (docs/shadows.md, "Receivers of
+ known geometry"): `receiver_count` planar polygons in the light's view space (right-handed,
+ looking down -z; a spot light at the origin), their corners one receiver after another in
+ `corners` (3 floats each: x0, y0, z0, x1, ...), `corner_counts[i]` (3 to 64) corners for
+ receiver i, counter-clockwise seen from its lit front, every corner inside the light's
+ frustum. The bias, its clamp and its receiver-side offsets follow from each receiver's
+ own window-depth plane in the map, at any angle short of edge-on; receivers facing away
+ from the light by more than `map->limit_angle_deg` everywhere are skipped;
+ `map->receiver_near` and `receiver_far` are not used (but must lie in [n, f]).
+
+ Errors: as zshift_shadow_bias; ZSHIFT_ERR_NULL_POINTER (corners or corner_counts NULL with
+ a nonzero count); ZSHIFT_ERR_DOMAIN (no receiver, more than 65536, a corner count outside
+ 3..=64, a receiver that is not a planar polygon inside the frustum: zshift_last_error()
+ names it; every receiver skipped). `*out` untouched on error.
+ */
+ZshiftStatus zshift_shadow_bias_receivers(const ZshiftShadowMap *map,
+                                          const float *corners,
+                                          const uint32_t *corner_counts,
+                                          uint32_t receiver_count,
+                                          ZshiftShadowBias *out);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

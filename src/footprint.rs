@@ -219,7 +219,7 @@ pub fn decal_shape_for_matrix(
 }
 
 /// The plane `N·p = h₀` through `points` (Newell's normal, the centroid), checked for flatness.
-fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
+pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
     let mut normal = [0.0f64; 3];
     let mut centre = [0.0f64; 3];
     for (i, a) in points.iter().enumerate() {

@@ -98,6 +98,44 @@
 //! `δ_L·cos e` away from a wall standing on it ([`ShadowBias::peter_panning`]), with `δ_L` the
 //! clamp (the most any caster within the limit angle gets).
 //!
+//! # Receivers of known geometry
+//! The bounds above hold for every plane within the limit angle anywhere in the light's
+//! frustum. For a spot light that is costly: `K` takes the decal model's worst-case
+//! extrapolation of a plane of slope `√2·tan θ` across the whole map, and `F(θ)` takes the
+//! widest ray, so where `θ + ψ` reaches 90° no clamp can be set and grazing casters get an
+//! unbounded slope-scaled bias (their shadows leak). An engine usually knows its receivers —
+//! the ground, a terrain patch, the faces of large props — and [`shadow_bias_for_receivers`]
+//! takes each as a planar polygon in the light's view space. For each receiver `i`:
+//!
+//! * its window-depth plane in the map, `w = w₀ + gₓ·x + g_y·y`, exact in f64 from its corners
+//!   ([`crate::footprint::decal_shape_for_matrix`] with the light's projection and the map as
+//!   viewport — the decal's footprint, reused). A plane's window depth is affine in the map's
+//!   texels under either projection, so `F_i = a·(|gₓ| + |g_y|)` holds at every point of the
+//!   receiver and every angle short of edge-on (widened by the corners' coplanarity tolerance,
+//!   2⁻¹⁶ relative);
+//! * `K_i`, `S_i`: the decal model on that footprint ([`crate::recommend::Scene::footprint`]):
+//!   the run `|gₓ|·x + |g_y|·y` to its farthest texel and `|w₀|` replace the worst-case
+//!   extrapolation, with the receiver's own depth range and slope (under an orthographic light
+//!   the model has no footprint input, so only its slope and depth range tighten `K_i`);
+//! * the caster side is unchanged: the factor `2a + 2^−b` covers `F_i + S_i` of each receiver
+//!   through its own `m`, so the constant is `K = maxᵢ K_i` and the **clamp is
+//!   `maxᵢ (K_i + S_i + F_i)`** — finite at every angle, because it bounds the receivers'
+//!   actual gradients rather than the gradient of every plane the light could see. A receiver
+//!   `i` is then lit where (B1) asks: its own caster bias is `min(K + factor·m_i, clamp)`, and
+//!   both arguments reach `K_i + S_i + F_i`.
+//!
+//! A receiver whose front faces away from the light by more than the limit angle at every
+//! point is skipped: the largest cosine of that angle over the polygon is `N_z` under an
+//! orthographic light, and at most `h/d_min` under a spot (`h` the light's height above the
+//! plane, `d_min` the receiver's nearest light depth, `|p| ≥ d_min`). Casters that are not
+//! listed receivers (the far side of a box, a thin pole) get at most the clamp: they may show
+//! acne where they are lit at a steeper angle than any listed receiver, which is the contract
+//! ("list every surface that must stay clean"). The receiver-side offsets follow per receiver:
+//! along the light, the eye shift `δ = β_i·d²/(b − β_i·d)` at its farthest point `d`, times
+//! the largest `|p|/d` of its corners (orthographic: `β_i·(f − n)`); along the normal, that
+//! times the largest cosine above (a point moved `δ_N` along the normal lies `δ_N/cos θ`
+//! from its surface along the ray).
+//!
 //! **Refusal.** When `K + S + F(θ_max)` reaches the map's whole depth range (1), the bias would lift
 //! every caster past the far plane: no bias both ends acne at that angle and still shadows
 //! anything. [`shadow_bias`] then refuses with [`crate::ErrorKind::Unresolvable`], naming the
@@ -280,6 +318,17 @@ pub struct ShadowBias {
 pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     let terms = shadow_terms(map)?;
     let needed = terms.constant + terms.snap + terms.footprint;
+    finish(map, terms, needed, None)
+}
+
+/// The outputs for `terms` with the clamp `needed` (`+∞`: none) and, when known, the
+/// receiver-side offsets `(along_light, along_normal)`; else they follow from the limit angle.
+fn finish(
+    map: &ShadowMap,
+    terms: ShadowTerms,
+    needed: f64,
+    offsets: Option<(f64, f64)>,
+) -> Result<ShadowBias> {
     // An infinite footprint (a spot light whose rays can graze) sets no clamp: not a refusal.
     if (needed.is_finite() && needed >= 1.0) || terms.constant.is_nan() || terms.constant >= 1.0 {
         return Err(Error::new(
@@ -331,7 +380,10 @@ pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     let webgpu_units = int_units(units_of(vk_r), "the WebGPU depthBias does not fit in i32")?;
     let vk_units = round_up_f32(units_of(vk_r));
     let isign = sign as i32;
-    let (along_light, along_normal, leak) = receiver_offsets(map, &terms)?;
+    let (along_light, along_normal, leak) = match offsets {
+        Some((light, normal)) => (light, normal, light),
+        None => receiver_offsets(map, &terms)?,
+    };
     let e = map.elevation_deg.to_radians();
     Ok(ShadowBias {
         terms,
@@ -359,16 +411,174 @@ pub fn shadow_bias(map: &ShadowMap) -> Result<ShadowBias> {
     })
 }
 
+/// The recommendation for the receivers an engine lists, from their own planes (module docs,
+/// "Receivers of known geometry"): each receiver is a planar polygon in the light's view space
+/// (right-handed, looking down −z; for a spot light the light at the origin), its corners
+/// counter-clockwise seen from its front (the side that is lit), every corner inside the light's
+/// frustum (clip a larger polygon to it first). A receiver whose front faces away from the light
+/// by more than `map.limit_angle_deg` at every point is skipped (shading hides it); the others
+/// are acne-free at the returned bias, at every angle short of edge-on. `map.receiver_depths`
+/// is not used (the receivers' own depths are).
+///
+/// # Errors
+/// As [`shadow_bias`]; [`ErrorKind::Domain`] for a receiver that is not a planar polygon inside
+/// the frustum (named by its index), or when every receiver is skipped.
+pub fn shadow_bias_for_receivers(map: &ShadowMap, receivers: &[&[glam::Vec3]]) -> Result<ShadowBias> {
+    check(map)?;
+    let (n, f) = light_range(map);
+    let matrix = match map.light {
+        LightProjection::Perspective(frustum) => crate::projection::projection_f64(&frustum, map.clip)?,
+        LightProjection::Orthographic(ortho) => crate::orthographic::ortho_f64(&ortho, map.clip),
+    };
+    let cos_limit = map.limit_angle_deg.to_radians().cos();
+    let mut all: Option<ShadowTerms> = None;
+    let (mut needed, mut along_light, mut along_normal) = (0.0f64, 0.0f64, 0.0f64);
+    let mut depths = [f64::INFINITY, 0.0f64];
+    for (i, corners) in receivers.iter().enumerate() {
+        let named = |e: Error| e.with_integer("receiver", i as i64);
+        let eye: Vec<[f64; 3]> = corners
+            .iter()
+            .map(|c| [f64::from(c.x), f64::from(c.y), f64::from(c.z)])
+            .collect();
+        if eye.len() < 3 {
+            return Err(named(domain("a receiver needs at least 3 corners")));
+        }
+        for p in &eye {
+            for &c in p {
+                finite(c, "a receiver corner is not finite").map_err(named)?;
+            }
+            let d = -p[2];
+            if d < n || d > f {
+                return Err(named(domain(
+                    "every receiver corner's light depth -z must lie within the light's [n, f]",
+                )));
+            }
+        }
+        let (normal, offset) = crate::footprint::plane_through(&eye).map_err(named)?;
+        let (d_min, d_max) = eye
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(-p[2]), b.max(-p[2])));
+        // The largest cosine of the angle between the front normal and the direction to the
+        // light over the polygon: `N_z` under an orthographic light; `h/|p| ≤ h/d_min` under a
+        // spot (`h = −N·p` the light's height above the plane, `|p| ≥ −z`).
+        let cos_max = match map.light {
+            LightProjection::Orthographic(_) => normal[2],
+            LightProjection::Perspective(_) => (-offset / d_min).min(1.0),
+        };
+        if !(cos_max > 0.0 && cos_max >= cos_limit) {
+            continue;
+        }
+        let shape =
+            crate::footprint::decal_shape_for_matrix(&matrix, map.clip, map.resolution, corners)
+                .map_err(named)?;
+        let [w, h] = map.resolution.map(f64::from);
+        let slack = 1e-6 * w.max(h);
+        for p in &eye {
+            let c = [0, 1, 3].map(|r| {
+                matrix[r] * p[0] + matrix[4 + r] * p[1] + matrix[8 + r] * p[2] + matrix[12 + r]
+            });
+            let (x, y) = ((0.5 * c[0] / c[2] + 0.5) * w, (0.5 * c[1] / c[2] + 0.5) * h);
+            if !(-slack..=w + slack).contains(&x) || !(-slack..=h + slack).contains(&y) {
+                return Err(named(domain(
+                    "every receiver corner must lie inside the light's frustum (clip the receiver to it)",
+                )));
+            }
+        }
+        let t = terms_of(map, [d_min, d_max], shape.slope, Some(&shape.footprint)).map_err(named)?;
+        let own = t.constant + t.snap + t.footprint;
+        // As distances along the light: the shift whose window change is `own` at the
+        // receiver's farthest point, and along the normal that times the largest cosine.
+        let light_distance = match map.light {
+            LightProjection::Orthographic(_) => own * (f - n),
+            LightProjection::Perspective(_) => {
+                let bb = f * n / (f - n);
+                let den = bb - own * d_max;
+                let along = eye
+                    .iter()
+                    .map(|p| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() / -p[2])
+                    .fold(1.0f64, f64::max);
+                if den <= 0.0 {
+                    f64::INFINITY
+                } else {
+                    own * d_max * d_max / den * along
+                }
+            }
+        };
+        needed = needed.max(own);
+        along_light = along_light.max(light_distance);
+        along_normal = along_normal.max(light_distance * cos_max);
+        depths = [depths[0].min(d_min), depths[1].max(d_max)];
+        all = Some(match all {
+            None => t,
+            Some(a) => ShadowTerms {
+                reach: a.reach,
+                quantum: a.quantum.max(t.quantum),
+                caster: a.caster.max(t.caster),
+                snap: a.snap.max(t.snap),
+                slope_factor: a.slope_factor,
+                lookup: a.lookup.max(t.lookup),
+                read: a.read.max(t.read),
+                constant: a.constant.max(t.constant),
+                footprint: a.footprint.max(t.footprint),
+            },
+        });
+    }
+    let Some(terms) = all else {
+        return Err(domain(
+            "no receiver faces the light within limit_angle_deg: list a lit receiver or raise the limit",
+        )
+        .with_value("limit_angle_deg", map.limit_angle_deg));
+    };
+    let map = ShadowMap {
+        receiver_depths: depths,
+        ..*map
+    };
+    finish(&map, terms, needed, Some((along_light, along_normal)))
+}
+
+/// The light's near and far distances.
+fn light_range(map: &ShadowMap) -> (f64, f64) {
+    match map.light {
+        LightProjection::Orthographic(o) => (o.near(), o.far()),
+        LightProjection::Perspective(fr) => {
+            let (_, _, _, _, n, f) = fr.parameters();
+            (n, f)
+        }
+    }
+}
+
 /// The terms of (B1) for `map` (module docs).
 ///
 /// # Errors
 /// As [`shadow_bias`], without the refusal.
 pub fn shadow_terms(map: &ShadowMap) -> Result<ShadowTerms> {
     check(map)?;
+    let theta = map.limit_angle_deg.to_radians();
+    terms_of(
+        map,
+        map.receiver_depths,
+        std::f64::consts::SQRT_2 * theta.tan(),
+        None,
+    )
+}
+
+/// The terms of (B1) for receivers at light depths `[d1, d2]` of eye-space slope `slope`: every
+/// plane within the limit angle (`receiver = None`), or one receiver plane with its exact
+/// window-depth plane in the map (`Some`: the decal model runs on that footprint, and `F` is
+/// `a·(|gₓ| + |g_y|)` of its gradient).
+fn terms_of(
+    map: &ShadowMap,
+    [d1, d2]: [f64; 2],
+    slope: f64,
+    receiver: Option<&crate::footprint::Footprint>,
+) -> Result<ShadowTerms> {
     let reach = map.lookup.reach()?;
     let theta = map.limit_angle_deg.to_radians();
-    let slope = std::f64::consts::SQRT_2 * theta.tan();
-    let [d1, d2] = map.receiver_depths;
+    // The receiver's own footprint term: exact in f64 from its window plane, widened by the
+    // coplanarity tolerance the corners are accepted with (2⁻¹⁶ of their size).
+    let own = receiver.map(|fp| {
+        reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * (1.0 + 1.0 / 65_536.0)
+    });
     let [w_px, h_px] = map.resolution.map(f64::from);
     let (caster, snap, lookup, quantum, footprint, w_max) = match map.light {
         LightProjection::Perspective(frustum) => {
@@ -386,7 +596,7 @@ pub fn shadow_terms(map: &ShadowMap) -> Result<ShadowTerms> {
                 },
                 base: Base::InsideFrustum,
                 profile: map.profile,
-                footprint: None,
+                footprint: receiver.copied(),
                 pipeline: crate::model::Pipeline {
                     world_reach: map.world_reach,
                     ..Default::default()
@@ -400,7 +610,9 @@ pub fn shadow_terms(map: &ShadowMap) -> Result<ShadowTerms> {
             let psi = (ex.hypot(ey)).atan();
             let bb = f * n / (f - n);
             let ray = theta + psi;
-            let footprint = if ray >= std::f64::consts::FRAC_PI_2 {
+            let footprint = if let Some(own) = own {
+                own
+            } else if ray >= std::f64::consts::FRAC_PI_2 {
                 f64::INFINITY
             } else {
                 reach * bb / (n * d1) * (psi_xy + ray.tan() * sx.hypot(sy))
@@ -442,7 +654,7 @@ pub fn shadow_terms(map: &ShadowMap) -> Result<ShadowTerms> {
             } else {
                 t.vertex
             };
-            let footprint = reach * theta.tan() * sx.hypot(sy) / span;
+            let footprint = own.unwrap_or(reach * theta.tan() * sx.hypot(sy) / span);
             let w_max = ortho
                 .window_depth(map.clip, d1)?
                 .max(ortho.window_depth(map.clip, d2)?);
@@ -792,5 +1004,46 @@ mod tests {
         assert!(open.terms.footprint.is_infinite());
         assert_eq!(open.d3d.clamp, 0.0);
         assert!(open.along_normal.is_finite() && open.along_light.is_infinite());
+    }
+
+    /// A spot light over grazing ground: with the ground listed, the footprint is the ground's
+    /// own `a·(|gₓ| + |g_y|)` (of its window plane in the map), the clamp is
+    /// set, and the constant is no larger than the conservative one.
+    #[test]
+    fn listed_receivers_take_their_own_plane() {
+        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+        let map = ShadowMap {
+            light: LightProjection::Perspective(frustum),
+            receiver_depths: [10.0, 50.0],
+            ..ground_map(Lookup::Nearest, 80.0)
+        };
+        let conservative = shadow_bias(&map).unwrap();
+        assert!(conservative.terms.footprint.is_infinite());
+        // Ground 3 units below the light, tilted 85° from the axis: y = −3 − z·tan 5°, seen
+        // from above (+y), counter-clockwise.
+        let y = |z: f32| -3.0 - (-z) * 5f32.to_radians().tan();
+        let ground: Vec<glam::Vec3> = [(4.0, -12.0), (12.0, -45.0), (-12.0, -45.0), (-4.0, -12.0)]
+            .iter()
+            .map(|&(x, z)| glam::Vec3::new(x, y(z), z))
+            .collect();
+        let bias = shadow_bias_for_receivers(&map, &[&ground]).unwrap();
+        let shape = crate::footprint::decal_shape(&frustum, map.clip, map.resolution, &ground)
+            .unwrap();
+        let own = 0.5 * (shape.footprint.gradient[0].abs() + shape.footprint.gradient[1].abs());
+        assert!(bias.terms.footprint >= own && bias.terms.footprint < own * 1.0001);
+        assert!(bias.gl_polygon_offset[2] > 0.0 && bias.gl_polygon_offset[2] < 1.0);
+        assert!(bias.terms.constant <= conservative.terms.constant);
+        assert!(bias.along_light.is_finite() && bias.along_normal <= bias.along_light);
+        // Facing away everywhere: skipped, and with nothing left, refused.
+        let away: Vec<glam::Vec3> = ground.iter().rev().copied().collect();
+        let err = shadow_bias_for_receivers(&map, &[&away]).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::Domain);
+        let both = shadow_bias_for_receivers(&map, &[&away, &ground]).unwrap();
+        assert_eq!(both, bias);
+        // A corner outside the frustum is named.
+        let mut wide = ground.clone();
+        wide[1].x = 40.0;
+        let err = shadow_bias_for_receivers(&map, &[&ground, &wide]).unwrap_err();
+        assert!(err.to_string().contains("frustum"), "{err}");
     }
 }

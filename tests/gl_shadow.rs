@@ -30,7 +30,7 @@ use glow::HasContext;
 use zshift::orthographic::Ortho;
 use zshift::projection::{ClipDepth, Frustum};
 use zshift::recommend::RasterizerProfile;
-use zshift::shadow::{shadow_bias, LightProjection, Lookup, ShadowMap};
+use zshift::shadow::{shadow_bias, shadow_bias_for_receivers, LightProjection, Lookup, ShadowMap};
 use zshift::ErrorKind;
 use zshift_harness::{ClipDepth as GlClip, Gl, Profile};
 
@@ -39,6 +39,8 @@ const GROUND: f64 = 6.0;
 const BOX: [[f64; 3]; 2] = [[0.2, 0.0, -0.9], [1.4, 2.0, -0.1]];
 const CAMERA: usize = 160;
 const AZIMUTH_DEG: f64 = 30.0;
+/// The limit angle passed with explicit receivers: it only skips receivers facing away by more.
+const RECEIVER_LIMIT_DEG: f64 = 89.9;
 
 type M4 = [f64; 16];
 
@@ -150,6 +152,8 @@ impl Case {
             self.clip,
             if self.pcf == 1 {
                 "nearest".into()
+            } else if self.pcf == 0 {
+                "hardware 2x2".into()
             } else {
                 format!("PCF{0}x{0}", self.pcf)
             }
@@ -320,12 +324,13 @@ const CAMERA_FS: &str = "#version 330 core
 in vec3 v_world;
 in vec3 v_normal;
 uniform sampler2D map;
+uniform sampler2DShadow smap; // the same map, GL_LINEAR with GL_COMPARE_REF_TO_TEXTURE
 uniform mat4 view;
 uniform mat4 proj;
 uniform vec3 light_pos;
 uniform int spot;
 uniform int clip;      // 0: [-1,1], 1: [0,1], 2: reversed
-uniform int k;         // PCF size (1: nearest)
+uniform int k;         // PCF size (1: nearest; 0: hardware 2x2 comparison)
 uniform float beta;    // window-depth bias in the lookup
 uniform float r_light; // receiver moved toward the light (world units)
 uniform float r_normal; // receiver moved along its normal (world units)
@@ -340,6 +345,12 @@ void main() {
     vec3 ndc = c.xyz / c.w;
     float z = clip == 0 ? ndc.z * 0.5 + 0.5 : ndc.z;
     ivec2 size = textureSize(map, 0);
+    if (k == 0) {
+        float ref = clip == 2 ? z + beta : z - beta;
+        float lit = texture(smap, vec3(ndc.xy * 0.5 + 0.5, ref));
+        colour = vec4(lit >= 1.0 ? 1.0 / 255.0 : 0.0, 1.0 / 255.0, 1.0, 1.0);
+        return;
+    }
     vec2 uv = (ndc.xy * 0.5 + 0.5) * vec2(size);
     ivec2 t = ivec2(floor(uv));
     int h = (k - 1) / 2;
@@ -386,6 +397,8 @@ struct Rig {
     counts: [i32; 2],
     camera_fbo: glow::Framebuffer,
     clamp_fn: extern "system" fn(f32, f32, f32),
+    /// Texture unit 1's sampler: linear filtering with depth comparison (hardware 2×2).
+    compare: [glow::Sampler; 2],
 }
 
 /// One map's caster-side bias.
@@ -455,7 +468,23 @@ impl Rig {
         // SAFETY: the GL entry point glPolygonOffsetClamp(float, float, float).
         let clamp_fn =
             std::mem::transmute::<*const std::ffi::c_void, extern "system" fn(f32, f32, f32)>(f);
+        let mut compare = Vec::new();
+        for func in [glow::LEQUAL, glow::GEQUAL] {
+            let smp = g.create_sampler()?;
+            for (p, v) in [
+                (glow::TEXTURE_MIN_FILTER, glow::LINEAR),
+                (glow::TEXTURE_MAG_FILTER, glow::LINEAR),
+                (glow::TEXTURE_WRAP_S, glow::CLAMP_TO_EDGE),
+                (glow::TEXTURE_WRAP_T, glow::CLAMP_TO_EDGE),
+                (glow::TEXTURE_COMPARE_MODE, glow::COMPARE_REF_TO_TEXTURE),
+                (glow::TEXTURE_COMPARE_FUNC, func),
+            ] {
+                g.sampler_parameter_i32(smp, p, v as i32);
+            }
+            compare.push(smp);
+        }
         Ok(Rig {
+            compare: [compare[0], compare[1]],
             caster,
             camera,
             vao,
@@ -572,6 +601,12 @@ impl Rig {
         g.active_texture(glow::TEXTURE0);
         g.bind_texture(glow::TEXTURE_2D, Some(map));
         g.uniform_1_i32(u("map").as_ref(), 0);
+        g.active_texture(glow::TEXTURE1);
+        g.bind_texture(glow::TEXTURE_2D, Some(map));
+        let reversed = case.clip == ClipDepth::ReversedZeroToOne;
+        g.bind_sampler(1, Some(self.compare[reversed as usize]));
+        g.uniform_1_i32(u("smap").as_ref(), 1);
+        g.active_texture(glow::TEXTURE0);
         g.uniform_matrix_4_f32_slice(u("camera").as_ref(), false, &to_f32(camera));
         g.uniform_matrix_4_f32_slice(u("view").as_ref(), false, &to_f32(&light.view));
         g.uniform_matrix_4_f32_slice(u("proj").as_ref(), false, &light.proj32);
@@ -810,11 +845,14 @@ fn cases(full: bool) -> Vec<Case> {
     let mut i = 0usize;
     for kind in [Kind::Directional, Kind::Spot] {
         for &elevation in &elevations {
-            for pcf in [1, 3] {
+            for pcf in [1, 0, 3, 5] {
+                // The default run: 6 combinations per class for nearest and 3×3 PCF, 3 for the
+                // hardware 2×2 comparison and 5×5 PCF.
+                let take = if pcf == 1 || pcf == 3 { 6 } else { 3 };
                 let combos: Vec<usize> = if full {
                     (0..81).collect()
                 } else {
-                    (0..6).map(|j| (i * 7 + j * 13) % 81).collect()
+                    (0..take).map(|j| (i * 7 + j * 13) % 81).collect()
                 };
                 for c in combos {
                     v.push(Case {
@@ -842,7 +880,7 @@ struct Engine {
 }
 
 fn soft(case: &Case) -> f32 {
-    if case.pcf > 1 {
+    if case.pcf != 1 {
         2.5
     } else {
         1.0
@@ -1021,13 +1059,15 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let mut failures = Vec::new();
     let mut tallies: Vec<(String, Tally)> = Vec::new();
     let mut refusals = 0;
+    let mut dominance: std::collections::BTreeMap<String, (usize, usize, Vec<String>)> =
+        std::collections::BTreeMap::new();
     let started = std::time::Instant::now();
     for case in &all {
         let light = light_of(case);
-        let reach = if case.pcf == 1 {
-            0.5
-        } else {
-            case.pcf as f64 / 2.0
+        let reach = match case.pcf {
+            1 => 0.5,
+            0 => 1.0,
+            k => k as f64 / 2.0,
         };
         let truth = reference(case, &light, &camera, eye, reach);
         let class = format!(
@@ -1037,7 +1077,12 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             } else {
                 "directional"
             },
-            if case.pcf == 1 { "nearest" } else { "PCF 3x3" }
+            match case.pcf {
+                1 => "nearest",
+                0 => "hardware 2x2",
+                3 => "PCF 3x3",
+                _ => "PCF 5x5",
+            }
         );
         let world_reach = light.position.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
@@ -1083,28 +1128,54 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             }
         };
         let slope = ground_slope(case, &light);
-        for (pname, profile) in [
-            ("worst", RasterizerProfile::worst_case()),
-            ("probed", probed),
+        // The ground as zshift's receiver API takes it: a quad in the light's view (f32),
+        // counter-clockwise seen from above.
+        let ground_quad: Vec<glam::Vec3> = [
+            [-GROUND, 0.0, -GROUND],
+            [-GROUND, 0.0, GROUND],
+            [GROUND, 0.0, GROUND],
+            [GROUND, 0.0, -GROUND],
+        ]
+        .iter()
+        .map(|&p| {
+            let e = apply(&light.view, p);
+            glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
+        })
+        .collect();
+        let mut leaks: Vec<(String, usize)> = Vec::new();
+        for (pname, profile, receivers) in [
+            ("worst", RasterizerProfile::worst_case(), false),
+            ("probed", probed, false),
+            ("worst, receivers", RasterizerProfile::worst_case(), true),
+            ("probed, receivers", probed, true),
         ] {
             let map = ShadowMap {
                 light: light.projection,
                 clip: case.clip,
                 resolution: [case.resolution; 2],
                 format: gl_common::format_of(case.format),
-                lookup: if case.pcf == 1 {
-                    Lookup::Nearest
-                } else {
-                    Lookup::Pcf(case.pcf)
+                lookup: match case.pcf {
+                    1 => Lookup::Nearest,
+                    0 => Lookup::Hardware2x2,
+                    k => Lookup::Pcf(k),
                 },
-                limit_angle_deg: 90.0 - case.elevation,
+                limit_angle_deg: if receivers {
+                    RECEIVER_LIMIT_DEG
+                } else {
+                    90.0 - case.elevation
+                },
                 receiver_depths: light.receivers,
                 world_reach,
                 elevation_deg: case.elevation,
                 profile,
             };
             let t = tally(&mut tallies, &format!("zshift ({pname})"), &class);
-            match shadow_bias(&map) {
+            let answer = if receivers {
+                shadow_bias_for_receivers(&map, &[&ground_quad])
+            } else {
+                shadow_bias(&map)
+            };
+            match answer {
                 Ok(bias) => {
                     let [f, u, c] = bias.gl_polygon_offset;
                     let m = unsafe {
@@ -1129,6 +1200,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                     }
                     let got = count(&px, &truth);
                     tallies[t].1.add(got);
+                    leaks.push((pname.to_string(), got.leak));
                     let on_ground = {
                         let k = bias.terms.constant + bias.terms.slope_factor * slope;
                         let clamp = c.abs();
@@ -1200,6 +1272,24 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             let got = count(&px, &truth);
             let t = tally(&mut tallies, engine.name, &class);
             tallies[t].1.add(got);
+            // No peer dominates: where the engine is acne-free, zshift's leak (shadowed pixels
+            // left lit) must be no larger.
+            if got.acne == 0 {
+                for (pname, leak) in &leaks {
+                    let d = dominance.entry(pname.clone()).or_insert((0, 0, Vec::new()));
+                    d.0 += 1;
+                    if *leak > got.leak {
+                        d.1 += 1;
+                        d.2.push(format!(
+                            "{} {}: zshift ({pname}) leaks {leak}, {} {}",
+                            case.label(),
+                            engine.name,
+                            engine.name,
+                            got.leak
+                        ));
+                    }
+                }
+            }
         }
         unsafe {
             gl.glow().delete_framebuffer(unbiased.1);
@@ -1219,6 +1309,17 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     for (name, t) in &tallies {
         println!("{}", t.row(name));
     }
+    println!("no peer dominates? (scene, engine) pairs where the engine is acne-free, and those where zshift leaks more");
+    for (pname, (pairs, worse, examples)) in &dominance {
+        println!("  zshift ({pname}): {worse} of {pairs} pairs leak more");
+        if verbose {
+            for e in examples {
+                println!("    {e}");
+            }
+        }
+    }
+    // Not asserted: zshift leaks more than an acne-free peer in some pairs (docs/shadows.md
+    // says where and why); `ZSHIFT_SHADOW_VERBOSE=1` lists them.
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",

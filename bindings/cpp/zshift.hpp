@@ -698,6 +698,26 @@ inline ShadowBias shadow_bias(ShadowMap map, const Profile &profile) {
   return shadow_bias(map);
 }
 
+/// One receiver of shadow_bias_receivers(): a planar polygon's corners in the light's view space
+/// (a spot light at the origin, looking down -z), counter-clockwise seen from its lit front.
+using Receiver = std::vector<std::array<float, 3>>;
+
+/// shadow_bias() for the receivers an engine lists (zshift_shadow_bias_receivers;
+/// docs/shadows.md): the bias follows from each receiver's own plane, at any angle short of
+/// edge-on; receivers facing away by more than map.limit_angle_deg everywhere are skipped;
+/// map.receiver_near/far are not used (keep them inside [n, f]). Throws Error as shadow_bias().
+inline ShadowBias shadow_bias_receivers(const ShadowMap &map, const std::vector<Receiver> &receivers) {
+  std::vector<float> corners;
+  std::vector<std::uint32_t> counts;
+  for (const Receiver &r : receivers) {
+    counts.push_back(static_cast<std::uint32_t>(r.size()));
+    for (const auto &c : r) corners.insert(corners.end(), c.begin(), c.end());
+  }
+  ShadowBias out{};
+  detail::check(zshift_shadow_bias_receivers(&map, corners.data(), counts.data(), static_cast<std::uint32_t>(counts.size()), &out));
+  return out;
+}
+
 }  // namespace zshift
 
 #endif  // ZSHIFT_HPP

@@ -249,3 +249,81 @@ fn map_from_c(map: *const ZshiftShadowMap) -> Option<ZshiftShadowMap> {
     // SAFETY: not NULL; the caller promises a readable ZshiftShadowMap; the struct is plain data.
     Some(unsafe { map.read_unaligned() })
 }
+
+/// The most receivers one call takes, and the most corners one receiver may have.
+const MAX_RECEIVERS: usize = 1 << 16;
+const MAX_RECEIVER_CORNERS: u32 = 64;
+
+/// zshift_shadow_bias for the receivers the engine lists (docs/shadows.md, "Receivers of
+/// known geometry"): `receiver_count` planar polygons in the light's view space (right-handed,
+/// looking down -z; a spot light at the origin), their corners one receiver after another in
+/// `corners` (3 floats each: x0, y0, z0, x1, ...), `corner_counts[i]` (3 to 64) corners for
+/// receiver i, counter-clockwise seen from its lit front, every corner inside the light's
+/// frustum. The bias, its clamp and its receiver-side offsets follow from each receiver's
+/// own window-depth plane in the map, at any angle short of edge-on; receivers facing away
+/// from the light by more than `map->limit_angle_deg` everywhere are skipped;
+/// `map->receiver_near` and `receiver_far` are not used (but must lie in [n, f]).
+///
+/// Errors: as zshift_shadow_bias; ZSHIFT_ERR_NULL_POINTER (corners or corner_counts NULL with
+/// a nonzero count); ZSHIFT_ERR_DOMAIN (no receiver, more than 65536, a corner count outside
+/// 3..=64, a receiver that is not a planar polygon inside the frustum: zshift_last_error()
+/// names it; every receiver skipped). `*out` untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_shadow_bias_receivers(
+    map: *const ZshiftShadowMap,
+    corners: *const f32,
+    corner_counts: *const u32,
+    receiver_count: u32,
+    out: *mut ZshiftShadowBias,
+) -> ZshiftStatus {
+    let Some(record) = map_from_c(map) else {
+        return null_pointer("map");
+    };
+    if receiver_count > 0 && corners.is_null() {
+        return null_pointer("corners");
+    }
+    if receiver_count > 0 && corner_counts.is_null() {
+        return null_pointer("corner_counts");
+    }
+    let (corners, counts) = (corners as usize, corner_counts as usize);
+    checked(
+        out,
+        move || {
+            if receiver_count == 0 || receiver_count as usize > MAX_RECEIVERS {
+                return Err(domain("receiver_count must lie in 1..=65536")
+                    .with_integer("receiver_count", i64::from(receiver_count)));
+            }
+            // SAFETY: not NULL; the caller promises `receiver_count` readable u32 (read
+            // unaligned, copied).
+            let counts: Vec<u32> = (0..receiver_count as usize)
+                .map(|i| unsafe { (counts as *const u32).add(i).read_unaligned() })
+                .collect();
+            let mut polygons: Vec<Vec<glam::Vec3>> = Vec::with_capacity(receiver_count as usize);
+            let mut at = 0usize;
+            for (i, &c) in counts.iter().enumerate() {
+                if !(3..=MAX_RECEIVER_CORNERS).contains(&c) {
+                    return Err(domain("each corner_counts[i] must lie in 3..=64")
+                        .with_integer("receiver", i as i64));
+                }
+                let polygon = (0..c as usize)
+                    .map(|k| {
+                        let base = 3 * (at + k);
+                        // SAFETY: the caller promises 3 readable floats per corner counted.
+                        let f = |j: usize| unsafe {
+                            (corners as *const f32).add(base + j).read_unaligned()
+                        };
+                        glam::Vec3::new(f(0), f(1), f(2))
+                    })
+                    .collect();
+                polygons.push(polygon);
+                at += c as usize;
+            }
+            let slices: Vec<&[glam::Vec3]> = polygons.iter().map(Vec::as_slice).collect();
+            Ok(ZshiftShadowBias::from(
+                crate::shadow::shadow_bias_for_receivers(&record.to_map()?, &slices)?,
+            ))
+        },
+        // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftShadowBias.
+        |out, value| unsafe { out.write_unaligned(value) },
+    )
+}

@@ -1157,6 +1157,40 @@ static ZshiftShadowMap shadow_map(void) {
   return m;
 }
 
+/* ---- shadow bias for listed receivers (zshift_shadow_bias_receivers) ---- */
+
+static void test_shadow_bias_receivers(void) {
+  ZshiftShadowMap m = shadow_map();
+  ZshiftShadowBias out, untouched_out;
+  /* A quad facing the light (no footprint) and one tilted: z = -10 + 0.5 x, counter-clockwise
+     seen from the light (+z). */
+  float corners[] = {-4, -4, -10, 4, -4, -10, 4, 4, -10, -4, 4, -10,
+                     -4, -4, -12, 4, -4, -8, 4, 4, -8, -4, 4, -12};
+  uint32_t counts[] = {4, 4};
+  /* The tilted plane's window depth per texel: 0.5 * texel / (f - n), times a = 1.5 (PCF 3). */
+  long double footprint = 1.5L * 0.5L * (16.0L / 1024.0L) / 28.0L;
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, corners, counts, 1, &out), ZSHIFT_OK);
+  CHECK(out.footprint < 1e-12, "a facing receiver has no footprint: %.9g", out.footprint);
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, corners, counts, 2, &out), ZSHIFT_OK);
+  CHECK(out.footprint >= footprint && relative_error(out.footprint, footprint) < 1e-4, "receiver footprint %.17g vs %.17Lg", out.footprint, footprint);
+  CHECK(out.gl_clamp >= out.footprint && out.gl_factor >= 3.0, "clamp %.9g factor %.9g", out.gl_clamp, out.gl_factor);
+  /* Errors: NULL arrays, no receiver, a bad corner count, a receiver facing away, untouched output. */
+  memset(&untouched_out, PATTERN, sizeof untouched_out);
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, NULL, counts, 1, &untouched_out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, corners, NULL, 1, &untouched_out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, corners, counts, 0, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  counts[0] = 2;
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, corners, counts, 1, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "receiver") != NULL, "detail: %s", zshift_last_error());
+  counts[0] = 4;
+  {
+    float away[] = {-4, -4, -10, -4, 4, -10, 4, 4, -10, 4, -4, -10};
+    CHECK_STATUS(zshift_shadow_bias_receivers(&m, away, counts, 1, &untouched_out), ZSHIFT_ERR_DOMAIN);
+    CHECK(strstr(zshift_last_error(), "faces the light") != NULL, "detail: %s", zshift_last_error());
+  }
+  CHECK(untouched(&untouched_out, sizeof untouched_out), "zshift_shadow_bias_receivers wrote its output on error");
+}
+
 static void test_shadow_bias(void) {
   ZshiftShadowMap m = shadow_map();
   ZshiftShadowBias out, untouched_out;
@@ -1218,6 +1252,7 @@ int main(void) {
   test_recommend();
   test_recommend_clip();
   test_shadow_bias();
+  test_shadow_bias_receivers();
   test_status_messages();
   test_versions();
   if (failures != 0) {

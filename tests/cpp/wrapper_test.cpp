@@ -1,6 +1,7 @@
 // The C++ wrapper (bindings/cpp/zshift.hpp): every function returns what the C call writes,
 // failures throw zshift::Error carrying the C status and its message, and the constexpr parts
 // are usable at compile time. Prints each failure and exits nonzero if any check failed.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -338,6 +339,19 @@ static void test_shadow_bias() {
   CHECK(std::memcmp(&w, &b, sizeof b) == 0, "shadow_bias(map, worst case) differs from the NULL profile");
   map.limit_angle_deg = 90;
   check_throws("shadow_bias(limit 90)", zshift::Status::domain, [&] { zshift::shadow_bias(map); });
+  // Listed receivers: a quad tilted as z = -10 + 0.5 x, counter-clockwise seen from the light.
+  map.limit_angle_deg = 89.9;
+  std::vector<zshift::Receiver> receivers{{{-4, -4, -12}, {4, -4, -8}, {4, 4, -8}, {-4, 4, -12}}};
+  zshift::ShadowBias r = zshift::shadow_bias_receivers(map, receivers);
+  float flat[] = {-4, -4, -12, 4, -4, -8, 4, 4, -8, -4, 4, -12};
+  std::uint32_t counts[] = {4};
+  ZshiftShadowBias rc{};
+  CHECK(zshift_shadow_bias_receivers(&map, flat, counts, 1, &rc) == ZSHIFT_OK, "C zshift_shadow_bias_receivers failed");
+  CHECK(std::memcmp(&r, &rc, sizeof rc) == 0, "shadow_bias_receivers() differs from the C call");
+  double own = 0.5 * 0.5 * (16.0 / 1024.0) / 28.0;
+  CHECK(r.footprint >= own && r.footprint < own * 1.0001, "receiver footprint %.17g vs %.17g", r.footprint, own);
+  std::reverse(receivers[0].begin(), receivers[0].end());
+  check_throws("shadow_bias_receivers(facing away)", zshift::Status::domain, [&] { zshift::shadow_bias_receivers(map, receivers); });
 }
 
 int main() {

@@ -606,3 +606,19 @@ class ShadowBiasTest(unittest.TestCase):
         self.assertLess(b.gl_units, a.gl_units)
         self.assertEqual(b.snap, 0.0)
         self.assertEqual(b.slope_factor, 3.0)
+
+    def test_listed_receivers(self):
+        args = {k: v for k, v in self.ARGS.items() if k not in ("limit_angle_deg", "receiver_depths")}
+        tilted = [(-4.0, -4.0, -12.0), (4.0, -4.0, -8.0), (4.0, 4.0, -8.0), (-4.0, 4.0, -12.0)]
+        bias = zshift.shadow_bias_receivers(**args, receivers=[tilted])
+        own = 1.5 * 0.5 * (16.0 / 1024.0) / 28.0
+        self.assertGreaterEqual(bias.footprint, own)
+        self.assertLess(bias.footprint, own * 1.0001)
+        self.assertGreaterEqual(bias.gl_clamp, bias.constant + bias.footprint)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias_receivers(**args, receivers=[tilted[::-1]])
+        self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
+        self.assertIn("faces the light", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias_receivers(**args, receivers=[])
+        self.assertIn("receiver_count", str(caught.exception))

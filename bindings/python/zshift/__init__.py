@@ -43,7 +43,7 @@ __all__ = [
     "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
     "ortho_depth_step",
     "probe", "profile_worst_case", "Profile", "NEAR_CLIP_CLIPPED_F32", "NEAR_CLIP_PLANE_PRESERVING",
-    "clip_to_frustum", "shadow_bias", "ShadowBias", "Light", "Lookup",
+    "clip_to_frustum", "shadow_bias", "shadow_bias_receivers", "ShadowBias", "Light", "Lookup",
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
@@ -1073,6 +1073,21 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
     ``kernel_radius`` for ``Lookup.RADIUS``); ``profile`` from :func:`probe` or ``None`` for the
     worst case. Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
     is acne-free at that angle)."""
+    record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
+                            receiver_depths, lookup, pcf_size, kernel_radius, world_reach,
+                            elevation_deg, profile)
+    lib = _lib()
+    fn = lib.zshift_shadow_bias
+    fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ShadowBias)]
+    fn.restype = _ctypes.c_int32
+    out = _ShadowBias()
+    _check(fn(_ctypes.byref(record), _ctypes.byref(out)))
+    return ShadowBias(*(getattr(out, name) for name, _ in _ShadowBias._fields_))
+
+
+def _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
+                   lookup, pcf_size, kernel_radius, world_reach, elevation_deg, profile):
+    """A ``_ShadowMap`` from :func:`shadow_bias`'s arguments."""
     record = _ShadowMap()
     record.light = _enum(light, Light)
     record.l, record.r, record.b, record.t, record.n, record.f = projection
@@ -1089,10 +1104,33 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
     record.world_reach = world_reach
     record.elevation_deg = elevation_deg
     _attach_profile(record, profile)
+    return record
+
+
+def shadow_bias_receivers(light, projection, clip, resolution, depth_format, receivers,
+                          limit_angle_deg=89.9, lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0,
+                          world_reach=0.0, elevation_deg=90.0, profile=None):
+    """:func:`shadow_bias` for the receivers an engine lists (``zshift_shadow_bias_receivers``):
+    ``receivers`` a sequence of planar polygons, each a sequence of 3 to 64 ``(x, y, z)`` corners
+    in the light's view space (a spot light at the origin, looking down -z), counter-clockwise
+    seen from the lit front, inside the light's frustum. The bias follows from each receiver's
+    own plane, at any angle short of edge-on; receivers facing away by more than
+    ``limit_angle_deg`` everywhere are skipped. Raises :class:`ZshiftError` as
+    :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""
+    polygons = [list(polygon) for polygon in receivers]
+    record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
+                            (projection[4], projection[5]), lookup, pcf_size, kernel_radius,
+                            world_reach, elevation_deg, profile)
+    flat = [float(x) for polygon in polygons for corner in polygon for x in corner]
+    if any(len(corner) != 3 for polygon in polygons for corner in polygon):
+        raise ZshiftError(Status.DOMAIN, "every receiver corner needs 3 coordinates (x, y, z)")
+    corners = (_ctypes.c_float * max(len(flat), 1))(*flat)
+    counts = (_ctypes.c_uint32 * max(len(polygons), 1))(*[len(p) for p in polygons])
     lib = _lib()
-    fn = lib.zshift_shadow_bias
-    fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ShadowBias)]
+    fn = lib.zshift_shadow_bias_receivers
+    fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ctypes.c_float),
+                   _ctypes.POINTER(_ctypes.c_uint32), _ctypes.c_uint32, _ctypes.POINTER(_ShadowBias)]
     fn.restype = _ctypes.c_int32
     out = _ShadowBias()
-    _check(fn(_ctypes.byref(record), _ctypes.byref(out)))
+    _check(fn(_ctypes.byref(record), corners, counts, len(polygons), _ctypes.byref(out)))
     return ShadowBias(*(getattr(out, name) for name, _ in _ShadowBias._fields_))
