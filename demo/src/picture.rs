@@ -42,6 +42,19 @@ impl Picture {
         p
     }
 
+    /// `top` above `bottom`, left-aligned, on the background colour.
+    pub fn stacked(top: &Picture, bottom: &Picture) -> Picture {
+        let mut p = Picture::new(top.width.max(bottom.width), top.height + bottom.height);
+        for (part, y0) in [(top, 0), (bottom, top.height)] {
+            for y in 0..part.height {
+                for x in 0..part.width {
+                    p.set(x, y0 + y, part.pixels[y * part.width + x]);
+                }
+            }
+        }
+        p
+    }
+
     fn set(&mut self, x: usize, y: usize, color: [u8; 3]) {
         if x < self.width && y < self.height {
             self.pixels[y * self.width + x] = color;

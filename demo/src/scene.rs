@@ -232,7 +232,7 @@ pub const METHODS: [Method; 5] = [
     },
     Method {
         name: "seed",
-        label: ["SEED (F32)", "LOADOFFSETMATRIX"],
+        label: ["LENGYEL 2004, F32", "LOADOFFSETMATRIX"],
         offset: Offset::Seed,
     },
     Method {
