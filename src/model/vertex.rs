@@ -131,7 +131,7 @@ fn combined_errors(m: &[f64; 16], a: [f64; 3]) -> [f64; 4] {
     })
 }
 
-/// [`combined_errors`] from the scalar `world_reach` alone, for a vertex within `extent` of the
+/// `combined_errors` from the scalar `world_reach` alone, for a vertex within `extent` of the
 /// camera: `A = √3·(4W + extent)` (the conservative path, for problems that know no plane form
 /// on eye coordinates, such as a shadow map's receivers).
 pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
