@@ -55,6 +55,13 @@
 //!   (D32F: 2⁻²⁴); the largest over the depths (each its own phase between two stored values).
 //!   What a shared-z facing decal needs under `GL_LESS` (not measured on D16). Under reversed Z
 //!   (D32F only) the same with element 14 moved away from 0: `facing_reversed`, a relative ε.
+//! * **`line_reach`** (`GL_LINES` and polygon-mode lines, width 1, on D32F): 96 lines in every
+//!   direction and 48 triangles drawn under `glPolygonMode(GL_LINE)`, in 32 tiles each with its
+//!   own plane (window-depth gradient 1/256 per pixel along the steeper axis, in 16 directions);
+//!   the largest `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` over every fragment
+//!   (0.5006 and 0.5012 pixel on llvmpipe). **`offset_slope`**: `glPolygonOffset(1, 0)` on a plane
+//!   with `|gₓ| = |g_y|`, over the gradient (1: GL's `max` rule; √2: a root sum of squares). One
+//!   draw batch and one read-back, about 2 ms.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -71,8 +78,8 @@
 //! afterwards restores the draw and read framebuffer bindings, the renderbuffer, program, vertex
 //! array, array buffer and pixel-pack buffer bindings, every viewport and depth range (all of
 //! them under `ARB_viewport_array`), the depth function, write mask and clear value, polygon
-//! offset factor, units and clamp, polygon mode, the enables it touches (depth test, polygon
-//! offset fill, cull face, polygon smooth, stencil, depth clamp, rasterizer discard, scissor
+//! offset factor, units and clamp, polygon mode, line width, the enables it touches (depth test,
+//! polygon offset fill and line, cull face, polygon and line smooth, stencil, depth clamp, rasterizer discard, scissor
 //! per viewport, every clip distance, depth-bounds test, alpha test in compatibility), every
 //! `GL_PACK_*` parameter, `glClipControl` and, in a compatibility context,
 //! `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
