@@ -632,7 +632,10 @@ mod tests {
         assert_eq!(r.polygon_offset[0], 0.5);
         let g = r.face_gradient;
         let units_push = worst.window_offset - std::f64::consts::SQRT_2 * g;
-        assert!((r.window_offset - (0.5 * g + units_push)).abs() < 1e-12, "{r:?}");
+        assert!(
+            (r.window_offset - (0.5 * g + units_push)).abs() < 1e-12,
+            "{r:?}"
+        );
         e.kind = LineKind::PolygonMode;
         e.line_width = 3.0;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();

@@ -190,9 +190,13 @@ fn terrain(r: f64, d: f64) -> Mesh {
         for i in 0..=n {
             let (u, v) = (i as f64 / n as f64 - 0.5, j as f64 / n as f64 - 0.5);
             let (x, z) = (2.0 * half * u, 2.0 * half * v);
-            let hill = |cx: f64, cz: f64, s: f64| (-((u - cx).powi(2) + (v - cz).powi(2)) / s).exp();
-            let h = 0.05 * half
-                * (hill(-0.2, 0.1, 0.01) + 0.8 * hill(0.15, -0.15, 0.02) + 0.6 * hill(0.25, 0.25, 0.005))
+            let hill =
+                |cx: f64, cz: f64, s: f64| (-((u - cx).powi(2) + (v - cz).powi(2)) / s).exp();
+            let h = 0.05
+                * half
+                * (hill(-0.2, 0.1, 0.01)
+                    + 0.8 * hill(0.15, -0.15, 0.02)
+                    + 0.6 * hill(0.25, 0.25, 0.005))
                 + 0.01 * half * (7.0 * u).sin() * (5.0 * v).cos();
             verts.push(place([x, h, z], 25f64.to_radians(), 0.2, d));
         }
@@ -240,7 +244,10 @@ fn chamfered_box(r: f64, d: f64) -> Mesh {
             tris.push([vid(i, b), vid(j, cc), vid(i, cc)]);
         }
         for sa in [-1.0, 1.0] {
-            let mut ring: Vec<u32> = (0..8).filter(|&i| signs(i)[a] == sa).map(|i| vid(i, a)).collect();
+            let mut ring: Vec<u32> = (0..8)
+                .filter(|&i| signs(i)[a] == sa)
+                .map(|i| vid(i, a))
+                .collect();
             ring.sort_by(|&p, &q| {
                 let angle = |v: u32| raw[v as usize][cc].atan2(raw[v as usize][b]);
                 angle(p).total_cmp(&angle(q))
@@ -279,8 +286,14 @@ fn project(mesh: &Mesh, m: &[f64; 16]) -> Projected {
     let n = SIZE as usize;
     let mut near_vertex = vec![false; n * n];
     for v in &xy {
-        let (x0, x1) = ((v[0] - 2.5).ceil().max(0.0), (v[0] + 1.5).floor().min(n as f64 - 1.0));
-        let (y0, y1) = ((v[1] - 2.5).ceil().max(0.0), (v[1] + 1.5).floor().min(n as f64 - 1.0));
+        let (x0, x1) = (
+            (v[0] - 2.5).ceil().max(0.0),
+            (v[0] + 1.5).floor().min(n as f64 - 1.0),
+        );
+        let (y0, y1) = (
+            (v[1] - 2.5).ceil().max(0.0),
+            (v[1] + 1.5).floor().min(n as f64 - 1.0),
+        );
         if x0 > x1 || y0 > y1 {
             continue;
         }
@@ -917,10 +930,7 @@ fn edges_over_faces_sweep() {
                                             "(a) polygon offset"
                                         }
                                     );
-                                    let where_ = format!(
-                                        "{label} {} f/n {ratio} {pos}",
-                                        mesh.name
-                                    );
+                                    let where_ = format!("{label} {} f/n {ratio} {pos}", mesh.name);
                                     let class = class_of(&mut classes, &label);
                                     class.scenes += 1;
                                     let rec = match recommend(&m, clip, &edges, method) {
@@ -1018,10 +1028,9 @@ fn edges_over_faces_sweep() {
                                             class.peers[k].1 += s;
                                         }
                                         for (k, &delta) in SEED_SHIFTS.iter().enumerate() {
-                                            let em = zshift::matrix_in::offset_shift(
-                                                &m, clip, delta, d,
-                                            )
-                                            .unwrap_or(m);
+                                            let em =
+                                                zshift::matrix_in::offset_shift(&m, clip, delta, d)
+                                                    .unwrap_or(m);
                                             let (l, s) = scene.count(
                                                 &Draw {
                                                     face_offset: None,
@@ -1057,7 +1066,11 @@ fn edges_over_faces_sweep() {
                 if c.peer_scenes == 0 {
                     "–".to_string()
                 } else {
-                    format!("{:.1}%/{:.1}%", pct(l, c.peer_visible), pct(s, c.peer_hidden))
+                    format!(
+                        "{:.1}%/{:.1}%",
+                        pct(l, c.peer_visible),
+                        pct(s, c.peer_hidden)
+                    )
                 }
             })
             .collect();
@@ -1082,7 +1095,9 @@ fn edges_over_faces_sweep() {
             for conv in ["[-1,1]", "[0,1]", "rev"] {
                 let mut r: Vec<f64> = classes
                     .iter()
-                    .filter(|(l, _)| l.starts_with(conv) && l.contains(method) && l.ends_with(pname))
+                    .filter(|(l, _)| {
+                        l.starts_with(conv) && l.contains(method) && l.ends_with(pname)
+                    })
                     .flat_map(|(_, c)| c.ratios.iter().copied())
                     .collect();
                 println!(

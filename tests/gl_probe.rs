@@ -112,7 +112,10 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             "{figures:?}"
         );
         assert!((p.offset_slope - 1.0).abs() < 1e-3, "{}", p.offset_slope);
-        assert!((figures.offset_slope_axis - 1.0).abs() < 1e-3, "{figures:?}");
+        assert!(
+            (figures.offset_slope_axis - 1.0).abs() < 1e-3,
+            "{figures:?}"
+        );
         assert!(
             figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2,
             "{figures:?}"

@@ -1434,7 +1434,12 @@ unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
     (gl.Clear)(DEPTH_BUFFER_BIT);
     (gl.UniformMatrix4fv)(o.projection, 1, 0, IDENTITY.as_ptr());
     let bytes = std::mem::size_of_val(all.as_slice());
-    (gl.BufferData)(ARRAY_BUFFER, bytes as isize, all.as_ptr().cast(), STREAM_DRAW);
+    (gl.BufferData)(
+        ARRAY_BUFFER,
+        bytes as isize,
+        all.as_ptr().cast(),
+        STREAM_DRAW,
+    );
     for &(tile, mode, first, count, offset) in &draws {
         let (x, y) = ((tile % TILES) * SIZE, (tile / TILES) * SIZE);
         (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
