@@ -309,6 +309,23 @@ typedef struct {
    and 10^4 units behind and ahead of the camera. NAN where not measured. NAN or finite >= 0.
    */
   double clip_ulps;
+  /*
+   How far from the pixel a 1-pixel line fragment takes its depth, in pixels along the face's
+   steepest window-depth gradient: the largest |stored - plane at the pixel centre| /
+   max(|dz/dx|, |dz/dy|) over lines drawn in sloped planes, for GL_LINES of width 1 ([0])
+   and for triangles drawn under glPolygonMode(GL_LINE) ([1]), single-sampled. The edge
+   offsets (zshift_edge_offset) take it for their line reach (worst case (w + 1)/2); wider
+   lines add (w - 1)/2. NAN where not measured. NAN or finite >= 0.
+   */
+  double line_reach[2];
+  /*
+   glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
+   |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
+   root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
+   multiplies a face's push by it (worst case sqrt(2)). NAN where not measured. NAN or
+   finite >= 0.
+   */
+  double offset_slope;
 } ZshiftProfile;
 
 /*

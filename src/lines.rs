@@ -26,10 +26,12 @@
 //!
 //! `|z_line − z_face| ≤ |g_minor|·Δ ≤ M·Δ`,  `M = max(|gₓ|, |g_y|)`, `Δ = (w + 1)/2`,   (L)
 //!
-//! `g_minor` the gradient along the minor axis. `Δ = (w + 1)/2` keeps half a pixel of the
-//! rasterizer's freedom beyond the ideal `w/2`: llvmpipe was measured at 0.50–0.52 pixel for
+//! `g_minor` the gradient along the minor axis. `Δ = (w + 1)/2` (the worst case) keeps half a pixel of
+//! the rasterizer's freedom beyond the ideal `w/2`: llvmpipe was measured at 0.50–0.52 pixel for
 //! 1-pixel lines, 0.72 for polygon-mode lines (its unfilled stage re-draws the triangle's edges
-//! with their own set-up) and 1.52 for width 3. `M` is exactly the slope term of
+//! with their own set-up) and 1.52 for width 3. A measured profile
+//! ([`RasterizerProfile::line_reach`], single-sampled) replaces it by the probe's reach for the
+//! line kind at width 1 plus `(w − 1)/2`; with MSAA the worst case stays. `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
 //! constant for the whole mesh, so it must pay `L = g·Δ` for the steepest face that matters:
@@ -58,7 +60,9 @@
 //!
 //! # The hidden-line gap
 //! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
-//! front face's stored depth (pushed back by up to `Δ·g + units·r_max` under (a), or against
+//! front face's stored depth (pushed back by up to `Δ·g·ρ + units·r_max` under (a), `ρ` the
+//! profile's [`RasterizerProfile::offset_slope`] — 1 for GL's `max` rule, `√2` for a root sum of
+//! squares and in the worst case —, or against
 //! the edge's pull `Δw` under (b)), each off its plane by `E + S`, and the hidden edge's own
 //! fragment off its line by up to `L` (the sampling point's freedom along the line, for an edge
 //! whose faces are within `g`); under an `…EQUAL` test a tie shows. So a hidden edge whose exact
@@ -382,6 +386,32 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
     }
 }
 
+/// `Δ`, pixels: the profile's measured reach for the line kind plus `(w − 1)/2` (a measured,
+/// single-sampled profile), else `(w + 1)/2` (module docs, "The line term").
+fn line_reach(edges: &Edges) -> f64 {
+    let w = edges.line_width;
+    let p = &edges.profile;
+    let measured = p.line_reach[match edges.kind {
+        LineKind::Lines => 0,
+        LineKind::PolygonMode => 1,
+    }];
+    if p.measured && edges.samples == 1 && measured.is_finite() && measured > 0.0 {
+        measured + (w - 1.0) / 2.0
+    } else {
+        (w + 1.0) / 2.0
+    }
+}
+
+/// `glPolygonOffset`'s slope term over `max(|gₓ|, |g_y|)` at its largest: the measured rule
+/// (1 for GL's max), else `√2` (a root sum of squares, which Vulkan allows).
+fn offset_slope(p: &RasterizerProfile) -> f64 {
+    if p.measured && p.offset_slope.is_finite() && p.offset_slope > 0.0 {
+        p.offset_slope.max(1.0)
+    } else {
+        std::f64::consts::SQRT_2
+    }
+}
+
 fn unchecked_gap(
     m: &[f32; 16],
     clip: ClipDepth,
@@ -415,7 +445,7 @@ fn unchecked_gap(
     };
     let terms = crate::recommend::clip_error_terms(&scene, clip)?;
     let mapping = crate::recommend::mapping_of(&scene, clip)?;
-    let reach = (edges.line_width + 1.0) / 2.0;
+    let reach = line_reach(edges);
     let line = representable(g * reach, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
@@ -465,7 +495,7 @@ fn unchecked_gap(
             out.vulkan_bias = [fits(vk)?, reach];
             // The push at the steepest face that matters, with r at the largest depth.
             let r_hi = quanta * r_of(BiasApi::OpenGl, w_hi)?;
-            let push = fits(reach * g + units * r_hi)?;
+            let push = fits(reach * g * offset_slope(&edges.profile) + units * r_hi)?;
             out.window_offset = push;
             Box::new(move |_| Ok(push))
         }
@@ -584,6 +614,35 @@ mod tests {
         );
         assert!(r.polygon_offset[1] * q >= 2.0 * (r.terms.plane + r.terms.snap));
         assert_eq!(r.matrix, m);
+    }
+
+    /// A measured profile's reach replaces `(w + 1)/2` (plus `(w − 1)/2` for wide lines,
+    /// single-sampled only), and its slope rule the worst case's `√2` in (a)'s push.
+    #[test]
+    fn a_measured_profile_supplies_the_reach_and_the_slope_rule() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        let worst = recommend(&m, clip, &e, EdgeMethod::PolygonOffset).unwrap();
+        e.profile.measured = true;
+        e.profile.line_reach = [0.5, 0.72];
+        e.profile.offset_slope = 1.0;
+        let r = recommend(&m, clip, &e, EdgeMethod::PolygonOffset).unwrap();
+        assert_eq!((worst.line_reach, r.line_reach), (1.0, 0.5));
+        assert_eq!(r.polygon_offset[0], 0.5);
+        let g = r.face_gradient;
+        let units_push = worst.window_offset - std::f64::consts::SQRT_2 * g;
+        assert!(
+            (r.window_offset - (0.5 * g + units_push)).abs() < 1e-12,
+            "{r:?}"
+        );
+        e.kind = LineKind::PolygonMode;
+        e.line_width = 3.0;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert!((r.line_reach - 1.72).abs() < 1e-15);
+        e.samples = 4;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert_eq!(r.line_reach, 2.0);
     }
 
     #[test]

@@ -140,6 +140,21 @@ pub struct RasterizerProfile {
     /// `γ = clip_ulps·u` (0.835 on llvmpipe). NaN where not measured. A sampled maximum, not a
     /// proof (`tests/gl_scenes.rs` and `tests/gl_engine_scene.rs` check it on other grounds).
     pub clip_ulps: f64,
+    /// How far from the pixel a 1-pixel line fragment takes its depth: the largest
+    /// `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` over the fragments of lines drawn
+    /// in sloped planes (`gₓ`, `g_y` the plane's window-depth gradients per pixel), in pixels,
+    /// for `GL_LINES` of width 1 (`[0]`) and for triangles drawn under
+    /// `glPolygonMode(GL_LINE)` (`[1]`), single-sampled. [`crate::lines`] takes it for its reach
+    /// `Δ` (worst case `(w + 1)/2`, 1 pixel at width 1); wider lines add `(w − 1)/2`. NaN where
+    /// not measured. Measured on llvmpipe: 0.5 and 0.72 (its unfilled stage draws the
+    /// triangle's edges with their own set-up). A sampled maximum (96 lines, 48 triangles).
+    pub line_reach: [f64; 2],
+    /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
+    /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
+    /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
+    /// [`crate::lines`] multiplies a face's push by it in the hidden-line gap (worst case `√2`).
+    /// NaN where not measured.
+    pub offset_slope: f64,
     /// `false` for [`RasterizerProfile::worst_case`]; `true` for a profile the probe measured.
     /// The model uses `error_ulps` only from a measured profile; every other field always.
     pub measured: bool,
@@ -166,6 +181,8 @@ impl RasterizerProfile {
             facing_chain: None,
             near_clip: NearClip::ClippedF32,
             clip_ulps: f64::NAN,
+            line_reach: [f64::NAN; 2],
+            offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,
         }

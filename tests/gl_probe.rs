@@ -97,6 +97,25 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             p.facing_quanta
         );
         assert_eq!(p.snapping, Snapping::Unsnapped);
+        // Lines: a 1-pixel line's fragment takes the line's depth at its major-axis coordinate,
+        // up to half a pixel across the line (the diamond-exit rule); polygon-mode lines go
+        // through the same line set-up. glPolygonOffset's slope term is max(|dz/dx|, |dz/dy|)
+        // (lp_setup_tri.c), 1 on the diagonal plane, not sqrt(2). tests/gl_lines.rs checks the
+        // reach on meshes against an exact reference.
+        assert!(
+            (0.5..0.55).contains(&p.line_reach[0]) && (0.5..0.8).contains(&p.line_reach[1]),
+            "{:?}",
+            p.line_reach
+        );
+        assert!(
+            figures.line_pixels[0] > 2000 && figures.line_pixels[1] > 2000,
+            "{figures:?}"
+        );
+        assert!((p.offset_slope - 1.0).abs() < 1e-3, "{}", p.offset_slope);
+        assert!(
+            (figures.offset_slope_axis - 1.0).abs() < 1e-3,
+            "{figures:?}"
+        );
         assert!(
             figures.snapping_residual.0 * 4.0 < figures.snapping_residual.2,
             "{figures:?}"

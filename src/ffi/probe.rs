@@ -92,6 +92,19 @@ pub struct ZshiftProfile {
     /// its bound 36, six clip stages of f32 rounding): measured on ground planes reaching 1000
     /// and 10^4 units behind and ahead of the camera. NAN where not measured. NAN or finite >= 0.
     pub clip_ulps: f64,
+    /// How far from the pixel a 1-pixel line fragment takes its depth, in pixels along the face's
+    /// steepest window-depth gradient: the largest |stored - plane at the pixel centre| /
+    /// max(|dz/dx|, |dz/dy|) over lines drawn in sloped planes, for GL_LINES of width 1 ([0])
+    /// and for triangles drawn under glPolygonMode(GL_LINE) ([1]), single-sampled. The edge
+    /// offsets (zshift_edge_offset) take it for their line reach (worst case (w + 1)/2); wider
+    /// lines add (w - 1)/2. NAN where not measured. NAN or finite >= 0.
+    pub line_reach: [f64; 2],
+    /// glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
+    /// |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
+    /// root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
+    /// multiplies a face's push by it (worst case sqrt(2)). NAN where not measured. NAN or
+    /// finite >= 0.
+    pub offset_slope: f64,
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -123,6 +136,8 @@ impl From<RasterizerProfile> for ZshiftProfile {
             error_ulps_reversed: p.error_ulps_reversed,
             facing_chain: p.facing_chain.map_or(-1, |c| c.code()),
             clip_ulps: p.clip_ulps,
+            line_reach: p.line_reach,
+            offset_slope: p.offset_slope,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -167,6 +182,9 @@ impl ZshiftProfile {
             self.facing_reversed,
             self.error_ulps_reversed,
             self.clip_ulps,
+            self.line_reach[0],
+            self.line_reach[1],
+            self.offset_slope,
         ];
         if self
             .plane_error
@@ -177,7 +195,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, offset_slope or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -203,6 +221,8 @@ impl ZshiftProfile {
             },
             near_clip,
             clip_ulps: self.clip_ulps,
+            line_reach: self.line_reach,
+            offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {
                 self.probe_seconds

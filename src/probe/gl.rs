@@ -14,6 +14,7 @@ pub type Boolean = u8;
 
 // The GL enums the probe uses (values from the OpenGL 4.6 registry).
 pub(crate) const NO_ERROR: Enum = 0;
+pub(crate) const LINES: Enum = 0x0001;
 pub(crate) const TRIANGLES: Enum = 0x0004;
 pub(crate) const FRONT: Enum = 0x0404;
 pub(crate) const BACK: Enum = 0x0405;
@@ -44,7 +45,11 @@ pub(crate) const SUBPIXEL_BITS: Enum = 0x0D50;
 pub(crate) const UNSIGNED_INT: Enum = 0x1405;
 pub(crate) const FLOAT: Enum = 0x1406;
 pub(crate) const DEPTH_COMPONENT: Enum = 0x1902;
+pub(crate) const LINE: Enum = 0x1B01;
 pub(crate) const FILL: Enum = 0x1B02;
+pub(crate) const LINE_SMOOTH: Enum = 0x0B20;
+pub(crate) const LINE_WIDTH: Enum = 0x0B21;
+pub(crate) const POLYGON_OFFSET_LINE: Enum = 0x2A02;
 pub(crate) const POLYGON_OFFSET_UNITS: Enum = 0x2A00;
 pub(crate) const POLYGON_OFFSET_FILL: Enum = 0x8037;
 pub(crate) const POLYGON_OFFSET_FACTOR: Enum = 0x8038;
@@ -178,6 +183,7 @@ entry_points! {
         Clear: "glClear" fn(u32);
         PolygonOffset: "glPolygonOffset" fn(f32, f32);
         PolygonMode: "glPolygonMode" fn(Enum, Enum);
+        LineWidth: "glLineWidth" fn(f32);
         PixelStorei: "glPixelStorei" fn(Enum, Int);
         ReadPixels: "glReadPixels" fn(Int, Int, Sizei, Sizei, Enum, Enum, *mut c_void);
         CreateShader: "glCreateShader" fn(Enum) -> Uint;

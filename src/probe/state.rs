@@ -26,6 +26,7 @@ pub struct Saved {
     depth_clear: f64,
     polygon_offset: [f32; 3],
     polygon_mode: [Int; 2],
+    line_width: f32,
     pack: [(Enum, Int); 8],
     clip_control: Option<[Int; 2]>,
     depth_transfer: Option<[f32; 2]>,
@@ -33,8 +34,10 @@ pub struct Saved {
 }
 
 /// Capabilities the probe turns on or off; each is restored as it was.
-const CAPABILITIES: [Enum; 8] = [
+const CAPABILITIES: [Enum; 10] = [
     POLYGON_SMOOTH,
+    LINE_SMOOTH,
+    POLYGON_OFFSET_LINE,
     DEPTH_TEST,
     POLYGON_OFFSET_FILL,
     CULL_FACE,
@@ -96,6 +99,8 @@ impl Saved {
         }
         let mut polygon_mode = [FILL as Int; 2];
         (gl.GetIntegerv)(POLYGON_MODE, polygon_mode.as_mut_ptr());
+        let mut line_width = 1.0f32;
+        (gl.GetFloatv)(LINE_WIDTH, &mut line_width);
         let mut depth_mask = 1;
         (gl.GetBooleanv)(DEPTH_WRITEMASK, &mut depth_mask);
         let mut depth_clear = 1.0;
@@ -125,6 +130,7 @@ impl Saved {
             depth_clear,
             polygon_offset,
             polygon_mode,
+            line_width,
             pack: PACK_STATE.map(|p| (p, gl.integer(p))),
             clip_control,
             depth_transfer,
@@ -144,6 +150,7 @@ impl Saved {
         (gl.DepthMask)(1);
         (gl.DepthRange)(0.0, 1.0);
         (gl.PolygonMode)(FRONT_AND_BACK, FILL);
+        (gl.LineWidth)(1.0);
         if let Some(clip_control) = gl.ClipControl {
             clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
         }
@@ -189,6 +196,7 @@ impl Saved {
             (gl.PolygonMode)(FRONT, front as Enum);
             (gl.PolygonMode)(BACK, back as Enum);
         }
+        (gl.LineWidth)(self.line_width);
         for (p, v) in self.pack {
             (gl.PixelStorei)(p, v);
         }

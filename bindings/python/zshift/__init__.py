@@ -822,11 +822,14 @@ class _ZshiftProfile(_ctypes.Structure):
         ("error_ulps_reversed", _ctypes.c_double),
         ("facing_chain", _ctypes.c_int32),
         ("clip_ulps", _ctypes.c_double),
+        ("line_reach", _ctypes.c_double * 2),
+        ("offset_slope", _ctypes.c_double),
     ]
 
 
 #: What :func:`probe` and :func:`profile_worst_case` return: the C ``ZshiftProfile``'s fields
-#: (arrays as 4-tuples in the order D16, D24, D32, D32F; see zshift.h for each field).
+#: (per-format arrays as 4-tuples in the order D16, D24, D32, D32F, line_reach a 2-tuple; see
+#: zshift.h for each field).
 Profile = _collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
 
 # ZshiftGlLoader: ZshiftGlProc (*)(const char *name, void *user); a function pointer travels
