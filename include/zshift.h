@@ -1033,8 +1033,9 @@ typedef struct {
 /*
  The inputs were valid but no useful answer exists for them: the quantity does not exist
  (k*|Pz| >= 1 in eq. 4.1.10, a minimum epsilon under reversed Z with f = +INFINITY), stacked
- layers would reach the gap, or a recommendation would push the decal past the near plane or
- need a bleed gap wider than half its distance. `zshift_last_error()` says which.
+ layers would reach the gap, or a recommendation would push the decal past the near plane (a
+ large clipped base, or world-space vertices far from the origin: the detail says which and
+ what to do). `zshift_last_error()` says which.
  */
 #define ZSHIFT_ERR_UNRESOLVABLE 4
 
@@ -1140,8 +1141,10 @@ ZshiftStatus zshift_offset_matrix_ndc(const float *m, ZshiftClip clip, double nd
  for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
  2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
  -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
- exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
- (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+ exact_depth with a nonzero slope, a negative base_reach, an unknown depth_func, a `pipeline`
+ field out of range, a `profile` that fails its checks (a zero-filled ZshiftProfile);
+ ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_UNRESOLVABLE when the offset would push the decal past the
+ near plane (the detail says why and what to do); ZSHIFT_ERR_OVERFLOW.
  zshift_last_error() names the field. `out` is untouched on error.
  */
 ZshiftStatus zshift_decal_matrix(const float *m,
@@ -1174,9 +1177,13 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
  or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
  viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
  negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
- base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
- `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
- `*out` is untouched on error.
+ base_reach, a `pipeline` field out of range (glDepthRange not 0 <= near < far <= 1, a
+ negative world_reach, a view_matrix without its world_box), or a `profile` that fails its
+ checks (a zero-filled ZshiftProfile: start from `zshift_probe` or
+ `zshift_profile_worst_case`); ZSHIFT_ERR_UNRESOLVABLE when the offset the scene needs would
+ push the decal past the near plane (the detail says why and what to do: cut the base, probe
+ the context, pass the view matrix); ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is
+ untouched on error.
  */
 ZshiftStatus zshift_recommend(const ZshiftScene *scene, ZshiftRecommendation *out);
 

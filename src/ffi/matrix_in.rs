@@ -319,8 +319,10 @@ impl ZshiftDecal {
 /// for `m` and `clip` (a convention mismatch included); ZSHIFT_ERR_DOMAIN for a tweak above
 /// 2^-10, a zero viewport (an all-zero ZshiftDecal), an unknown format, subpixel_bits outside
 /// -1..=32, decal_near/decal_far outside the matrix's [n, f] or decreasing, a negative slope,
-/// exact_depth with a nonzero slope, a negative base_reach, a `profile` that fails its checks
-/// (a zero-filled ZshiftProfile); ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_OVERFLOW.
+/// exact_depth with a nonzero slope, a negative base_reach, an unknown depth_func, a `pipeline`
+/// field out of range, a `profile` that fails its checks (a zero-filled ZshiftProfile);
+/// ZSHIFT_ERR_NOT_FINITE; ZSHIFT_ERR_UNRESOLVABLE when the offset would push the decal past the
+/// near plane (the detail says why and what to do); ZSHIFT_ERR_OVERFLOW.
 /// zshift_last_error() names the field. `out` is untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_decal_matrix(

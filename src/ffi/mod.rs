@@ -90,8 +90,9 @@ pub const ZSHIFT_ERR_DOMAIN: ZshiftStatus = ZshiftStatus(3);
 
 /// The inputs were valid but no useful answer exists for them: the quantity does not exist
 /// (k*|Pz| >= 1 in eq. 4.1.10, a minimum epsilon under reversed Z with f = +INFINITY), stacked
-/// layers would reach the gap, or a recommendation would push the decal past the near plane or
-/// need a bleed gap wider than half its distance. `zshift_last_error()` says which.
+/// layers would reach the gap, or a recommendation would push the decal past the near plane (a
+/// large clipped base, or world-space vertices far from the origin: the detail says which and
+/// what to do). `zshift_last_error()` says which.
 pub const ZSHIFT_ERR_UNRESOLVABLE: ZshiftStatus = ZshiftStatus(4);
 
 /// The inputs were valid but the result does not fit its type (f64, or f32 for matrices).

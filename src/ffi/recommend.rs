@@ -470,9 +470,13 @@ pub(super) fn pipeline_from_c(p: &ZshiftPipeline) -> Result<crate::model::Pipeli
 /// or infinite inputs (except f = +INFINITY); ZSHIFT_ERR_DOMAIN for a bad frustum, a zero
 /// viewport, an unknown depth_format, decal_near/decal_far outside [n, f] or decreasing, a
 /// negative slope, exact_depth with a nonzero slope, subpixel_bits < -1 or > 32, a negative
-/// base_reach, or a `profile` that fails its checks (a zero-filled ZshiftProfile: start from
-/// `zshift_probe` or `zshift_profile_worst_case`); ZSHIFT_ERR_OVERFLOW if a result overflows.
-/// `*out` is untouched on error.
+/// base_reach, a `pipeline` field out of range (glDepthRange not 0 <= near < far <= 1, a
+/// negative world_reach, a view_matrix without its world_box), or a `profile` that fails its
+/// checks (a zero-filled ZshiftProfile: start from `zshift_probe` or
+/// `zshift_profile_worst_case`); ZSHIFT_ERR_UNRESOLVABLE when the offset the scene needs would
+/// push the decal past the near plane (the detail says why and what to do: cut the base, probe
+/// the context, pass the view matrix); ZSHIFT_ERR_OVERFLOW if a result overflows. `*out` is
+/// untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_recommend(
     scene: *const ZshiftScene,
