@@ -19,7 +19,8 @@
 //! | [`precision`] | window depth and the exact depth step at a distance; per clip convention and depth format (`DepthMapping`, `DepthFormat`) | 001 |
 //! | [`profile`] | what a rasterizer does that the offset model needs (snapping, polygon-offset `r`, clipping): plain data | |
 //! | [`probe`] | measures a `RasterizerProfile` in the caller's GL context, through its function loader | |
-//! | [`recommend`] | the error model of a real rasterizer and the offset it needs | 000, 002, 004 |
+//! | [`model`] | the rasterizer model's terms every coplanar problem composes, one file per term with its derivation: `q`, `T`, `V`, `I`, `S`, `C`, the plane's form, the engine's pipeline, what a probed profile replaces | 000, 001, 002, 004 |
+//! | [`recommend`] | the decal problem: the offset a decal over its coplanar base needs on a real rasterizer, (R1) and the bleed gap (R2), from [`model`]'s terms | 000, 002, 004 |
 //! | [`domain`] | validated planes, depths and depth bits (the input rules) | |
 //! | [`clip_offset`] | offsets for every convention: constant NDC (element 10) or relative (element 14) | 000 eq. 4.1.3–4.1.7 |
 //! | [`median`] | Kooima's median-distance projection, its GLSL and its depth offset | 003 |

@@ -94,8 +94,8 @@ use crate::precision::{DepthFormat, DepthMapping};
 use crate::projection::{ClipDepth, Frustum};
 use crate::recommend::{Base, DepthTest, ErrorTerms, RasterizerProfile, Scene};
 
-/// `u = 2⁻²⁴`, the unit roundoff of f32.
-const U: f64 = 1.0 / 16_777_216.0;
+// `u = 2⁻²⁴`, the unit roundoff of f32 (one home: crate::model).
+use crate::model::F32_UNIT_ROUNDOFF as U;
 
 /// How the edges are drawn.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -379,7 +379,7 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
             // |1/d_a| ≤ (1 + s·e)/d₁ (crate::recommend, term S).
             let tan = a.tan();
             let s = std::f64::consts::SQRT_2 * tan;
-            let e = crate::recommend::half_extent_tangent(frustum)?;
+            let e = crate::model::gradient::half_extent_tangent(frustum)?;
             let g = tan * big_f * ex.max(ey) / d1 * (1.0 + s * e);
             Ok((s, representable(g, "the face gradient overflows f64")?))
         }
@@ -453,7 +453,7 @@ fn unchecked_gap(
     let (w_lo, w_hi) = (w1.min(w2), w1.max(w2));
     let fits = |x: f64| representable(x, "an edge offset overflows f64");
     let q_at = |d: f64| -> Result<f64> {
-        crate::recommend::unit_quantum(&scene, mapping.window_depth(d)?)
+        crate::model::quantum::unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)
     };
     // The window offset between edge and face at depth d (used by the gap), and the outputs.
     let mut out = EdgeRecommendation {
@@ -485,7 +485,8 @@ fn unchecked_gap(
                     pipeline.actual(w),
                 )?))
             };
-            let quanta = edges.profile.resolvable[crate::recommend::profile_index(edges.format)];
+            let quanta =
+                edges.profile.resolvable[crate::model::measured::profile_index(edges.format)];
             let r_gl = quanta * r_of(BiasApi::OpenGl, w_lo)?;
             let units = fits(need / r_gl)?;
             let d3d = (need / r_of(BiasApi::Direct3d, w_lo)?).ceil();
@@ -501,7 +502,7 @@ fn unchecked_gap(
         }
         EdgeMethod::Matrix if reversed => {
             let eps = crate::recommend::reversed_epsilon_with(&scene, &mapping, &terms, line)?;
-            let b = crate::recommend::scale(&scene);
+            let b = crate::model::gradient::scale(&scene.frustum);
             out.relative_epsilon = eps;
             out.matrix = crate::matrix_in::moved(
                 m,

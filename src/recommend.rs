@@ -1,5 +1,6 @@
-//! The offset a real rasterizer needs: an error model of how a decal's stored depth can differ
-//! from its base's, and the smallest projection-matrix offset that beats every term of it.
+//! The decal problem: the offset a real rasterizer needs for a decal over its coplanar base,
+//! from the error model of how a decal's stored depth can differ from its base's, and the
+//! smallest projection-matrix offset that beats every term of it.
 //!
 //! # The model
 //! A decal drawn over a coplanar base survives at a pixel when its stored depth passes the
@@ -15,48 +16,28 @@
 //! `Δw ≥ 2(E + S) + C`      under `GL_LEQUAL` (`GL_GEQUAL`): a tie passes,        (R1)
 //!
 //! and zshift recommends exactly the right-hand side: `ε = −2·Δw / |m10|`, rounded outward into
-//! element 10 by [`crate::offset::epsilon_matrix`]. With `u = 2⁻²⁴` (the unit roundoff of f32),
-//! all terms in window-depth units, `d₁ ≤ d₂` the decal's nearest and farthest eye depths
-//! (`−z`), `w(d)` Walker's window depth (seed 001), `b = f·n/(f−n)`, `F = f/(f−n)`, `s` the
-//! plane's eye-space slope `|∂z/∂x| + |∂z/∂y|` and `e = max(|l|, |r|, |b|, |t|)/n`:
+//! element 10 by [`crate::offset::epsilon_matrix`]. The terms are shared with the other
+//! coplanar problems and live in [`crate::model`], one file per term with its derivation (all
+//! in window-depth units, `u = 2⁻²⁴`, `d₁ ≤ d₂` the decal's nearest and farthest eye depths,
+//! `b = f·n/(f−n)`, `s` the plane's eye-space slope `|∂z/∂x| + |∂z/∂y|` and
+//! `e = max(|l|, |r|, |b|, |t|)/n`):
 //!
-//! * `q`, the **depth quantum**: `1/(2^m − 1)` for an m-bit unsigned normalized buffer (seed 002's
-//!   correction is this factor: one window step is `2/(2^m−1)` in NDC); for `GL_DEPTH_COMPONENT32F`
-//!   the spacing of f32 at `w(d₂)`, `2^(⌊log₂ w(d₂)⌋ − 23)` (2⁻²⁴ for `w ≥ ½`, which is why D32F
-//!   under the `[−1, 1]` mapping behaves as D24).
-//! * `E = T + V + I`, the **plane error** of one quad, with any profile (see "A measured
-//!   profile" for why no probed figure replaces it):
-//!   * `T`, **f32 rounding of the vertex transform**, per vertex: `clip_z = m10·z + m14` (two
-//!     roundings, relative to `|m10|·d` and `|clip_z| ≤ d`), the division by `w` (reciprocal
-//!     and product, two roundings relative to `|ndc|`), and `w = ½·ndc + ½` (one rounding
-//!     relative to `w`): `T = u·(|m10|/2 + 1.5·|ndc|max + w(d₂))`. It applies even to
-//!     bit-identical vertices, because the decal's element 10 differs from the base's.
-//!   * `V`, **f32 rounding of the vertex coordinates**: the decal's corners are not the base's,
-//!     and each eye coordinate is rounded to f32 (relative `u`); rounding z moves depth by
-//!     `u·d`, rounding x or y moves a point of a plane of slope `s` by `s·u·|x|`, `|x| ≤ e·d`
-//!     inside the frustum. Through `dw/dd = b/d²`: `V = u·(b/d₁)·(1 + s·e)`. Zero when every
-//!     corner of base and decal has the same f32 z ([`Scene::exact_depth`]).
-//!   * `I`, **f32 interpolation**: the rasterizer sets the plane up and evaluates it in f32,
-//!     relative to the framebuffer origin (llvmpipe's `a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀`, then
-//!     `a0 + ∂z/∂x·x + ∂z/∂y·y` per pixel: its own source warns that `a0` can get large), so the
-//!     roundings are relative to the depth extrapolated across the viewport,
-//!     `G = max(|gₓ|·W, |g_y|·H)·(1 + s·e)` (`g` the window gradient per pixel of a plane
-//!     crossing the axis at `d₁`, `1 + s·e` the bound on its real crossing, see `S`), not only to
-//!     the depth at the pixel; with gradients set up to a relative `3u`:
-//!     `I = u·(3·w(d₂) + 6·max(w(d₂) − w(d₁), G))`. A steep plane near the near plane showed 36
-//!     quanta (2⁻²⁴) of error on llvmpipe where the depth span alone bounds 3. Zero with
-//!     [`Scene::exact_depth`]: a constant plane has exactly zero gradients, and `w₀ + 0` is
-//!     exact.
-//! * `S`, **sub-pixel snapping**: a rasterizer that snaps window x, y to `2^-b` pixel
-//!   (`GL_SUBPIXEL_BITS` = b) *before* setting up the depth plane moves each vertex by up to
-//!   `2^-(b+1)` pixel per axis, so the plane's depth moves by up to
-//!   `S = 2^-(b+1)·(gₓ + g_y)·(1 + s·e)`, with `g_y = s·F·(t−b)/(H·d₁)` (and `(r−l)/W` for x)
-//!   the window-depth gradient per pixel of a plane crossing the view axis at `d₁`, and
-//!   `1 + s·e` the bound on where it really crosses it (a visible point at depth `d` on the ray
-//!   `(kₓ, k_y)` has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`). Mesa's
-//!   llvmpipe snaps only coverage and sets the depth plane up from the unsnapped float
-//!   positions ([`Snapping::Unsnapped`], `S = 0`).
-//! * `C`, **the base's f32 clipping** (0 for [`Base::InsideFrustum`]): see "The base".
+//! * `q`, the **depth quantum** at the decal's farthest point ([`crate::model::quantum`]).
+//! * `E = T + V + I`, the **plane error** of one quad:
+//!   * `T`, **f32 rounding of the vertex transform** ([`crate::model::transform`]). It applies
+//!     even to bit-identical vertices, because the decal's element 10 differs from the base's.
+//!   * `V`, **f32 rounding of the vertex coordinates** ([`crate::model::vertex`]): the decal's
+//!     corners are not the base's; `V = u·(b/d₁)·(1 + s·e)` for eye-space vertices. Zero when
+//!     every corner of base and decal has the same f32 z ([`Scene::exact_depth`]).
+//!   * `I`, **f32 interpolation** ([`crate::model::interpolation`]), relative to the depth
+//!     extrapolated from the framebuffer's origin. Zero with [`Scene::exact_depth`].
+//! * `S`, **sub-pixel snapping** ([`crate::model::snap`]; 0 on a rasterizer that sets depth up
+//!   from unsnapped positions, [`Snapping::Unsnapped`]).
+//! * `C`, **the base's f32 clipping** ([`crate::model::clip`]; 0 for [`Base::InsideFrustum`]):
+//!   see "The base".
+//!
+//! A measured profile replaces some of them by what the probe found
+//! ([`crate::model::measured`]).
 //!
 //! No term is a fudge factor and there is no safety margin: each is a worst-case bound on one
 //! rounding or snapping step, or a figure measured on the rasterizer that draws.
@@ -85,79 +66,25 @@
 //! # The base
 //! The base is what the engine knows least about, and what breaks a model that treats it like
 //! the decal: a floor running behind the camera is clipped by the rasterizer, which computes
-//! the new vertices in f32 (Mesa's `draw_pipe_clip.c` interpolates every clip coordinate as
-//! `c = c₀ + t·(c₁ − c₀)`; llvmpipe has no guard band, so it clips against all six planes,
-//! and sets its depth plane up from the clipped vertices, `lp_state_setup.c`). [`Base`]
-//! says whether that happens: [`Base::InsideFrustum`] (the rasterizer clips nothing) or
-//! [`Base::Clipped`] with the base's `reach` `R`, the largest `|x|`, `|y|` or `|z|` of its
-//! eye-space vertices.
-//!
-//! **The term `C`.** Any point of the clip-space segment between two vertices projects onto the
-//! plane's image, so the error in `t` does not matter; what moves a clipped vertex off the plane
-//! is the rounding of each interpolated component. A clip-space component `c` of a base vertex is
-//! at most `A_c` in magnitude: `A_x = (|m0| + |m8|)·R`, `A_y = (|m5| + |m9|)·R`,
-//! `A_z = |m10|·R + |m14|`, `A_w = R`. Every rasterizer-made vertex carries component errors
-//! `|e_c| ≤ γ·A_c` with `γ = (6 + 5k)·u`: `u` for the f32 eye coordinates, `2u` for the vertex
-//! transform, `5u` per clip stage (`fl(c₀ + fl(t·fl(c₁ − c₀)))` errs by `u·(|c| + 2|t·(c₁ − c₀)|)`,
-//! at most `5u·A_c`), `k = 6` stages at most (one per plane), and `3u` for the division and the
-//! viewport map (their rounding at a vertex equals a clip-space error of `2u·|c|`, plus the
-//! window map). Write the plane `z = −d_a + sₓx + s_y·y` in clip coordinates normalised to
-//! `z_c`'s coefficient 1: `L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c` with `g_X = m14·sₓ/(d_a·m0)`,
-//! `g_Y = m14·s_y/(d_a·m5)`, `Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)` (`L` vanishes on
-//! the plane's image). A vertex `c + e` then has NDC depth off the plane, at its own screen
-//! position, by exactly `L(e)/(w + e_w)`, and the rasterizer's screen-space interpolation at a
-//! pixel of eye depth `d` inside the triangle weighs vertex `i` by `λᵢ = μᵢ·wᵢ/d` (`μᵢ ∈ [0, 1]`
-//! the clip-space barycentrics): the `1/wᵢ` amplification at the near plane cancels, and the
-//! pixel's depth error is at most `maxᵢ |L(eᵢ)| / d`. With `|1/d_a| ≤ (1 + s·e)/d₁`:
-//!
-//! `C = (window/NDC)·γ·(A_z + |g_X|·A_x + |g_Y|·A_y + |Z₀|·A_w) / (d₁ − γ·R)`
-//!
-//! It is a sound bound but a large one: on the issue's floor (corners at ±1000, n = 0.1, decals
-//! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
-//! and where it would move the decal past the near plane [`recommend`] refuses
-//! ([`crate::ErrorKind::Unresolvable`], "cut the base to the frustum"); elsewhere it answers,
-//! and the bleed gap says what the answer costs (an occluder nearer than the gap is painted
-//! over). **The remedy is [`clip_to_frustum`]**: cut the base polygon in f64 to the
-//! frustum shrunk by 2⁻¹⁶ (near plane slightly in front, sides slightly inside: less than a
-//! quarter pixel up to 16384 pixels), draw the result as a fan, and pass
-//! [`Base::InsideFrustum`]: the rasterizer then clips nothing, every vertex's errors are
-//! relative to its own coordinates, and the base's error is the decal's `E` (on the same floor:
-//! 10 steps where 2 work).
+//! the new vertices in f32. [`Base`] says whether that happens: [`Base::InsideFrustum`] (the
+//! rasterizer clips nothing) or [`Base::Clipped`] with the base's `reach` `R`, the largest
+//! `|x|`, `|y|` or `|z|` of its eye-space vertices. The term `C` of a clipped base
+//! ([`crate::model::clip`]) is a sound bound but a large one; where it would move the decal past
+//! the near plane [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`], "cut the base to
+//! the frustum"); elsewhere it answers, and the bleed gap says what the answer costs. **The
+//! remedy is [`clip_to_frustum`]**: cut the base polygon in f64 to the frustum shrunk by 2⁻¹⁶,
+//! draw the result as a fan, and pass [`Base::InsideFrustum`]: the base's error is then the
+//! decal's `E`.
 //!
 //! # A measured profile
-//! [`Scene::profile`] is a [`RasterizerProfile`] (each field defined once, in
-//! [`crate::profile`]); the default, [`RasterizerProfile::worst_case`], assumes 8 sub-pixel bits
-//! of snapping, `r` = 1 quantum and clipping in f32, and uses the bounds above. A profile the
-//! probe measured ([`crate::probe::probe`], in the engine's own context) enters the model field
-//! by field:
-//!
-//! * `snapping`: `S` as above, 0 where the rasterizer is unsnapped.
-//! * `error_ulps` `k` (and `error_ulps_reversed` under reversed Z) **replaces `T + I`**: the probe
-//!   found every pixel it drew within `k·u·(c + M)` of the plane through its f32 vertices,
-//!   `M = |w₀| + |gₓ|·x + |g_y|·y` the magnitude of the plane's terms from the window origin and
-//!   `c` the transform's constant part (1 under `[−1, 1]`, 2 under `[0, 1]` where the viewport map
-//!   halves nothing, `|m10| = n/(f − n)` under reversed Z). So `E = min(k·u·(c + M) + V, T + V + I)`
-//!   (plus `u·(|m10| − 11/9)⁺/2`, the transform's excess where `f` is closer to `n` than the
-//!   probe's views). `M` is the decal's own with a footprint, else bounded by `w(d₂) + 2G`.
-//!   **This is a measured figure, not a proof**: a maximum of roundings over the planes the probe
-//!   drew (about 300, among them 256 in random directions and frusta). On llvmpipe the probe
-//!   finds 1.54 (`[−1, 1]`) and 3.15 (reversed); `tests/gl_scenes.rs`
-//!   (`the_probed_error_bound_holds`) draws 804 other planes per convention and finds single
-//!   pixels at up to 1.09× that `E` (the largest of more roundings is larger), never more than the
-//!   `2E` the offset reserves for base and decal together; the sweep's pairs of base and decal,
-//!   the quantity that decides a lost pixel, stay inside (0 lost in every scene). `plane_error`
-//!   (one worst figure per format) is a summary for reports and changes nothing.
-//! * The footprint ([`Scene::footprint`], from the decal's corners): replaces the extrapolation
-//!   bound `G` in `I` and `S` by the run to the decal's farthest pixel with its exact gradients,
-//!   and `M` by its value there; under reversed Z each term of the budget is carried to the
-//!   relative offset at its own worst depth ([`Footprint::magnitude_depth`]).
-//! * `near_clip`: [`NearClip::ClippedF32`] keeps `C` (above); [`NearClip::PlanePreserving`]
-//!   replaces it by what the probe allows a clipped plane beyond an unclipped one, the base's own
-//!   `E + S` plus 2 D24 quanta (`2⁻²⁴`), whatever the reach.
-//! * `resolvable` `r`: [`Recommendation::polygon_offset`]'s units are `(Δw − 2S)/(r·q)`.
-//! * `facing_quanta`, `facing_quanta_zero_to_one` (only from a measured profile, under `[−1, 1]`
-//!   and `[0, 1]`): the offset of a facing plane with shared f32 z under a strict test (see
-//!   "Correlated errors").
+//! [`Scene::profile`] is a [`RasterizerProfile`]; the default,
+//! [`RasterizerProfile::worst_case`], uses the bounds of [`crate::model`]. A profile the probe
+//! measured ([`crate::probe::probe`], in the engine's own context) enters the model field by
+//! field, as [`crate::model::measured`] describes: `error_ulps` replaces `T + I` (a measured
+//! figure, not a proof), the footprint ([`Scene::footprint`]) replaces the extrapolation bounds,
+//! `near_clip` and `clip_ulps` the clipping term, `resolvable` `r` sets
+//! [`Recommendation::polygon_offset`]'s units `(Δw − 2S)/(r·q)`, and the facing figures are the
+//! decal's own (next section).
 //!
 //! # Correlated errors
 //! Base and decal errors are independent in size in general: the rounding of two different
@@ -191,7 +118,7 @@
 //! decal's depth as the f32 it is drawn at (`depth_range[0] == depth_range[1]`, an f32 value).
 //! It costs 50 emulated searches, about 2–3 µs per recommendation (against about 0.1 µs for the
 //! bound).
-
+//!
 //! # Other clip conventions
 //! Every `glFrustum`-family mapping stores `w(d) = α ± b/d` with the same `b = f·n/(f − n)` (`n`
 //! for `f = ∞`; [`crate::precision::DepthMapping`]), so `|dw/dd| = b/d²` and the window
@@ -206,9 +133,8 @@
 //! | offset | `ε` on element 10 | constant `c = −Δw` on element 10 | relative `ε` on element 14 |
 //! | `Δw` at `d` | `Δw` | `Δw` | `ε·b/d` |
 //!
-//! Under `[0, 1]` the NDC depth is the window depth (`glDepthRange(0, 1)` maps it as `z·1 + 0`),
-//! so the transform's roundings are no longer halved, and `T`'s relative part is bounded by the
-//! largest window depth of the decal. The offset stays a constant through element 10
+//! Under `[0, 1]` the NDC depth is the window depth, so the transform's roundings are no longer
+//! halved ([`crate::model::transform`]). The offset stays a constant through element 10
 //! ([`crate::clip_offset::ndc_offset_matrix`]), (R1) unchanged.
 //!
 //! Under reversed Z the offset is relative ([`crate::clip_offset::relative_offset_matrix`]:
@@ -239,21 +165,19 @@
 //! profile's [`RasterizerProfile::resolvable`] quanta (1 in the worst case, the smallest known;
 //! 2 measured on llvmpipe, whose `lp_state_setup.c` scales units by `2·mrd`).
 
-use crate::domain::{domain, finite, power_of_two, representable};
+use crate::domain::{domain, finite, representable};
 use crate::error::Result;
+use crate::model::gradient::{half_extent_tangent, scale, tangents_of};
+use crate::model::measured::{measured_figure, measured_plane_error, profile_index};
+use crate::model::quantum::unit_quantum;
+use crate::model::F32_UNIT_ROUNDOFF;
+use crate::model::{clip as clip_model, interpolation, snap as snap_model, transform};
 use crate::precision::{DepthMapping, WINDOW_ESTIMATE_ERROR};
 use crate::projection::{ClipDepth, Frustum};
 
-/// The unit roundoff of f32: half an ulp of 1.
-const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
-
-/// Clip stages a rasterizer-made vertex can pass: one per plane of the view volume (Mesa's
-/// clipper, with no guard band on llvmpipe, clips against all six in turn).
-const CLIP_STAGES: f64 = 6.0;
-
-/// The inward margin of [`clip_to_frustum`], relative: far above f32 rounding (2⁻²⁴), far below
-/// half a pixel of any viewport up to 2¹⁵ pixels wide.
-const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
+/// Cuts a base polygon to the view frustum in f64, so the rasterizer clips nothing (the term
+/// `C`'s remedy, see [`crate::model::clip`]).
+pub use crate::model::clip::clip_to_frustum;
 
 /// The decal's window-space geometry (see [`crate::footprint`]).
 pub use crate::footprint::{decal_shape, DecalShape, Footprint};
@@ -537,13 +461,12 @@ pub fn error_terms(scene: &Scene) -> Result<ErrorTerms> {
 /// # Errors
 /// As [`recommend`].
 pub fn window_gradient(scene: &Scene, d: f64) -> Result<[f64; 2]> {
-    let (l, r, b, t, _, _) = scene.frustum.parameters();
-    let [w, h] = scene.viewport.map(f64::from);
-    let big_f = scene.frustum.planes().far_over_span();
-    // From the parameters, not through 2/m0 = (r − l)/n: the same value without the matrix.
-    let gx = scene.slope * big_f * (r - l).abs() / (w * d);
-    let gy = scene.slope * big_f * (t - b).abs() / (h * d);
-    Ok([gx, gy])
+    Ok(crate::model::gradient::window_gradient(
+        &scene.frustum,
+        scene.viewport,
+        scene.slope,
+        d,
+    ))
 }
 
 /// `glPolygonOffset`'s units equivalent to the constant part of the offset, `(Δw − 2S)/(r·q)`,
@@ -553,71 +476,25 @@ fn polygon_units(scene: &Scene, terms: &ErrorTerms, window_offset: f64) -> f64 {
     (window_offset - 2.0 * terms.snap).max(0.0) / (r * terms.quantum)
 }
 
-/// `glPolygonOffset`'s factor equivalent to the snapping term: `2^(1−b)`, 0 unsnapped.
+/// `glPolygonOffset`'s factor equivalent to the snapping term ([`crate::model::snap`]).
 fn slope_factor(scene: &Scene) -> f64 {
-    match scene.profile.snapping {
-        Snapping::SubpixelBits(b) => power_of_two(1 - b as i32),
-        Snapping::Unsnapped => 0.0,
-    }
+    snap_model::slope_factor(scene.profile.snapping)
 }
 
+/// The term `S` ([`crate::model::snap`]): from the footprint's exact gradients, else the bound
+/// over every plane of the scene's slope crossing the axis at `d₁` or beyond.
 fn snap(scene: &Scene) -> Result<f64> {
-    match scene.profile.snapping {
-        Snapping::Unsnapped => Ok(0.0),
-        Snapping::SubpixelBits(b) if scene.footprint.is_some() => {
-            let [gx, gy] = scene.footprint.map_or([0.0; 2], |f| f.gradient);
-            Ok(power_of_two(-(b as i32) - 1) * (gx.abs() + gy.abs()))
-        }
-        Snapping::SubpixelBits(b) => {
-            // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁ (see clip_term).
-            let [gx, gy] = window_gradient(scene, scene.depth_range[0])?;
+    let snapping = scene.profile.snapping;
+    match scene.footprint {
+        _ if snapping == Snapping::Unsnapped => Ok(0.0),
+        Some(footprint) => Ok(snap_model::snap(snapping, footprint.gradient, 1.0)),
+        None => {
+            // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁.
+            let gradient = window_gradient(scene, scene.depth_range[0])?;
             let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
-            Ok(power_of_two(-(b as i32) - 1) * (gx + gy) * tilt)
+            Ok(snap_model::snap(snapping, gradient, tilt))
         }
     }
-}
-
-/// `q` for a format at window depth `w`: one step of a UNORM buffer, or the f32 spacing at `w`
-/// for `GL_DEPTH_COMPONENT32F`.
-fn quantum(format: DepthFormat, w: f64) -> Result<f64> {
-    format.spacing_at(w.clamp(0.0, 1.0))
-}
-
-/// The largest `|m10|` of the planes the probe measures `error_ulps` on (its views have
-/// f/n ≥ 10 under `[−1, 1]`: `|m10| = (f + n)/(f − n) ≤ 11/9`).
-const PROBED_M10: f64 = 11.0 / 9.0;
-
-/// A figure of `profile` the model may use: one the probe measured (a measured profile, finite
-/// and positive; NaN means not measured).
-fn measured_figure(profile: &RasterizerProfile, figure: f64) -> Option<f64> {
-    (profile.measured && figure.is_finite() && figure > 0.0).then_some(figure)
-}
-
-/// The per-quad error `T + I` from a measured profile ("A measured profile"): the probe found
-/// every pixel's computed depth within `error_ulps·u·(1 + M)` under `[−1, 1]`, the 1 standing
-/// for the transform's own roundings at `|m10| ≤ 11/9`. A larger `|m10|` (f close to n) adds
-/// its excess `u·(|m10| − 11/9)/2` (the product `m10·z`, halved by the viewport map); under
-/// `[0, 1]` nothing halves the transform's roundings, so the 1 becomes 2 and the excess is
-/// whole. Under reversed Z the probe measures `error_ulps_reversed` against `|m10| + M` (its
-/// errors are relative to the small depths: no constant 1). `None` for the worst-case profile
-/// or an unmeasured figure.
-fn measured_plane_error(scene: &Scene, clip: ClipDepth, m10: f64, magnitude: f64) -> Option<f64> {
-    let p = &scene.profile;
-    let k = measured_figure(
-        p,
-        if clip == ClipDepth::ReversedZeroToOne {
-            p.error_ulps_reversed
-        } else {
-            p.error_ulps
-        },
-    )?;
-    let u = F32_UNIT_ROUNDOFF;
-    let excess = (m10.abs() - PROBED_M10).max(0.0);
-    Some(match clip {
-        ClipDepth::NegOneToOne => k * u * (1.0 + magnitude) + u * excess / 2.0,
-        ClipDepth::ZeroToOne => k * u * (2.0 + magnitude) + u * excess,
-        ClipDepth::ReversedZeroToOne => k * u * (m10.abs() + magnitude),
-    })
 }
 
 /// The profile's measured offset for a shared-z facing plane under a strict test, in window
@@ -756,86 +633,27 @@ fn chain_facing(scene: &Scene, clip: ClipDepth) -> Option<f64> {
     })
 }
 
-/// The index of `format` in a [`RasterizerProfile`]'s per-format arrays (D16, D24, D32, D32F).
-pub(crate) fn profile_index(format: DepthFormat) -> usize {
-    match format {
-        DepthFormat::Unorm16 => 0,
-        DepthFormat::Unorm24 => 1,
-        DepthFormat::Unorm32 => 2,
-        DepthFormat::Float32 => 3,
-    }
-}
-
-/// `(eₓ, e_y) = (max(|l|, |r|)/n, max(|b|, |t|)/n)`, the largest tangents of the frustum's half
-/// extents in x and y.
-fn tangents_of(frustum: &Frustum) -> [f64; 2] {
-    let (l, r, b, t, n, _) = frustum.parameters();
-    [l.abs().max(r.abs()) / n, b.abs().max(t.abs()) / n]
-}
-
-/// `e = max(|l|, |r|, |b|, |t|)/n`, the largest tangent of the frustum's half extents.
-pub(crate) fn half_extent_tangent(frustum: &Frustum) -> Result<f64> {
-    // (|r + l|/|r − l| + 1)/(2n/|r − l|) = (|r + l| + |r − l|)/(2n) = max(|l|, |r|)/n: the
-    // same value from the parameters, without building the matrix.
-    let (l, r, b, t, n, _) = frustum.parameters();
-    Ok(l.abs().max(r.abs()).max(b.abs()).max(t.abs()) / n)
-}
-
-/// The term `C` of a base the rasterizer clips (module docs, "The base"): every rasterizer-made
-/// vertex carries clip-space errors `|e_c| ≤ γ·A_c` (`γ = (6 + 5k)·u`, `k` clip stages, `A_c` the
-/// largest `|c|` a base vertex can have), and the depth error at a pixel at eye depth `d ≥ d₁` is
-/// at most `max |L(e)|/(d − γ·R)` in NDC, `L` the plane's homogeneous equation normalised to
-/// `z_c`'s coefficient 1.
+/// The term `C` of a base the rasterizer clips ([`crate::model::clip`]), 0 for
+/// [`Base::InsideFrustum`]: with the convention's projection, the plane's form (exact from the
+/// footprint, else bounds over every plane of the slope, see [`plane_form`]) and the clipper's
+/// measured roundings where the probe found them.
 fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f64> {
     let Base::Clipped { reach } = scene.base else {
         return Ok(0.0);
     };
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
-    let (m0, m5, m8, m9, m10, m14) = (
-        m[0].abs(),
-        m[5].abs(),
-        m[8].abs(),
-        m[9].abs(),
-        m[10].abs(),
-        m[14].abs(),
-    );
-    let d1 = scene.depth_range[0];
     // The bound on six clip stages of f32 rounding, or what the probe measured of the clipper.
-    let gamma = measured_figure(&scene.profile, scene.profile.clip_ulps)
-        .unwrap_or(6.0 + 5.0 * CLIP_STAGES)
-        * F32_UNIT_ROUNDOFF;
-    // The plane's form L(c) = z_c − aₓ·x_c − a_y·y_c − a₀·w_c: exact from the footprint, or
-    // bounds over every plane of the slope (see plane_form).
+    let gamma = clip_model::clip_gamma(measured_figure(&scene.profile, scene.profile.clip_ulps));
     let form = plane_form(scene, clip, &m)?;
-    let a = [
-        (m0 + m8) * reach,
-        (m5 + m9) * reach,
-        m10 * reach + m14,
+    clip_model::clip_term(
+        &m,
         reach,
-    ];
-    // World-space vertices carry the f32 model-view's errors into the clipper, which
-    // interpolates them: L is linear, so an interpolated vertex is off the plane by the same
-    // convex combination of its ends' L-values, no more than at the vertices (a base vertex is
-    // within √3·R of the camera). Computed eye-first, the error is an eye-space vector that only
-    // counts through the form on eye coordinates; one combined matrix errs per clip coordinate.
-    let (world_l, world_w) = vertex::world_error(
+        scene.depth_range[0],
+        gamma,
         &form,
         scene.footprint.is_some(),
-        &m,
         &scene.pipeline,
-        3f64.sqrt() * reach,
-    );
-    let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k])) + world_l;
-    let w_low = d1 - gamma * reach - world_w;
-    if w_low.is_nan() || w_low <= 0.5 * d1 {
-        return Err(domain(
-            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
-        )
-        .with_value("base_reach", reach));
-    }
-    representable(
-        mapping.window_per_ndc() * l / w_low,
-        "the clipping term overflows f64",
+        mapping.window_per_ndc(),
     )
 }
 
@@ -1001,88 +819,6 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Cutting a base to the view frustum in f64, so the rasterizer clips nothing.
-// ---------------------------------------------------------------------------------------------
-
-/// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
-/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the far one to
-/// `f·(1 − 2⁻¹⁶)`, the side planes inward by 2⁻¹⁶ of the frustum's width), in f64: drawn
-/// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
-/// with [`Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
-/// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
-/// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
-///
-/// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
-/// one plane at a time; a convex polygon stays convex (draw it as a fan). New vertices are
-/// `a + t·(b − a)` per coordinate, so a coordinate every vertex shares is kept exactly: a base
-/// facing the camera (every z equal) keeps its z, and with a decal of that z still qualifies for
-/// [`Scene::exact_depth`].
-///
-/// # Errors
-/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
-/// [`crate::ErrorKind::Overflow`] if a cut vertex overflows f64 (coordinates near `f64::MAX`).
-pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
-    for v in polygon {
-        for &c in v {
-            finite(c, "a polygon vertex coordinate is NaN or infinite")?;
-        }
-    }
-    let m = frustum.to_cols_array_f64()?;
-    let planes = frustum.planes();
-    let (n, f) = (planes.near(), planes.far());
-    // The side planes in clip space, −w ≤ x_c ≤ w with x_c = m0·x + m8·z and w = −z (no
-    // division: a subnormal n cannot overflow them), each moved inward by the margin.
-    let keep = 1.0 - 2.0 * FRUSTUM_MARGIN;
-    let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
-    let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
-    // Each plane as a signed distance, positive inside.
-    let mut sides: Vec<Side> = vec![
-        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
-        Box::new(move |p| x_c(p) - keep * p[2]),
-        Box::new(move |p| -keep * p[2] - x_c(p)),
-        Box::new(move |p| y_c(p) - keep * p[2]),
-        Box::new(move |p| -keep * p[2] - y_c(p)),
-    ];
-    if f.is_finite() {
-        sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
-    }
-    let mut poly = polygon.to_vec();
-    for side in &sides {
-        poly = cut(&poly, side.as_ref());
-        if poly.is_empty() {
-            break;
-        }
-    }
-    if poly.iter().flatten().any(|c| !c.is_finite()) {
-        return Err(crate::error::Error::new(
-            crate::ErrorKind::Overflow,
-            "the polygon's coordinates are too large to cut in f64",
-        ));
-    }
-    Ok(poly)
-}
-
-/// A frustum plane as a signed distance, positive inside.
-type Side = Box<dyn Fn(&[f64; 3]) -> f64>;
-
-/// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
-fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
-    let mut out = Vec::with_capacity(poly.len() + 1);
-    for (i, a) in poly.iter().enumerate() {
-        let b = &poly[(i + 1) % poly.len()];
-        let (da, db) = (side(a), side(b));
-        if da >= 0.0 {
-            out.push(*a);
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            let t = da / (da - db);
-            out.push([0, 1, 2].map(|k| a[k] + t * (b[k] - a[k])));
-        }
-    }
-    out
-}
-
-// ---------------------------------------------------------------------------------------------
 // The same model under the other clip conventions: `[0, 1]` clip depth and reversed Z.
 // ---------------------------------------------------------------------------------------------
 
@@ -1195,7 +931,7 @@ pub(crate) fn recommend_clip_building(
             Some(eps) => eps,
             None => reversed_epsilon(scene, &mapping, &terms)?,
         };
-        let b = scale(scene);
+        let b = scale(&scene.frustum);
         let matrix = if build {
             crate::clip_offset::relative_offset_projection(frustum, clip, eps)?
         } else {
@@ -1206,7 +942,7 @@ pub(crate) fn recommend_clip_building(
     // The window offset at d: constant, or ε·b/d under reversed Z.
     let offset_at = |d: f64| {
         if clip == ClipDepth::ReversedZeroToOne {
-            relative_epsilon * (scale(scene) / d)
+            relative_epsilon * (scale(&scene.frustum) / d)
         } else {
             window_offset
         }
@@ -1217,7 +953,7 @@ pub(crate) fn recommend_clip_building(
     let mut bleed_gap = 0.0f64;
     for d in [d1, d2] {
         let at_d = ErrorTerms {
-            quantum: unit_quantum(scene, mapping.window_depth(d)?)?,
+            quantum: unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?,
             ..terms
         };
         let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
@@ -1254,7 +990,6 @@ pub(crate) fn recommend_clip_building(
 /// As [`recommend`].
 pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     check(scene, clip)?;
-    let u = F32_UNIT_ROUNDOFF;
     let mapping = mapping_of(scene, clip)?;
     let pipeline = scene.pipeline;
     let (m10, _) = crate::projection::depth_row(&scene.frustum.planes(), clip);
@@ -1270,45 +1005,32 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // the viewport map and of the interpolation are relative to it, i.e. to w + lift in unit
     // window depth (0 for the default range).
     let lift = pipeline.depth_range[0] / pipeline.span();
-    let transform = if clip == ClipDepth::NegOneToOne {
-        // m10·z and + m14 round relative to |m10|·d and |clip_z| ≤ d (halved by the viewport
-        // map), the reciprocal and product relative to |ndc|, ½·ndc + ½ relative to w.
-        let ndc_max = (2.0 * w1 - 1.0).abs().max((2.0 * w2 - 1.0).abs());
-        u * (m10.abs() / 2.0 + 1.5 * ndc_max + w_max + lift)
-    } else {
-        // NDC = window depth: the product m10·z rounds relative to |m10|·d, i.e. u·|m10| after
-        // the division by w = d; the sum, reciprocal and product round relative to
-        // |ndc| ≤ w_max; the viewport map z·1 + 0 is exact but counted.
-        u * (m10.abs() + 4.0 * w_max + lift)
-    };
+    // T (crate::model::transform).
+    let transform = transform::transform(clip, m10, [w1, w2], lift);
     // The footprint measured from the framebuffer's origin, where the rasterizer's plane
     // starts (the viewport may lie inside a larger framebuffer).
     let footprint = scene
         .footprint
         .map(|f| f.in_framebuffer(pipeline.viewport_origin, d2));
-    // G: how far the plane's window depth runs across the framebuffer, |gₓ|·X + |g_y|·Y (with
-    // the axis-crossing bound 1 + s·e). The rasterizer's plane is set up and evaluated relative
-    // to the framebuffer origin (llvmpipe's a0 = z₀ − ∂z/∂x·x₀ − ∂z/∂y·y₀), so its roundings are
-    // relative to the depth extrapolated across the viewport, not to the depth at the pixel.
-    // The tilt s = |sₓ| + |s_y| splits between the axes, so |gₓ|·X + |g_y|·Y is at most the
-    // larger of the two with the whole slope.
-    // With the decal's footprint, the exact run from the origin to its farthest pixel.
+    // G: how far the plane's window depth runs across the framebuffer (with the axis-crossing
+    // bound 1 + s·e; crate::model::interpolation); with the decal's footprint, the exact run
+    // from the origin to its farthest pixel.
     let extrapolated = match footprint {
         Some(footprint) => footprint.extrapolation(),
         None => {
-            let [gx, gy] = window_gradient(scene, d1)?;
-            let [width, height] = framebuffer_extent(scene);
-            (gx * width).max(gy * height)
-                * (1.0 + scene.slope * half_extent_tangent(&scene.frustum)?)
+            let gradient = window_gradient(scene, d1)?;
+            let extent = interpolation::framebuffer_extent(&pipeline, scene.viewport);
+            let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
+            interpolation::extrapolation_bound(gradient, extent, tilt)
         }
     };
+    // V and I (crate::model::vertex, crate::model::interpolation).
     let (vertex, interpolation) = if scene.exact_depth {
         (0.0, 0.0)
     } else {
-        let span = (w_max - w_min).max(extrapolated);
         (
             vertex_term(scene, clip)?,
-            u * (3.0 * (w_max + lift) + 6.0 * span),
+            interpolation::interpolation(w_min, w_max, extrapolated, lift),
         )
     };
     // The spacing at the decal's farthest point: its largest window depth, or under reversed Z
@@ -1318,17 +1040,17 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let q = if pipeline.depth_range == [0.0, 1.0] {
         mapping.spacing_at_estimate(scene.format, d2, far_w)?
     } else {
-        unit_quantum(scene, mapping.window_depth(d2)?)?
+        unit_quantum(scene.format, &pipeline, mapping.window_depth(d2)?)?
     };
     let bound = transform + vertex + interpolation;
     // M, the largest magnitude of the plane's terms from the window origin over the decal's
-    // pixels: |w₀| + |gₓ|·x + |g_y|·y ≤ w + 2(|gₓ|·x + |g_y|·y) without the footprint.
+    // pixels (crate::model::interpolation).
     let magnitude = lift
         + match footprint {
             Some(footprint) => footprint.magnitude(),
-            None => w_max + 2.0 * extrapolated,
+            None => interpolation::magnitude_bound(w_max, extrapolated),
         };
-    let plane = match measured_plane_error(scene, clip, m10, magnitude) {
+    let plane = match measured_plane_error(&scene.profile, clip, m10, magnitude) {
         Some(measured) => (measured + vertex).min(bound),
         None => bound,
     };
@@ -1347,12 +1069,12 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     // needed. The budget of base and decal is then 0; the occluder's error stays in the gap.
     let correlated = scene.exact_depth && !scene.depth_test.is_strict();
     // The probe measured the facing figures with glDepthRange(0, 1) and eye-space vertices.
-    let facing =
-        if scene.exact_depth && scene.depth_test.is_strict() && pipeline.is_default_depth() {
-            measured_facing(scene, clip)
-        } else {
-            0.0
-        };
+    let facing = if scene.exact_depth && scene.depth_test.is_strict() && pipeline.is_default_depth()
+    {
+        measured_facing(scene, clip)
+    } else {
+        0.0
+    };
     Ok(ErrorTerms {
         quantum: q,
         transform,
@@ -1367,46 +1089,15 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     })
 }
 
-/// The viewport's far corner in the framebuffer, `[x + W, y + H]` pixels: how far the
-/// rasterizer's plane, set up from the framebuffer's origin, can be extrapolated.
-fn framebuffer_extent(scene: &Scene) -> [f64; 2] {
-    let [x, y] = scene.pipeline.viewport_origin.map(f64::from);
-    let [w, h] = scene.viewport.map(f64::from);
-    [x + w, y + h]
-}
-
-/// `q` in unit window depth at unit window depth `w`: the format's spacing at the stored depth
-/// `near + (far − near)·w` of `glDepthRange`, over `far − near`.
-pub(crate) fn unit_quantum(scene: &Scene, w: f64) -> Result<f64> {
-    let p = scene.pipeline;
-    Ok(p.per_unit(quantum(scene.format, p.actual(w))?))
-}
-
 /// The plane's form on clip coordinates ([`crate::model::plane_form`]): exact from the decal's
 /// footprint, else bounds on its coefficients' magnitudes over every plane of the scene's slope
-/// whose axis crossing lies at `d₁` or beyond (the plane `z = −d_a + sₓx + s_y·y`, `|sₓ| + |s_y| = s`,
-/// has `aₓ = m14·sₓ/(d_a·m0)`, `a_y = m14·s_y/(d_a·m5)`,
-/// `a₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)`; a visible point at depth `d` on the ray
-/// `(kₓ, k_y)` (`|k| ≤ e`) has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`).
+/// whose axis crossing lies at `d₁` or beyond ([`PlaneForm::of_slope`]).
 fn plane_form(scene: &Scene, clip: ClipDepth, m: &[f64; 16]) -> Result<PlaneForm> {
     if let Some(footprint) = scene.footprint {
         return Ok(PlaneForm::of_footprint(&footprint, scene.viewport, clip));
     }
-    let (m0, m5, m8, m9, m10, m14) = (
-        m[0].abs(),
-        m[5].abs(),
-        m[8].abs(),
-        m[9].abs(),
-        m[10].abs(),
-        m[14].abs(),
-    );
-    let (s, d1) = (scene.slope, scene.depth_range[0]);
-    let inv_da = (1.0 + s * half_extent_tangent(&scene.frustum)?) / d1;
-    Ok(PlaneForm {
-        a0: m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5)),
-        ax: m14 * s * inv_da / m0,
-        ay: m14 * s * inv_da / m5,
-    })
+    let e = half_extent_tangent(&scene.frustum)?;
+    Ok(PlaneForm::of_slope(m, scene.slope, scene.depth_range[0], e))
 }
 
 /// The term `V` ([`crate::model::vertex`]), in unit window depth: with the decal's footprint
@@ -1423,7 +1114,7 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
         Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents_of(&scene.frustum)),
         None => {
             let e = half_extent_tangent(&scene.frustum)?;
-            F32_UNIT_ROUNDOFF * (scale(scene) / scene.depth_range[0]) * (1.0 + scene.slope * e)
+            vertex::eye_rounding_bound(scale(&scene.frustum), scene.depth_range[0], scene.slope, e)
         }
     };
     if !scene.pipeline.world_space() {
@@ -1441,13 +1132,6 @@ fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
             tangents_of(&scene.frustum),
         );
     representable(eye.max(world), "the vertex term overflows f64")
-}
-
-/// `b = f·n/(f − n)` (`n` for `f = ∞`): every `glFrustum`-family mapping stores
-/// `w(d) = α ± b/d`, so `|dw/dd| = b/d²` and the window gradients match the standard ones.
-pub(crate) fn scale(scene: &Scene) -> f64 {
-    let planes = scene.frustum.planes();
-    planes.near() * planes.far_over_span()
 }
 
 pub(crate) fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
@@ -1497,13 +1181,13 @@ pub(crate) fn reversed_epsilon_with(
     terms: &ErrorTerms,
     extra: f64,
 ) -> Result<f64> {
-    let b = scale(scene);
+    let b = scale(&scene.frustum);
     let [d1, d2] = scene.depth_range;
     let budget = terms.budget() + extra;
     let strict = if terms.strict { 1.0 } else { 0.0 };
     let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
-        let q = unit_quantum(scene, mapping.window_depth(d)?)?;
+        let q = unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?;
         Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
     };
     let mut eps = need(d1)?.max(need(d2)?);
@@ -1834,7 +1518,11 @@ mod tests {
         // message says what to do in C and Python.
         let e = recommend(&clipped(1e8)).unwrap_err();
         assert_eq!(e.kind(), ErrorKind::Domain);
-        assert!(e.to_string().contains("zshift_clip_to_frustum") && e.to_string().contains("base_reach"), "{e}");
+        assert!(
+            e.to_string().contains("zshift_clip_to_frustum")
+                && e.to_string().contains("base_reach"),
+            "{e}"
+        );
     }
 
     /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a

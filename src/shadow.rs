@@ -152,8 +152,8 @@ use crate::profile::RasterizerProfile;
 use crate::projection::{ClipDepth, Frustum};
 use crate::recommend::{Base, DepthTest, Scene};
 
-/// `u = 2⁻²⁴`, the unit roundoff of f32.
-const U: f64 = 1.0 / 16_777_216.0;
+// `u = 2⁻²⁴`, the unit roundoff of f32 (one home: crate::model).
+use crate::model::F32_UNIT_ROUNDOFF as U;
 
 /// The light's projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -354,7 +354,7 @@ fn finish(
     let w_small = smallest_window_depth(map)?;
     let units_of = |r: f64| -> f64 { terms.constant / r };
     let gl_r = resolvable_difference(BiasApi::OpenGl, map.format, w_small)?
-        * map.profile.resolvable[crate::recommend::profile_index(map.format)];
+        * map.profile.resolvable[crate::model::measured::profile_index(map.format)];
     let d3d_r = resolvable_difference(BiasApi::Direct3d, map.format, w_small)?;
     let vk_r = resolvable_difference(BiasApi::Vulkan, map.format, w_small)?;
     let gl_units = units_of(gl_r);
@@ -423,11 +423,16 @@ fn finish(
 /// # Errors
 /// As [`shadow_bias`]; [`ErrorKind::Domain`] for a receiver that is not a planar polygon inside
 /// the frustum (named by its index), or when every receiver is skipped.
-pub fn shadow_bias_for_receivers(map: &ShadowMap, receivers: &[&[glam::Vec3]]) -> Result<ShadowBias> {
+pub fn shadow_bias_for_receivers(
+    map: &ShadowMap,
+    receivers: &[&[glam::Vec3]],
+) -> Result<ShadowBias> {
     check(map)?;
     let (n, f) = light_range(map);
     let matrix = match map.light {
-        LightProjection::Perspective(frustum) => crate::projection::projection_f64(&frustum, map.clip)?,
+        LightProjection::Perspective(frustum) => {
+            crate::projection::projection_f64(&frustum, map.clip)?
+        }
         LightProjection::Orthographic(ortho) => crate::orthographic::ortho_f64(&ortho, map.clip),
     };
     let cos_limit = map.limit_angle_deg.to_radians().cos();
@@ -455,9 +460,9 @@ pub fn shadow_bias_for_receivers(map: &ShadowMap, receivers: &[&[glam::Vec3]]) -
             }
         }
         let (normal, offset) = crate::footprint::plane_through(&eye).map_err(named)?;
-        let (d_min, d_max) = eye
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(-p[2]), b.max(-p[2])));
+        let (d_min, d_max) = eye.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+            (a.min(-p[2]), b.max(-p[2]))
+        });
         // The largest cosine of the angle between the front normal and the direction to the
         // light over the polygon: `N_z` under an orthographic light; `h/|p| ≤ h/d_min` under a
         // spot (`h = −N·p` the light's height above the plane, `|p| ≥ −z`).
@@ -484,7 +489,8 @@ pub fn shadow_bias_for_receivers(map: &ShadowMap, receivers: &[&[glam::Vec3]]) -
                 )));
             }
         }
-        let t = terms_of(map, [d_min, d_max], shape.slope, Some(&shape.footprint)).map_err(named)?;
+        let t =
+            terms_of(map, [d_min, d_max], shape.slope, Some(&shape.footprint)).map_err(named)?;
         let own = t.constant + t.snap + t.footprint;
         // As distances along the light: the shift whose window change is `own` at the
         // receiver's farthest point, and along the normal that times the largest cosine.
@@ -576,9 +582,8 @@ fn terms_of(
     let theta = map.limit_angle_deg.to_radians();
     // The receiver's own footprint term: exact in f64 from its window plane, widened by the
     // coplanarity tolerance the corners are accepted with (2⁻¹⁶ of their size).
-    let own = receiver.map(|fp| {
-        reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * (1.0 + 1.0 / 65_536.0)
-    });
+    let own = receiver
+        .map(|fp| reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * (1.0 + 1.0 / 65_536.0));
     let [w_px, h_px] = map.resolution.map(f64::from);
     let (caster, snap, lookup, quantum, footprint, w_max) = match map.light {
         LightProjection::Perspective(frustum) => {
@@ -878,7 +883,7 @@ pub fn check(map: &ShadowMap) -> Result<()> {
             if d1 > d2 || d1 < n { d1 } else { d2 },
         ));
     }
-    let r = map.profile.resolvable[crate::recommend::profile_index(map.format)];
+    let r = map.profile.resolvable[crate::model::measured::profile_index(map.format)];
     if !(r.is_finite() && r > 0.0) {
         return Err(
             domain("the profile's resolvable r for this format must be finite and > 0")
@@ -1027,8 +1032,8 @@ mod tests {
             .map(|&(x, z)| glam::Vec3::new(x, y(z), z))
             .collect();
         let bias = shadow_bias_for_receivers(&map, &[&ground]).unwrap();
-        let shape = crate::footprint::decal_shape(&frustum, map.clip, map.resolution, &ground)
-            .unwrap();
+        let shape =
+            crate::footprint::decal_shape(&frustum, map.clip, map.resolution, &ground).unwrap();
         let own = 0.5 * (shape.footprint.gradient[0].abs() + shape.footprint.gradient[1].abs());
         assert!(bias.terms.footprint >= own && bias.terms.footprint < own * 1.0001);
         assert!(bias.gl_polygon_offset[2] > 0.0 && bias.gl_polygon_offset[2] < 1.0);

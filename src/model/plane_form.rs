@@ -58,6 +58,30 @@ impl PlaneForm {
         }
     }
 
+    /// Bounds on the coefficients' magnitudes of the form, under the projection `m`, over every
+    /// plane of eye-space slope `slope` whose axis crossing lies at `d₁` or beyond (the plane
+    /// `z = −d_a + sₓx + s_y·y`, `|sₓ| + |s_y| = s`, has `aₓ = m14·sₓ/(d_a·m0)`,
+    /// `a_y = m14·s_y/(d_a·m5)`, `a₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)`; a visible
+    /// point at depth `d` on the ray `(kₓ, k_y)` (`|k| ≤ e`, the frustum's largest half-extent
+    /// tangent) has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`).
+    pub(crate) fn of_slope(m: &[f64; 16], slope: f64, d1: f64, e: f64) -> Self {
+        let (m0, m5, m8, m9, m10, m14) = (
+            m[0].abs(),
+            m[5].abs(),
+            m[8].abs(),
+            m[9].abs(),
+            m[10].abs(),
+            m[14].abs(),
+        );
+        let s = slope;
+        let inv_da = (1.0 + s * e) / d1;
+        Self {
+            a0: m10 + m14 * inv_da * (1.0 + s * (m8 / m0).max(m9 / m5)),
+            ax: m14 * s * inv_da / m0,
+            ay: m14 * s * inv_da / m5,
+        }
+    }
+
     /// `max |L(e)|` over clip-space errors with `|e_x| ≤ e[0]`, `|e_y| ≤ e[1]`, `|e_z| ≤ e[2]`,
     /// `|e_w| ≤ e[3]`: `e_z + |aₓ|·e_x + |a_y|·e_y + |a₀|·e_w`.
     pub fn bound(&self, e: [f64; 4]) -> f64 {
@@ -88,8 +112,13 @@ mod tests {
         let frustum = Frustum::new(-0.1, 0.1, -0.06, 0.06, 0.1, 1000.0).unwrap();
         let m = projection_f64(&frustum, ClipDepth::NegOneToOne).unwrap();
         let h = 1.7;
-        let corners = [[-2.0, -h, -9.0], [2.0, -h, -9.0], [2.0, -h, -11.0f32], [-2.0, -h, -11.0]]
-            .map(|[x, y, z]| glam::Vec3::new(x, y as f32, z));
+        let corners = [
+            [-2.0, -h, -9.0],
+            [2.0, -h, -9.0],
+            [2.0, -h, -11.0f32],
+            [-2.0, -h, -11.0],
+        ]
+        .map(|[x, y, z]| glam::Vec3::new(x, y as f32, z));
         let shape =
             crate::footprint::decal_shape(&frustum, ClipDepth::NegOneToOne, [640, 384], &corners)
                 .unwrap();
@@ -100,8 +129,14 @@ mod tests {
         assert!(form.ax.abs() < 1e-9);
         let on_eye = form.on_eye(&m);
         let h32 = f64::from(h as f32);
-        assert!((on_eye[1] - m[14] / h32).abs() < 1e-6 * (m[14] / h32).abs(), "{on_eye:?}");
-        assert!(on_eye[0].abs() < 1e-9 && on_eye[2].abs() < 1e-6, "{on_eye:?}");
+        assert!(
+            (on_eye[1] - m[14] / h32).abs() < 1e-6 * (m[14] / h32).abs(),
+            "{on_eye:?}"
+        );
+        assert!(
+            on_eye[0].abs() < 1e-9 && on_eye[2].abs() < 1e-6,
+            "{on_eye:?}"
+        );
         for p in [[5.0, -h32, -30.0], [-40.0, -h32, -300.0]] {
             let c: Vec<f64> = (0..4)
                 .map(|r| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r])

@@ -59,10 +59,8 @@
 //! weights `μᵢ·wᵢ/d` sum to 1; `B'` without the translation column). Camera-relative rendering
 //! (vertices sent relative to the camera, `W` about the scene's own size) removes the first.
 
+use super::F32_UNIT_ROUNDOFF as U;
 use super::{Pipeline, PlaneForm};
-
-/// `u = 2⁻²⁴`, the unit roundoff of f32.
-const U: f64 = 1.0 / 16_777_216.0;
 
 /// `γ_W`: the roundings of a world-space vertex through the f32 model-view-projection, in
 /// units of the magnitude `Bₖ` (module docs).
@@ -74,6 +72,15 @@ pub(crate) const WORLD_ROUNDINGS: f64 = 14.0;
 pub fn eye_rounding(form: &PlaneForm, m: &[f64; 16], tangents: [f64; 2]) -> f64 {
     let g = form.on_eye(m);
     U * (g[0].abs() * tangents[0] + g[1].abs() * tangents[1] + g[2].abs())
+}
+
+/// The window-depth error from rounding eye coordinates to f32 without the plane's form: a
+/// plane of eye-space slope `slope` crossing the view axis at `d₁` or beyond, rounding z moves
+/// depth by `u·d`, rounding x or y moves a point of the plane by `s·u·|x|`, `|x| ≤ e·d` inside
+/// the frustum; through `dw/dd = b/d²`: `V = u·(b/d₁)·(1 + s·e)` (`b` the mapping's scale, `e`
+/// the frustum's largest half-extent tangent, [`crate::model::gradient`]).
+pub(crate) fn eye_rounding_bound(b: f64, d1: f64, slope: f64, e: f64) -> f64 {
+    U * (b / d1) * (1.0 + slope * e)
 }
 
 /// `γ_E`: the roundings of a world-space vertex through an f32 model-view matrix when the eye
@@ -195,6 +202,9 @@ mod tests {
             }
         }
         assert!(worst > 0.0 && worst <= k * (1.0 + 1e-6), "{worst} > {k}");
-        assert!(worst > 0.2 * k, "the bound is not loose by more than 5x here: {worst} vs {k}");
+        assert!(
+            worst > 0.2 * k,
+            "the bound is not loose by more than 5x here: {worst} vs {k}"
+        );
     }
 }

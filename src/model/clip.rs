@@ -1,0 +1,207 @@
+//! The term `C`: the base's f32 clipping, and the remedy, [`clip_to_frustum`].
+//!
+//! A floor running behind the camera is clipped by the rasterizer, which computes the new
+//! vertices in f32 (Mesa's `draw_pipe_clip.c` interpolates every clip coordinate as
+//! `c = c₀ + t·(c₁ − c₀)`; llvmpipe has no guard band, so it clips against all six planes, and
+//! sets its depth plane up from the clipped vertices, `lp_state_setup.c`). The base's `reach`
+//! `R` is the largest `|x|`, `|y|` or `|z|` of its eye-space vertices
+//! ([`crate::recommend::Base::Clipped`]); a base inside the frustum has `C = 0`.
+//!
+//! # The term
+//! Any point of the clip-space segment between two vertices projects onto the plane's image, so
+//! the error in `t` does not matter; what moves a clipped vertex off the plane is the rounding
+//! of each interpolated component. A clip-space component `c` of a base vertex is at most `A_c`
+//! in magnitude: `A_x = (|m0| + |m8|)·R`, `A_y = (|m5| + |m9|)·R`, `A_z = |m10|·R + |m14|`,
+//! `A_w = R`. Every rasterizer-made vertex carries component errors `|e_c| ≤ γ·A_c` with
+//! `γ = (6 + 5k)·u`: `u` for the f32 eye coordinates, `2u` for the vertex transform, `5u` per
+//! clip stage (`fl(c₀ + fl(t·fl(c₁ − c₀)))` errs by `u·(|c| + 2|t·(c₁ − c₀)|)`, at most
+//! `5u·A_c`), `k = 6` stages at most (one per plane), and `3u` for the division and the viewport
+//! map (their rounding at a vertex equals a clip-space error of `2u·|c|`, plus the window map).
+//! Write the plane `z = −d_a + sₓx + s_y·y` in clip coordinates normalised to `z_c`'s
+//! coefficient 1 ([`crate::model::plane_form`]): `L(c) = z_c − g_X·x_c − g_Y·y_c − Z₀·w_c` with
+//! `g_X = m14·sₓ/(d_a·m0)`, `g_Y = m14·s_y/(d_a·m5)`,
+//! `Z₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)` (`L` vanishes on the plane's image). A
+//! vertex `c + e` then has NDC depth off the plane, at its own screen position, by exactly
+//! `L(e)/(w + e_w)`, and the rasterizer's screen-space interpolation at a pixel of eye depth `d`
+//! inside the triangle weighs vertex `i` by `λᵢ = μᵢ·wᵢ/d` (`μᵢ ∈ [0, 1]` the clip-space
+//! barycentrics): the `1/wᵢ` amplification at the near plane cancels, and the pixel's depth
+//! error is at most `maxᵢ |L(eᵢ)| / d`. With `|1/d_a| ≤ (1 + s·e)/d₁`:
+//!
+//! `C = (window/NDC)·γ·(A_z + |g_X|·A_x + |g_Y|·A_y + |Z₀|·A_w) / (d₁ − γ·R)`
+//!
+//! World-space vertices carry the f32 model-view's errors into the clipper, which interpolates
+//! them: `L` is linear, so an interpolated vertex is off the plane by the same convex
+//! combination of its ends' `L`-values, no more than at the vertices
+//! ([`crate::model::vertex`]). A measured profile's `clip_ulps` replaces `6 + 5k`.
+//!
+//! It is a sound bound but a large one: on the floor (corners at ±1000, n = 0.1, decals
+//! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
+//! and where it would move the decal past the near plane [`crate::recommend::recommend`]
+//! refuses ([`crate::ErrorKind::Unresolvable`], "cut the base to the frustum"); elsewhere it
+//! answers, and the bleed gap says what the answer costs (an occluder nearer than the gap is
+//! painted over).
+//!
+//! # The remedy
+//! [`clip_to_frustum`] cuts the base polygon in f64 to the frustum shrunk by 2⁻¹⁶ (near plane
+//! slightly in front, sides slightly inside: less than a quarter pixel up to 16384 pixels); drawn
+//! as a fan with [`crate::recommend::Base::InsideFrustum`], the rasterizer then clips nothing,
+//! every vertex's errors are relative to its own coordinates, and the base's error is the
+//! decal's `E` (on the same floor: 10 steps where 2 work).
+
+use crate::domain::{domain, finite, representable};
+use crate::error::Result;
+use crate::model::{vertex, Pipeline, PlaneForm};
+use crate::projection::Frustum;
+
+use super::F32_UNIT_ROUNDOFF;
+
+/// Clip stages a rasterizer-made vertex can pass: one per plane of the view volume (Mesa's
+/// clipper, with no guard band on llvmpipe, clips against all six in turn).
+const CLIP_STAGES: f64 = 6.0;
+
+/// The inward margin of [`clip_to_frustum`], relative: far above f32 rounding (2⁻²⁴), far below
+/// half a pixel of any viewport up to 2¹⁵ pixels wide.
+const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
+
+/// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
+/// f32 rounding, `(6 + 5k)·u`, or `clip_ulps·u` where the probe measured the clipper.
+pub(crate) fn clip_gamma(clip_ulps: Option<f64>) -> f64 {
+    clip_ulps.unwrap_or(6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF
+}
+
+/// The term `C` of a base of `reach` `R` the rasterizer clips (module docs): every
+/// rasterizer-made vertex carries clip-space errors `|e_c| ≤ γ·A_c` (`A_c` the largest `|c|` a
+/// base vertex can have under the projection `m`), and the depth error at a pixel at eye depth
+/// `d ≥ d₁` is at most `max |L(e)|/(d − γ·R)` in NDC, `L` the plane's `form` (`exact_form`: the
+/// footprint's, else bounds over every plane of the slope), times `window_per_ndc`.
+///
+/// # Errors
+/// [`crate::ErrorKind::Domain`] where the base reaches so far that the denominator is no longer
+/// bounded away from 0; [`crate::ErrorKind::Overflow`] if `C` overflows.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn clip_term(
+    m: &[f64; 16],
+    reach: f64,
+    d1: f64,
+    gamma: f64,
+    form: &PlaneForm,
+    exact_form: bool,
+    pipeline: &Pipeline,
+    window_per_ndc: f64,
+) -> Result<f64> {
+    let (m0, m5, m8, m9, m10, m14) = (
+        m[0].abs(),
+        m[5].abs(),
+        m[8].abs(),
+        m[9].abs(),
+        m[10].abs(),
+        m[14].abs(),
+    );
+    let a = [
+        (m0 + m8) * reach,
+        (m5 + m9) * reach,
+        m10 * reach + m14,
+        reach,
+    ];
+    // World-space vertices carry the f32 model-view's errors into the clipper, which
+    // interpolates them: L is linear, so an interpolated vertex is off the plane by the same
+    // convex combination of its ends' L-values, no more than at the vertices (a base vertex is
+    // within √3·R of the camera). Computed eye-first, the error is an eye-space vector that only
+    // counts through the form on eye coordinates; one combined matrix errs per clip coordinate.
+    let (world_l, world_w) =
+        vertex::world_error(form, exact_form, m, pipeline, 3f64.sqrt() * reach);
+    let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k])) + world_l;
+    let w_low = d1 - gamma * reach - world_w;
+    if w_low.is_nan() || w_low <= 0.5 * d1 {
+        return Err(domain(
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
+        )
+        .with_value("base_reach", reach));
+    }
+    representable(
+        window_per_ndc * l / w_low,
+        "the clipping term overflows f64",
+    )
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cutting a base to the view frustum in f64, so the rasterizer clips nothing.
+// ---------------------------------------------------------------------------------------------
+
+/// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
+/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the far one to
+/// `f·(1 − 2⁻¹⁶)`, the side planes inward by 2⁻¹⁶ of the frustum's width), in f64: drawn
+/// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
+/// with [`crate::recommend::Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
+/// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
+/// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
+///
+/// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
+/// one plane at a time; a convex polygon stays convex (draw it as a fan). New vertices are
+/// `a + t·(b − a)` per coordinate, so a coordinate every vertex shares is kept exactly: a base
+/// facing the camera (every z equal) keeps its z, and with a decal of that z still qualifies for
+/// [`crate::recommend::Scene::exact_depth`].
+///
+/// # Errors
+/// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
+/// [`crate::ErrorKind::Overflow`] if a cut vertex overflows f64 (coordinates near `f64::MAX`).
+pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    for v in polygon {
+        for &c in v {
+            finite(c, "a polygon vertex coordinate is NaN or infinite")?;
+        }
+    }
+    let m = frustum.to_cols_array_f64()?;
+    let planes = frustum.planes();
+    let (n, f) = (planes.near(), planes.far());
+    // The side planes in clip space, −w ≤ x_c ≤ w with x_c = m0·x + m8·z and w = −z (no
+    // division: a subnormal n cannot overflow them), each moved inward by the margin.
+    let keep = 1.0 - 2.0 * FRUSTUM_MARGIN;
+    let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
+    let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
+    // Each plane as a signed distance, positive inside.
+    let mut sides: Vec<Side> = vec![
+        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
+        Box::new(move |p| x_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - x_c(p)),
+        Box::new(move |p| y_c(p) - keep * p[2]),
+        Box::new(move |p| -keep * p[2] - y_c(p)),
+    ];
+    if f.is_finite() {
+        sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
+    }
+    let mut poly = polygon.to_vec();
+    for side in &sides {
+        poly = cut(&poly, side.as_ref());
+        if poly.is_empty() {
+            break;
+        }
+    }
+    if poly.iter().flatten().any(|c| !c.is_finite()) {
+        return Err(crate::error::Error::new(
+            crate::ErrorKind::Overflow,
+            "the polygon's coordinates are too large to cut in f64",
+        ));
+    }
+    Ok(poly)
+}
+
+/// A frustum plane as a signed distance, positive inside.
+type Side = Box<dyn Fn(&[f64; 3]) -> f64>;
+
+/// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
+fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
+    let mut out = Vec::with_capacity(poly.len() + 1);
+    for (i, a) in poly.iter().enumerate() {
+        let b = &poly[(i + 1) % poly.len()];
+        let (da, db) = (side(a), side(b));
+        if da >= 0.0 {
+            out.push(*a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            out.push([0, 1, 2].map(|k| a[k] + t * (b[k] - a[k])));
+        }
+    }
+    out
+}

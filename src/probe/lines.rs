@@ -1,0 +1,187 @@
+//! Lines over their faces: where a line fragment takes its depth (`line_reach`) and the
+//! polygon-offset slope rule (`offset_slope`).
+
+use super::*;
+
+/// The window-depth gradient per pixel (along the steeper axis) of the planes the line
+/// measurement draws in: steep enough that D32F's spacing (≈ 6·10⁻⁸ at 0.5) is 1.5·10⁻⁵ pixel.
+pub(super) const LINE_GRADIENT: f64 = 1.0 / 256.0;
+
+/// Tiles per line kind (`GL_LINES`, polygon-mode lines), each with its own plane.
+pub(super) const LINE_TILES: usize = 16;
+
+/// What [`line_reach`] measured.
+pub(super) struct LineFigures {
+    /// The largest `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` per kind
+    /// (`GL_LINES` width 1, polygon-mode lines width 1), pixels.
+    pub(super) reach: [f64; 2],
+    /// Fragments compared per kind.
+    pub(super) pixels: [usize; 2],
+    /// `glPolygonOffset(1, 0)`'s offset on a plane with `|gₓ| = |g_y| = g`, over `g`
+    /// (1: `max(|gₓ|, |g_y|)`; `√2`: their root sum of squares), and the same on a plane with
+    /// `g_y = 0` (1 under either rule: the factor's scale).
+    pub(super) slope: [f64; 2],
+}
+
+/// A tile's plane, window depth `0.5 + gₓ·(x − 32) + g_y·(y − 32)` in tile pixels.
+pub(super) fn tile_plane(k: usize) -> (f64, f64) {
+    // Gradient directions spread over the circle, the larger component always LINE_GRADIENT.
+    let theta = std::f64::consts::PI * (2 * k + 1) as f64 / (LINE_TILES as f64);
+    let (c, s) = (theta.cos(), theta.sin());
+    let big = c.abs().max(s.abs());
+    (LINE_GRADIENT * c / big, LINE_GRADIENT * s / big)
+}
+
+/// The vertex of tile pixel coordinates `(x, y)` on plane `(gₓ, g_y)`: clip coordinates with
+/// `w = 1` (drawn with [`IDENTITY`] into a `SIZE`-pixel tile), `[−1, 1]` depth.
+pub(super) fn tile_vertex(x: f64, y: f64, (gx, gy): (f64, f64)) -> [f32; 4] {
+    let half = SIZE as f64 / 2.0;
+    let z = 0.5 + gx * (x - half) + gy * (y - half);
+    [
+        (x / half - 1.0) as f32,
+        (y / half - 1.0) as f32,
+        (2.0 * z - 1.0) as f32,
+        1.0,
+    ]
+}
+
+/// Measures how far from the pixel a line fragment's depth is taken, per line kind, and
+/// `glPolygonOffset`'s slope rule (module docs). Needs D32F attached.
+pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
+    // A small deterministic generator: sub-pixel endpoints in every direction.
+    let mut seed = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut lines: Vec<Vec<[f32; 4]>> = Vec::new();
+    let mut polygons: Vec<Vec<[f32; 4]>> = Vec::new();
+    for k in 0..LINE_TILES {
+        let plane = tile_plane(k);
+        let mut segments = Vec::new();
+        for j in 0..6 {
+            // Six directions per tile, each tile turned a little further.
+            let phi = std::f64::consts::PI * (j as f64 + k as f64 / LINE_TILES as f64) / 6.0;
+            let (cx, cy) = (32.0 + 16.0 * (next() - 0.5), 32.0 + 16.0 * (next() - 0.5));
+            let half = 18.0 + 8.0 * next();
+            let (dx, dy) = (half * phi.cos(), half * phi.sin());
+            segments.push(tile_vertex(cx - dx, cy - dy, plane));
+            segments.push(tile_vertex(cx + dx, cy + dy, plane));
+        }
+        lines.push(segments);
+        let mut triangles = Vec::new();
+        for _ in 0..3 {
+            for _ in 0..3 {
+                triangles.push(tile_vertex(4.0 + 56.0 * next(), 4.0 + 56.0 * next(), plane));
+            }
+        }
+        polygons.push(triangles);
+    }
+    // Slope rule: a filled tile on a diagonal plane and on an axis plane, plain and offset.
+    let diagonal = (LINE_GRADIENT, LINE_GRADIENT);
+    let axis = (LINE_GRADIENT, 0.0);
+    let quad = |plane| {
+        let c = [(1.0, 1.0), (63.0, 1.0), (63.0, 63.0), (1.0, 63.0)]
+            .map(|(x, y)| tile_vertex(x, y, plane));
+        vec![c[0], c[1], c[2], c[0], c[2], c[3]]
+    };
+    let slope_tiles = [quad(diagonal), quad(axis)];
+
+    let mut all: Vec<[f32; 4]> = Vec::new();
+    let mut draws: Vec<(usize, Enum, usize, usize, bool)> = Vec::new(); // tile, mode, first, count, offset
+    let mut push = |tile: usize, mode: Enum, vertices: &[[f32; 4]], offset: bool| {
+        draws.push((tile, mode, all.len(), vertices.len(), offset));
+        all.extend_from_slice(vertices);
+    };
+    for (k, v) in lines.iter().enumerate() {
+        push(k, LINES, v, false);
+    }
+    for (k, v) in polygons.iter().enumerate() {
+        push(LINE_TILES + k, TRIANGLES, v, false);
+    }
+    for (k, v) in slope_tiles.iter().enumerate() {
+        push(2 * LINE_TILES + 2 * k, TRIANGLES, v, false);
+        push(2 * LINE_TILES + 2 * k + 1, TRIANGLES, v, true);
+    }
+    let side = (SIZE * TILES) as Sizei;
+    (gl.Viewport)(0, 0, side, side);
+    (gl.ClearDepth)(1.0);
+    (gl.Clear)(DEPTH_BUFFER_BIT);
+    (gl.UniformMatrix4fv)(o.projection, 1, 0, IDENTITY.as_ptr());
+    let bytes = std::mem::size_of_val(all.as_slice());
+    (gl.BufferData)(
+        ARRAY_BUFFER,
+        bytes as isize,
+        all.as_ptr().cast(),
+        STREAM_DRAW,
+    );
+    for &(tile, mode, first, count, offset) in &draws {
+        let (x, y) = ((tile % TILES) * SIZE, (tile / TILES) * SIZE);
+        (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
+        let polygon_lines = (LINE_TILES..2 * LINE_TILES).contains(&tile);
+        if polygon_lines {
+            (gl.PolygonMode)(FRONT_AND_BACK, LINE);
+        }
+        if offset {
+            (gl.Enable)(POLYGON_OFFSET_FILL);
+            (gl.PolygonOffset)(1.0, 0.0);
+        }
+        (gl.DrawArrays)(mode, first as Int, count as Sizei);
+        (gl.PolygonMode)(FRONT_AND_BACK, FILL);
+        (gl.Disable)(POLYGON_OFFSET_FILL);
+        (gl.PolygonOffset)(0.0, 0.0);
+    }
+    gl.check("drawing the probe's lines raised a GL error")?;
+    let width = SIZE * TILES;
+    let rows = (2 * LINE_TILES + 4).div_ceil(TILES);
+    let depth = read_depth(gl, Format::Float, 0, width, rows * SIZE)?;
+    let at = |tile: usize, px: usize, py: usize| {
+        let (x, y) = ((tile % TILES) * SIZE + px, (tile / TILES) * SIZE + py);
+        depth[y * width + x]
+    };
+    let mut reach = [0.0f64; 2];
+    let mut pixels = [0usize; 2];
+    for kind in 0..2 {
+        for k in 0..LINE_TILES {
+            let (gx, gy) = tile_plane(k);
+            for py in 0..SIZE {
+                for px in 0..SIZE {
+                    let stored = at(kind * LINE_TILES + k, px, py);
+                    if stored >= 0.99 {
+                        continue;
+                    }
+                    let half = SIZE as f64 / 2.0;
+                    let (x, y) = (px as f64 + 0.5 - half, py as f64 + 0.5 - half);
+                    let exact = 0.5 + gx * x + gy * y;
+                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
+                    pixels[kind] += 1;
+                }
+            }
+        }
+    }
+    let mut slope = [0.0; 2];
+    for (k, s) in slope.iter_mut().enumerate() {
+        let (plain, offset) = (2 * LINE_TILES + 2 * k, 2 * LINE_TILES + 2 * k + 1);
+        let (mut sum, mut count) = (0.0, 0usize);
+        for py in 4..SIZE - 4 {
+            for px in 4..SIZE - 4 {
+                sum += at(offset, px, py) - at(plain, px, py);
+                count += 1;
+            }
+        }
+        *s = sum / count as f64 / LINE_GRADIENT;
+    }
+    if pixels.contains(&0) {
+        return Err(Error::new(
+            ErrorKind::Gl,
+            "the probe's lines drew no fragment (GL_LINES or glPolygonMode(GL_LINE))",
+        ));
+    }
+    Ok(LineFigures {
+        reach,
+        pixels,
+        slope,
+    })
+}
