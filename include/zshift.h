@@ -725,7 +725,8 @@ typedef struct {
    */
   uint32_t polygon_mode;
   /*
-   MSAA samples per pixel (1 without multisampling), 1..=64.
+   MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
+   sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction).
    */
   uint32_t samples;
   /*
@@ -791,11 +792,13 @@ typedef struct {
    */
   double window_offset;
   /*
-   The line term g*(w + 1)/2, window depth.
+   The line term g*line_reach, window depth.
    */
   double line_term;
   /*
-   (w + 1)/2: how far (pixels) from the pixel a line fragment's depth is taken.
+   How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
+   depth is taken: (w + 1)/2 in the worst case, the probed reach + (w - 1)/2 with a profile,
+   sqrt(2)*(w + 1)/2 under MSAA.
    */
   double line_reach;
   /*

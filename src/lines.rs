@@ -20,9 +20,8 @@
 //! the pixel centre. A `GL_LINES` segment is rasterized along its major axis: in each column (an
 //! x-major line) the fragments take the line's depth at that column, and their centres lie up to
 //! about `w/2` pixels across the line (the diamond-exit rule for `w = 1`, a `w`-pixel run for a
-//! wide line); multisampled lines are rectangles `w` wide whose samples take the line's depth at
-//! their projection on it. The face's window depth is the plane `z = z₀ + gₓ·x + g_y·y`, and the
-//! line lies in it, so at a fragment
+//! wide line). The face's window depth is the plane `z = z₀ + gₓ·x + g_y·y`, and the line lies in
+//! it, so at a fragment
 //!
 //! `|z_line − z_face| ≤ |g_minor|·Δ ≤ M·Δ`,  `M = max(|gₓ|, |g_y|)`, `Δ = (w + 1)/2`,   (L)
 //!
@@ -31,7 +30,15 @@
 //! 1-pixel lines, 0.72 for polygon-mode lines (its unfilled stage re-draws the triangle's edges
 //! with their own set-up) and 1.52 for width 3. A measured profile
 //! ([`RasterizerProfile::line_reach`], single-sampled) replaces it by the probe's reach for the
-//! line kind at width 1 plus `(w − 1)/2`; with MSAA the worst case stays. `M` is exactly the slope term of
+//! line kind at width 1 plus `(w − 1)/2`.
+//!
+//! **MSAA** ([`Edges::samples`] > 1): a multisampled line is a rectangle `w` wide whose samples
+//! take the line's depth at their projection on it (or along the minor axis), and the face's
+//! depth is taken at the sample. A sample lies up to `w/2` from the point whose depth it takes,
+//! in a direction that is not an axis: the face's gradient along it is up to `|∇z| ≤ √2·M`, so a
+//! sample is off the face by up to `(w/2)·√2·M`, more than `(w + 1)/2·M` from `w ≥ 2.5`. Under
+//! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction), with
+//! either profile (the probe measures single-sampled lines). `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
 //! constant for the whole mesh, so it must pay `L = g·Δ` for the steepest face that matters:
@@ -142,8 +149,9 @@ pub struct Edges {
     pub line_width: f64,
     /// `GL_LINES` or polygon-mode lines.
     pub kind: LineKind,
-    /// MSAA samples per pixel (1 without multisampling), `1..=64`. The bound (L) holds for both
-    /// (a multisampled line's sample takes the line's depth at its projection on the line).
+    /// MSAA samples per pixel (1 without multisampling), `1..=64`. Above 1 the reach is
+    /// `√2·(w + 1)/2` (module docs, "MSAA"): a sample lies up to `w/2` off the line in any
+    /// direction.
     pub samples: u32,
     /// The mesh's nearest and farthest eye depth (`−z`), inside the frustum.
     pub depth_range: [f64; 2],
@@ -386,10 +394,16 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
     }
 }
 
-/// `Δ`, pixels: the profile's measured reach for the line kind plus `(w − 1)/2` (a measured,
-/// single-sampled profile), else `(w + 1)/2` (module docs, "The line term").
+/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA, else the profile's measured reach for the
+/// line kind plus `(w − 1)/2` (a measured profile), else `(w + 1)/2` (module docs, "The line
+/// term").
 fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
+    if edges.samples > 1 {
+        // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
+        // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
+        return std::f64::consts::SQRT_2 * (w + 1.0) / 2.0;
+    }
     let p = &edges.profile;
     let measured = p.line_reach[match edges.kind {
         LineKind::Lines => 0,
@@ -643,7 +657,17 @@ mod tests {
         assert!((r.line_reach - 1.72).abs() < 1e-15);
         e.samples = 4;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        assert_eq!(r.line_reach, 2.0);
+        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2);
+        // Under MSAA a sample lies up to (w/2)·√2 off the line along the face's gradient: the
+        // reach covers it at every width.
+        for w in [1.0, 2.5, 3.0, 10.0, 64.0] {
+            e.line_width = w;
+            let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            assert!(
+                r.line_reach >= w / 2.0 * std::f64::consts::SQRT_2 + 0.5,
+                "{w}"
+            );
+        }
     }
 
     #[test]

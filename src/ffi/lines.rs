@@ -42,7 +42,8 @@ pub struct ZshiftEdges {
     pub line_width: f64,
     /// 0: GL_LINES; 1: the faces drawn again in glPolygonMode(GL_LINE).
     pub polygon_mode: u32,
-    /// MSAA samples per pixel (1 without multisampling), 1..=64.
+    /// MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
+    /// sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction).
     pub samples: u32,
     /// The steepest face whose edges must be kept, as the largest angle between a face's normal
     /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead.
@@ -82,9 +83,11 @@ pub struct ZshiftEdgeOffset {
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies.
     pub window_offset: f64,
-    /// The line term g*(w + 1)/2, window depth.
+    /// The line term g*line_reach, window depth.
     pub line_term: f64,
-    /// (w + 1)/2: how far (pixels) from the pixel a line fragment's depth is taken.
+    /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
+    /// depth is taken: (w + 1)/2 in the worst case, the probed reach + (w - 1)/2 with a profile,
+    /// sqrt(2)*(w + 1)/2 under MSAA.
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,
