@@ -354,13 +354,19 @@ impl<'a> Renderer<'a> {
         Ok(self.gl.read_color()?.mask_of(zshift_harness::rgba8(DECAL)))
     }
 
-    fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+    /// Clears and draws the ground with the plain matrix and the scene's depth test.
+    fn clear_and_draw_ground(&mut self) -> Result<(), String> {
         self.clear()?;
         let (view, plain, state) = (self.view, self.plain, self.state());
         let ground = std::mem::take(&mut self.ground);
         let drawn = self.gl.draw_world(&ground, &view, &plain, BASE, &state);
         self.ground = ground;
-        drawn?;
+        drawn
+    }
+
+    fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+        self.clear_and_draw_ground()?;
+        let (view, state) = (self.view, self.state());
         let decal = quad_triangles(&self.case.decal_world());
         self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;
         Ok(Count::decal_missing(&self.gl.read_color()?, &self.mask))
@@ -383,12 +389,8 @@ impl<'a> Renderer<'a> {
         );
         let occ_mask = self.coverage(&occluder)?;
         let both: Vec<bool> = occ_mask.iter().zip(&self.mask).map(|(a, b)| *a && *b).collect();
-        self.clear()?;
+        self.clear_and_draw_ground()?;
         let (view, plain, state) = (self.view, self.plain, self.state());
-        let ground = std::mem::take(&mut self.ground);
-        let drawn = self.gl.draw_world(&ground, &view, &plain, BASE, &state);
-        self.ground = ground;
-        drawn?;
         self.gl.draw_world(&occluder, &view, &plain, OCCLUDER, &state)?;
         let decal = quad_triangles(&self.case.decal_world());
         self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;

@@ -69,6 +69,19 @@ pub(crate) fn clip_gamma(clip_ulps: Option<f64>) -> f64 {
     clip_ulps.unwrap_or(6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF
 }
 
+/// `A_c`, the largest `|c|` of each clip coordinate of a base vertex whose eye coordinates are at
+/// most `reach` in magnitude under the projection `m` (a `glFrustum`-family matrix):
+/// `((|m0| + |m8|)·R, (|m5| + |m9|)·R, |m10|·R + |m14|, R)`. The probe measures the clipper in
+/// these units too ([`crate::profile::RasterizerProfile::clip_ulps`]).
+pub(crate) fn clip_magnitudes(m: &[f64; 16], reach: f64) -> [f64; 4] {
+    [
+        (m[0].abs() + m[8].abs()) * reach,
+        (m[5].abs() + m[9].abs()) * reach,
+        m[10].abs() * reach + m[14].abs(),
+        reach,
+    ]
+}
+
 /// The term `C` of a base of `reach` `R` the rasterizer clips (module docs): every
 /// rasterizer-made vertex carries clip-space errors `|e_c| ≤ γ·A_c` (`A_c` the largest `|c|` a
 /// base vertex can have under the projection `m`), and the depth error at a pixel at eye depth
@@ -89,20 +102,7 @@ pub(crate) fn clip_term(
     pipeline: &Pipeline,
     window_per_ndc: f64,
 ) -> Result<f64> {
-    let (m0, m5, m8, m9, m10, m14) = (
-        m[0].abs(),
-        m[5].abs(),
-        m[8].abs(),
-        m[9].abs(),
-        m[10].abs(),
-        m[14].abs(),
-    );
-    let a = [
-        (m0 + m8) * reach,
-        (m5 + m9) * reach,
-        m10 * reach + m14,
-        reach,
-    ];
+    let a = clip_magnitudes(m, reach);
     // World-space vertices carry the f32 model-view's errors into the clipper, which
     // interpolates them: L is linear, so an interpolated vertex is off the plane by the same
     // convex combination of its ends' L-values, no more than at the vertices (a base vertex is

@@ -129,12 +129,7 @@ pub(super) fn clipper_ulps(
 ) -> f64 {
     let reach = ground.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
     let m = scene.matrix.map(f64::from);
-    let a = [
-        (m[0].abs() + m[8].abs()) * reach,
-        (m[5].abs() + m[9].abs()) * reach,
-        m[10].abs() * reach + m[14].abs(),
-        reach,
-    ];
+    let a = crate::model::clip::clip_magnitudes(&m, reach);
     let Some(plane) = scene.exact().first().map(Plane::new) else {
         return 0.0;
     };
