@@ -54,13 +54,15 @@ struct Attachment {
     packed: bool,
 }
 
-const ATTACHMENTS: [Attachment; 6] = [
+const ATTACHMENTS: [Attachment; 8] = [
     Attachment { label: "[-1,1] D24", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: false },
     Attachment { label: "[-1,1] D24S8", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: true },
     Attachment { label: "[0,1] D32F", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: false },
     Attachment { label: "[0,1] D32F_S8", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: true },
     Attachment { label: "reversed D32F", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D32F, packed: false },
     Attachment { label: "reversed D24S8", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D24, packed: true },
+    Attachment { label: "[0,1] D24", clip: ClipDepth::ZeroToOne, format: DepthFormat::D24, packed: false },
+    Attachment { label: "[-1,1] D32F", clip: ClipDepth::NegOneToOne, format: DepthFormat::D32F, packed: false },
 ];
 
 /// One scene of the sweep.
