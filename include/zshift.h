@@ -546,7 +546,8 @@ typedef struct {
   double plane;
   /*
    Term C: the rasterizer's float clipping of a base that reaches outside the frustum
-   (0 when base_reach is 0).
+   (0 when base_reach is 0), and of the decal where its corners do (a decal partly off
+   screen, known from decal_corners).
    */
   double clip;
 } ZshiftRecommendation;

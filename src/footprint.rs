@@ -41,6 +41,11 @@ pub struct Footprint {
     /// `error·d`, the worst pixel's `M·d` (a ratio of affine functions of the window position,
     /// largest at a corner of the decal's convex hull; pixels off screen only lower it).
     pub magnitude_depth: f64,
+    /// 0 when every corner of the decal lies inside the view frustum (the rasterizer clips
+    /// nothing of it); else the largest `|x|`, `|y|`, `|z|` of its eye-space corners: a decal
+    /// partly off screen is clipped by the rasterizer like a base, and the model adds its
+    /// clipping term ([`crate::recommend::ErrorTerms::decal_clip`]).
+    pub clipped_reach: f64,
 }
 
 impl Footprint {
@@ -72,6 +77,7 @@ impl Footprint {
             gradient: self.gradient,
             far_corner: [self.far_corner[0] + x, self.far_corner[1] + y],
             magnitude_depth: self.magnitude_depth + 2.0 * run * far,
+            clipped_reach: self.clipped_reach,
         }
     }
 }
@@ -171,6 +177,10 @@ pub fn decal_shape_for_matrix(
     let row = |r: usize, p: &[f64; 3]| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
     let mut window = Vec::with_capacity(eye.len());
     let mut depth_range = [f64::INFINITY, 0.0f64];
+    // Whether the rasterizer clips the decal: a corner outside a side, the near or the far plane.
+    // NDC depth runs over [−1, 1] under OpenGL's default, [0, 1] otherwise (reversed too).
+    let lowest_ndc = if clip == ClipDepth::NegOneToOne { -1.0 } else { 0.0 };
+    let mut outside = false;
     for (i, p) in eye.iter().enumerate() {
         let cw = row(3, p);
         if cw.is_nan() || cw <= 0.0 {
@@ -181,6 +191,9 @@ pub fn decal_shape_for_matrix(
         }
         depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
         let ndc_z = row(2, p) / cw;
+        outside |= row(0, p).abs() > cw
+            || row(1, p).abs() > cw
+            || !(lowest_ndc..=1.0).contains(&ndc_z);
         let depth = if clip == ClipDepth::NegOneToOne {
             0.5 * ndc_z + 0.5
         } else {
@@ -210,6 +223,11 @@ pub fn decal_shape_for_matrix(
             [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
         }),
         magnitude_depth,
+        clipped_reach: if outside {
+            eye.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()))
+        } else {
+            0.0
+        },
     };
     Ok(DecalShape {
         depth_range,

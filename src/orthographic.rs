@@ -448,6 +448,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     };
     let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max);
     Ok(ErrorTerms {
+        decal_clip: 0.0,
         quantum: scene.decal.format.spacing_at(w_max)?,
         transform,
         vertex,

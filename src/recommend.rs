@@ -343,15 +343,20 @@ pub struct ErrorTerms {
     /// [`RasterizerProfile::facing_quanta_zero_to_one`], times its unit), which replaces
     /// `q + 2E` in (R1); 0 where not used.
     pub facing: f64,
+    /// The decal's own clipping term, where its corners reach outside the frustum (a decal
+    /// partly off screen: [`Footprint::clipped_reach`]); 0 otherwise. It adds to the decal's
+    /// error, so to the offset and to the bleed gap.
+    pub decal_clip: f64,
 }
 
 impl ErrorTerms {
-    /// The errors of base and decal together: `2(E + S) + C`, or 0 when they are correlated.
+    /// The errors of base and decal together: `2(E + S) + C` (with the decal's own clipping
+    /// term), or 0 when they are correlated.
     pub fn budget(&self) -> f64 {
         if self.correlated {
             0.0
         } else {
-            2.0 * (self.plane + self.snap) + self.clip
+            2.0 * (self.plane + self.snap) + self.clip + self.decal_clip
         }
     }
 
@@ -370,7 +375,7 @@ impl ErrorTerms {
     /// quantum more (a tie passes).
     pub fn gap_window(&self, offset: f64) -> f64 {
         let tie = if self.strict { 0.0 } else { self.quantum };
-        offset + 2.0 * (self.plane + self.snap) + tie
+        offset + 2.0 * (self.plane + self.snap) + self.decal_clip + tie
     }
 
     fn strict_quantum(&self) -> f64 {
@@ -641,6 +646,17 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     let Base::Clipped { reach } = scene.base else {
         return Ok(0.0);
     };
+    clip_term_of_reach(scene, clip, mapping, reach)
+}
+
+/// [`clip_term`] for a primitive of eye-space `reach` on the decal's plane (the base, or the
+/// decal itself where it reaches outside the frustum).
+fn clip_term_of_reach(
+    scene: &Scene,
+    clip: ClipDepth,
+    mapping: &DepthMapping,
+    reach: f64,
+) -> Result<f64> {
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
     // The bound on six clip stages of f32 rounding, or what the probe measured of the clipper.
     let gamma = clip_model::clip_gamma(measured_figure(&scene.profile, scene.profile.clip_ulps));
@@ -1063,6 +1079,13 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         }
         NearClip::PlanePreserving => 0.0,
     };
+    // A decal partly off screen is clipped too, its own corners the reach.
+    let decal_reach = scene.footprint.map_or(0.0, |f| f.clipped_reach);
+    let decal_clip = match scene.profile.near_clip {
+        _ if decal_reach == 0.0 => 0.0,
+        NearClip::ClippedF32 => clip_term_of_reach(scene, clip, &mapping, decal_reach)?,
+        NearClip::PlanePreserving => plane + snap + pipeline.per_unit(2.0 / 16_777_215.0),
+    };
     // A facing plane whose every corner has the same f32 z (base and decal) is drawn at one
     // depth, and each step of the depth chain is monotone in element 10: the decal's computed
     // depth is never behind the base's, so under an …EQUAL test (a tie passes) no offset is
@@ -1086,6 +1109,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         strict: scene.depth_test.is_strict(),
         correlated,
         facing,
+        decal_clip,
     })
 }
 

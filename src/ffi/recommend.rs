@@ -207,7 +207,8 @@ pub struct ZshiftRecommendation {
     /// Term E: the per-quad plane error the offset used: transform + vertex + interpolation.
     pub plane: f64,
     /// Term C: the rasterizer's float clipping of a base that reaches outside the frustum
-    /// (0 when base_reach is 0).
+    /// (0 when base_reach is 0), and of the decal where its corners do (a decal partly off
+    /// screen, known from decal_corners).
     pub clip: f64,
 }
 
@@ -236,7 +237,7 @@ impl ZshiftRecommendation {
             interpolation: terms.interpolation,
             snap: terms.snap,
             plane: terms.plane,
-            clip: terms.clip,
+            clip: terms.clip + terms.decal_clip,
         }
     }
 }
