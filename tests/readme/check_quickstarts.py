@@ -34,6 +34,7 @@ SOURCES = [
     "tests/packaging/pip.sh",  # bash tests/packaging/pip.sh
     "examples/engines/common/decal_scene.h",  # make -C examples/engines check
     "examples/engines/osg/decal_osg.cpp",  # make -C examples/engines check
+    "examples/engines/osg/edges_osg.cpp",  # make -C examples/engines check
     "examples/engines/irrlicht/decal_irrlicht.cpp",  # make -C examples/engines check
     "examples/engines/ogre/decal_ogre.cpp",  # make -C examples/engines check
 ]
