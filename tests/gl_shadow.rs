@@ -39,6 +39,9 @@ const GROUND: f64 = 6.0;
 const BOX: [[f64; 3]; 2] = [[0.2, 0.0, -0.9], [1.4, 2.0, -0.1]];
 const CAMERA: usize = 160;
 const AZIMUTH_DEG: f64 = 30.0;
+/// The box of every world position the caster and lookup shaders transform: the ground and
+/// the box standing on it.
+const WORLD_BOX: [[f64; 3]; 2] = [[-GROUND, 0.0, -GROUND], [GROUND, BOX[1][1], GROUND]];
 /// The limit angle passed with explicit receivers: it only skips receivers facing away by more.
 const RECEIVER_LIMIT_DEG: f64 = 89.9;
 
@@ -1143,11 +1146,24 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
         })
         .collect();
         let mut leaks: Vec<(String, usize)> = Vec::new();
-        for (pname, profile, receivers) in [
-            ("worst", RasterizerProfile::worst_case(), false),
-            ("probed", probed, false),
-            ("worst, receivers", RasterizerProfile::worst_case(), true),
-            ("probed, receivers", probed, true),
+        // The light's pipeline as both shaders run it: world positions through the f32 view
+        // matrix first, then the projection (`proj * (view * p)`), every position inside the
+        // scene's box (the ground and the box standing on it).
+        let light_pipeline = zshift::model::Pipeline {
+            eye_first: true,
+            view: Some(to_f32(&light.view)),
+            world_box: Some(WORLD_BOX),
+            ..Default::default()
+        };
+        for (pname, profile, receivers, pipeline) in [
+            ("worst", RasterizerProfile::worst_case(), false, None),
+            ("probed", probed, false, None),
+            ("worst, receivers", RasterizerProfile::worst_case(), true, None),
+            ("probed, receivers", probed, true, None),
+            ("worst, view", RasterizerProfile::worst_case(), false, Some(light_pipeline)),
+            ("probed, view", probed, false, Some(light_pipeline)),
+            ("worst, receivers, view", RasterizerProfile::worst_case(), true, Some(light_pipeline)),
+            ("probed, receivers, view", probed, true, Some(light_pipeline)),
         ] {
             let map = ShadowMap {
                 light: light.projection,
@@ -1168,6 +1184,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 world_reach,
                 elevation_deg: case.elevation,
                 profile,
+                pipeline: pipeline.unwrap_or_default(),
             };
             let t = tally(&mut tallies, &format!("zshift ({pname})"), &class);
             let answer = if receivers {
