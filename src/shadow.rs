@@ -708,7 +708,8 @@ fn terms_of(
             let span = f - n;
             let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
             let vertex = if vertex_pipeline(map).world_space() {
-                t.vertex.max(ortho_world_term(map, &ortho, slope, receiver)?)
+                t.vertex
+                    .max(ortho_world_term(map, &ortho, slope, receiver)?)
             } else {
                 t.vertex
             };
@@ -1084,6 +1085,48 @@ mod tests {
         assert!(open.terms.footprint.is_infinite());
         assert_eq!(open.d3d.clamp, 0.0);
         assert!(open.along_normal.is_finite() && open.along_light.is_infinite());
+    }
+
+    /// The light's pipeline: with its view matrix and the world box, the f32 view term is the
+    /// exact per-coordinate one, no larger than the bound from `world_reach` (here far smaller);
+    /// a zeroed pipeline is the scalar bound; a view without its box, or a viewport origin, is
+    /// refused by name.
+    #[test]
+    fn the_lights_view_tightens_the_vertex_term() {
+        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+        for light in [
+            LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
+            LightProjection::Perspective(frustum),
+        ] {
+            let scalar = ShadowMap {
+                light,
+                world_reach: 25.0,
+                receiver_depths: [10.0, 30.0],
+                ..ground_map(Lookup::Nearest, 30.0)
+            };
+            let base = shadow_bias(&scalar).unwrap();
+            let mut viewed = scalar;
+            viewed.pipeline.view = Some([
+                1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -25.0, 1.0,
+            ]);
+            viewed.pipeline.world_box = Some([[-8.0, -8.0, -5.0], [8.0, 8.0, 15.0]]);
+            viewed.pipeline.eye_first = true;
+            let tight = shadow_bias(&viewed).unwrap();
+            assert!(tight.terms.lookup < 0.5 * base.terms.lookup, "{light:?}");
+            assert!(tight.terms.constant < base.terms.constant);
+            let mut boxless = viewed;
+            boxless.pipeline.world_box = None;
+            assert!(shadow_bias(&boxless)
+                .unwrap_err()
+                .to_string()
+                .contains("world_box"));
+            let mut tile = viewed;
+            tile.pipeline.viewport_origin = [512, 0];
+            assert_eq!(
+                shadow_bias(&tile).unwrap_err().input().unwrap().0,
+                "viewport_x"
+            );
+        }
     }
 
     /// A spot light over grazing ground: with the ground listed, the footprint is the ground's

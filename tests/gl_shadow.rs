@@ -14,7 +14,9 @@
 //!
 //! zshift's bias goes into the map as `glPolygonOffsetClamp(factor, units, clamp)` (its GL
 //! output, with the worst-case and the probed profile), the limit angle being the ground's own
-//! angle to the light (its axis for a spot). Every answered scene must show **0 acne pixels**;
+//! angle to the light (its axis for a spot); each from `world_reach` alone and with the light's
+//! pipeline (its f32 view matrix, the scene's world box, eye-first: both shaders compute
+//! `proj * (view * p)`). Every answered scene must show **0 acne pixels**;
 //! every refusal must be a scene where bisection finds no acne-free bias below 1 (the map's
 //! whole depth range). Bisection over a constant window bias in the lookup (map drawn without
 //! bias) gives the smallest acne-free bias; the table prints zshift's bias on the ground ÷ that,
@@ -719,7 +721,11 @@ fn reference(
                 && p[0] <= BOX[1][0] + 0.05
                 && p[2] >= BOX[0][2] - 0.05
                 && p[2] <= BOX[1][2] + 0.05;
-            if t.is_nan() || t <= 0.0 || p[0].abs() > GROUND * 0.98 || p[2].abs() > GROUND * 0.98 || inside_box
+            if t.is_nan()
+                || t <= 0.0
+                || p[0].abs() > GROUND * 0.98
+                || p[2].abs() > GROUND * 0.98
+                || inside_box
             {
                 out.push(None);
                 continue;
@@ -1158,12 +1164,32 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
         for (pname, profile, receivers, pipeline) in [
             ("worst", RasterizerProfile::worst_case(), false, None),
             ("probed", probed, false, None),
-            ("worst, receivers", RasterizerProfile::worst_case(), true, None),
+            (
+                "worst, receivers",
+                RasterizerProfile::worst_case(),
+                true,
+                None,
+            ),
             ("probed, receivers", probed, true, None),
-            ("worst, view", RasterizerProfile::worst_case(), false, Some(light_pipeline)),
+            (
+                "worst, view",
+                RasterizerProfile::worst_case(),
+                false,
+                Some(light_pipeline),
+            ),
             ("probed, view", probed, false, Some(light_pipeline)),
-            ("worst, receivers, view", RasterizerProfile::worst_case(), true, Some(light_pipeline)),
-            ("probed, receivers, view", probed, true, Some(light_pipeline)),
+            (
+                "worst, receivers, view",
+                RasterizerProfile::worst_case(),
+                true,
+                Some(light_pipeline),
+            ),
+            (
+                "probed, receivers, view",
+                probed,
+                true,
+                Some(light_pipeline),
+            ),
         ] {
             let map = ShadowMap {
                 light: light.projection,
