@@ -901,6 +901,18 @@ typedef struct {
    The rasterizer's profile (`zshift_probe`), or NULL for the worst case.
    */
   const ZshiftProfile *profile;
+  /*
+   The light's vertex pipeline, as the decal's ZshiftScene.pipeline: `view_matrix` (the
+   light's float view matrix the caster and lookup shaders apply to world positions, 16
+   floats column-major) with `world_box` (the world-space box of every caster and receiver
+   position), and `eye_first` (nonzero when both shaders compute `proj * (view * p)`); with
+   them the model knows each light-space eye coordinate's float rounding exactly instead of
+   bounding it from world_reach, and with listed receivers (zshift_shadow_bias_receivers)
+   and eye_first only the error off each receiver's plane counts. `world_reach` here adds to
+   the map's (the larger counts). A zeroed record is the behaviour without it;
+   viewport_x/y and depth_range_near/far must stay 0 (not modelled for shadow maps).
+   */
+  ZshiftPipeline pipeline;
 } ZshiftShadowMap;
 
 /*

@@ -59,8 +59,9 @@
 //!   profile enters as it does there). `q` bounds the storage: the stored value is within one
 //!   quantum of the computed one. `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤ 2^−b·m` grows with the caster's
 //!   own slope `m` (below), so the slope factor carries it (`2a + 2^−b`) and the constant
-//!   `K` leaves it out. With world-space vertices (`world_reach > 0`), `V` is the
-//!   larger of the eye-space term and the f32 model-view term of [`crate::model::vertex`].
+//!   `K` leaves it out. With world-space vertices (`world_reach > 0`, or the light's view
+//!   matrix given), `V` is the larger of the eye-space term and the f32 model-view term of
+//!   [`crate::model::vertex`] ("The light's pipeline", below).
 //! * `T + V`: **the lookup's own rounding**. The shader computes the receiver's light-space
 //!   position `P·(V·p)` in f32 from its world position, divides by `w` and maps to window depth:
 //!   the same f32 steps, on the same coordinates, as the caster's vertex transform, bounded by the
@@ -72,6 +73,43 @@
 //!   (0 on D32F, whose texel is the f32 stored).
 //!
 //! No term is a fudge factor: each bounds one step, as in [`crate::recommend`].
+//!
+//! # The light's pipeline
+//! Engines draw casters and look receivers up from world space: the caster's vertex shader
+//! and the lookup's fragment shader both apply the light's f32 view matrix `V` (and its
+//! projection `P`) to a world position `p`. The roundings of that product are relative to the
+//! magnitudes of the terms each light-space eye coordinate `k` sums, not to `p`'s distance from
+//! the light ([`crate::model::vertex`]). [`ShadowMap::pipeline`] says what the engine knows:
+//!
+//! * **nothing but `world_reach` `W`** (the default): every eye coordinate is bounded over every
+//!   rotation, `A = √3·(4W + extent)`, `extent` the farthest point of the light's box from the
+//!   light, and each clip coordinate errs independently by `γ_W·Bᵢ`,
+//!   `Bᵢ = Σₖ |Pᵢₖ|·A + |Pᵢ₃|` (`γ_W = 14u`) — [`vertex::world_error`] with the scalar reach;
+//! * **the light's view matrix and the box `[lo, hi]` of every caster and receiver position**
+//!   ([`crate::model::Pipeline::view`], [`crate::model::Pipeline::world_box`]): a term
+//!   `Vₖⱼ·pⱼ` is at most `|Vₖⱼ|·max(|loⱼ|, |hiⱼ|)` for `p` in the box, and the translation
+//!   `|Vₖ₃|`, so `Aₖ = Σⱼ |Vₖⱼ|·max(|loⱼ|, |hiⱼ|) + |Vₖ₃|` exactly per coordinate
+//!   ([`vertex::eye_magnitudes`]), whatever the light's rotation; the clip errors are
+//!   `γ_W·Bᵢ` with `Bᵢ = Σₖ |Pᵢₖ|·Aₖ + |Pᵢ₃|`;
+//! * **and the eye position computed first** (`proj * (view * p)` in both shaders,
+//!   [`crate::model::Pipeline::eye_first`]) **with a listed receiver**: the error is an
+//!   eye-space vector `δp`, `|δpₖ| ≤ γ_E·Aₖ` (`γ_E = 10u`), and it moves depth off the
+//!   receiver's plane only through the plane's form on eye coordinates `g = L∘P`
+//!   ([`crate::model::plane_form`]; `L` exact from the receiver's window plane in the map):
+//!   `|L(P·δp)| ≤ γ_E·Σₖ |gₖ|·Aₖ`. A move along the plane costs nothing here: for the caster it
+//!   leaves the stored surface where it was, for the lookup it moves the sample point along its
+//!   surface, which `F` allows for at any point. Without a listed receiver the form is only
+//!   bounded (over every plane of the limit angle's slope), and the independent clip errors
+//!   above are used (they cover either order of the products).
+//!
+//! `V` is the bound on `|L(e)|` over the vertices, in NDC through the form, to unit window depth
+//! by `½` under `[−1, 1]`: under an orthographic light `w = 1` and that is the term; under a
+//! perspective light a pixel at light depth `d ≥ d₁` weighs its vertices' errors by `μᵢ/d`
+//! (`Σ μᵢ = 1`), so the term is the bound over `d₁`, the nearest receiver
+//! ([`vertex::world_rounding`]). The lookup transforms a receiver position of the same box
+//! with the same `V` and `P`, so its `V` is the same bound, counted a second time in `T + V`.
+//! The viewport origin and depth range of [`crate::model::Pipeline`] are not modelled for shadow
+//! maps (they must stay at their defaults).
 //!
 //! # Outputs
 //! The constant part `K` goes to each API's units against its own resolvable difference `r`
@@ -233,6 +271,14 @@ pub struct ShadowMap {
     pub elevation_deg: f64,
     /// The rasterizer that draws the map ([`RasterizerProfile::worst_case`] unless measured).
     pub profile: RasterizerProfile,
+    /// What the engine knows about the light's vertex pipeline ([`crate::model::Pipeline`]):
+    /// the light's view matrix with the box of the world positions it maps
+    /// ([`crate::model::Pipeline::view`], [`crate::model::Pipeline::world_box`]), and whether
+    /// the shaders compute the light-space eye position first
+    /// ([`crate::model::Pipeline::eye_first`]). Its `world_reach` adds to the map's (the larger
+    /// counts). [`Default`]: today's scalar bound from `world_reach` alone. The viewport origin
+    /// and depth range must stay at their defaults (not modelled for shadow maps).
+    pub pipeline: crate::model::Pipeline,
 }
 
 /// The terms of (B1), in unit window depth of the map.
@@ -542,6 +588,16 @@ pub fn shadow_bias_for_receivers(
     finish(&map, terms, needed, Some((along_light, along_normal)))
 }
 
+/// The vertex pipeline of the light's caster and lookup shaders ([`crate::model::vertex`]): the
+/// map's pipeline with the larger of the two `world_reach`es (both bound the same
+/// coordinates).
+fn vertex_pipeline(map: &ShadowMap) -> crate::model::Pipeline {
+    crate::model::Pipeline {
+        world_reach: map.world_reach.max(map.pipeline.world_reach),
+        ..map.pipeline
+    }
+}
+
 /// The light's near and far distances.
 fn light_range(map: &ShadowMap) -> (f64, f64) {
     match map.light {
@@ -602,10 +658,7 @@ fn terms_of(
                 base: Base::InsideFrustum,
                 profile: map.profile,
                 footprint: receiver.copied(),
-                pipeline: crate::model::Pipeline {
-                    world_reach: map.world_reach,
-                    ..Default::default()
-                },
+                pipeline: vertex_pipeline(map),
             };
             let t = crate::recommend::clip_error_terms(&scene, map.clip)?;
             let (l, r, b, top, n, f) = frustum.parameters();
@@ -654,8 +707,9 @@ fn terms_of(
             let (l, r, b, top, n, f) = ortho.parameters();
             let span = f - n;
             let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
-            let vertex = if map.world_reach > 0.0 {
-                t.vertex.max(ortho_world_term(map, &ortho, slope)?)
+            let vertex = if vertex_pipeline(map).world_space() {
+                t.vertex
+                    .max(ortho_world_term(map, &ortho, slope, receiver)?)
             } else {
                 t.vertex
             };
@@ -701,7 +755,12 @@ fn terms_of(
 /// depth per eye unit) and `|a₀| ≤ 1 + |aₓ| + |a_y|` (the map's centre is at most one NDC unit
 /// per axis from a point inside it); `w = 1`, and a point of the box lies within
 /// `√(X² + Y² + max(|n|, |f|)²)` of the light.
-fn ortho_world_term(map: &ShadowMap, ortho: &Ortho, slope: f64) -> Result<f64> {
+fn ortho_world_term(
+    map: &ShadowMap,
+    ortho: &Ortho,
+    slope: f64,
+    receiver: Option<&crate::footprint::Footprint>,
+) -> Result<f64> {
     let m = crate::orthographic::ortho_f64(ortho, map.clip);
     let (l, r, b, t, n, f) = ortho.parameters();
     let a = m[10].abs();
@@ -723,11 +782,14 @@ fn ortho_world_term(map: &ShadowMap, ortho: &Ortho, slope: f64) -> Result<f64> {
     } else {
         1.0
     };
-    let errors = vertex::world_errors(&m, map.world_reach, extent);
-    crate::domain::representable(
-        per_ndc * form.bound(errors),
-        "the vertex term overflows f64",
-    )
+    // With a listed receiver, its exact form (the eye-first path needs it); else the bounds
+    // over every plane of the slope.
+    let (form, exact) = match receiver {
+        Some(fp) => (PlaneForm::of_footprint(fp, map.resolution, map.clip), true),
+        None => (form, false),
+    };
+    let (error, _) = vertex::world_error(&form, exact, &m, &vertex_pipeline(map), extent);
+    crate::domain::representable(per_ndc * error, "the vertex term overflows f64")
 }
 
 /// The receivers' smallest window depth in the map (where float depth's `r` is smallest).
@@ -856,6 +918,19 @@ pub fn check(map: &ShadowMap) -> Result<()> {
     if w < 0.0 {
         return Err(domain("world_reach must be >= 0").with_value("world_reach", w));
     }
+    map.pipeline.check()?;
+    if map.pipeline.viewport_origin != [0, 0] {
+        return Err(domain(
+            "a shadow map's pipeline must keep viewport_x and viewport_y at 0 (an atlas tile's origin is not modelled)",
+        )
+        .with_integer("viewport_x", i64::from(map.pipeline.viewport_origin[0])));
+    }
+    if map.pipeline.depth_range != [0.0, 1.0] {
+        return Err(domain(
+            "a shadow map's pipeline must keep glDepthRange(0, 1) (pass 0 and 0, or 0 and 1)",
+        )
+        .with_value("depth_range_near", map.pipeline.depth_range[0]));
+    }
     let [d1, d2] = map.receiver_depths;
     for (name, d) in [("receiver_near", d1), ("receiver_far", d2)] {
         finite(d, "a receiver depth is NaN or infinite").map_err(|x| x.with_value(name, d))?;
@@ -911,6 +986,7 @@ mod tests {
             world_reach: 0.0,
             elevation_deg: 90.0 - angle,
             profile: RasterizerProfile::worst_case(),
+            pipeline: crate::model::Pipeline::default(),
         }
     }
 
@@ -1009,6 +1085,48 @@ mod tests {
         assert!(open.terms.footprint.is_infinite());
         assert_eq!(open.d3d.clamp, 0.0);
         assert!(open.along_normal.is_finite() && open.along_light.is_infinite());
+    }
+
+    /// The light's pipeline: with its view matrix and the world box, the f32 view term is the
+    /// exact per-coordinate one, no larger than the bound from `world_reach` (here far smaller);
+    /// a zeroed pipeline is the scalar bound; a view without its box, or a viewport origin, is
+    /// refused by name.
+    #[test]
+    fn the_lights_view_tightens_the_vertex_term() {
+        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+        for light in [
+            LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
+            LightProjection::Perspective(frustum),
+        ] {
+            let scalar = ShadowMap {
+                light,
+                world_reach: 25.0,
+                receiver_depths: [10.0, 30.0],
+                ..ground_map(Lookup::Nearest, 30.0)
+            };
+            let base = shadow_bias(&scalar).unwrap();
+            let mut viewed = scalar;
+            viewed.pipeline.view = Some([
+                1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -25.0, 1.0,
+            ]);
+            viewed.pipeline.world_box = Some([[-8.0, -8.0, -5.0], [8.0, 8.0, 15.0]]);
+            viewed.pipeline.eye_first = true;
+            let tight = shadow_bias(&viewed).unwrap();
+            assert!(tight.terms.lookup < 0.5 * base.terms.lookup, "{light:?}");
+            assert!(tight.terms.constant < base.terms.constant);
+            let mut boxless = viewed;
+            boxless.pipeline.world_box = None;
+            assert!(shadow_bias(&boxless)
+                .unwrap_err()
+                .to_string()
+                .contains("world_box"));
+            let mut tile = viewed;
+            tile.pipeline.viewport_origin = [512, 0];
+            assert_eq!(
+                shadow_bias(&tile).unwrap_err().input().unwrap().0,
+                "viewport_x"
+            );
+        }
     }
 
     /// A spot light over grazing ground: with the ground listed, the footprint is the ground's

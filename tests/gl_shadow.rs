@@ -14,7 +14,9 @@
 //!
 //! zshift's bias goes into the map as `glPolygonOffsetClamp(factor, units, clamp)` (its GL
 //! output, with the worst-case and the probed profile), the limit angle being the ground's own
-//! angle to the light (its axis for a spot). Every answered scene must show **0 acne pixels**;
+//! angle to the light (its axis for a spot); each from `world_reach` alone and with the light's
+//! pipeline (its f32 view matrix, the scene's world box, eye-first: both shaders compute
+//! `proj * (view * p)`). Every answered scene must show **0 acne pixels**;
 //! every refusal must be a scene where bisection finds no acne-free bias below 1 (the map's
 //! whole depth range). Bisection over a constant window bias in the lookup (map drawn without
 //! bias) gives the smallest acne-free bias; the table prints zshift's bias on the ground ÷ that,
@@ -39,6 +41,9 @@ const GROUND: f64 = 6.0;
 const BOX: [[f64; 3]; 2] = [[0.2, 0.0, -0.9], [1.4, 2.0, -0.1]];
 const CAMERA: usize = 160;
 const AZIMUTH_DEG: f64 = 30.0;
+/// The box of every world position the caster and lookup shaders transform: the ground and
+/// the box standing on it.
+const WORLD_BOX: [[f64; 3]; 2] = [[-GROUND, 0.0, -GROUND], [GROUND, BOX[1][1], GROUND]];
 /// The limit angle passed with explicit receivers: it only skips receivers facing away by more.
 const RECEIVER_LIMIT_DEG: f64 = 89.9;
 
@@ -716,7 +721,11 @@ fn reference(
                 && p[0] <= BOX[1][0] + 0.05
                 && p[2] >= BOX[0][2] - 0.05
                 && p[2] <= BOX[1][2] + 0.05;
-            if t.is_nan() || t <= 0.0 || p[0].abs() > GROUND * 0.98 || p[2].abs() > GROUND * 0.98 || inside_box
+            if t.is_nan()
+                || t <= 0.0
+                || p[0].abs() > GROUND * 0.98
+                || p[2].abs() > GROUND * 0.98
+                || inside_box
             {
                 out.push(None);
                 continue;
@@ -1143,11 +1152,44 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
         })
         .collect();
         let mut leaks: Vec<(String, usize)> = Vec::new();
-        for (pname, profile, receivers) in [
-            ("worst", RasterizerProfile::worst_case(), false),
-            ("probed", probed, false),
-            ("worst, receivers", RasterizerProfile::worst_case(), true),
-            ("probed, receivers", probed, true),
+        // The light's pipeline as both shaders run it: world positions through the f32 view
+        // matrix first, then the projection (`proj * (view * p)`), every position inside the
+        // scene's box (the ground and the box standing on it).
+        let light_pipeline = zshift::model::Pipeline {
+            eye_first: true,
+            view: Some(to_f32(&light.view)),
+            world_box: Some(WORLD_BOX),
+            ..Default::default()
+        };
+        for (pname, profile, receivers, pipeline) in [
+            ("worst", RasterizerProfile::worst_case(), false, None),
+            ("probed", probed, false, None),
+            (
+                "worst, receivers",
+                RasterizerProfile::worst_case(),
+                true,
+                None,
+            ),
+            ("probed, receivers", probed, true, None),
+            (
+                "worst, view",
+                RasterizerProfile::worst_case(),
+                false,
+                Some(light_pipeline),
+            ),
+            ("probed, view", probed, false, Some(light_pipeline)),
+            (
+                "worst, receivers, view",
+                RasterizerProfile::worst_case(),
+                true,
+                Some(light_pipeline),
+            ),
+            (
+                "probed, receivers, view",
+                probed,
+                true,
+                Some(light_pipeline),
+            ),
         ] {
             let map = ShadowMap {
                 light: light.projection,
@@ -1168,6 +1210,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 world_reach,
                 elevation_deg: case.elevation,
                 profile,
+                pipeline: pipeline.unwrap_or_default(),
             };
             let t = tally(&mut tallies, &format!("zshift ({pname})"), &class);
             let answer = if receivers {

@@ -677,7 +677,9 @@ inline std::array<double, 2> edge_planes(const Matrix &m, Clip clip, const Edges
 
 /// What an engine knows about one shadow map (ZshiftShadowMap): the light's projection
 /// (ZSHIFT_LIGHT_*, l..f), clip, map size and format, the lookup (ZSHIFT_LOOKUP_*), the limit
-/// angle, the receivers' light-space depths, world_reach, elevation, profile (NULL: worst case).
+/// angle, the receivers' light-space depths, world_reach, elevation, profile (NULL: worst case),
+/// and pipeline (zeroed: not given; its view_matrix with world_box, and eye_first, are the light's
+/// view as the caster and lookup shaders apply it — Python's view_matrix, world_box, eye_first).
 using ShadowMap = ZshiftShadowMap;
 /// The shadow bias in every API's units, its receiver-side alternatives and cost
 /// (ZshiftShadowBias).

@@ -2,6 +2,7 @@
 //! zshift_shadow_bias.
 
 use super::probe::{profile_or_worst, ZshiftProfile};
+use super::recommend::{pipeline_from_c, ZshiftPipeline};
 use super::{checked, clip_of, format_named, null_pointer, ZshiftClip, ZshiftStatus};
 use crate::domain::domain;
 use crate::error::Result;
@@ -73,6 +74,16 @@ pub struct ZshiftShadowMap {
     pub elevation_deg: f64,
     /// The rasterizer's profile (`zshift_probe`), or NULL for the worst case.
     pub profile: *const ZshiftProfile,
+    /// The light's vertex pipeline, as the decal's ZshiftScene.pipeline: `view_matrix` (the
+    /// light's float view matrix the caster and lookup shaders apply to world positions, 16
+    /// floats column-major) with `world_box` (the world-space box of every caster and receiver
+    /// position), and `eye_first` (nonzero when both shaders compute `proj * (view * p)`); with
+    /// them the model knows each light-space eye coordinate's float rounding exactly instead of
+    /// bounding it from world_reach, and with listed receivers (zshift_shadow_bias_receivers)
+    /// and eye_first only the error off each receiver's plane counts. `world_reach` here adds to
+    /// the map's (the larger counts). A zeroed record is the behaviour without it;
+    /// viewport_x/y and depth_range_near/far must stay 0 (not modelled for shadow maps).
+    pub pipeline: ZshiftPipeline,
 }
 
 /// The recommendation of `zshift_shadow_bias`: the error terms (unit window depth of the map),
@@ -207,6 +218,7 @@ impl ZshiftShadowMap {
             world_reach: self.world_reach,
             elevation_deg: self.elevation_deg,
             profile: profile_or_worst(self.profile, Snapping::SubpixelBits(8))?,
+            pipeline: pipeline_from_c(&self.pipeline)?,
         })
     }
 }

@@ -1234,6 +1234,42 @@ static void test_shadow_bias(void) {
   CHECK(out.gl_factor < 0 && out.gl_units < 0 && out.d3d_depth_bias < 0 && out.vk_clamp < 0, "reversed signs");
 }
 
+/* ---- shadow bias with the light's pipeline (ZshiftShadowMap.pipeline) ---- */
+
+static void test_shadow_bias_pipeline(void) {
+  /* A light 25 units up the world z axis looking down -z (its view a translation), the scene
+     inside the box [-8, 8] x [-8, 8] x [-5, 23] (light depths 2 to 30). */
+  static const float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -25, 1};
+  const double box[6] = {-8, -8, -5, 8, 8, 23};
+  float ground[] = {-4, -4, -12, 4, -4, -8, 4, 4, -8, -4, 4, -12};
+  uint32_t counts[] = {4};
+  ZshiftShadowMap m = shadow_map();
+  ZshiftShadowBias scalar, exact, untouched_out;
+  m.world_reach = 25;
+  CHECK_STATUS(zshift_shadow_bias(&m, &scalar), ZSHIFT_OK);
+  /* A zeroed pipeline is the behaviour without it; the view and its box are accepted and
+     tighten the lookup's (and the caster's) float term. */
+  m.pipeline.view_matrix = view;
+  memcpy(m.pipeline.world_box, box, sizeof box);
+  m.pipeline.eye_first = 1;
+  CHECK_STATUS(zshift_shadow_bias(&m, &exact), ZSHIFT_OK);
+  CHECK(exact.lookup > 0 && exact.lookup < scalar.lookup, "lookup with the view %.9g vs scalar %.9g", exact.lookup, scalar.lookup);
+  CHECK(exact.constant < scalar.constant, "constant with the view %.9g vs scalar %.9g", exact.constant, scalar.constant);
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, ground, counts, 1, &exact), ZSHIFT_OK);
+  /* Refusals: a view matrix without its box names world_box; a viewport origin is not modelled. */
+  memset(&untouched_out, PATTERN, sizeof untouched_out);
+  memset(m.pipeline.world_box, 0, sizeof m.pipeline.world_box);
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "world_box") != NULL, "detail: %s", zshift_last_error());
+  CHECK_STATUS(zshift_shadow_bias_receivers(&m, ground, counts, 1, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "world_box") != NULL, "detail: %s", zshift_last_error());
+  memcpy(m.pipeline.world_box, box, sizeof box);
+  m.pipeline.viewport_x = 512;
+  CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
+  CHECK(strstr(zshift_last_error(), "viewport_x") != NULL, "detail: %s", zshift_last_error());
+  CHECK(untouched(&untouched_out, sizeof untouched_out), "zshift_shadow_bias wrote its output on error");
+}
+
 int main(void) {
   test_edges();
   test_last_error();
@@ -1252,6 +1288,7 @@ int main(void) {
   test_recommend();
   test_recommend_clip();
   test_shadow_bias();
+  test_shadow_bias_pipeline();
   test_shadow_bias_receivers();
   test_status_messages();
   test_versions();

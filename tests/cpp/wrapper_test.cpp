@@ -352,6 +352,24 @@ static void test_shadow_bias() {
   CHECK(r.footprint >= own && r.footprint < own * 1.0001, "receiver footprint %.17g vs %.17g", r.footprint, own);
   std::reverse(receivers[0].begin(), receivers[0].end());
   check_throws("shadow_bias_receivers(facing away)", zshift::Status::domain, [&] { zshift::shadow_bias_receivers(map, receivers); });
+  // The light's pipeline (map.pipeline): its view matrix (25 units up z, looking down -z) with the
+  // box of the world positions it maps, eye-first; the same record as C, and tighter than the
+  // bound from world_reach alone.
+  std::reverse(receivers[0].begin(), receivers[0].end());
+  map.world_reach = 25;
+  zshift::ShadowBias scalar = zshift::shadow_bias_receivers(map, receivers);
+  static const float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -25, 1};
+  map.pipeline.view_matrix = view;
+  const double box[6] = {-8, -8, -5, 8, 8, 23};
+  std::copy(box, box + 6, map.pipeline.world_box);
+  map.pipeline.eye_first = 1;
+  zshift::ShadowBias viewed = zshift::shadow_bias_receivers(map, receivers);
+  CHECK(zshift_shadow_bias_receivers(&map, flat, counts, 1, &rc) == ZSHIFT_OK, "C zshift_shadow_bias_receivers (view) failed");
+  CHECK(std::memcmp(&viewed, &rc, sizeof rc) == 0, "shadow_bias_receivers() with the view differs from the C call");
+  CHECK(viewed.lookup < scalar.lookup, "lookup with the view %.9g vs scalar %.9g", viewed.lookup, scalar.lookup);
+  // A view matrix without its box (all zeros) is refused.
+  std::fill(map.pipeline.world_box, map.pipeline.world_box + 6, 0.0);
+  check_throws("shadow_bias(view without world_box)", zshift::Status::domain, [&] { zshift::shadow_bias(map); });
 }
 
 int main() {

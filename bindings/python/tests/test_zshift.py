@@ -311,15 +311,16 @@ class Recommend(unittest.TestCase):
     def test_structures_match_the_header(self):
         header = (ROOT / "include" / "zshift.h").read_text()
         for struct_name, cls in (("ZshiftScene", zshift._library.ZshiftScene),
-                                 ("ZshiftRecommendation", zshift._library.ZshiftRecommendation)):
+                                 ("ZshiftRecommendation", zshift._library.ZshiftRecommendation),
+                                 ("ZshiftShadowMap", zshift._ShadowMap)):
             body = re.search(r"typedef struct \{([^{}]*)\} " + struct_name + ";", header).group(1)
-            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest|ZshiftPipeline|const ZshiftProfile|const float) \*?(\w+)(\[\d+\])?;",
+            fields = re.findall(r"^\s*(double|uint32_t|int32_t|ZshiftDepthTest|ZshiftClip|ZshiftPipeline|const ZshiftProfile|const float) \*?(\w+)(\[\d+\])?;",
                                 body, re.M)
             # An array field (double world_box[6]) is a ctypes array of its element type.
             fields = [(c_type + array, name) for c_type, name, array in fields]
             # ZshiftDepthTest is a struct of one uint32_t: the same layout; a pointer is a c_void_p.
             ctypes_names = {"double": "c_double", "uint32_t": "c_uint", "int32_t": "c_int",
-                            "ZshiftDepthTest": "c_uint", "const ZshiftProfile": "c_void_p",
+                            "ZshiftDepthTest": "c_uint", "ZshiftClip": "c_int", "const ZshiftProfile": "c_void_p",
                             "const float": "c_void_p", "double[6]": "c_double_Array_6",
                             "ZshiftPipeline": "ZshiftPipeline"}
             self.assertEqual([name for _, name in fields], [name for name, _ in cls._fields_], struct_name)
@@ -622,3 +623,26 @@ class ShadowBiasTest(unittest.TestCase):
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.shadow_bias_receivers(**args, receivers=[])
         self.assertIn("receiver_count", str(caught.exception))
+
+    def test_the_lights_view(self):
+        # A light 25 units up the world z axis looking down -z (its view a translation), the
+        # scene inside the box [-8, 8] x [-8, 8] x [-5, 23]: tighter than world_reach alone.
+        view = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -25, 1]
+        box = ((-8.0, -8.0, -5.0), (8.0, 8.0, 23.0))
+        scalar = zshift.shadow_bias(**self.ARGS, world_reach=25.0)
+        viewed = zshift.shadow_bias(**self.ARGS, world_reach=25.0, view_matrix=view, world_box=box,
+                                    eye_first=True)
+        self.assertLess(viewed.lookup, scalar.lookup)
+        self.assertLess(viewed.constant, scalar.constant)
+        self.assertEqual(zshift.shadow_bias(**self.ARGS, world_reach=25.0, view_matrix=None, world_box=None), scalar)
+        args = {k: v for k, v in self.ARGS.items() if k not in ("limit_angle_deg", "receiver_depths")}
+        tilted = [(-4.0, -4.0, -12.0), (4.0, -4.0, -8.0), (4.0, 4.0, -8.0), (-4.0, 4.0, -12.0)]
+        listed = zshift.shadow_bias_receivers(**args, receivers=[tilted], world_reach=25.0, view_matrix=view,
+                                              world_box=box, eye_first=True)
+        self.assertLess(listed.lookup,
+                        zshift.shadow_bias_receivers(**args, receivers=[tilted], world_reach=25.0).lookup)
+        with self.assertRaises(TypeError):
+            zshift.shadow_bias(**self.ARGS, view_matrix=view)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias(**self.ARGS, view_matrix=view, world_box=((0, 0, 0), (0, 0, 0)))
+        self.assertIn("world_box", str(caught.exception))

@@ -312,6 +312,12 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     record.pipeline.depth_range_near, record.pipeline.depth_range_far = depth_range
     record.pipeline.world_reach = world_reach
     record.pipeline.eye_first = 1 if eye_first else 0
+    _attach_view(record, view_matrix, world_box)
+
+
+def _attach_view(record, view_matrix, world_box):
+    """Points ``record.pipeline.view_matrix`` at a C copy of ``view_matrix`` (kept alive by the
+    record) and fills ``world_box``; both ``None`` leaves them NULL and zero."""
     if (view_matrix is None) != (world_box is None):
         raise TypeError("view_matrix and world_box go together: pass both (16 floats, and "
                         "((min x, min y, min z), (max x, max y, max z))) or neither")
@@ -1042,6 +1048,7 @@ class _ShadowMap(_ctypes.Structure):
         ("receiver_near", _ctypes.c_double), ("receiver_far", _ctypes.c_double),
         ("world_reach", _ctypes.c_double), ("elevation_deg", _ctypes.c_double),
         ("profile", _ctypes.c_void_p),  # const ZshiftProfile *, NULL for the worst case
+        ("pipeline", _library.ZshiftPipeline),  # the light's view matrix, world box, eye_first
     ]
 
 
@@ -1065,7 +1072,7 @@ ShadowBias = _collections.namedtuple("ShadowBias", [name for name, _ in _ShadowB
 
 def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
                 lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0, world_reach=0.0,
-                elevation_deg=90.0, profile=None):
+                elevation_deg=90.0, profile=None, view_matrix=None, world_box=None, eye_first=False):
     """The smallest caster-side shadow bias that keeps every receiver within ``limit_angle_deg``
     of the light free of acne (``zshift_shadow_bias``), in every API's units, with the
     receiver-side alternatives and the cost; a :data:`ShadowBias`.
@@ -1075,11 +1082,15 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
     :class:`Format`; ``receiver_depths`` the receivers' ``(nearest, farthest)`` light-space depth
     inside ``[n, f]``; ``lookup`` a :class:`Lookup` (``pcf_size`` for ``Lookup.PCF``,
     ``kernel_radius`` for ``Lookup.RADIUS``); ``profile`` from :func:`probe` or ``None`` for the
-    worst case. Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
+    worst case. ``view_matrix`` (the light's view matrix the caster and lookup shaders apply to
+    world positions, 16 floats column-major) with ``world_box`` (``((min x, min y, min z), (max x,
+    max y, max z))`` of every caster and receiver position) replace the bound from
+    ``world_reach`` by each light-space coordinate's own rounding; ``eye_first`` says both
+    shaders compute ``proj * (view * p)`` (``ZshiftShadowMap.pipeline``). Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
     is acne-free at that angle)."""
     record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
                             receiver_depths, lookup, pcf_size, kernel_radius, world_reach,
-                            elevation_deg, profile)
+                            elevation_deg, profile, view_matrix, world_box, eye_first)
     lib = _lib()
     fn = lib.zshift_shadow_bias
     fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ShadowBias)]
@@ -1090,7 +1101,8 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
 
 
 def _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
-                   lookup, pcf_size, kernel_radius, world_reach, elevation_deg, profile):
+                   lookup, pcf_size, kernel_radius, world_reach, elevation_deg, profile, view_matrix,
+                   world_box, eye_first):
     """A ``_ShadowMap`` from :func:`shadow_bias`'s arguments."""
     record = _ShadowMap()
     record.light = _enum(light, Light)
@@ -1108,23 +1120,27 @@ def _shadow_record(light, projection, clip, resolution, depth_format, limit_angl
     record.world_reach = world_reach
     record.elevation_deg = elevation_deg
     _attach_profile(record, profile)
+    record.pipeline.eye_first = 1 if eye_first else 0
+    _attach_view(record, view_matrix, world_box)
     return record
 
 
 def shadow_bias_receivers(light, projection, clip, resolution, depth_format, receivers,
                           limit_angle_deg=89.9, lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0,
-                          world_reach=0.0, elevation_deg=90.0, profile=None):
+                          world_reach=0.0, elevation_deg=90.0, profile=None, view_matrix=None,
+                          world_box=None, eye_first=False):
     """:func:`shadow_bias` for the receivers an engine lists (``zshift_shadow_bias_receivers``):
     ``receivers`` a sequence of planar polygons, each a sequence of 3 to 64 ``(x, y, z)`` corners
     in the light's view space (a spot light at the origin, looking down -z), counter-clockwise
     seen from the lit front, inside the light's frustum. The bias follows from each receiver's
     own plane, at any angle short of edge-on; receivers facing away by more than
-    ``limit_angle_deg`` everywhere are skipped. Raises :class:`ZshiftError` as
-    :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""
+    ``limit_angle_deg`` everywhere are skipped; ``view_matrix``, ``world_box`` and ``eye_first`` as
+    for :func:`shadow_bias` (with ``eye_first``, only the error off each receiver's plane counts).
+    Raises :class:`ZshiftError` as :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""
     polygons = [list(polygon) for polygon in receivers]
     record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
                             (projection[4], projection[5]), lookup, pcf_size, kernel_radius,
-                            world_reach, elevation_deg, profile)
+                            world_reach, elevation_deg, profile, view_matrix, world_box, eye_first)
     flat = [float(x) for polygon in polygons for corner in polygon for x in corner]
     if any(len(corner) != 3 for polygon in polygons for corner in polygon):
         raise ZshiftError(Status.DOMAIN, "every receiver corner needs 3 coordinates (x, y, z)")
