@@ -1045,7 +1045,7 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         (0.0, 0.0)
     } else {
         (
-            vertex_term(scene, clip)?,
+            vertex_term(scene, clip, mapping.window_per_ndc())?,
             interpolation::interpolation(w_min, w_max, extrapolated, lift),
         )
     };
@@ -1129,17 +1129,25 @@ fn plane_form(scene: &Scene, clip: ClipDepth, m: &[f64; 16]) -> Result<PlaneForm
 /// direction), else `u·(b/d₁)·(1 + s·e)` (a plane of slope `s` crossing the axis at `d₁` or
 /// beyond); with world-space vertices ([`Pipeline::world_reach`]) the larger of that and the
 /// f32 model-view term.
-fn vertex_term(scene: &Scene, clip: ClipDepth) -> Result<f64> {
-    let mapping = mapping_of(scene, clip)?;
-    let per_ndc = mapping.window_per_ndc();
+fn vertex_term(scene: &Scene, clip: ClipDepth, per_ndc: f64) -> Result<f64> {
+    let bound = || -> Result<f64> {
+        let e = half_extent_tangent(&scene.frustum)?;
+        Ok(vertex::eye_rounding_bound(
+            scale(&scene.frustum),
+            scene.depth_range[0],
+            scene.slope,
+            e,
+        ))
+    };
+    // The common case (no corners, eye-space vertices) needs neither the f64 matrix nor the form.
+    if scene.footprint.is_none() && !scene.pipeline.world_space() {
+        return bound();
+    }
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
     let form = plane_form(scene, clip, &m)?;
     let eye = match scene.footprint {
         Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents_of(&scene.frustum)),
-        None => {
-            let e = half_extent_tangent(&scene.frustum)?;
-            vertex::eye_rounding_bound(scale(&scene.frustum), scene.depth_range[0], scene.slope, e)
-        }
+        None => bound()?,
     };
     if !scene.pipeline.world_space() {
         return Ok(eye);

@@ -138,13 +138,6 @@ fn combined_errors(m: &[f64; 16], a: [f64; 3]) -> [f64; 4] {
     })
 }
 
-/// `combined_errors` from the scalar `world_reach` alone, for a vertex within `extent` of the
-/// camera: `A = √3·(4W + extent)` (the conservative path, for problems that know no plane form
-/// on eye coordinates, such as a shadow map's receivers).
-pub fn world_errors(m: &[f64; 16], world_reach: f64, extent: f64) -> [f64; 4] {
-    combined_errors(m, [3f64.sqrt() * (4.0 * world_reach + extent); 3])
-}
-
 /// The NDC depth error at a pixel of eye depth `d ≥ nearest` of a mesh inside the frustum,
 /// from the f32 transform of world-space vertices ([`world_error`]): the part that does not
 /// grow with the vertex's distance over `nearest`, plus the growing part at `ρ` per unit of
