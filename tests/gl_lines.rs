@@ -387,27 +387,36 @@ struct Renderer {
     ebo: glow::Buffer,
 }
 
+/// Compiles and links a vertex and a fragment shader, failing with the driver's log.
+///
+/// # Safety
+/// `gl` must be current on this thread.
+unsafe fn link_program(gl: &glow::Context, vs: &str, fs: &str) -> glow::Program {
+    let program = gl.create_program().unwrap();
+    for (kind, src) in [(glow::VERTEX_SHADER, vs), (glow::FRAGMENT_SHADER, fs)] {
+        let s = gl.create_shader(kind).unwrap();
+        gl.shader_source(s, src);
+        gl.compile_shader(s);
+        assert!(
+            gl.get_shader_compile_status(s),
+            "{}",
+            gl.get_shader_info_log(s)
+        );
+        gl.attach_shader(program, s);
+    }
+    gl.link_program(program);
+    assert!(
+        gl.get_program_link_status(program),
+        "{}",
+        gl.get_program_info_log(program)
+    );
+    program
+}
+
 impl Renderer {
     fn new(gl: &glow::Context) -> Renderer {
         unsafe {
-            let program = gl.create_program().unwrap();
-            for (kind, src) in [(glow::VERTEX_SHADER, VS), (glow::FRAGMENT_SHADER, FS)] {
-                let s = gl.create_shader(kind).unwrap();
-                gl.shader_source(s, src);
-                gl.compile_shader(s);
-                assert!(
-                    gl.get_shader_compile_status(s),
-                    "{}",
-                    gl.get_shader_info_log(s)
-                );
-                gl.attach_shader(program, s);
-            }
-            gl.link_program(program);
-            assert!(
-                gl.get_program_link_status(program),
-                "{}",
-                gl.get_program_info_log(program)
-            );
+            let program = link_program(gl, VS, FS);
             let vao = gl.create_vertex_array().unwrap();
             let vbo = gl.create_buffer().unwrap();
             let ebo = gl.create_buffer().unwrap();
@@ -671,23 +680,7 @@ impl Msaa {
                 g.check_framebuffer_status(glow::FRAMEBUFFER),
                 glow::FRAMEBUFFER_COMPLETE
             );
-            let program = g.create_program().unwrap();
-            for (kind, src) in [
-                (glow::VERTEX_SHADER, RESOLVE_VS),
-                (glow::FRAGMENT_SHADER, RESOLVE_FS),
-            ] {
-                let sh = g.create_shader(kind).unwrap();
-                g.shader_source(sh, src);
-                g.compile_shader(sh);
-                assert!(
-                    g.get_shader_compile_status(sh),
-                    "{}",
-                    g.get_shader_info_log(sh)
-                );
-                g.attach_shader(program, sh);
-            }
-            g.link_program(program);
-            assert!(g.get_program_link_status(program));
+            let program = link_program(g, RESOLVE_VS, RESOLVE_FS);
             let vao = g.create_vertex_array().unwrap();
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(target));
             gl.check("MSAA target").unwrap();
