@@ -179,7 +179,11 @@ pub fn decal_shape_for_matrix(
     let mut depth_range = [f64::INFINITY, 0.0f64];
     // Whether the rasterizer clips the decal: a corner outside a side, the near or the far plane.
     // NDC depth runs over [−1, 1] under OpenGL's default, [0, 1] otherwise (reversed too).
-    let lowest_ndc = if clip == ClipDepth::NegOneToOne { -1.0 } else { 0.0 };
+    let lowest_ndc = if clip == ClipDepth::NegOneToOne {
+        -1.0
+    } else {
+        0.0
+    };
     let mut outside = false;
     for (i, p) in eye.iter().enumerate() {
         let cw = row(3, p);
@@ -191,9 +195,8 @@ pub fn decal_shape_for_matrix(
         }
         depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
         let ndc_z = row(2, p) / cw;
-        outside |= row(0, p).abs() > cw
-            || row(1, p).abs() > cw
-            || !(lowest_ndc..=1.0).contains(&ndc_z);
+        outside |=
+            row(0, p).abs() > cw || row(1, p).abs() > cw || !(lowest_ndc..=1.0).contains(&ndc_z);
         let depth = if clip == ClipDepth::NegOneToOne {
             0.5 * ndc_z + 0.5
         } else {

@@ -535,11 +535,13 @@ fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
         depth_range: decal.depth_range,
         slope: decal.slope,
         exact_depth: decal.exact_depth,
-        depth_test: decal.depth_test.unwrap_or(if clip == ClipDepth::ReversedZeroToOne {
-            DepthTest::Greater
-        } else {
-            DepthTest::Less
-        }),
+        depth_test: decal
+            .depth_test
+            .unwrap_or(if clip == ClipDepth::ReversedZeroToOne {
+                DepthTest::Greater
+            } else {
+                DepthTest::Less
+            }),
         base: decal.base,
         profile: decal.rasterizer(),
         pipeline: decal.pipeline,

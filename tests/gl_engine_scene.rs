@@ -55,14 +55,54 @@ struct Attachment {
 }
 
 const ATTACHMENTS: [Attachment; 8] = [
-    Attachment { label: "[-1,1] D24", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: false },
-    Attachment { label: "[-1,1] D24S8", clip: ClipDepth::NegOneToOne, format: DepthFormat::D24, packed: true },
-    Attachment { label: "[0,1] D32F", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: false },
-    Attachment { label: "[0,1] D32F_S8", clip: ClipDepth::ZeroToOne, format: DepthFormat::D32F, packed: true },
-    Attachment { label: "reversed D32F", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D32F, packed: false },
-    Attachment { label: "reversed D24S8", clip: ClipDepth::ReversedZeroToOne, format: DepthFormat::D24, packed: true },
-    Attachment { label: "[0,1] D24", clip: ClipDepth::ZeroToOne, format: DepthFormat::D24, packed: false },
-    Attachment { label: "[-1,1] D32F", clip: ClipDepth::NegOneToOne, format: DepthFormat::D32F, packed: false },
+    Attachment {
+        label: "[-1,1] D24",
+        clip: ClipDepth::NegOneToOne,
+        format: DepthFormat::D24,
+        packed: false,
+    },
+    Attachment {
+        label: "[-1,1] D24S8",
+        clip: ClipDepth::NegOneToOne,
+        format: DepthFormat::D24,
+        packed: true,
+    },
+    Attachment {
+        label: "[0,1] D32F",
+        clip: ClipDepth::ZeroToOne,
+        format: DepthFormat::D32F,
+        packed: false,
+    },
+    Attachment {
+        label: "[0,1] D32F_S8",
+        clip: ClipDepth::ZeroToOne,
+        format: DepthFormat::D32F,
+        packed: true,
+    },
+    Attachment {
+        label: "reversed D32F",
+        clip: ClipDepth::ReversedZeroToOne,
+        format: DepthFormat::D32F,
+        packed: false,
+    },
+    Attachment {
+        label: "reversed D24S8",
+        clip: ClipDepth::ReversedZeroToOne,
+        format: DepthFormat::D24,
+        packed: true,
+    },
+    Attachment {
+        label: "[0,1] D24",
+        clip: ClipDepth::ZeroToOne,
+        format: DepthFormat::D24,
+        packed: false,
+    },
+    Attachment {
+        label: "[-1,1] D32F",
+        clip: ClipDepth::NegOneToOne,
+        format: DepthFormat::D32F,
+        packed: false,
+    },
 ];
 
 /// One scene of the sweep.
@@ -346,7 +386,8 @@ impl<'a> Renderer<'a> {
             ..DrawState::default()
         };
         let (view, plain) = (self.view, self.plain);
-        self.gl.draw_world(triangles, &view, &plain, DECAL, &always)?;
+        self.gl
+            .draw_world(triangles, &view, &plain, DECAL, &always)?;
         Ok(self.gl.read_color()?.mask_of(zshift_harness::rgba8(DECAL)))
     }
 
@@ -364,7 +405,8 @@ impl<'a> Renderer<'a> {
         self.clear_and_draw_ground()?;
         let (view, state) = (self.view, self.state());
         let decal = quad_triangles(&self.case.decal_world());
-        self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;
+        self.gl
+            .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
         Ok(Count::decal_missing(&self.gl.read_color()?, &self.mask))
     }
 
@@ -384,12 +426,18 @@ impl<'a> Renderer<'a> {
                 .map(|p| p.map(|c| c as f32)),
         );
         let occ_mask = self.coverage(&occluder)?;
-        let both: Vec<bool> = occ_mask.iter().zip(&self.mask).map(|(a, b)| *a && *b).collect();
+        let both: Vec<bool> = occ_mask
+            .iter()
+            .zip(&self.mask)
+            .map(|(a, b)| *a && *b)
+            .collect();
         self.clear_and_draw_ground()?;
         let (view, plain, state) = (self.view, self.plain, self.state());
-        self.gl.draw_world(&occluder, &view, &plain, OCCLUDER, &state)?;
+        self.gl
+            .draw_world(&occluder, &view, &plain, OCCLUDER, &state)?;
         let decal = quad_triangles(&self.case.decal_world());
-        self.gl.draw_world(&decal, &view, decal_proj, DECAL, &state)?;
+        self.gl
+            .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
         Ok(Some(Count::decal_shown(&self.gl.read_color()?, &both)))
     }
 
@@ -427,7 +475,11 @@ struct Outcome {
     steps: f64,
 }
 
-fn run_case(gl: &mut Gl, case: Case, profile: &RasterizerProfile) -> Result<Option<Outcome>, String> {
+fn run_case(
+    gl: &mut Gl,
+    case: Case,
+    profile: &RasterizerProfile,
+) -> Result<Option<Outcome>, String> {
     if !case.decal_in_depth() {
         return Ok(None);
     }
@@ -589,7 +641,9 @@ fn the_scene_every_engine_draws() {
     let (mut drawn, mut skipped) = (0, 0);
     for case in cases() {
         for (name, profile) in [("worst", &worst), ("probed", &probed)] {
-            let Some(out) = run_case(&mut gl, case, profile).unwrap_or_else(|e| panic!("{}: {e}", case.label())) else {
+            let Some(out) = run_case(&mut gl, case, profile)
+                .unwrap_or_else(|e| panic!("{}: {e}", case.label()))
+            else {
                 skipped += 1;
                 continue;
             };
@@ -598,7 +652,12 @@ fn the_scene_every_engine_draws() {
                 println!("{name:6} {}: {out:?}", case.label());
             }
             if out.lost > 0 || out.bled > 0 {
-                failures.push(format!("{name} {}: lost {} bled {}", case.label(), out.lost, out.bled));
+                failures.push(format!(
+                    "{name} {}: lost {} bled {}",
+                    case.label(),
+                    out.lost,
+                    out.bled
+                ));
             }
             let ground = if case.grid { "grid" } else { "quad" };
             if name == "probed" && out.refused.is_none() {
@@ -614,12 +673,23 @@ fn the_scene_every_engine_draws() {
     println!("{drawn} scenes drawn, {skipped} skipped (decal under 4 pixels on screen)");
     println!(
         "{:30} {:>6} {:>8} {:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
-        "class", "scenes", "refused", "drawable", "ratio med", "ratio max", "gap/d med", "gap/d max", "/cut med,max"
+        "class",
+        "scenes",
+        "refused",
+        "drawable",
+        "ratio med",
+        "ratio max",
+        "gap/d med",
+        "gap/d max",
+        "/cut med,max"
     );
     let mut refused_drawable = 0;
     for (key, outs) in &table {
         let refused = outs.iter().filter(|o| o.refused.is_some()).count();
-        let drawable = outs.iter().filter(|o| o.refused.is_some() && o.drawable).count();
+        let drawable = outs
+            .iter()
+            .filter(|o| o.refused.is_some() && o.drawable)
+            .count();
         refused_drawable += drawable;
         let mut ratios: Vec<f64> = outs.iter().filter_map(|o| o.ratio).collect();
         let mut gaps: Vec<f64> = outs
@@ -650,13 +720,26 @@ fn the_scene_every_engine_draws() {
     }
     println!("refused although bisection finds a working offset: {refused_drawable}");
     println!("probed profile, by the camera's distance from the world origin (view matrix and box given):");
-    println!("{:>8} {:>6} {:>12} {:>12} {:>14}", "T", "scenes", "gap/d med", "gap/d max", "steps median");
+    println!(
+        "{:>8} {:>6} {:>12} {:>12} {:>14}",
+        "T", "scenes", "gap/d med", "gap/d max", "steps median"
+    );
     for (t, rows) in &by_translation {
         let mut gaps: Vec<f64> = rows.iter().map(|r| r.0).collect();
         let mut steps: Vec<f64> = rows.iter().map(|r| r.1).collect();
         let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
-        println!("{t:>8} {:>6} {:>12.2e} {gmax:>12.2e} {:>14.0}", rows.len(), median(&mut gaps), median(&mut steps));
+        println!(
+            "{t:>8} {:>6} {:>12.2e} {gmax:>12.2e} {:>14.0}",
+            rows.len(),
+            median(&mut gaps),
+            median(&mut steps)
+        );
     }
     assert!(drawn > 100, "too few scenes drawn: {drawn}");
-    assert!(failures.is_empty(), "{} scenes lost or bled pixels:\n{}", failures.len(), failures.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} scenes lost or bled pixels:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -51,7 +51,12 @@ fn valid_decal() -> ZshiftDecal {
 fn refused(decal: &ZshiftDecal, needles: &[&str]) {
     let m = projection();
     let mut out = [7.0f32; 16];
-    let status = zshift_decal_matrix(m.as_ptr(), ZSHIFT_CLIP_NEG_ONE_TO_ONE, decal, out.as_mut_ptr());
+    let status = zshift_decal_matrix(
+        m.as_ptr(),
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        decal,
+        out.as_mut_ptr(),
+    );
     assert_ne!(status, ZSHIFT_OK, "{decal:?} was accepted");
     assert_eq!(out, [7.0f32; 16], "a refused call wrote its output");
     let d = detail();
@@ -65,7 +70,12 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
     let m = projection();
     let mut out = [0.0f32; 16];
     assert_eq!(
-        zshift_decal_matrix(m.as_ptr(), ZSHIFT_CLIP_NEG_ONE_TO_ONE, &valid_decal(), out.as_mut_ptr()),
+        zshift_decal_matrix(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            &valid_decal(),
+            out.as_mut_ptr()
+        ),
         ZSHIFT_OK
     );
     let with = |f: &dyn Fn(&mut ZshiftDecal)| {
@@ -74,15 +84,33 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         d
     };
     refused(&with(&|d| d.viewport_width = 0), &["viewport_width = 0"]);
-    refused(&with(&|d| d.format.value = 0x1902), &["format = 0x1902", "GL_DEPTH24_STENCIL8"]);
-    refused(&with(&|d| d.subpixel_bits = 40), &["subpixel_bits = 40", "0..=32"]);
+    refused(
+        &with(&|d| d.format.value = 0x1902),
+        &["format = 0x1902", "GL_DEPTH24_STENCIL8"],
+    );
+    refused(
+        &with(&|d| d.subpixel_bits = 40),
+        &["subpixel_bits = 40", "0..=32"],
+    );
     // n as read back from the f32 matrix.
-    refused(&with(&|d| d.decal_near = 0.0), &["decal_near = 0", "near plane n = 0.0999"]);
-    refused(&with(&|d| d.decal_far = 2000.0), &["decal_far = 2000", "far plane f = 99"]);
-    refused(&with(&|d| d.decal_far = 5.0), &["decal_far = 5", "decal_near = 10"]);
+    refused(
+        &with(&|d| d.decal_near = 0.0),
+        &["decal_near = 0", "near plane n = 0.0999"],
+    );
+    refused(
+        &with(&|d| d.decal_far = 2000.0),
+        &["decal_far = 2000", "far plane f = 99"],
+    );
+    refused(
+        &with(&|d| d.decal_far = 5.0),
+        &["decal_far = 5", "decal_near = 10"],
+    );
     refused(&with(&|d| d.slope = f64::NAN), &["slope = NaN"]);
     refused(&with(&|d| d.base_reach = -1.0), &["base_reach = -1"]);
-    refused(&with(&|d| d.depth_func.value = 0x0207), &["depth_func = 0x0207"]);
+    refused(
+        &with(&|d| d.depth_func.value = 0x0207),
+        &["depth_func = 0x0207"],
+    );
     refused(
         &with(&|d| {
             d.pipeline.depth_range_near = 0.6;
@@ -90,10 +118,19 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         }),
         &["depth_range_far = 0.5", "depth_range_near = 0.6"],
     );
-    refused(&with(&|d| d.pipeline.world_reach = -2.0), &["world_reach = -2"]);
+    refused(
+        &with(&|d| d.pipeline.world_reach = -2.0),
+        &["world_reach = -2"],
+    );
     let view = [1.0f32; 16];
-    refused(&with(&|d| d.pipeline.view_matrix = view.as_ptr()), &["world_box"]);
-    refused(&with(&|d| d.decal_corner_count = 4), &["decal_corner_count = 4", "NULL"]);
+    refused(
+        &with(&|d| d.pipeline.view_matrix = view.as_ptr()),
+        &["world_box"],
+    );
+    refused(
+        &with(&|d| d.decal_corner_count = 4),
+        &["decal_corner_count = 4", "NULL"],
+    );
 }
 
 #[test]
@@ -122,15 +159,37 @@ fn the_scene_record_names_the_field_its_value_and_the_bound() {
     };
     let refused = |s: ZshiftScene, needles: &[&str]| {
         let mut out = std::mem::MaybeUninit::<ZshiftRecommendation>::zeroed();
-        assert_ne!(zshift_recommend(&s, out.as_mut_ptr()), ZSHIFT_OK, "{s:?} was accepted");
+        assert_ne!(
+            zshift_recommend(&s, out.as_mut_ptr()),
+            ZSHIFT_OK,
+            "{s:?} was accepted"
+        );
         let d = detail();
         for needle in needles {
             assert!(d.contains(needle), "detail {d:?} lacks {needle:?}");
         }
     };
-    refused(ZshiftScene { decal_near: 0.05, ..valid }, &["decal_near = 0.05", "near plane n = 0.1"]);
-    refused(ZshiftScene { decal_far: 1e4, ..valid }, &["decal_far = 10000", "far plane f = 1000"]);
-    refused(ZshiftScene { depth_format: 0x1234, ..valid }, &["depth_format = 0x1234"]);
+    refused(
+        ZshiftScene {
+            decal_near: 0.05,
+            ..valid
+        },
+        &["decal_near = 0.05", "near plane n = 0.1"],
+    );
+    refused(
+        ZshiftScene {
+            decal_far: 1e4,
+            ..valid
+        },
+        &["decal_far = 10000", "far plane f = 1000"],
+    );
+    refused(
+        ZshiftScene {
+            depth_format: 0x1234,
+            ..valid
+        },
+        &["depth_format = 0x1234"],
+    );
     refused(
         ZshiftScene {
             exact_depth: 1,

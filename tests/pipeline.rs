@@ -23,7 +23,10 @@ fn ground_decal() -> [Vec3; 4] {
     [(-1.0, -9.0), (1.0, -9.0), (1.0, -11.0), (-1.0, -11.0)].map(|(x, z)| Vec3::new(x, -1.7, z))
 }
 
-fn decal(m: &[f32; 16], pipeline: Pipeline) -> zshift::Result<zshift::recommend::ClipRecommendation> {
+fn decal(
+    m: &[f32; 16],
+    pipeline: Pipeline,
+) -> zshift::Result<zshift::recommend::ClipRecommendation> {
     let shape = decal_shape(m, ClipDepth::NegOneToOne, [1920, 1080], &ground_decal())?;
     recommend(
         m,
@@ -48,7 +51,10 @@ fn decal(m: &[f32; 16], pipeline: Pipeline) -> zshift::Result<zshift::recommend:
 fn a_level_camera_over_ground_is_answered() {
     let (_, m) = camera();
     let shape = decal_shape(&m, ClipDepth::NegOneToOne, [1920, 1080], &ground_decal()).unwrap();
-    assert!(shape.slope.is_infinite(), "the ground contains the view direction");
+    assert!(
+        shape.slope.is_infinite(),
+        "the ground contains the view direction"
+    );
     let r = decal(&m, Pipeline::default()).unwrap();
     // Walker's window depth at the decal's nearest point (9 ahead), and one D24 step: the offset
     // is a few steps, the bleed gap a small part of the distance.
@@ -63,8 +69,14 @@ fn a_level_camera_over_ground_is_answered() {
 
 #[test]
 fn packed_depth_stencil_formats_store_depth_as_the_depth_only_ones() {
-    assert_eq!(DepthFormat::from_gl_internal_format(0x88F0).unwrap(), DepthFormat::Unorm24);
-    assert_eq!(DepthFormat::from_gl_internal_format(0x8CAD).unwrap(), DepthFormat::Float32);
+    assert_eq!(
+        DepthFormat::from_gl_internal_format(0x88F0).unwrap(),
+        DepthFormat::Unorm24
+    );
+    assert_eq!(
+        DepthFormat::from_gl_internal_format(0x8CAD).unwrap(),
+        DepthFormat::Float32
+    );
     let e = DepthFormat::from_gl_internal_format(0x1902).unwrap_err();
     assert!(e.to_string().contains("GL_DEPTH24_STENCIL8"), "{e}");
 }

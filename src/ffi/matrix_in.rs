@@ -2,8 +2,8 @@
 //! (src/matrix_in.rs), and the recommendation for it.
 
 use super::{
-    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
-    ZshiftFormat, ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
+    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip,
+    ZshiftDepthTest, ZshiftFormat, ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
 use crate::error::Result;

@@ -260,13 +260,9 @@ pub extern "C" fn zshift_status_message(status: ZshiftStatus) -> *const c_char {
     let text: &'static std::ffi::CStr = match status {
         ZSHIFT_OK => c"success",
         ZSHIFT_ERR_NULL_POINTER => c"a required pointer argument was NULL",
-        ZSHIFT_ERR_NOT_FINITE => {
-            c"an input was NaN or infinite where a finite value is required"
-        }
+        ZSHIFT_ERR_NOT_FINITE => c"an input was NaN or infinite where a finite value is required",
         ZSHIFT_ERR_DOMAIN => c"an input was outside the values the function accepts",
-        ZSHIFT_ERR_UNRESOLVABLE => {
-            c"the inputs are valid, but no useful answer exists for them"
-        }
+        ZSHIFT_ERR_UNRESOLVABLE => c"the inputs are valid, but no useful answer exists for them",
         ZSHIFT_ERR_OVERFLOW => c"the result does not fit its floating-point type",
         ZSHIFT_ERR_INTERNAL => c"internal error in zshift (a caught panic); please report it",
         ZSHIFT_ERR_GL => c"the OpenGL context could not do what the call needs",

@@ -116,7 +116,8 @@ impl Pipeline {
         self.check_matrices()?;
         let [near, far] = self.depth_range;
         for (name, x) in [("depth_range_near", near), ("depth_range_far", far)] {
-            finite(x, "a glDepthRange end is NaN or infinite").map_err(|e| e.with_value(name, x))?;
+            finite(x, "a glDepthRange end is NaN or infinite")
+                .map_err(|e| e.with_value(name, x))?;
         }
         if !(0.0..1.0).contains(&near) {
             return Err(domain(

@@ -59,7 +59,8 @@ impl Gl {
     ) -> Result<(), String> {
         self.require_target()?;
         if self.world.is_none() {
-            self.world = Some(unsafe { crate::flat_colour_pipeline(&self.gl, WORLD_VERTEX_SHADER)? });
+            self.world =
+                Some(unsafe { crate::flat_colour_pipeline(&self.gl, WORLD_VERTEX_SHADER)? });
         }
         let (program, vao, vbo) = self.world.expect("made above");
         let bytes: Vec<u8> = triangles
