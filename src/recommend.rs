@@ -1129,6 +1129,7 @@ fn plane_form(scene: &Scene, clip: ClipDepth, m: &[f64; 16]) -> Result<PlaneForm
 /// direction), else `u·(b/d₁)·(1 + s·e)` (a plane of slope `s` crossing the axis at `d₁` or
 /// beyond); with world-space vertices ([`Pipeline::world_reach`]) the larger of that and the
 /// f32 model-view term.
+#[inline]
 fn vertex_term(scene: &Scene, clip: ClipDepth, per_ndc: f64) -> Result<f64> {
     let bound = || -> Result<f64> {
         let e = half_extent_tangent(&scene.frustum)?;

@@ -265,13 +265,12 @@ fn record_of(r: &crate::recommend::ClipRecommendation, clip: ZshiftClip) -> Zshi
     )
 }
 
-/// Reads the caller's decal (NULL refused, no alignment needed).
-fn decal_from_ptr(decal: *const ZshiftDecal) -> Option<ZshiftDecal> {
-    if decal.is_null() {
-        return None;
-    }
-    // SAFETY: not NULL; the caller promises a readable ZshiftDecal.
-    Some(unsafe { super::read_record(decal, ZshiftDecal::read_fields) })
+/// Reads the caller's decal (not NULL: the entry point has refused NULL; no alignment needed),
+/// inside the entry point's checked closure, as `read_scene` does and for the same reason.
+fn read_decal(decal: *const ZshiftDecal) -> ZshiftDecal {
+    debug_assert!(!decal.is_null());
+    // SAFETY: not NULL (checked by the entry point); the caller promises a readable ZshiftDecal.
+    unsafe { super::read_record(decal, ZshiftDecal::read_fields) }
 }
 
 impl ZshiftDecal {
@@ -297,7 +296,7 @@ impl ZshiftDecal {
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
                 depth_func: read(addr_of!((*p).depth_func)),
-                pipeline: read(addr_of!((*p).pipeline)),
+                pipeline: super::ZshiftPipeline::read_fields(addr_of!((*p).pipeline)),
             }
         }
     }
@@ -334,10 +333,12 @@ pub extern "C" fn zshift_decal_matrix(
     let Some(m) = matrix_from_c(m) else {
         return null_pointer("m");
     };
-    let Some(decal) = decal_from_ptr(decal) else {
+    if decal.is_null() {
         return null_pointer("decal");
-    };
-    checked_array(out, move || Ok(recommend_for(&m, clip, &decal)?.matrix))
+    }
+    checked_array(out, move || {
+        Ok(recommend_for(&m, clip, &read_decal(decal))?.matrix)
+    })
 }
 
 /// Writes the recommendation behind `zshift_decal_matrix`: the offset in every form (epsilon,
@@ -356,14 +357,19 @@ pub extern "C" fn zshift_recommend_for_matrix(
     let Some(m) = matrix_from_c(m) else {
         return null_pointer("m");
     };
-    let Some(decal) = decal_from_ptr(decal) else {
+    if decal.is_null() {
         return null_pointer("decal");
-    };
+    }
     // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
     // write_unaligned needs no alignment.
     checked(
         out,
-        move || Ok(record_of(&recommend_for(&m, clip, &decal)?, clip)),
+        move || {
+            Ok(record_of(
+                &recommend_for(&m, clip, &read_decal(decal))?,
+                clip,
+            ))
+        },
         |out, record| unsafe { out.write_unaligned(record) },
     )
 }

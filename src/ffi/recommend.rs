@@ -82,6 +82,31 @@ impl ZshiftPipeline {
             world_box: [0.0; 6],
         }
     }
+
+    /// Reads the record field by field, as the records that hold it are read (each load is
+    /// forwarded from the caller's store of that field; a block copy stalls on them).
+    ///
+    /// # Safety
+    /// `p` is not NULL, aligned, and points to a readable ZshiftPipeline.
+    pub(super) unsafe fn read_fields(p: *const Self) -> Self {
+        use std::ptr::{addr_of, read_volatile as read};
+        // SAFETY: as the function's contract; every field is plain data.
+        unsafe {
+            Self {
+                viewport_x: read(addr_of!((*p).viewport_x)),
+                viewport_y: read(addr_of!((*p).viewport_y)),
+                depth_range_near: read(addr_of!((*p).depth_range_near)),
+                depth_range_far: read(addr_of!((*p).depth_range_far)),
+                world_reach: read(addr_of!((*p).world_reach)),
+                eye_first: read(addr_of!((*p).eye_first)),
+                view_matrix: read(addr_of!((*p).view_matrix)),
+                // Element by element, as the caller stores them.
+                world_box: std::array::from_fn(|i| {
+                    read(addr_of!((*p).world_box).cast::<f64>().add(i))
+                }),
+            }
+        }
+    }
 }
 
 /// What a scene knows about one decal and the surface under it, for `zshift_recommend`.
@@ -242,14 +267,14 @@ impl ZshiftRecommendation {
     }
 }
 
-/// Reads a scene the caller passed by pointer (NULL refused, no alignment needed) and converts
-/// it to the Rust model's input.
-fn scene_from_c(scene: *const ZshiftScene) -> Option<ZshiftScene> {
-    if scene.is_null() {
-        return None;
-    }
-    // SAFETY: not NULL; the caller promises a readable ZshiftScene.
-    Some(unsafe { super::read_record(scene, ZshiftScene::read_fields) })
+/// Reads a scene the caller passed by pointer (not NULL: the entry point has refused NULL; no
+/// alignment needed). Called inside the entry point's checked closure, so the record is built
+/// where it is used: read outside and moved in, its ~240 bytes were block-copied, stalling on
+/// the field stores that had just written them.
+fn read_scene(scene: *const ZshiftScene) -> ZshiftScene {
+    debug_assert!(!scene.is_null());
+    // SAFETY: not NULL (checked by the entry point); the caller promises a readable ZshiftScene.
+    unsafe { super::read_record(scene, ZshiftScene::read_fields) }
 }
 
 impl ZshiftScene {
@@ -281,7 +306,7 @@ impl ZshiftScene {
                 profile: read(addr_of!((*p).profile)),
                 decal_corners: read(addr_of!((*p).decal_corners)),
                 decal_corner_count: read(addr_of!((*p).decal_corner_count)),
-                pipeline: read(addr_of!((*p).pipeline)),
+                pipeline: ZshiftPipeline::read_fields(addr_of!((*p).pipeline)),
             }
         }
     }
@@ -423,6 +448,7 @@ fn with_model<R>(
 /// zeroed record) is `glDepthRange(0, 1)`; a NULL view matrix is none (its box ignored), a view
 /// matrix with an all-zero box is refused; the model checks every field
 /// ([`crate::model::Pipeline::check`]).
+#[inline(always)] // built in the caller's record: returned through a `Result`, ~160 bytes are copied
 pub(super) fn pipeline_from_c(p: &ZshiftPipeline) -> Result<crate::model::Pipeline> {
     let (view_matrix, world_box) = (p.view_matrix, p.world_box);
     let depth_range = [p.depth_range_near, p.depth_range_far];
@@ -483,10 +509,11 @@ pub extern "C" fn zshift_recommend(
     scene: *const ZshiftScene,
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
-    let Some(s) = scene_from_c(scene) else {
+    if scene.is_null() {
         return null_pointer("scene");
-    };
+    }
     checked_record(out, move || {
+        let s = read_scene(scene);
         let r = with_model(&s, ClipDepth::NegOneToOne, crate::recommend::recommend)?;
         Ok(ZshiftRecommendation::new(
             r.epsilon,
@@ -512,10 +539,11 @@ pub extern "C" fn zshift_recommend_matrix(
     scene: *const ZshiftScene,
     out: *mut f32,
 ) -> ZshiftStatus {
-    let Some(s) = scene_from_c(scene) else {
+    if scene.is_null() {
         return null_pointer("scene");
-    };
+    }
     checked_in_place(out, move |out| {
+        let s = read_scene(scene);
         with_model(&s, ClipDepth::NegOneToOne, |model| {
             let r = crate::recommend::recommend(model)?;
             let m = match crate::offset::epsilon_columns_fast(&model.frustum, r.epsilon) {
@@ -559,10 +587,11 @@ pub extern "C" fn zshift_recommend_clip(
     clip: ZshiftClip,
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
-    let Some(s) = scene_from_c(scene) else {
+    if scene.is_null() {
         return null_pointer("scene");
-    };
+    }
     checked_record(out, move || {
+        let s = read_scene(scene);
         let c = clip_of(clip)?;
         let r = with_model(&s, c, |model| crate::recommend::recommend_clip(model, c))?;
         let per_ndc = if clip == ZSHIFT_CLIP_NEG_ONE_TO_ONE {
@@ -596,10 +625,11 @@ pub extern "C" fn zshift_recommend_clip_matrix(
     clip: ZshiftClip,
     out: *mut f32,
 ) -> ZshiftStatus {
-    let Some(s) = scene_from_c(scene) else {
+    if scene.is_null() {
         return null_pointer("scene");
-    };
+    }
     checked_array(out, move || {
+        let s = read_scene(scene);
         let c = clip_of(clip)?;
         with_model(&s, c, |model| {
             Ok(crate::recommend::recommend_clip(model, c)?.matrix)

@@ -104,7 +104,22 @@ impl Pipeline {
     /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite `world_reach` or depth range end;
     /// [`crate::ErrorKind::Domain`] for a negative `world_reach`, or a depth range that is not
     /// `0 ≤ near < far ≤ 1`.
+    #[inline]
     pub fn check(&self) -> Result<()> {
+        // The default pipeline, the usual case, passes at once (a box without its view is still
+        // refused).
+        if self.world_reach == 0.0
+            && self.view.is_none()
+            && self.world_box.is_none()
+            && self.depth_range == [0.0, 1.0]
+        {
+            return Ok(());
+        }
+        self.check_fields()
+    }
+
+    /// [`Pipeline::check`] field by field.
+    fn check_fields(&self) -> Result<()> {
         let w = self.world_reach;
         finite(w, "world_reach is NaN or infinite").map_err(|e| e.with_value("world_reach", w))?;
         if w < 0.0 {
