@@ -82,7 +82,7 @@
 //! measured ([`crate::probe::probe`], in the engine's own context) enters the model field by
 //! field, as [`crate::model::measured`] describes: `error_ulps` replaces `T + I` (a measured
 //! figure, not a proof), the footprint ([`Scene::footprint`]) replaces the extrapolation bounds,
-//! `near_clip` and `clip_ulps` the clipping term, `resolvable` `r` sets
+//! `near_clip` the clipping term (`clip_ulps` is reported, not used), `resolvable` `r` sets
 //! [`Recommendation::polygon_offset`]'s units `(Δw − 2S)/(r·q)`, and the facing figures are the
 //! decal's own (next section).
 //!
@@ -658,8 +658,8 @@ fn clip_term_of_reach(
     reach: f64,
 ) -> Result<f64> {
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
-    // The bound on six clip stages of f32 rounding, or what the probe measured of the clipper.
-    let gamma = clip_model::clip_gamma(measured_figure(&scene.profile, scene.profile.clip_ulps));
+    // The bound on six clip stages of f32 rounding (the probe's clip_ulps is reported, not used).
+    let gamma = clip_model::clip_gamma();
     let form = plane_form(scene, clip, &m)?;
     clip_model::clip_term(
         &m,
