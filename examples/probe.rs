@@ -53,7 +53,7 @@ fn main() {
         figures.snapping_residual.2
     );
     println!(
-        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1}); clipper error clip_ulps {:.3} (the model's bound: 36)",
+        "near clip      {:?} (ground planes clipped by GL: {:.1} D24 quanta off; clipped in f64 first: {:.1}); clipper error clip_ulps {:.3} (the model takes 4 times it; its bound: 36)",
         p.near_clip, figures.near_clip_error, figures.near_preclipped_error, p.clip_ulps
     );
     println!(

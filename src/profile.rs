@@ -136,9 +136,11 @@ pub struct RasterizerProfile {
     /// 100 times that), through a centred, an off-centre and an axis-off frustum; each once as
     /// given (the rasterizer clips it) and once cut to the frustum in f64. Every pixel of the
     /// first stayed within `clip_ulps·u·(window/NDC)·L(A)/d` of its plane beyond the second's
-    /// error at that pixel (less one quantum of conversion): 0.835 on llvmpipe. NaN where not
-    /// measured. Reported, not used by the model: a sampled maximum, it fell short on 31 of the
-    /// 12127 scenes of `tests/gl_scenes.rs`'s full grid, so `C` keeps the bound.
+    /// error at that pixel (less one quantum of conversion), under `[−1, 1]` and, where
+    /// `glClipControl` exists, `[0, 1]` and reversed Z: 0.86 on llvmpipe (0.84, 0.86 and 0.22).
+    /// NaN where not measured. The model takes `γ = 4·clip_ulps·u` where below the bound: a
+    /// sampled maximum, it is exceeded by a few steep clipped planes of `tests/gl_scenes.rs`'s
+    /// full grid (up to 2), hence the margin ([`crate::model::clip`]).
     pub clip_ulps: f64,
     /// How far from the pixel a 1-pixel line fragment takes its depth: the largest
     /// `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` over the fragments of lines drawn

@@ -82,7 +82,7 @@
 //! measured ([`crate::probe::probe`], in the engine's own context) enters the model field by
 //! field, as [`crate::model::measured`] describes: `error_ulps` replaces `T + I` (a measured
 //! figure, not a proof), the footprint ([`Scene::footprint`]) replaces the extrapolation bounds,
-//! `near_clip` the clipping term (`clip_ulps` is reported, not used), `resolvable` `r` sets
+//! `near_clip` and `clip_ulps` (with a margin of 4) the clipping term, `resolvable` `r` sets
 //! [`Recommendation::polygon_offset`]'s units `(Δw − 2S)/(r·q)`, and the facing figures are the
 //! decal's own (next section).
 //!
@@ -658,8 +658,8 @@ fn clip_term_of_reach(
     reach: f64,
 ) -> Result<f64> {
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
-    // The bound on six clip stages of f32 rounding (the probe's clip_ulps is reported, not used).
-    let gamma = clip_model::clip_gamma();
+    // The bound on six clip stages of f32 rounding, or the probe's clip_ulps with its margin.
+    let gamma = clip_model::clip_gamma(&scene.profile);
     let form = plane_form(scene, clip, &m)?;
     clip_model::clip_term(
         &m,
@@ -1710,6 +1710,31 @@ mod tests {
             ..clipped
         };
         assert_eq!(recommend(&zero_r).unwrap_err().kind(), ErrorKind::Domain);
+    }
+
+    /// A measured `clip_ulps` `k` sets the clipper's `γ` to `4k·u` where that is below the bound
+    /// `36u`: C is the bound's over 36/(4k), slightly more as the bound's larger `γ` also shrinks
+    /// the denominator `d₁ − γR`; a figure above 9 keeps the bound; NaN (not measured) too.
+    #[test]
+    fn a_measured_clipper_figure_enters_with_its_margin() {
+        let clipped = Scene {
+            base: Base::Clipped { reach: 1e3 },
+            ..scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped)
+        };
+        let with = |k: f64| Scene {
+            profile: RasterizerProfile {
+                measured: true,
+                clip_ulps: k,
+                ..clipped.profile
+            },
+            ..clipped
+        };
+        let c = |s: &Scene| error_terms(s).unwrap().clip;
+        let bound = c(&clipped);
+        let ratio = bound / c(&with(1.0));
+        assert!((9.0..9.0 * 1.01).contains(&ratio), "{ratio}");
+        assert_eq!(c(&with(9.5)), bound);
+        assert_eq!(c(&with(f64::NAN)), bound);
     }
 
     /// The depth test must match the convention; `DepthTest` round-trips GL enums.

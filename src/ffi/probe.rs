@@ -89,9 +89,10 @@ pub struct ZshiftProfile {
     pub facing_chain: i32,
     /// Under ZSHIFT_NEAR_CLIP_CLIPPED_F32: the clipper's measured error in units of 2^-24 of the
     /// magnitudes of a clipped base's clip coordinates, measured on ground planes reaching 1000
-    /// and 10^4 units behind and ahead of the camera and on random planes. Reported, not used:
-    /// the model's term C keeps its bound 36 (six clip stages of f32 rounding), as this sampled
-    /// figure fell short on some scenes. NAN where not measured. NAN or finite >= 0.
+    /// and 10^4 units behind and ahead of the camera and on random planes, under every depth
+    /// convention the context has (0.86 on llvmpipe). The model's term C takes 4 times it in
+    /// place of its bound 36 (six clip stages of f32 rounding) where smaller: a sampled maximum,
+    /// with a margin. NAN where not measured. NAN or finite >= 0.
     pub clip_ulps: f64,
     /// How far from the pixel a 1-pixel line fragment takes its depth, in pixels along the face's
     /// steepest window-depth gradient: the largest |stored - plane at the pixel centre| /

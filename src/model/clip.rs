@@ -32,9 +32,11 @@
 //! World-space vertices carry the f32 model-view's errors into the clipper, which interpolates
 //! them: `L` is linear, so an interpolated vertex is off the plane by the same convex
 //! combination of its ends' `L`-values, no more than at the vertices
-//! ([`crate::model::vertex`]). The probe's measured `clip_ulps` does not replace `6 + 5k`: a sampled maximum, it fell short on 31 scenes of the full `tests/gl_scenes.rs` grid.
+//! ([`crate::model::vertex`]). A measured profile's `clip_ulps` `k` replaces `6 + 5k` by `4k`
+//! where smaller (the probe's sampled maximum, 0.86 on llvmpipe, with the margin `CLIP_MARGIN`
+//! the full `tests/gl_scenes.rs` grid asks for: it needs up to 2 where the probe finds 0.86).
 //!
-//! It is a sound bound but a large one: on the floor (corners at ±1000, n = 0.1, decals
+//! With the bound it is sound but large: on the floor (corners at ±1000, n = 0.1, decals
 //! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
 //! and where it would move the decal past the near plane [`crate::recommend::recommend`]
 //! refuses ([`crate::ErrorKind::Unresolvable`], "cut the base to the frustum"); elsewhere it
@@ -50,7 +52,9 @@
 
 use crate::domain::{domain, finite, representable};
 use crate::error::Result;
+use crate::model::measured::measured_figure;
 use crate::model::{vertex, Pipeline, PlaneForm};
+use crate::profile::RasterizerProfile;
 use crate::projection::Frustum;
 
 use super::F32_UNIT_ROUNDOFF;
@@ -63,12 +67,22 @@ const CLIP_STAGES: f64 = 6.0;
 /// half a pixel of any viewport up to 2¹⁵ pixels wide.
 const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 
+/// How many times the probe's sampled maximum the model reserves for the clipper. The probe
+/// finds `clip_ulps` ≈ 0.86 on llvmpipe (its largest over about 60 clipped planes under each
+/// depth convention); the full `tests/gl_scenes.rs` grid (`ZSHIFT_SCENES=full`, 12127 scenes)
+/// loses decal pixels with `γ` = 0.835u (31 scenes), 1.25u and 1.5u (a few steep clipped
+/// planes under `[0, 1]`) and none from 2u: the largest of many more roundings is larger than
+/// the probe's. 4 keeps twice the largest `γ` the grid needs.
+const CLIP_MARGIN: f64 = 4.0;
+
 /// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
-/// f32 rounding, `(6 + 5k)·u`. The probe's measured `clip_ulps` is reported but not used: a
-/// sampled maximum over its planes (0.835 on llvmpipe), it fell short on 31 of the 12127 scenes
-/// of `tests/gl_scenes.rs`'s full grid (steep clipped planes, mostly under `[0, 1]`).
-pub(crate) fn clip_gamma() -> f64 {
-    (6.0 + 5.0 * CLIP_STAGES) * F32_UNIT_ROUNDOFF
+/// f32 rounding, `(6 + 5k)·u`; with a measured profile `CLIP_MARGIN·clip_ulps·u` where smaller
+/// (a sampled maximum with a margin, not a proof: see [`CLIP_MARGIN`]).
+pub(crate) fn clip_gamma(profile: &RasterizerProfile) -> f64 {
+    let bound = 6.0 + 5.0 * CLIP_STAGES;
+    let ulps =
+        measured_figure(profile, profile.clip_ulps).map_or(bound, |k| bound.min(CLIP_MARGIN * k));
+    ulps * F32_UNIT_ROUNDOFF
 }
 
 /// `A_c`, the largest `|c|` of each clip coordinate of a base vertex whose eye coordinates are at

@@ -31,7 +31,8 @@
 //! * `near_clip`: [`crate::profile::NearClip::ClippedF32`] keeps `C` ([`crate::model::clip`]);
 //!   [`crate::profile::NearClip::PlanePreserving`] replaces it by what the probe allows a
 //!   clipped plane beyond an unclipped one, the base's own `E + S` plus 2 D24 quanta (`2⁻²⁴`),
-//!   whatever the reach. `clip_ulps` is reported but not used: the bound `6 + 5k` stays.
+//!   whatever the reach. `clip_ulps` `k` replaces the bound `6 + 5k` on the clipper's roundings
+//!   by `4k` where smaller ([`crate::model::clip`]: a sampled maximum with a margin, not a proof).
 //! * `resolvable` `r`: [`crate::recommend::Recommendation::polygon_offset`]'s units are
 //!   `(Δw − 2S)/(r·q)`.
 //! * `facing_quanta`, `facing_quanta_zero_to_one`, `facing_reversed`, `facing_chain` (only from

@@ -70,6 +70,9 @@
 //!   keeps the plane errs as little as the unclipped drawing (within twice its error plus 2
 //!   quanta: [`NearClip::PlanePreserving`]); one that computes the new vertices in f32 errs by
 //!   tens of quanta more ([`NearClip::ClippedF32`], the worst case the model must bound).
+//!   **`clip_ulps`**: the clipper's excess error in the model's units, on those grounds and 48
+//!   planes in random directions through three frusta, under `[−1, 1]` and (with
+//!   `glClipControl`) `[0, 1]` and reversed Z; the largest (0.86 on llvmpipe).
 //!
 //! # The caller's GL state
 //! The probe needs OpenGL 3.2 or later (core or compatibility profile) current on the calling

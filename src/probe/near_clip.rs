@@ -2,6 +2,7 @@
 //! its depth (`near_clip`) and the clipper's roundings (`clip_ulps`).
 
 use super::*;
+use crate::projection::ClipDepth;
 
 /// How a triangle crossing the near plane keeps its depth (module docs): each ground plane is
 /// drawn twice, once as given (the rasterizer clips it) and once clipped by the probe in f64 at
@@ -22,65 +23,27 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
             .map(View::triangle)
             .collect(),
     });
-    // The clipper's error is also measured through off-centre frusta (the view axis inside and
-    // outside the screen), where other planes cut the grounds.
-    // And on planes in random directions (slopes 0.3 to 10, crossing the view axis 1 to 40 units
-    // ahead, reaching 100 times that behind and ahead), through all three frusta: the model
-    // takes the largest, a sampled maximum like error_ulps.
-    let random = random_clipped_grounds();
-    let views: Vec<[f64; 4]> = std::iter::once(CENTRED_NEAR_SIDES)
-        .chain(SKEWED_NEAR_SIDES)
-        .collect();
-    let extra: Vec<([[f64; 3]; 3], [f64; 4])> = grounds
-        .iter()
-        .flat_map(|g| SKEWED_NEAR_SIDES.iter().map(move |m| (*g, *m)))
-        .chain(
-            random
-                .iter()
-                .enumerate()
-                .map(|(i, g)| (*g, views[i % views.len()])),
-        )
-        .collect();
-    let (mut worst_given, mut worst_preclipped, mut clip_ulps) = (0.0f64, 0.0f64, 0.0f64);
-    // Each ground drawn as given and cut to the frustum in f64 first (nothing left for the
-    // rasterizer to clip): the clipper's error is the excess of the first over the second. At
-    // most TILES² tiles a draw.
-    for batch in extra.chunks(TILES * TILES / 2) {
-        let mut scenes = Vec::with_capacity(2 * batch.len());
-        for (g, sides) in batch {
-            let matrix = near_view_matrix(*sides);
-            scenes.push(Scene {
-                matrix,
-                triangles: vec![View::triangle(*g)],
-            });
-            scenes.push(Scene {
-                matrix,
-                triangles: cut_to_frustum(*g, *sides)
-                    .into_iter()
-                    .map(View::triangle)
-                    .collect(),
-            });
-        }
-        let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
-        for (i, (ground, _)) in batch.iter().enumerate() {
-            let unclipped = pixel_errors(&scenes[2 * i + 1], &stored[2 * i + 1]);
-            clip_ulps = clip_ulps.max(clipper_ulps(
-                &view,
-                ground,
-                &scenes[2 * i],
-                &stored[2 * i],
-                &unclipped,
-            ));
-        }
+    // The clipper's figure, under every depth convention the context has: `[−1, 1]`, and with
+    // `glClipControl` also `[0, 1]` and reversed Z (llvmpipe errs about four times more under
+    // `[0, 1]` than under `[−1, 1]`, relative to the same magnitudes). The model takes the
+    // largest, a sampled maximum like error_ulps.
+    let mut clip_ulps = clipper_figure(gl, o, ClipDepth::NegOneToOne)?;
+    if let Some(clip_control) = gl.ClipControl {
+        clip_control(LOWER_LEFT, ZERO_TO_ONE);
+        let others = clipper_figure(gl, o, ClipDepth::ZeroToOne)
+            .and_then(|z| Ok(z.max(clipper_figure(gl, o, ClipDepth::ReversedZeroToOne)?)));
+        clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
+        clip_ulps = clip_ulps.max(others?);
     }
+    let (mut worst_given, mut worst_preclipped) = (0.0f64, 0.0f64);
     let scenes: Vec<Scene> = given.chain(preclipped).collect();
     let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
     let count = grounds.len();
     for i in 0..count {
-        let given_errors = pixel_errors(&scenes[i], &stored[i]);
-        let preclipped_errors = pixel_errors(&scenes[count + i], &stored[count + i]);
+        let given_errors = pixel_errors(&scenes[i], &stored[i], false);
+        let preclipped_errors = pixel_errors(&scenes[count + i], &stored[count + i], false);
         clip_ulps = clip_ulps.max(clipper_ulps(
-            &view,
+            ClipDepth::NegOneToOne,
             &grounds[i],
             &scenes[i],
             &stored[i],
@@ -111,6 +74,60 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
     Ok((clip, worst_given, worst_preclipped, clip_ulps))
 }
 
+/// The clipper's figure under `clip` (the caller has set `glClipControl` to match): the ground
+/// planes through the two off-centre frusta and planes in random directions (slopes 0.3 to 10,
+/// crossing the view axis 1 to 40 units ahead, reaching 100 times that behind and ahead)
+/// through all three frusta, each drawn as given (the rasterizer clips it) and cut to the
+/// frustum in f64 first (nothing left for the rasterizer to clip): the largest
+/// [`clipper_ulps`]. At most `TILES²` tiles a draw.
+unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth) -> Result<f64> {
+    let random = random_clipped_grounds();
+    let views: Vec<[f64; 4]> = std::iter::once(CENTRED_NEAR_SIDES)
+        .chain(SKEWED_NEAR_SIDES)
+        .collect();
+    let planes: Vec<([[f64; 3]; 3], [f64; 4])> = near_grounds()
+        .into_iter()
+        .flat_map(|g| SKEWED_NEAR_SIDES.iter().map(move |m| (g, *m)))
+        .chain(
+            random
+                .iter()
+                .enumerate()
+                .map(|(i, g)| (*g, views[i % views.len()])),
+        )
+        .collect();
+    let zero_to_one = clip != ClipDepth::NegOneToOne;
+    let mut figure = 0.0f64;
+    for batch in planes.chunks(TILES * TILES / 2) {
+        let mut scenes = Vec::with_capacity(2 * batch.len());
+        for (g, sides) in batch {
+            let matrix = near_view_matrix(*sides, clip);
+            scenes.push(Scene {
+                matrix,
+                triangles: vec![View::triangle(*g)],
+            });
+            scenes.push(Scene {
+                matrix,
+                triangles: cut_to_frustum(*g, *sides)
+                    .into_iter()
+                    .map(View::triangle)
+                    .collect(),
+            });
+        }
+        let stored = draw_tiles(gl, o, Format::Unorm(24), &scenes)?;
+        for (i, (ground, _)) in batch.iter().enumerate() {
+            let unclipped = pixel_errors(&scenes[2 * i + 1], &stored[2 * i + 1], zero_to_one);
+            figure = figure.max(clipper_ulps(
+                clip,
+                ground,
+                &scenes[2 * i],
+                &stored[2 * i],
+                &unclipped,
+            ));
+        }
+    }
+    Ok(figure)
+}
+
 /// The clipper's error on one ground drawn as given, in the model's own units
 /// ([`RasterizerProfile::clip_ulps`]): the largest `(|stored − exact| − e − q)⁺·d / (½·2⁻²⁴·L(A))`
 /// over the pixels, `e` the error at the same pixel of the same ground cut to the frustum in
@@ -121,7 +138,7 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
 /// ground plane's form on clip coordinates (`|aₓ|·A_x + |a_y|·A_y + A_z + |a₀|·A_w`, `aₓ`, `a_y`,
 /// `a₀` its NDC depth plane) — the model's term `C` with `clip_ulps·u` for its `γ`.
 pub(super) fn clipper_ulps(
-    view: &View,
+    clip: ClipDepth,
     ground: &[[f64; 3]; 3],
     scene: &Scene,
     stored: &[f64],
@@ -130,19 +147,29 @@ pub(super) fn clipper_ulps(
     let reach = ground.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
     let m = scene.matrix.map(f64::from);
     let a = crate::model::clip::clip_magnitudes(&m, reach);
-    let Some(plane) = scene.exact().first().map(Plane::new) else {
+    let zero_to_one = clip != ClipDepth::NegOneToOne;
+    let Some(plane) = scene
+        .exact()
+        .first()
+        .map(|t| Plane::with_mapping(t, zero_to_one))
+    else {
         return 0.0;
     };
+    let view = View {
+        reversed: clip == ClipDepth::ReversedZeroToOne,
+        ..NEAR_VIEW
+    };
     // The NDC depth plane z_n = a₀ + aₓ·xₙ + a_y·yₙ, read off the exact plane's window depth
-    // (½·z_n + ½) at three tile points: NDC (0, 0), (1, 0) and (0, 1) are tile pixels
-    // SIZE/2 and SIZE.
+    // (½·z_n + ½ under [−1, 1], z_n under [0, 1]) at three tile points: NDC (0, 0), (1, 0) and
+    // (0, 1) are tile pixels SIZE/2 and SIZE.
     let half = SIZE as f64 / 2.0;
-    let ndc = |x: f64, y: f64| 2.0 * plane.extended(x, y) - 1.0;
+    let window_per_ndc = if zero_to_one { 1.0 } else { 0.5 };
+    let ndc = |x: f64, y: f64| (plane.extended(x, y) - (1.0 - window_per_ndc)) / window_per_ndc;
     let a0 = ndc(half, half);
     let (ax, ay) = (ndc(2.0 * half, half) - a0, ndc(half, 2.0 * half) - a0);
     let l = a[2] + ax.abs() * a[0] + ay.abs() * a[1] + a0.abs() * a[3];
     let q = Format::Unorm(24).quantum(0.5);
-    let unit = 0.5 * l / 16_777_216.0;
+    let unit = window_per_ndc * l / 16_777_216.0;
     (0..SIZE * SIZE)
         .filter_map(|i| {
             let exact = plane.depth_inside(i % SIZE, i / SIZE)?;
@@ -154,9 +181,14 @@ pub(super) fn clipper_ulps(
 }
 
 /// Per pixel of a tile, `|stored − exact|` in D24 quanta against the first of the scene's
-/// triangles that covers it (by [`Plane::depth_inside`]), or `None`.
-pub(super) fn pixel_errors(scene: &Scene, stored: &[f64]) -> Vec<Option<f64>> {
-    let planes: Vec<Plane> = scene.exact().iter().map(Plane::new).collect();
+/// triangles that covers it (by [`Plane::depth_inside`]), or `None`; `zero_to_one` for NDC
+/// depth stored as is (`glClipControl(GL_ZERO_TO_ONE)`).
+pub(super) fn pixel_errors(scene: &Scene, stored: &[f64], zero_to_one: bool) -> Vec<Option<f64>> {
+    let planes: Vec<Plane> = scene
+        .exact()
+        .iter()
+        .map(|t| Plane::with_mapping(t, zero_to_one))
+        .collect();
     let q = Format::Unorm(24).quantum(0.5);
     (0..SIZE * SIZE)
         .map(|i| {
@@ -204,9 +236,16 @@ pub(super) const CENTRED_NEAR_SIDES: [f64; 4] = [-0.1, 0.1, -0.05625, 0.05625];
 pub(super) const SKEWED_NEAR_SIDES: [[f64; 4]; 2] =
     [[-0.04, 0.13, -0.067, 0.034], [0.015, 0.16, 0.006, 0.062]];
 
-/// `glFrustum(l, r, b, t, 0.1, 1000)` in f64, each element rounded to f32 (column-major).
-pub(super) fn near_view_matrix([l, r, b, t]: [f64; 4]) -> [f32; 16] {
+/// `glFrustum(l, r, b, t, 0.1, 1000)` in f64 with the depth row of `clip` (`[0, 1]`:
+/// `−f/(f − n)`, `−f·n/(f − n)`; reversed: `n/(f − n)`, `f·n/(f − n)`), each element rounded to
+/// f32 (column-major).
+pub(super) fn near_view_matrix([l, r, b, t]: [f64; 4], clip: ClipDepth) -> [f32; 16] {
     let (n, f) = (NEAR_VIEW.n, NEAR_VIEW.f);
+    let (m10, m14) = match clip {
+        ClipDepth::NegOneToOne => (-(f + n) / (f - n), -2.0 * f * n / (f - n)),
+        ClipDepth::ZeroToOne => (-f / (f - n), -f * n / (f - n)),
+        ClipDepth::ReversedZeroToOne => (n / (f - n), f * n / (f - n)),
+    };
     [
         2.0 * n / (r - l),
         0.0,
@@ -218,11 +257,11 @@ pub(super) fn near_view_matrix([l, r, b, t]: [f64; 4]) -> [f32; 16] {
         0.0,
         (r + l) / (r - l),
         (t + b) / (t - b),
-        -(f + n) / (f - n),
+        m10,
         -1.0,
         0.0,
         0.0,
-        -2.0 * f * n / (f - n),
+        m14,
         0.0,
     ]
     .map(|x| x as f32)
