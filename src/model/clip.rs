@@ -72,7 +72,9 @@ const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 /// depth convention); the full `tests/gl_scenes.rs` grid (`ZSHIFT_SCENES=full`, 12127 scenes)
 /// loses decal pixels with `γ` = 0.835u (31 scenes), 1.25u and 1.5u (a few steep clipped
 /// planes under `[0, 1]`) and none from 2u: the largest of many more roundings is larger than
-/// the probe's. 4 keeps twice the largest `γ` the grid needs.
+/// the probe's. 4 keeps twice the largest `γ` the grid needs; `tests/gl_scenes.rs`
+/// (`the_clippers_hardest_scenes_hold`) replays those scenes in CI and fails with a margin of
+/// 1.5.
 const CLIP_MARGIN: f64 = 4.0;
 
 /// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
