@@ -384,7 +384,7 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
         FaceSlope::WindowGradient(g) => Ok((g * d1 / (big_f * ex.min(ey)), g)),
         FaceSlope::Angle(a) => {
             // |sₓ|, |s_y| ≤ tan a, |sₓ| + |s_y| ≤ √2·tan a; gradient per axis s_k·F·e_k/d_a with
-            // |1/d_a| ≤ (1 + s·e)/d₁ (crate::recommend, term S).
+            // the tilt (1 + s·e)/d₁ on 1/d_a (first-order: crate::model::gradient).
             let tan = a.tan();
             let s = std::f64::consts::SQRT_2 * tan;
             let e = crate::model::gradient::half_extent_tangent(frustum)?;

@@ -494,7 +494,8 @@ fn snap(scene: &Scene) -> Result<f64> {
         _ if snapping == Snapping::Unsnapped => Ok(0.0),
         Some(footprint) => Ok(snap_model::snap(snapping, footprint.gradient, 1.0)),
         None => {
-            // The plane's axis crossing d_a is unknown: |1/d_a| ≤ (1 + s·e)/d₁.
+            // The plane's axis crossing d_a is unknown: the tilt (1 + s·e)/d₁ (first-order,
+            // crate::model::gradient).
             let gradient = window_gradient(scene, scene.depth_range[0])?;
             let tilt = 1.0 + scene.slope * half_extent_tangent(&scene.frustum)?;
             Ok(snap_model::snap(snapping, gradient, tilt))
@@ -1404,7 +1405,7 @@ mod tests {
         assert_eq!(unsnapped.snap, 0.0);
         let s1 = error_terms(&scene(DepthFormat::Float32, 1.0, Snapping::SubpixelBits(8))).unwrap();
         let s3 = error_terms(&scene(DepthFormat::Float32, 3.0, Snapping::SubpixelBits(8))).unwrap();
-        // S grows with the slope and with the axis-crossing bound (1 + s·e)/d₁.
+        // S grows with the slope and with the axis-crossing tilt (1 + s·e)/d₁.
         let e = 0.577_350_269_189_625_7;
         let want = 3.0 * (1.0 + 3.0 * e) / (1.0 + e);
         assert!((s3.snap / s1.snap - want).abs() < 1e-12);

@@ -25,7 +25,8 @@
 //! `L(e)/(w + e_w)`, and the rasterizer's screen-space interpolation at a pixel of eye depth `d`
 //! inside the triangle weighs vertex `i` by `λᵢ = μᵢ·wᵢ/d` (`μᵢ ∈ [0, 1]` the clip-space
 //! barycentrics): the `1/wᵢ` amplification at the near plane cancels, and the pixel's depth
-//! error is at most `maxᵢ |L(eᵢ)| / d`. With `|1/d_a| ≤ (1 + s·e)/d₁`:
+//! error is at most `maxᵢ |L(eᵢ)| / d`. With `|1/d_a| ≈ (1 + s·e)/d₁` (the tilt of
+//! [`crate::model::gradient`]; exact with the decal's corners):
 //!
 //! `C = (window/NDC)·γ·(A_z + |g_X|·A_x + |g_Y|·A_y + |Z₀|·A_w) / (d₁ − γ·R)`
 //!

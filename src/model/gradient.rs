@@ -10,9 +10,16 @@
 //! has the window-depth gradient per pixel `gₓ = s·F·(r−l)/(W·d)`, `g_y = s·F·(t−b)/(H·d)`
 //! (`F = f/(f−n)`, `W × H` the viewport). The decal's plane crosses the axis at `d_a`, not
 //! necessarily at its nearest depth `d₁`: a visible point at depth `d` on the ray `(kₓ, k_y)`
-//! has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁` with
-//! `e = max(|l|, |r|, |b|, |t|)/n`, the largest tangent of the frustum's half extents: the terms
-//! that run on the gradient take it at `d₁` and multiply it by the tilt `1 + s·e`.
+//! has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `1/d_a = 1/(d·(1 + s·k))`. The terms that run on the
+//! gradient take it at `d₁` and multiply it by the tilt `1 + s·e` (`e = max(|l|, |r|, |b|,
+//! |t|)/n`, the largest tangent of the frustum's half extents): the first-order size of
+//! `1/(1 + s·k)`, **not a bound** where the plane grazes an off-axis ray (`1 + s·k → 0`; the
+//! exact bound `1/(1 − s·e)` is infinite from `s·e = 1`, which the depths and slope alone
+//! cannot exclude). There the gradient terms (`V`, `I`, `S`) are underestimated; they are small
+//! beside the quantum and the transform, and `tests/gl_scenes.rs`
+//! (`planes_grazing_an_off_axis_ray_hold`: 1440 decals at `1 + s·k` = 0.1 and 0.3, both
+//! profiles, with and without corners) loses no pixel. With the decal's corners
+//! ([`crate::recommend::Scene::footprint`]) the exact gradients replace the tilt.
 
 use crate::error::Result;
 use crate::projection::Frustum;

@@ -63,7 +63,8 @@ impl PlaneForm {
     /// `z = −d_a + sₓx + s_y·y`, `|sₓ| + |s_y| = s`, has `aₓ = m14·sₓ/(d_a·m0)`,
     /// `a_y = m14·s_y/(d_a·m5)`, `a₀ = −m10 + (m14/d_a)(1 + sₓ·m8/m0 + s_y·m9/m5)`; a visible
     /// point at depth `d` on the ray `(kₓ, k_y)` (`|k| ≤ e`, the frustum's largest half-extent
-    /// tangent) has `d = d_a/(1 + sₓkₓ + s_y·k_y)`, so `|1/d_a| ≤ (1 + s·e)/d₁`).
+    /// tangent) has `d = d_a/(1 + sₓkₓ + s_y·k_y)`; the tilt `1 + s·e` on `1/d₁` is first-order,
+    /// see [`crate::model::gradient`]).
     pub(crate) fn of_slope(m: &[f64; 16], slope: f64, d1: f64, e: f64) -> Self {
         let (m0, m5, m8, m9, m10, m14) = (
             m[0].abs(),
