@@ -122,7 +122,11 @@ pub enum FaceSlope {
     /// the quantity `glPolygonOffset`'s factor multiplies), `≥ 0`.
     WindowGradient(f64),
     /// The largest angle between a face's normal and the view axis, radians in `[0, π/2)`: its
-    /// window gradient at the mesh's nearest depth, anywhere on screen, is the bound.
+    /// window gradient at the mesh's nearest depth, anywhere on screen, is the bound
+    /// ([`EdgeRecommendation::face_gradient`]; the guarantee is for faces of window gradient up
+    /// to it). That gradient takes the first-order tilt of [`crate::model`]'s gradient term: a
+    /// face within the angle that grazes an off-axis ray can be steeper, and is then not
+    /// guaranteed.
     Angle(f64),
 }
 
