@@ -734,7 +734,10 @@ typedef struct {
   uint32_t samples;
   /*
    The steepest face whose edges must be kept, as the largest angle between a face's normal
-   and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead.
+   and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
+   into a window gradient at the mesh's nearest depth (ZshiftEdgeOffset.face_gradient, with a
+   first-order tilt for off-axis rays): faces up to that gradient are guaranteed; a face
+   within the angle that grazes an off-axis ray can be steeper.
    */
   double face_angle;
   /*

@@ -46,7 +46,10 @@ pub struct ZshiftEdges {
     /// sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction).
     pub samples: u32,
     /// The steepest face whose edges must be kept, as the largest angle between a face's normal
-    /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead.
+    /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
+    /// into a window gradient at the mesh's nearest depth (ZshiftEdgeOffset.face_gradient, with a
+    /// first-order tilt for off-axis rays): faces up to that gradient are guaranteed; a face
+    /// within the angle that grazes an off-axis ray can be steeper.
     pub face_angle: f64,
     /// With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
     /// (what glPolygonOffset's factor multiplies), >= 0.
