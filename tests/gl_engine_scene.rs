@@ -2,7 +2,9 @@
 //! decal on ground that runs to the horizon and behind the camera, seen by a camera 1.7 units
 //! above it at pitch 0° (level) to 60°, with vertices in **world space** through an **f32 view
 //! matrix** in the vertex shader (`proj * (view * vec4(p, 1))`), the whole scene translated with
-//! the camera by 0 to 10⁴ units from the world origin, the ground drawn **as it is** (one quad of
+//! the camera by 0 to 10⁴ units from the world origin (the camera heading 0° or 33.7° and placed
+//! off the translation by a fraction of a unit, so that nothing rounds exactly in f32), the
+//! ground drawn **as it is** (one quad of
 //! ±1000 units, or a 64×64 grid of triangles; no cutting), in a viewport at the framebuffer's
 //! origin or inside a larger one, under `glDepthRange(0, 1)` or a sub-range, on D24, D24S8,
 //! D32F and D32F_S8 attachments under `[−1, 1]`, `[0, 1]` and reversed Z, with strict and
@@ -111,6 +113,11 @@ struct Case {
     at: Attachment,
     pitch_deg: f64,
     translate: f64,
+    /// The camera's heading about the vertical, degrees (0: looking down world −z).
+    yaw_deg: f64,
+    /// The camera's offset from the ground's centre in world x and z: engines' cameras sit at
+    /// coordinates no f32 holds exactly.
+    jitter: [f64; 2],
     grid: bool,
     near: f64,
     far: f64,
@@ -134,13 +141,23 @@ impl Case {
     }
 
     fn camera(&self) -> [f64; 3] {
-        [self.translate, EYE_HEIGHT, self.translate]
+        [
+            self.translate + self.jitter[0],
+            EYE_HEIGHT,
+            self.translate + self.jitter[1],
+        ]
     }
 
-    /// The rotation world → eye: the camera looks down world −z, pitched down by `pitch`.
+    /// The rotation world → eye: the camera turned by `yaw` about the vertical (at 0 it looks
+    /// down world −z), then pitched down by `pitch`.
     fn rotation(&self) -> [[f64; 3]; 3] {
         let (s, c) = self.pitch_deg.to_radians().sin_cos();
-        [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let pitch = [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]];
+        let yaw = [[cy, 0.0, -sy], [0.0, 1.0, 0.0], [sy, 0.0, cy]];
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| (0..3).map(|k| pitch[i][k] * yaw[k][j]).sum())
+        })
     }
 
     /// Eye coordinates of a world point, in f64.
@@ -186,11 +203,16 @@ impl Case {
         t
     }
 
-    /// The decal's centre on the ground (world).
+    /// The decal's centre on the ground (world): `distance` ahead of the camera along its
+    /// heading, `side·distance` to its right.
     fn decal_centre(&self) -> [f64; 2] {
+        let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (forward, right) = ([-sy, -cy], [cy, -sy]);
+        let c = self.camera();
+        let (a, b) = (self.distance, self.side * self.distance);
         [
-            self.translate + self.side * self.distance,
-            self.translate - self.distance,
+            c[0] + a * forward[0] + b * right[0],
+            c[2] + a * forward[1] + b * right[1],
         ]
     }
 
@@ -309,10 +331,12 @@ impl Case {
 
     fn label(&self) -> String {
         format!(
-            "{} pitch {}° T {} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
+            "{} pitch {}° yaw {}° T {}{:+?} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
             self.at.label,
             self.pitch_deg,
+            self.yaw_deg,
             self.translate,
+            self.jitter,
             if self.grid { "grid" } else { "quad" },
             self.near,
             self.far,
@@ -601,6 +625,8 @@ fn cases() -> Vec<Case> {
                             at,
                             pitch_deg,
                             translate,
+                            yaw_deg: [0.0, 33.7][pick.index(2)],
+                            jitter: [[0.0, 0.0], [0.3719, -0.6143]][pick.index(2)],
                             grid,
                             near,
                             far: [1000.0, f64::INFINITY][pick.index(2)],
