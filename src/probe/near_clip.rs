@@ -24,9 +24,8 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
             .collect(),
     });
     // The clipper's figure, under every depth convention the context has: `[−1, 1]`, and with
-    // `glClipControl` also `[0, 1]` and reversed Z (llvmpipe errs about four times more under
-    // `[0, 1]` than under `[−1, 1]`, relative to the same magnitudes). The model takes the
-    // largest, a sampled maximum like error_ulps.
+    // `glClipControl` also `[0, 1]` and reversed Z (0.84, 0.86 and 0.22 on llvmpipe). The model
+    // takes the largest, a sampled maximum, with a margin (crate::model::clip).
     let mut clip_ulps = clipper_figure(gl, o, ClipDepth::NegOneToOne)?;
     if let Some(clip_control) = gl.ClipControl {
         clip_control(LOWER_LEFT, ZERO_TO_ONE);
@@ -129,8 +128,9 @@ unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth) -> Result<f64> {
 }
 
 /// The clipper's error on one ground drawn as given, in the model's own units
-/// ([`RasterizerProfile::clip_ulps`]): the largest `(|stored − exact| − e − q)⁺·d / (½·2⁻²⁴·L(A))`
-/// over the pixels, `e` the error at the same pixel of the same ground cut to the frustum in
+/// ([`RasterizerProfile::clip_ulps`]) under `clip`: the largest
+/// `(|stored − exact| − e − q)⁺·d / (c·2⁻²⁴·L(A))` over the pixels (`c` the window depth per NDC
+/// unit: ½ under `[−1, 1]`, 1 under `[0, 1]` and reversed Z), `e` the error at the same pixel of the same ground cut to the frustum in
 /// f64 before drawing (`unclipped`: what the rasterizer errs without clipping), `d` the pixel's
 /// eye depth, `q` one D24 quantum of conversion, `A` the
 /// magnitudes of the ground's clip coordinates for its reach `R` (the largest eye coordinate of
