@@ -786,11 +786,13 @@ typedef struct {
    */
   double vulkan_bias[2];
   /*
-   The NDC offset applied to element 10 (negative: toward the camera); 0 otherwise.
+   The NDC offset applied to element 10 (negative: toward the camera); 0 for the polygon
+   offset method and where reversed Z scales element 14 instead.
    */
   double ndc_offset;
   /*
-   The relative epsilon of element 14 under reversed Z; 0 otherwise.
+   Under reversed Z, where element 14 is scaled instead of element 10 moved (whichever
+   offsets less at the mesh's nearest depth): its relative epsilon; 0 otherwise.
    */
   double relative_epsilon;
   /*

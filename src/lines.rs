@@ -11,7 +11,8 @@
 //!   `SlopeScaledDepthBias`, Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`), edges
 //!   drawn unoffset;
 //! * **(b) edges pulled forward** through the projection matrix (element 10 under `[−1, 1]` and
-//!   `[0, 1]`, element 14 scaled under reversed Z: [`crate::matrix_in`]'s outward rounding), faces
+//!   `[0, 1]`; under reversed Z element 10 too, or element 14 scaled, whichever offsets less:
+//!   [`crate::matrix_in`]'s outward rounding), faces
 //!   drawn unoffset. `glPolygonOffset` does not move `GL_LINES` primitives (it applies to
 //!   polygons, also in `GL_LINE` polygon mode): this is the one offset that reaches them.
 //!
@@ -62,8 +63,13 @@
 //! passes), `2u·(1 + w_max)` the f32 roundings of the bias itself, `r` the profile's
 //! [`RasterizerProfile::resolvable`] times the format's spacing at the mesh's smallest window
 //! depth (D32F's `r` follows the primitive's largest depth: the smallest is the safe count).
-//! Under reversed Z the matrix offset is relative (`ε·b/d` at depth `d`), carried to every depth
-//! of the mesh as the decal's is.
+//! Under reversed Z two offsets exist: the constant NDC offset through element 10 (as above,
+//! `Δw ≥ L + B + q_s` with the quantum at the mesh's largest window depth, plus `2u·Δw` for its
+//! own rounding), and the relative `ε` of element 14 (`ε·b/d` at depth `d`, carried to every
+//! depth of the mesh as the decal's is). The line term is the same window error at every depth
+//! (faces of gradient up to `g` anywhere), which a relative offset, falling as `1/d`, reaches
+//! only at the far end (`L·d₂/d₁` at `d₁`): the constant one is used unless the relative one is
+//! smaller at `d₁`.
 //!
 //! # The hidden-line gap
 //! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
@@ -206,13 +212,13 @@ pub struct EdgeRecommendation {
     /// (a) Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`; zero for (b).
     pub vulkan_bias: [f64; 2],
     /// (b) the edges' projection matrix: the engine's own with the offset applied to element 10
-    /// (`[−1, 1]`, `[0, 1]`) or 14 (reversed Z), rounded outward, every other element
-    /// bit-identical; (a) the engine's matrix unchanged.
+    /// (or, under reversed Z where that offsets less, element 14 scaled), rounded outward, every
+    /// other element bit-identical; (a) the engine's matrix unchanged.
     pub matrix: [f32; 16],
-    /// (b) the constant NDC offset applied (negative: toward the camera) under `[−1, 1]` and
-    /// `[0, 1]`; 0 otherwise.
+    /// (b) the constant NDC offset applied through element 10 (negative: toward the camera);
+    /// 0 for (a) and where reversed Z uses `relative_epsilon`.
     pub ndc_offset: f64,
-    /// (b) the relative `ε` of element 14 under reversed Z; 0 otherwise.
+    /// (b) under reversed Z where element 14 is scaled instead: its relative `ε`; 0 otherwise.
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies over the mesh
     /// (unit window depth; (a) at the steepest face that matters).
@@ -521,15 +527,29 @@ fn unchecked_gap(
         EdgeMethod::Matrix if reversed => {
             let eps = crate::recommend::reversed_epsilon_with(&scene, &mapping, &terms, line)?;
             let b = crate::model::gradient::scale(&scene.frustum);
-            out.relative_epsilon = eps;
-            out.matrix = crate::matrix_in::moved(
-                m,
-                14,
-                crate::double_double::DoubleDouble::product(f64::from(m[14]), eps),
-            )?;
-            out.window_offset = fits(eps * (b / d1))?;
-            crate::recommend::check_in_range(&mapping, d1, out.window_offset, &terms)?;
-            Box::new(move |d| Ok(eps * (b / d)))
+            // The line term is a window error the same at every depth (faces of gradient up to
+            // g anywhere), which the relative ε, falling as 1/d, reaches only at the mesh's far
+            // end: L·d₂/d₁ at d₁. A constant NDC offset through element 10 pays it once; every
+            // other term is at most its value at d₁ (the budget is a window bound at every
+            // depth, the quantum largest at the largest window depth), plus the offset's own f32
+            // rounding (2u of it). Whichever is smaller at d₁ is used.
+            let q = if terms.strict {
+                q_at(d1)?.max(q_at(d2)?).max(terms.quantum)
+            } else {
+                0.0
+            };
+            let constant = fits((line + budget + q) * (1.0 + 2.0 * U))?;
+            if constant < eps * (b / d1) {
+                crate::recommend::check_in_range(&mapping, d1, constant, &terms)?;
+                let c = constant / mapping.window_per_ndc();
+                out.ndc_offset = -c;
+                out.matrix = crate::matrix_in::offset_ndc(m, clip, c)?;
+                out.window_offset = constant;
+                Box::new(move |_| Ok(constant))
+            } else {
+                relative(&mut out, m, eps, b, d1, &mapping, &terms)?;
+                Box::new(move |d| Ok(eps * (b / d)))
+            }
         }
         EdgeMethod::Matrix => {
             let dw = fits(line + budget + strict_q(terms.quantum))?;
@@ -557,6 +577,27 @@ fn unchecked_gap(
     }
     out.hidden_gap = fits(gap)?;
     Ok(out)
+}
+
+/// Reversed Z (b) with the relative `ε` of element 14: the matrix, `ε` and the window offset at
+/// the mesh's nearest depth `d₁` into `out`, checked to stay in range.
+fn relative(
+    out: &mut EdgeRecommendation,
+    m: &[f32; 16],
+    eps: f64,
+    b: f64,
+    d1: f64,
+    mapping: &DepthMapping,
+    terms: &ErrorTerms,
+) -> Result<()> {
+    out.relative_epsilon = eps;
+    out.matrix = crate::matrix_in::moved(
+        m,
+        14,
+        crate::double_double::DoubleDouble::product(f64::from(m[14]), eps),
+    )?;
+    out.window_offset = representable(eps * (b / d1), "an edge offset overflows f64")?;
+    crate::recommend::check_in_range(mapping, d1, out.window_offset, terms)
 }
 
 /// The window depth of eye distance `d` under `clip` for the planes of `m` (a helper for
@@ -688,15 +729,28 @@ mod tests {
         assert!(n > 40.0 && n <= 50.0 && f >= 60.0, "{n} {f}");
     }
 
+    /// Under reversed Z (b) takes the relative ε of element 14 or a constant NDC offset through
+    /// element 10, whichever is smaller at the mesh's nearest depth. The line term `L` is the
+    /// same window error at every depth: where it dominates, the constant one (about `L`) beats
+    /// the relative one (`L·d₂/d₁` at `d₁`); on a thin depth range with a budget that falls
+    /// with depth, the relative one can win.
     #[test]
-    fn reversed_matrix_offset_is_relative() {
+    fn reversed_matrix_offset_takes_the_smaller_form() {
         let clip = ClipDepth::ReversedZeroToOne;
         let m = matrix(0.1, f64::INFINITY, clip);
         let e = edges(DepthFormat::Float32, [10.0, 1000.0], clip);
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        assert!(r.relative_epsilon > 0.0 && r.ndc_offset == 0.0);
-        assert!(r.matrix[14] > m[14]);
-        assert_eq!(r.matrix[10], m[10]);
+        assert!(r.relative_epsilon == 0.0 && r.ndc_offset < 0.0);
+        assert_eq!(r.matrix[14], m[14]);
+        assert!(r.matrix[10] < m[10]);
+        // The constant pays L once, with the shared budget and its own rounding: L + B to
+        // within 2u, far below the relative form's L·d₂/d₁ = 100·L at d₁.
+        let b = r.terms.budget();
+        assert!(r.window_offset >= r.line_term + b, "{r:?}");
+        assert!(r.window_offset <= (r.line_term + b) * (1.0 + 1e-6), "{r:?}");
+        // The matrix moves window depth by the constant: −m10 is the depth at infinity.
+        let moved = -(f64::from(r.matrix[10]) - f64::from(m[10]));
+        assert!(moved >= r.window_offset && moved < 1.0001 * r.window_offset, "{moved}");
     }
 
     #[test]

@@ -1027,7 +1027,7 @@ fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDept
         },
         EdgeMethod::Matrix => Draw {
             face_offset: None,
-            edge_matrix: if clip == ClipDepth::ReversedZeroToOne {
+            edge_matrix: if clip == ClipDepth::ReversedZeroToOne && rec.relative_epsilon > 0.0 {
                 let mut out = *m;
                 out[14] = (f64::from(m[14]) * (1.0 + s * rec.relative_epsilon)) as f32;
                 if s == 1.0 {

@@ -80,9 +80,11 @@ pub struct ZshiftEdgeOffset {
     pub d3d_bias: [f64; 2],
     /// Vulkan depthBiasConstantFactor and depthBiasSlopeFactor; 0 for the matrix method.
     pub vulkan_bias: [f64; 2],
-    /// The NDC offset applied to element 10 (negative: toward the camera); 0 otherwise.
+    /// The NDC offset applied to element 10 (negative: toward the camera); 0 for the polygon
+    /// offset method and where reversed Z scales element 14 instead.
     pub ndc_offset: f64,
-    /// The relative epsilon of element 14 under reversed Z; 0 otherwise.
+    /// Under reversed Z, where element 14 is scaled instead of element 10 moved (whichever
+    /// offsets less at the mesh's nearest depth): its relative epsilon; 0 otherwise.
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies.
     pub window_offset: f64,
