@@ -750,7 +750,10 @@ mod tests {
         assert!(r.window_offset <= (r.line_term + b) * (1.0 + 1e-6), "{r:?}");
         // The matrix moves window depth by the constant: −m10 is the depth at infinity.
         let moved = -(f64::from(r.matrix[10]) - f64::from(m[10]));
-        assert!(moved >= r.window_offset && moved < 1.0001 * r.window_offset, "{moved}");
+        assert!(
+            moved >= r.window_offset && moved < 1.0001 * r.window_offset,
+            "{moved}"
+        );
     }
 
     #[test]
