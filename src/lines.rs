@@ -540,11 +540,7 @@ fn unchecked_gap(
             };
             let constant = fits((line + budget + q) * (1.0 + 2.0 * U))?;
             if constant < eps * (b / d1) {
-                crate::recommend::check_in_range(&mapping, d1, constant, &terms)?;
-                let c = constant / mapping.window_per_ndc();
-                out.ndc_offset = -c;
-                out.matrix = crate::matrix_in::offset_ndc(m, clip, c)?;
-                out.window_offset = constant;
+                constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms)?;
                 Box::new(move |_| Ok(constant))
             } else {
                 relative(&mut out, m, eps, b, d1, &mapping, &terms)?;
@@ -553,12 +549,7 @@ fn unchecked_gap(
         }
         EdgeMethod::Matrix => {
             let dw = fits(line + budget + strict_q(terms.quantum))?;
-            crate::recommend::check_in_range(&mapping, d1, dw, &terms)?;
-            let c = dw / mapping.window_per_ndc();
-            out.ndc_offset = -c;
-            // offset_ndc's c is toward the camera.
-            out.matrix = crate::matrix_in::offset_ndc(m, clip, c)?;
-            out.window_offset = dw;
+            constant_offset(&mut out, m, clip, dw, d1, &mapping, &terms)?;
             Box::new(move |_| Ok(dw))
         }
     };
@@ -577,6 +568,27 @@ fn unchecked_gap(
     }
     out.hidden_gap = fits(gap)?;
     Ok(out)
+}
+
+/// (b) with the constant window offset `dw` through element 10: the matrix, the NDC offset and
+/// `dw` into `out`, checked to keep the mesh's nearest edge in range.
+#[allow(clippy::too_many_arguments)]
+fn constant_offset(
+    out: &mut EdgeRecommendation,
+    m: &[f32; 16],
+    clip: ClipDepth,
+    dw: f64,
+    d1: f64,
+    mapping: &DepthMapping,
+    terms: &ErrorTerms,
+) -> Result<()> {
+    crate::recommend::check_in_range(mapping, d1, dw, terms)?;
+    let c = dw / mapping.window_per_ndc();
+    out.ndc_offset = -c;
+    // offset_ndc's c is toward the camera.
+    out.matrix = crate::matrix_in::offset_ndc(m, clip, c)?;
+    out.window_offset = dw;
+    Ok(())
 }
 
 /// Reversed Z (b) with the relative `ε` of element 14: the matrix, `ε` and the window offset at
