@@ -53,6 +53,7 @@
 #include "zshift.h"
 
 #include "../common/decal_scene.h"
+#include "osg_frame.h"
 
 using decal_scene::kFovyDegrees;
 using decal_scene::kHeight;
@@ -248,33 +249,6 @@ static osg::Geometry *geometry(const Mesh &m, GLenum mode, const std::vector<int
   g->setCullingActive(false);
   return g;
 }
-
-static bool shoot(osgViewer::Viewer &viewer, osg::Image &image, Picture &out, const std::string &png) {
-  viewer.frame();
-  out.width = image.s();
-  out.height = image.t();
-  if (!image.data() || image.getPixelFormat() != GL_RGBA || image.getDataType() != GL_UNSIGNED_BYTE) {
-    std::cerr << "FAIL: OpenSceneGraph read no RGBA8 picture back\n";
-    return false;
-  }
-  out.rgba.assign(image.data(), image.data() + (size_t)4 * out.width * out.height);
-  if (!png.empty() && !osgDB::writeImageFile(image, png)) {
-    std::cerr << "FAIL: could not write " << png << "\n";
-    return false;
-  }
-  return true;
-}
-
-struct DepthBits : osg::Drawable::DrawCallback {
-  mutable GLint bits = 0, subpixel_bits = 0;
-  mutable std::string renderer;
-  void drawImplementation(osg::RenderInfo &info, const osg::Drawable *drawable) const override {
-    renderer = (const char *)glGetString(GL_RENDERER);
-    glGetIntegerv(GL_DEPTH_BITS, &bits);
-    glGetIntegerv(GL_SUBPIXEL_BITS, &subpixel_bits);
-    drawable->drawImplementation(info);
-  }
-};
 
 // [quickstart-engines-osg-edges]
 // zshift inside OpenSceneGraph for edges over their own faces: what the engine knows about its
