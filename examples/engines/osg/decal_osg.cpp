@@ -78,31 +78,10 @@ int main(int argc, char **argv) {
   const ZshiftFormat format = reversed ? ZSHIFT_FORMAT_FLOAT32 : unorm_format(depth_bits);
   const std::string buffer = reversed ? "D32F reversed" : "D" + std::to_string(depth_bits);
 
-  osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-  traits->readDISPLAY(); // the X display and screen from $DISPLAY
-  traits->setUndefinedScreenDetailsToDefaultScreen();
-  traits->width = kWidth;
-  traits->height = kHeight;
-  traits->red = traits->green = traits->blue = traits->alpha = 8;
-  traits->depth = 24;
-  traits->doubleBuffer = true;
-  // A window on the X display (Mesa's pbuffers raise X errors under Xvfb); the frame itself goes
-  // to the camera's framebuffer object.
-  traits->windowDecoration = false;
-  osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
-  if (!gc.valid()) {
-    std::cerr << "FAIL: OpenSceneGraph could not create a " << kWidth << "x" << kHeight
-              << " window on display " << traits->displayName() << "\n";
-    return 1;
-  }
-
+  osg::ref_ptr<osg::GraphicsContext> gc = open_window();
+  if (!gc.valid()) return 1;
   osgViewer::Viewer viewer;
-  viewer.setThreadingModel(osgViewer::ViewerBase::SingleThreaded);
-  osg::Camera *camera = viewer.getCamera();
-  camera->setGraphicsContext(gc.get());
-  osg::ref_ptr<osg::Viewport> vp = new osg::Viewport(0, 0, kWidth, kHeight);
-  camera->setViewport(vp.get());
-  camera->setClearColor(osg::Vec4(0, 0, 0, 1));
+  osg::Camera *camera = window_camera(viewer, gc.get());
   const double aspect = (double)kWidth / kHeight;
   if (reversed) {
     // [quickstart-engines-osg-reversed]
@@ -126,18 +105,11 @@ int main(int argc, char **argv) {
   camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
   // [/quickstart-engines-osg-near-far]
   camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
-  // Render to a framebuffer object with exactly the depth format asked for (a window system
-  // picks its own: Mesa's GLX on Xvfb gives 32 bits), and let OSG read the colour back.
   const GLenum depth_format = reversed           ? GL_DEPTH_COMPONENT32F
                               : depth_bits == 16 ? GL_DEPTH_COMPONENT16
                               : depth_bits == 24 ? GL_DEPTH_COMPONENT24
                                                  : GL_DEPTH_COMPONENT32;
-  osg::ref_ptr<osg::Image> image = new osg::Image;
-  image->allocateImage(kWidth, kHeight, 1, GL_RGBA, GL_UNSIGNED_BYTE);
-  camera->setRenderTargetImplementation(osg::Camera::FRAME_BUFFER_OBJECT,
-                                        osg::Camera::FRAME_BUFFER);
-  camera->attach(osg::Camera::DEPTH_BUFFER, depth_format);
-  camera->attach(osg::Camera::COLOR_BUFFER, image.get());
+  osg::ref_ptr<osg::Image> image = render_to_image(camera, depth_format);
 
   osg::ref_ptr<osg::Group> root = new osg::Group;
   root->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);

@@ -307,37 +307,17 @@ int main(int argc, char **argv) {
   const ZshiftFormat format = decal_scene::unorm_format(depth_bits);
   const std::string buffer = "D" + std::to_string(depth_bits);
 
-  osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-  traits->readDISPLAY();
-  traits->setUndefinedScreenDetailsToDefaultScreen();
-  traits->width = kWidth;
-  traits->height = kHeight;
-  traits->red = traits->green = traits->blue = traits->alpha = 8;
-  traits->depth = 24;
-  traits->doubleBuffer = true;
-  traits->windowDecoration = false;
-  osg::ref_ptr<osg::GraphicsContext> gc = osg::GraphicsContext::createGraphicsContext(traits.get());
-  if (!gc.valid()) {
-    std::cerr << "FAIL: OpenSceneGraph could not create a window on display " << traits->displayName() << "\n";
-    return 1;
-  }
+  osg::ref_ptr<osg::GraphicsContext> gc = open_window();
+  if (!gc.valid()) return 1;
   osgViewer::Viewer viewer;
-  viewer.setThreadingModel(osgViewer::ViewerBase::SingleThreaded);
-  osg::Camera *camera = viewer.getCamera();
-  camera->setGraphicsContext(gc.get());
-  camera->setViewport(new osg::Viewport(0, 0, kWidth, kHeight));
-  camera->setClearColor(osg::Vec4(0, 0, 0, 1));
+  osg::Camera *camera = window_camera(viewer, gc.get());
   camera->setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
   camera->setCullingMode(camera->getCullingMode() & ~osg::CullSettings::SMALL_FEATURE_CULLING);
   camera->setViewMatrix(osg::Matrixd::identity());
   const GLenum depth_format = depth_bits == 16 ? GL_DEPTH_COMPONENT16
                               : depth_bits == 24 ? GL_DEPTH_COMPONENT24
                                                  : GL_DEPTH_COMPONENT32;
-  osg::ref_ptr<osg::Image> image = new osg::Image;
-  image->allocateImage(kWidth, kHeight, 1, GL_RGBA, GL_UNSIGNED_BYTE);
-  camera->setRenderTargetImplementation(osg::Camera::FRAME_BUFFER_OBJECT, osg::Camera::FRAME_BUFFER);
-  camera->attach(osg::Camera::DEPTH_BUFFER, depth_format);
-  camera->attach(osg::Camera::COLOR_BUFFER, image.get());
+  osg::ref_ptr<osg::Image> image = render_to_image(camera, depth_format);
   const double aspect = (double)kWidth / kHeight;
   camera->setProjectionMatrixAsPerspective(kFovyDegrees, aspect, kScenes[0].near, kScenes[0].far);
   // Something to draw for the first frame, which also asks GL what the FBO has.
