@@ -36,13 +36,15 @@
 //! `cargo test --release --test gl_lines -- --nocapture` prints the table. Fails (never skips)
 //! without GL.
 
+mod gl_common;
+
 use std::collections::HashMap;
 
 use glow::HasContext;
 use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
 use zshift::precision::DepthFormat as Format;
 use zshift::projection::{projection, projection_f64, ClipDepth, Frustum};
-use zshift::recommend::{DepthTest, RasterizerProfile, Snapping};
+use zshift::recommend::{DepthTest, RasterizerProfile};
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, Gl, Profile};
 
 const SIZE: u32 = 256;
@@ -843,28 +845,11 @@ impl Scene<'_> {
 }
 
 fn read(gl: &Gl) -> Vec<[u8; 4]> {
-    let n = SIZE as usize;
-    let mut bytes = vec![0u8; n * n * 4];
-    unsafe {
-        let g = gl.glow();
-        g.finish();
-        g.read_buffer(glow::COLOR_ATTACHMENT0);
-        g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-        g.read_pixels(
-            0,
-            0,
-            n as i32,
-            n as i32,
-            glow::RGBA,
-            glow::UNSIGNED_BYTE,
-            glow::PixelPackData::Slice(Some(&mut bytes)),
-        );
-    }
+    let n = SIZE as i32;
+    // SAFETY: the harness's context is current on this thread.
+    let pixels = unsafe { zshift_harness::read_rgba8(gl.glow(), n, n) };
     gl.check("glReadPixels").unwrap();
-    bytes
-        .chunks_exact(4)
-        .map(|c| [c[0], c[1], c[2], c[3]])
-        .collect()
+    pixels
 }
 
 /// The edges that drew each pixel (each sample under MSAA, laid end to end): two ID renders
@@ -1084,20 +1069,11 @@ fn edges_over_faces_sweep() {
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
-    let snapping = if gl.renderer().contains("llvmpipe") {
-        Snapping::Unsnapped
-    } else {
-        Snapping::SubpixelBits(gl.subpixel_bits())
-    };
     let worst = RasterizerProfile {
-        snapping,
+        snapping: gl_common::snapping_of(&gl),
         ..RasterizerProfile::worst_case()
     };
-    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
-    let probed = unsafe {
-        zshift::probe::probe(|name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or("")))
-    }
-    .unwrap_or_else(|e| panic!("probe failed: {e}"));
+    let probed = gl_common::probed(&gl);
     println!(
         "probed line_reach {:?}, offset_slope {}",
         probed.line_reach, probed.offset_slope
@@ -1512,20 +1488,11 @@ fn refusals_confirmed_by_bisection() {
     let full = std::env::var_os("ZSHIFT_LINES_FULL").is_some_and(|v| v != "0");
     let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
-    let snapping = if gl.renderer().contains("llvmpipe") {
-        Snapping::Unsnapped
-    } else {
-        Snapping::SubpixelBits(gl.subpixel_bits())
-    };
     let worst = RasterizerProfile {
-        snapping,
+        snapping: gl_common::snapping_of(&gl),
         ..RasterizerProfile::worst_case()
     };
-    // SAFETY: the harness's context is current on this thread and EGL returns its entry points.
-    let probed = unsafe {
-        zshift::probe::probe(|name: &std::ffi::CStr| gl.proc_address(name.to_str().unwrap_or("")))
-    }
-    .unwrap_or_else(|e| panic!("probe failed: {e}"));
+    let probed = gl_common::probed(&gl);
     let variant = VARIANTS[0];
     let mut failures = Vec::new();
     let mut rows: Vec<(String, [usize; 4])> = Vec::new();

@@ -633,21 +633,10 @@ impl Rig {
         g.uniform_1_i32(u("r_normal_sine").as_ref(), bias.sine as i32);
         self.bind_mesh(g, self.ground);
         g.draw_arrays(glow::TRIANGLES, 0, self.counts[0]);
-        let mut bytes = vec![0u8; CAMERA * CAMERA * 4];
-        g.read_buffer(glow::COLOR_ATTACHMENT0);
-        g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-        g.read_pixels(
-            0,
-            0,
-            CAMERA as i32,
-            CAMERA as i32,
-            glow::RGBA,
-            glow::UNSIGNED_BYTE,
-            glow::PixelPackData::Slice(Some(&mut bytes)),
-        );
+        let pixels = zshift_harness::read_rgba8(g, CAMERA as i32, CAMERA as i32);
         zshift_harness::check_gl_errors(g, "camera pass")?;
-        Ok(bytes
-            .chunks_exact(4)
+        Ok(pixels
+            .iter()
             .map(|c| if c[2] == 255 { [c[0], c[1]] } else { [0, 0] })
             .collect())
     }

@@ -652,26 +652,9 @@ impl Gl {
             let t = self.require_target()?;
             (t.width, t.height)
         };
-        let mut bytes = vec![0u8; (w * h * 4) as usize];
-        unsafe {
-            self.gl.finish();
-            self.gl.read_buffer(glow::COLOR_ATTACHMENT0);
-            self.gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-            self.gl.read_pixels(
-                0,
-                0,
-                w,
-                h,
-                glow::RGBA,
-                glow::UNSIGNED_BYTE,
-                glow::PixelPackData::Slice(Some(&mut bytes)),
-            );
-        }
+        // SAFETY: this context is current on this thread (Gl's invariant).
+        let pixels = unsafe { read_rgba8(&self.gl, w, h) };
         self.check("glReadPixels(GL_RGBA)")?;
-        let pixels = bytes
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect();
         Ok(Image {
             width: w as usize,
             height: h as usize,
@@ -822,6 +805,31 @@ void main() { frag = color; }
 ///
 /// # Errors
 /// `"<what>: GL error 0x...."` when `glGetError` reports any.
+/// The bound read framebuffer's `GL_COLOR_ATTACHMENT0`, `width × height` from the origin, as
+/// RGBA8 pixels (rows bottom-up), after `glFinish`; the caller checks GL errors.
+///
+/// # Safety
+/// `gl`'s context must be current on this thread.
+pub unsafe fn read_rgba8(gl: &glow::Context, width: i32, height: i32) -> Vec<[u8; 4]> {
+    let mut bytes = vec![0u8; (width * height * 4) as usize];
+    gl.finish();
+    gl.read_buffer(glow::COLOR_ATTACHMENT0);
+    gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+    gl.read_pixels(
+        0,
+        0,
+        width,
+        height,
+        glow::RGBA,
+        glow::UNSIGNED_BYTE,
+        glow::PixelPackData::Slice(Some(&mut bytes)),
+    );
+    bytes
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect()
+}
+
 pub fn check_gl_errors(gl: &glow::Context, what: &str) -> Result<(), String> {
     let mut codes = Vec::new();
     loop {
