@@ -54,6 +54,25 @@ pub(super) unsafe fn draw(gl: &Gl, o: &Objects, format: Format, scene: &Scene) -
     Ok(tiles.swap_remove(0))
 }
 
+/// The framebuffer pixel of tile `i`'s lower-left corner (tiles in rows of `TILES`).
+pub(super) fn tile_origin(i: usize) -> (usize, usize) {
+    ((i % TILES) * SIZE, (i / TILES) * SIZE)
+}
+
+/// Clears depth to 1 over all `TILES²` tiles and puts `vertices` in the probe's array buffer.
+pub(super) unsafe fn clear_and_upload<T>(gl: &Gl, vertices: &[T]) {
+    let side = (SIZE * TILES) as Sizei;
+    (gl.Viewport)(0, 0, side, side);
+    (gl.ClearDepth)(1.0);
+    (gl.Clear)(DEPTH_BUFFER_BIT);
+    (gl.BufferData)(
+        ARRAY_BUFFER,
+        std::mem::size_of_val(vertices) as isize,
+        vertices.as_ptr().cast(),
+        STREAM_DRAW,
+    );
+}
+
 /// Draws each scene into a tile of its own (at most `TILES²`) and returns each tile's stored
 /// window depth, `SIZE × SIZE` rows bottom-up.
 pub(super) unsafe fn draw_tiles(
@@ -66,7 +85,7 @@ pub(super) unsafe fn draw_tiles(
     let depth = read_depth(gl, format, 0, width, height)?;
     Ok((0..scenes.len().min(TILES * TILES))
         .map(|i| {
-            let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
+            let (x, y) = tile_origin(i);
             (0..SIZE)
                 .flat_map(|row| {
                     let start = (y + row) * width + x;
@@ -84,23 +103,14 @@ pub(super) unsafe fn render_tiles(
     o: &Objects,
     scenes: &[Scene],
 ) -> Result<(usize, usize)> {
-    (gl.Viewport)(0, 0, (SIZE * TILES) as Sizei, (SIZE * TILES) as Sizei);
-    (gl.ClearDepth)(1.0);
-    (gl.Clear)(DEPTH_BUFFER_BIT);
     let all: Vec<Triangle> = scenes
         .iter()
         .flat_map(|s| s.triangles.iter().copied())
         .collect();
-    let bytes = std::mem::size_of_val(all.as_slice());
-    (gl.BufferData)(
-        ARRAY_BUFFER,
-        bytes as isize,
-        all.as_ptr().cast(),
-        STREAM_DRAW,
-    );
+    clear_and_upload(gl, &all);
     let mut first = 0;
     for (i, scene) in scenes.iter().enumerate().take(TILES * TILES) {
-        let (x, y) = ((i % TILES) * SIZE, (i / TILES) * SIZE);
+        let (x, y) = tile_origin(i);
         (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
         (gl.UniformMatrix4fv)(o.projection, 1, 0, scene.matrix.as_ptr());
         (gl.DrawArrays)(TRIANGLES, first, 3 * scene.triangles.len() as Sizei);

@@ -105,20 +105,10 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         push(2 * LINE_TILES + 2 * k, TRIANGLES, v, false);
         push(2 * LINE_TILES + 2 * k + 1, TRIANGLES, v, true);
     }
-    let side = (SIZE * TILES) as Sizei;
-    (gl.Viewport)(0, 0, side, side);
-    (gl.ClearDepth)(1.0);
-    (gl.Clear)(DEPTH_BUFFER_BIT);
+    clear_and_upload(gl, &all);
     (gl.UniformMatrix4fv)(o.projection, 1, 0, IDENTITY.as_ptr());
-    let bytes = std::mem::size_of_val(all.as_slice());
-    (gl.BufferData)(
-        ARRAY_BUFFER,
-        bytes as isize,
-        all.as_ptr().cast(),
-        STREAM_DRAW,
-    );
     for &(tile, mode, first, count, offset) in &draws {
-        let (x, y) = ((tile % TILES) * SIZE, (tile / TILES) * SIZE);
+        let (x, y) = tile_origin(tile);
         (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
         let polygon_lines = (LINE_TILES..2 * LINE_TILES).contains(&tile);
         if polygon_lines {
@@ -138,8 +128,8 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
     let rows = (2 * LINE_TILES + 4).div_ceil(TILES);
     let depth = read_depth(gl, Format::Float, 0, width, rows * SIZE)?;
     let at = |tile: usize, px: usize, py: usize| {
-        let (x, y) = ((tile % TILES) * SIZE + px, (tile / TILES) * SIZE + py);
-        depth[y * width + x]
+        let (x, y) = tile_origin(tile);
+        depth[(y + py) * width + x + px]
     };
     let mut reach = [0.0f64; 2];
     let mut pixels = [0usize; 2];

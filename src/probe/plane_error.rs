@@ -209,11 +209,8 @@ pub(super) unsafe fn plane_error(
             (Format::Float, true) => f32_spacing(plane.largest),
             _ => format.quantum(exact),
         };
-        let tile = i % (TILES * TILES);
-        let corner = (
-            ((tile % TILES) * SIZE) as f64,
-            ((tile / TILES) * SIZE) as f64,
-        );
+        let (x, y) = tile_origin(i % (TILES * TILES));
+        let corner = (x as f64, y as f64);
         let magnitude = plane.magnitude(corner);
         let m10 = f64::from(scene.matrix[10]).abs();
         // The varied planes are read on every other row and column: their figure is a maximum
