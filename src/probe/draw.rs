@@ -54,6 +54,18 @@ pub(super) unsafe fn draw(gl: &Gl, o: &Objects, format: Format, scene: &Scene) -
     Ok(tiles.swap_remove(0))
 }
 
+/// A deterministic stream of numbers in `[0, 1)` from `seed` (a 64-bit LCG, Knuth's MMIX
+/// constants, its top 53 bits): the probe's pseudo-random planes, the same on every run.
+pub(super) fn uniform_stream(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The framebuffer pixel of tile `i`'s lower-left corner (tiles in rows of `TILES`).
 pub(super) fn tile_origin(i: usize) -> (usize, usize) {
     ((i % TILES) * SIZE, (i / TILES) * SIZE)

@@ -204,13 +204,7 @@ pub(super) fn pixel_errors(scene: &Scene, stored: &[f64], zero_to_one: bool) -> 
 /// random directions, crossing the view axis 1 to 40 units ahead, each a triangle holding the
 /// disc of radius 100 times that distance around the axis point (so it runs behind the camera).
 pub(super) fn random_clipped_grounds() -> Vec<[[f64; 3]; 3]> {
-    let mut state: u64 = 0x0C11_2026_1126;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform_stream(0x0C11_2026_1126);
     (0..48)
         .map(|i| {
             let slope = [0.3, 1.0, 3.0, 10.0][i % 4];

@@ -119,13 +119,7 @@ pub(super) fn plane_scenes(reversed: bool) -> Vec<Scene> {
 /// figure must hold for planes the probe does not draw: on llvmpipe the fixed scenes alone found
 /// 1.40, these 256 more 1.54, and a survey of 804 other planes reaches 1.74 (`tests/gl_scenes.rs`).
 pub(super) fn varied_plane_scenes(reversed: bool) -> Vec<Scene> {
-    let mut state: u64 = 0x5EED_2026_1123;
-    let mut next = move || {
-        state = state
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform_stream(0x5EED_2026_1123);
     let ratios = [1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e9];
     let slopes = [0.3, 1.0, 3.0, 10.0];
     let mut out = Vec::new();
