@@ -801,10 +801,6 @@ out vec4 frag;
 void main() { frag = color; }
 ";
 
-/// Drains `glGetError` (up to 9 codes) for any current context, the harness's or a window's.
-///
-/// # Errors
-/// `"<what>: GL error 0x...."` when `glGetError` reports any.
 /// The bound read framebuffer's `GL_COLOR_ATTACHMENT0`, `width × height` from the origin, as
 /// RGBA8 pixels (rows bottom-up), after `glFinish`; the caller checks GL errors.
 ///
@@ -830,6 +826,10 @@ pub unsafe fn read_rgba8(gl: &glow::Context, width: i32, height: i32) -> Vec<[u8
         .collect()
 }
 
+/// Drains `glGetError` (up to 9 codes) for any current context, the harness's or a window's.
+///
+/// # Errors
+/// `"<what>: GL error 0x...."` when `glGetError` reports any.
 pub fn check_gl_errors(gl: &glow::Context, what: &str) -> Result<(), String> {
     let mut codes = Vec::new();
     loop {
