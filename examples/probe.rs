@@ -68,6 +68,10 @@ fn main() {
         );
     }
     println!(
+        "D32F [0,1]: error {:.3} (u*(2+M)); error_ulps (the model's figure for [-1,1] and [0,1]) {:.3}",
+        figures.error_ulps_zero_to_one, p.error_ulps
+    );
+    println!(
         "D32F reversed Z: plane_error {:.4} quanta over {} pixels; error_ulps_reversed {:.3} (u*(|m10| + M))",
         p.plane_error_reversed, figures.reversed_pixels, p.error_ulps_reversed
     );

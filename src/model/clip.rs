@@ -46,7 +46,8 @@
 //!
 //! # The remedy
 //! [`clip_to_frustum`] cuts the base polygon in f64 to the frustum shrunk by 2⁻¹⁶ (near plane
-//! slightly in front, sides slightly inside: less than a quarter pixel up to 16384 pixels); drawn
+//! slightly in front, sides slightly inside: less than a quarter pixel up to 16384 pixels; the
+//! far plane where window depth is 2⁻²⁰ below 1, where f32 still resolves it); drawn
 //! as a fan with [`crate::recommend::Base::InsideFrustum`], the rasterizer then clips nothing,
 //! every vertex's errors are relative to its own coordinates, and the base's error is the
 //! decal's `E` (on the same floor: 10 steps where 2 work).
@@ -68,15 +69,33 @@ const CLIP_STAGES: f64 = 6.0;
 /// half a pixel of any viewport up to 2¹⁵ pixels wide.
 const FRUSTUM_MARGIN: f64 = 1.0 / 65_536.0;
 
+/// The far plane's margin of [`clip_to_frustum`] in window depth: under `[−1, 1]` and `[0, 1]`
+/// the far plane is at window depth 1, where f32 resolves only 2⁻²⁴, and a relative margin in
+/// eye depth (2⁻¹⁶·f) is a window-depth margin of `2⁻¹⁶·n/f`, below f32's resolution once
+/// `f/n` passes about 500: the f32 transform (about 4 roundings of NDC depth, `m10` and `m14`
+/// themselves rounded to f32) then puts the cut base's far vertices past the far plane, and
+/// the rasterizer clips them after all (measured: a base cut at `f/n = 10⁵` lost a decal pixel
+/// to the far-plane clipper's error, `tests/gl_scenes.rs`, `ZSHIFT_SCENES_SEED=1`). 2⁻²⁰ is 16
+/// f32 steps of window depth below 1 (32 of NDC depth under `[−1, 1]`).
+const FAR_WINDOW_MARGIN: f64 = 1.0 / 1_048_576.0;
+
+/// The eye depth at which [`clip_to_frustum`] cuts a finite far plane `f` (near plane `n`):
+/// `f·(1 − 2⁻¹⁶)`, or nearer where that is needed for its window depth `f(d − n)/(d(f − n))`
+/// (the same under `[−1, 1]` and `[0, 1]`) to stay [`FAR_WINDOW_MARGIN`] below 1:
+/// `d = f·n/(n + δ·(f − n))`. Under reversed Z the far plane is at window depth 0, where f32
+/// keeps its relative precision and 2⁻¹⁶ suffices, but the cut does not know the convention.
+fn far_cut(n: f64, f: f64) -> f64 {
+    (f * (1.0 - FRUSTUM_MARGIN)).min(f * n / (n + FAR_WINDOW_MARGIN * (f - n)))
+}
+
 /// How many times the probe's sampled maximum the model reserves for the clipper. The probe
 /// finds `clip_ulps` ≈ 0.86 on llvmpipe (its largest over about 60 clipped planes under each
-/// depth convention); the full `tests/gl_scenes.rs` grid (`ZSHIFT_SCENES=full`, 12127 scenes)
-/// loses decal pixels with `γ` = 0.835u (15 scenes), 1.25u (3) and 1.5u (1, a steep clipped
-/// plane under `[0, 1]`) and none from 2u: the largest of many more roundings is larger than
-/// the probe's. 4 keeps twice the largest `γ` the grid needs; `tests/gl_scenes.rs`
-/// (`the_clippers_hardest_scenes_hold`) replays those scenes in CI and fails with a margin of
-/// 1.5. Four other draws of the grid (`ZSHIFT_SCENES_SEED=1` to `4`) lose nothing on a clipped
-/// base with it.
+/// depth convention); the full `tests/gl_scenes.rs` grid (`ZSHIFT_SCENES=full`, 12125 scenes)
+/// loses decal pixels with `γ` = 0.83u (27 scenes), 1.25u (4) and 1.5u (1) and none from 2u:
+/// the largest of many more roundings is larger than the probe's. 4 keeps twice the largest
+/// `γ` the grid needs; `tests/gl_scenes.rs` (`the_clippers_hardest_scenes_hold`) replays those
+/// 27 scenes in CI. Four other draws of the grid (`ZSHIFT_SCENES_SEED=1` to `4`) lost nothing on
+/// a clipped base with it.
 const CLIP_MARGIN: f64 = 4.0;
 
 /// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
@@ -149,8 +168,10 @@ pub(crate) fn clip_term(
 // ---------------------------------------------------------------------------------------------
 
 /// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
-/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the far one to
-/// `f·(1 − 2⁻¹⁶)`, the side planes inward by 2⁻¹⁶ of the frustum's width), in f64: drawn
+/// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the side planes inward by
+/// 2⁻¹⁶ of the frustum's width) and the far plane moved to `f·(1 − 2⁻¹⁶)` or to where window
+/// depth is 2⁻²⁰ below 1 if nearer (`f·n/(n + 2⁻²⁰·(f − n))`: 1 % nearer at `f/n = 10⁴`,
+/// 9 % at 10⁵; see [`FAR_WINDOW_MARGIN`]), in f64: drawn
 /// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
 /// with [`crate::recommend::Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
 /// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
@@ -188,7 +209,8 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
         Box::new(move |p| -keep * p[2] - y_c(p)),
     ];
     if f.is_finite() {
-        sides.push(Box::new(move |p| f * (1.0 - FRUSTUM_MARGIN) + p[2]));
+        let far = far_cut(n, f);
+        sides.push(Box::new(move |p| far + p[2]));
     }
     let mut poly = polygon.to_vec();
     for side in &sides {
@@ -224,4 +246,43 @@ fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::projection::{projection, ClipDepth};
+
+    /// The far vertices of a ground cut at large f/n stay in front of the far plane through the
+    /// f32 transform an engine runs (`m10·z + m14`, the division by `w`, each rounded to f32),
+    /// under `[−1, 1]` and `[0, 1]`: a relative margin of 2⁻¹⁶ in eye depth alone leaves them
+    /// past window depth 1 from f/n ≈ 500 on, where the rasterizer clips them after all.
+    #[test]
+    fn the_far_cut_stays_inside_in_f32() {
+        for ratio in [1e3, 1e5, 1e7] {
+            let n = 0.1;
+            let frustum = Frustum::new(-0.1, 0.1, -0.06, 0.06, n, n * ratio).unwrap();
+            let reach = 2.0 * n * ratio;
+            let ground: Vec<[f64; 3]> = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .map(|&(x, z)| [x * reach, -1.7, z * reach])
+                .collect();
+            let cut = clip_to_frustum(&frustum, &ground).unwrap();
+            let farthest = cut.iter().map(|p| -p[2]).fold(0.0, f64::max);
+            let far = far_cut(n, n * ratio);
+            assert!(
+                farthest > 0.999 * far && farthest <= far * (1.0 + 1e-12),
+                "the cut reaches its far plane {far}: {farthest}"
+            );
+            for clip in [ClipDepth::NegOneToOne, ClipDepth::ZeroToOne] {
+                let m = projection(&frustum, clip).unwrap();
+                for p in &cut {
+                    let z = p[2] as f32;
+                    let z_c = m[10] * z + m[14];
+                    let ndc = z_c / -z;
+                    assert!(ndc < 1.0, "{clip:?} f/n {ratio}: {p:?} at NDC depth {ndc}");
+                }
+            }
+        }
+    }
 }

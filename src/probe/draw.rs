@@ -312,6 +312,19 @@ impl View {
         .map(|m| m as f32)
     }
 
+    /// [`View::matrix`] with `glFrustum`'s depth row in its `[0, 1]` form for
+    /// `glClipControl(GL_ZERO_TO_ONE)` where `zero_to_one` (and the view is not reversed):
+    /// `−f/(f − n)`, `−f·n/(f − n)`. Window depth is the same function of eye depth under both.
+    pub(super) fn matrix_for(&self, zero_to_one: bool) -> [f32; 16] {
+        let mut m = self.matrix();
+        if zero_to_one && !self.reversed {
+            let (n, f) = (self.n, self.f);
+            m[10] = (-f / (f - n)) as f32;
+            m[14] = (-f * n / (f - n)) as f32;
+        }
+        m
+    }
+
     /// The triangle `t` (eye space) as a vertex buffer holds it: f32 coordinates, `w = 1`.
     pub(super) fn triangle(t: [[f64; 3]; 3]) -> Triangle {
         t.map(|[x, y, z]| [x as f32, y as f32, z as f32, 1.0])

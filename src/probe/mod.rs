@@ -43,11 +43,14 @@
 //!   by `2⁻²⁴·(1 + M)`, `M` the magnitude of the terms of the plane evaluated from the window
 //!   origin (see the field): how the error of a steep plane grows with its distance from the
 //!   origin, for viewports larger than the tiles. On D32F (whose stored depth is the computed
-//!   one) 256 more planes are drawn, in random directions and frusta (f/n 10² to 10⁹, slopes
-//!   0.3 to 10): the model takes this figure for its per-quad error `T + I`, and a maximum of
-//!   roundings grows with the planes it is taken over (48 planes: 1.40 on llvmpipe; 304: 1.54).
+//!   one) 384 more planes are drawn, in random directions and frusta (f/n 10² to 10⁹, slopes
+//!   0.3 to 10; 128 of them through off-centre frusta, the view axis up to 1.3 half-extents off
+//!   the screen's centre): the model takes this figure for its per-quad error `T + I`, and a
+//!   maximum of roundings grows with the planes it is taken over (48 planes: 1.40 on llvmpipe;
+//!   432: 1.54). The same D32F planes under `glClipControl`'s `[0, 1]`, divided by
+//!   `2⁻²⁴·(2 + M)`, enter the same figure (1.17 on llvmpipe: the model takes the larger).
 //!   **`error_ulps_reversed`**: the same under reversed Z on D32F, divided by
-//!   `2⁻²⁴·(|m10| + M)` (3.15 on llvmpipe).
+//!   `2⁻²⁴·(|m10| + M)` (4.29 on llvmpipe; 3.15 before the off-centre planes were drawn).
 //! * **`facing_quanta`** (per format, and `facing_quanta_zero_to_one` under
 //!   `glClipControl(GL_ZERO_TO_ONE)`): facing quads at 256 depths (four per tile), drawn with the
 //!   plain `glFrustum` matrix and again with element 10 moved toward 0 by `k` f32 steps; for each
@@ -185,8 +188,12 @@ pub struct Figures {
     /// `glClipControl`).
     pub reversed_pixels: usize,
     /// Per format, the worst `(|stored − exact| − q)⁺ / (2⁻²⁴·(1 + M))` (q = 0 for D32F) under
-    /// `[−1, 1]`; [`RasterizerProfile::error_ulps`] is the largest.
+    /// `[−1, 1]`; [`RasterizerProfile::error_ulps`] is the largest of these and
+    /// `error_ulps_zero_to_one`.
     pub error_ulps: [f64; 4],
+    /// D32F's worst `|stored − exact| / (2⁻²⁴·(2 + M))` under `glClipControl`'s `[0, 1]` (NaN
+    /// without it): the same planes with `glFrustum`'s depth row in its `[0, 1]` form.
+    pub error_ulps_zero_to_one: f64,
     /// D32F's worst plane error in units of the f32 spacing at each pixel's own depth (not at
     /// the primitive's largest), under `[−1, 1]` and under reversed Z: what a primitive spanning
     /// several binades does to its smallest depths.
@@ -325,6 +332,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         float_resolvable: [f64::NAN; 2],
         reversed_pixels: 0,
         error_ulps: [f64::NAN; 4],
+        error_ulps_zero_to_one: f64::NAN,
         float_local_plane_error: [f64::NAN; 2],
         chain_observations: 0,
         line_pixels: [0; 2],
@@ -361,14 +369,20 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
                 profile.facing_reversed = q;
             }
         }
-        let errors = plane_error(gl, o, format, false)?;
+        let errors = plane_error(gl, o, format, ClipDepth::NegOneToOne)?;
         profile.plane_error[slot] = errors.worst;
         figures.plane_pixels[slot] = errors.pixels;
         figures.error_ulps[slot] = errors.error_ulps;
         if format == Format::Float {
             figures.float_local_plane_error[0] = errors.local;
             profile.error_ulps = figures.error_ulps.iter().copied().fold(0.0, f64::max);
-            if let Some(reversed) = reversed_plane_error(gl, o)? {
+            // The model takes one figure for [-1, 1] and [0, 1] (with its own constant, 2 under
+            // [0, 1]): the larger of the two conventions'.
+            if let Some(zero_to_one) = zero_to_one_plane_error(gl, o, ClipDepth::ZeroToOne)? {
+                figures.error_ulps_zero_to_one = zero_to_one.error_ulps;
+                profile.error_ulps = profile.error_ulps.max(zero_to_one.error_ulps);
+            }
+            if let Some(reversed) = zero_to_one_plane_error(gl, o, ClipDepth::ReversedZeroToOne)? {
                 profile.plane_error_reversed = reversed.worst;
                 profile.error_ulps_reversed = reversed.error_ulps;
                 figures.reversed_pixels = reversed.pixels;
