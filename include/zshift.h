@@ -1263,8 +1263,10 @@ ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip c
 
 /*
  Cuts a convex base polygon to the view frustum of `glFrustum(l, r, b, t, n, f)` in double,
- slightly inside (near plane at n * (1 + 2^-16), far at f * (1 - 2^-16), sides inward by
- 2^-16 of the frustum's width: less than a quarter pixel up to 16384 pixels), so that the
+ slightly inside (near plane at n * (1 + 2^-16), sides inward by 2^-16 of the frustum's
+ width: less than a quarter pixel up to 16384 pixels; far at f * (1 - 2^-16), or where window
+ depth is 2^-20 below 1 if nearer: f*n/(n + 2^-20*(f - n)), 1 % nearer than f at f/n = 1e4,
+ 9 % at 1e5, since f32 resolves window depth near 1 only to 2^-24), so that the
  rasterizer clips nothing of it: draw the result as a triangle fan and pass base_reach = 0.
  A base the rasterizer clips in float (a ground plane running behind the camera) carries the
  large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
