@@ -386,8 +386,11 @@ typedef struct {
    */
   const float *view_matrix;
   /*
-   With view_matrix: the box of every base and decal position the shader receives (their
-   world-space bounding box: min x, min y, min z, max x, max y, max z). Ignored when
+   With view_matrix: the box of the base and decal positions the shader receives (their
+   world-space bounding box: min x, min y, min z, max x, max y, max z). Only the base's
+   triangles under the decal reach its pixels: for a tessellated ground or terrain, the box
+   of the cells the decal touches (far tighter than the whole ground's; a decal system
+   knows them, it projects onto them); for one large quad, its corners. Ignored when
    view_matrix is NULL; all zeros with a view_matrix is refused (not given).
    */
   double world_box[6];

@@ -270,39 +270,49 @@ impl Case {
         }
     }
 
+    /// The world positions of the grid's vertices around the cells the decal touches (a decal
+    /// system knows them: it projects onto them).
+    fn decal_cell_corners(&self) -> Vec<[f64; 3]> {
+        let step = 2.0 * GROUND / 64.0;
+        let [cx, cz] = self.decal_centre();
+        let half = self.size / 2.0;
+        let cell = |v: f64| ((v - (self.translate - GROUND)) / step).floor() as i64;
+        let (i0, i1) = (cell(cx - half), cell(cx + half));
+        let (j0, j1) = (cell(cz - half), cell(cz + half));
+        let mut out = Vec::new();
+        for i in i0..=i1 + 1 {
+            for j in j0..=j1 + 1 {
+                let x = self.translate - GROUND + step * i as f64;
+                let z = self.translate - GROUND + step * j as f64;
+                out.push([x, 0.0, z]);
+            }
+        }
+        out
+    }
+
     /// What the engine passes as `base_reach`: the largest |x|, |y| or |z| of the eye-space
     /// vertices of the ground triangles under the decal, or 0 when those lie inside the frustum
     /// (the rasterizer clips none of them). One quad: its corners. A grid: the cells the decal
-    /// touches (a decal system knows them: it projects onto them).
+    /// touches.
     fn base_reach(&self) -> f64 {
         if !self.grid {
             return self.quad_reach();
         }
-        let step = 2.0 * GROUND / 64.0;
-        let [cx, cz] = self.decal_centre();
-        let half = self.size / 2.0;
-        let cell = |v: f64| ((v - (self.translate - GROUND)) / step).floor();
-        let (i0, i1) = (cell(cx - half), cell(cx + half));
-        let (j0, j1) = (cell(cz - half), cell(cz + half));
         let fr = self.frustum();
         let (l, r, b, t, n, f) = fr.parameters();
         let mut reach = 0.0f64;
         let mut clipped = false;
-        for i in i0 as i64..=i1 as i64 + 1 {
-            for j in j0 as i64..=j1 as i64 + 1 {
-                let x = self.translate - GROUND + step * i as f64;
-                let z = self.translate - GROUND + step * j as f64;
-                let e = self.eye([x, 0.0, z]);
-                let d = -e[2];
-                let inside = d > n
-                    && d < f
-                    && e[0] / d > l / n
-                    && e[0] / d < r / n
-                    && e[1] / d > b / n
-                    && e[1] / d < t / n;
-                clipped |= !inside;
-                reach = e.iter().fold(reach, |a, c| a.max(c.abs()));
-            }
+        for p in self.decal_cell_corners() {
+            let e = self.eye(p);
+            let d = -e[2];
+            let inside = d > n
+                && d < f
+                && e[0] / d > l / n
+                && e[0] / d < r / n
+                && e[1] / d > b / n
+                && e[1] / d < t / n;
+            clipped |= !inside;
+            reach = e.iter().fold(reach, |a, c| a.max(c.abs()));
         }
         if clipped {
             reach
@@ -311,10 +321,23 @@ impl Case {
         }
     }
 
-    /// The world-space box of the ground and the decal: what an engine knows of its meshes.
+    /// What the engine passes as `world_box`: the world-space box of the ground's vertices
+    /// under the decal, which holds the decal's corners too. One quad: its corners, the whole
+    /// ground. A grid: the cells the decal touches (no other vertex reaches the decal's pixels).
     fn world_box(&self) -> [[f64; 3]; 2] {
         let g = self.translate;
-        [[g - GROUND, 0.0, g - GROUND], [g + GROUND, 0.0, g + GROUND]]
+        if !self.grid {
+            return [[g - GROUND, 0.0, g - GROUND], [g + GROUND, 0.0, g + GROUND]];
+        }
+        let corners = self.decal_cell_corners();
+        let lo = [0, 1, 2].map(|k| corners.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
+        let hi = [0, 1, 2].map(|k| {
+            corners
+                .iter()
+                .map(|p| p[k])
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
+        [lo, hi]
     }
 
     /// The largest |x|, |y| or |z| of the ground quad's eye-space corners.

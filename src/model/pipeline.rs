@@ -47,9 +47,10 @@ pub struct Pipeline {
     /// [`Pipeline::world_box`]: the model then knows each eye coordinate's rounding exactly
     /// instead of bounding it from `world_reach` over every rotation. `None`: not given.
     pub view: Option<[f32; 16]>,
-    /// The box `[lo, hi]` of every base and decal position the shader receives (in the space
-    /// `view` maps from; a ground's and decal's world-space bounding box), with
-    /// [`Pipeline::view`]. `None`: not given.
+    /// The box `[lo, hi]` of the base and decal positions the shader receives (in the space
+    /// `view` maps from), with [`Pipeline::view`]. Only the base's triangles under the decal
+    /// reach the decal's pixels: for a tessellated ground, the box of the cells the decal
+    /// touches (with the decal's corners); for one large quad, its corners. `None`: not given.
     pub world_box: Option<[[f64; 3]; 2]>,
     /// `glViewport`'s `x` and `y`: the viewport's lower-left corner in the framebuffer, pixels.
     pub viewport_origin: [u32; 2],
