@@ -22,7 +22,10 @@
 //! References are GL readbacks and this file's own f64 geometry. Fails (never skips) without GL.
 //! `ZSHIFT_ENGINE_SCENES=full` runs every variation of the grid (slow); the default samples
 //! one variation per base scene. `--nocapture` prints the table; `ZSHIFT_ENGINE_SCENES_VERBOSE=1`
-//! every scene.
+//! every scene; `ZSHIFT_ENGINE_SCENES_ONLY=<text>` only the scenes whose label contains `<text>`
+//! (the counts the test asserts then fail: it is for looking at one scene);
+//! `ZSHIFT_ENGINE_SCENES_GROUND_ERROR=1` each scene's ground drawn alone against its exact plane,
+//! row by row.
 
 mod gl_common;
 
@@ -448,6 +451,69 @@ impl<'a> Renderer<'a> {
         drawn
     }
 
+    /// The ground's own error, drawn alone (`ZSHIFT_ENGINE_SCENES_GROUND_ERROR=1`): per sixth
+    /// row of the viewport, the largest |stored − exact| window depth in f32 units (2⁻²⁴) over
+    /// the row, the row's mean eye depth `d`, and their product (a clipper error that propagates
+    /// from the near-plane vertices falls as `1/d`: the product is then the same on every row).
+    fn ground_error(&mut self) -> Result<Vec<String>, String> {
+        self.clear_and_draw_ground()?;
+        let stored = self.gl.read_depth()?;
+        let c = self.case;
+        let (l, r, b, t, n, f) = c.frustum().parameters();
+        // The ground plane y = 0 in eye space: normal and offset from three world points.
+        let [o, ex, ez] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]].map(|p| c.eye(p));
+        let (u1, u2) = (
+            [0, 1, 2].map(|k| ex[k] - o[k]),
+            [0, 1, 2].map(|k| ez[k] - o[k]),
+        );
+        let normal = [
+            u1[1] * u2[2] - u1[2] * u2[1],
+            u1[2] * u2[0] - u1[0] * u2[2],
+            u1[0] * u2[1] - u1[1] * u2[0],
+        ];
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let m = zshift::projection::projection_f64(&c.frustum(), c.at.clip)
+            .map_err(|e| e.to_string())?;
+        let [w, h] = VIEWPORT.map(|v| v as usize);
+        let fw = c.framebuffer()[0] as usize;
+        let [ox, oy] = c.origin.map(|v| v as usize);
+        let mut rows = Vec::new();
+        for py in (0..h).step_by(6) {
+            let (mut worst, mut depth_sum, mut count) = (0.0f64, 0.0, 0);
+            for px in 0..w {
+                let xn = 2.0 * (px as f64 + 0.5) / w as f64 - 1.0;
+                let yn = 2.0 * (py as f64 + 0.5) / h as f64 - 1.0;
+                let ray = [
+                    (xn * (r - l) / 2.0 + (r + l) / 2.0) / n,
+                    (yn * (t - b) / 2.0 + (t + b) / 2.0) / n,
+                    -1.0,
+                ];
+                let d = dot(normal, o) / dot(normal, ray);
+                if !(d > n && d < f) {
+                    continue;
+                }
+                let ndc = (m[14] - m[10] * d) / d;
+                let exact = match c.at.clip {
+                    ClipDepth::NegOneToOne => 0.5 * ndc + 0.5,
+                    _ => ndc,
+                };
+                let exact = c.depth_range[0] + (c.depth_range[1] - c.depth_range[0]) * exact;
+                let got = f64::from(stored[(py + oy) * fw + px + ox]);
+                worst = worst.max((got - exact).abs() * 16_777_216.0);
+                depth_sum += d;
+                count += 1;
+            }
+            if count > 0 {
+                let d = depth_sum / count as f64;
+                rows.push(format!(
+                    "  row {py:3}: d {d:9.2}, ground error {worst:9.2} u, times d {:10.1}",
+                    worst * d
+                ));
+            }
+        }
+        Ok(rows)
+    }
+
     fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
         self.clear_and_draw_ground()?;
         let (view, state) = (self.view, self.state());
@@ -531,6 +597,13 @@ fn run_case(
         return Ok(None);
     }
     let mut r = Renderer::new(gl, case)?;
+    if std::env::var_os("ZSHIFT_ENGINE_SCENES_GROUND_ERROR").is_some() {
+        println!(
+            "{}: the ground alone\n{}",
+            case.label(),
+            r.ground_error()?.join("\n")
+        );
+    }
     if r.mask.iter().filter(|&&m| m).count() < 4 {
         return Ok(None);
     }
@@ -688,7 +761,15 @@ fn the_scene_every_engine_draws() {
     // what camera-relative rendering buys.
     let mut by_translation = std::collections::BTreeMap::<u64, Vec<(f64, f64)>>::new();
     let (mut drawn, mut skipped) = (0, 0);
+    // `ZSHIFT_ENGINE_SCENES_ONLY=<text>`: only the scenes whose label contains it.
+    let only = std::env::var("ZSHIFT_ENGINE_SCENES_ONLY").ok();
     for case in cases() {
+        if only
+            .as_ref()
+            .is_some_and(|o| !case.label().contains(o.as_str()))
+        {
+            continue;
+        }
         for (name, profile) in [("worst", &worst), ("probed", &probed)] {
             let Some(out) = run_case(&mut gl, case, profile)
                 .unwrap_or_else(|e| panic!("{}: {e}", case.label()))
