@@ -25,7 +25,8 @@
 //! every scene; `ZSHIFT_ENGINE_SCENES_ONLY=<text>` only the scenes whose label contains `<text>`
 //! (the counts the test asserts then fail: it is for looking at one scene);
 //! `ZSHIFT_ENGINE_SCENES_GROUND_ERROR=1` each scene's ground drawn alone against its exact plane,
-//! row by row.
+//! row by row; `ZSHIFT_ENGINE_SCENES_VIEWPORT=1920x1080` (or `3840x2160`) draws at an engine's
+//! own size instead of 320×180.
 
 mod gl_common;
 
@@ -45,8 +46,20 @@ use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile};
 const EYE_HEIGHT: f64 = 1.7;
 /// The ground's half extent around the camera.
 const GROUND: f64 = 1000.0;
-/// The viewport, 16:9.
-const VIEWPORT: [u32; 2] = [320, 180];
+/// The viewport, 16:9: 320×180, or `ZSHIFT_ENGINE_SCENES_VIEWPORT=<w>x<h>` (1920x1080, 3840x2160:
+/// the engines' own sizes, slower).
+fn viewport() -> [u32; 2] {
+    static SIZE: std::sync::OnceLock<[u32; 2]> = std::sync::OnceLock::new();
+    *SIZE.get_or_init(|| {
+        std::env::var("ZSHIFT_ENGINE_SCENES_VIEWPORT")
+            .ok()
+            .and_then(|v| {
+                let (w, h) = v.split_once('x')?;
+                Some([w.parse().ok()?, h.parse().ok()?])
+            })
+            .unwrap_or([320, 180])
+    })
+}
 /// glm::perspective's vertical field of view.
 const FOVY_DEG: f64 = 60.0;
 
@@ -139,7 +152,7 @@ impl Case {
 
     fn frustum(&self) -> Frustum {
         let t = self.near * (FOVY_DEG.to_radians() / 2.0).tan();
-        let r = t * f64::from(VIEWPORT[0]) / f64::from(VIEWPORT[1]);
+        let r = t * f64::from(viewport()[0]) / f64::from(viewport()[1]);
         Frustum::new(-r, r, -t, t, self.near, self.far).expect("valid frustum")
     }
 
@@ -247,8 +260,8 @@ impl Case {
 
     fn framebuffer(&self) -> [u32; 2] {
         [
-            self.origin[0] + VIEWPORT[0] + 8,
-            self.origin[1] + VIEWPORT[1] + 8,
+            self.origin[0] + viewport()[0] + 8,
+            self.origin[1] + viewport()[1] + 8,
         ]
     }
 
@@ -257,8 +270,8 @@ impl Case {
             viewport: [
                 self.origin[0] as i32,
                 self.origin[1] as i32,
-                VIEWPORT[0] as i32,
-                VIEWPORT[1] as i32,
+                viewport()[0] as i32,
+                viewport()[1] as i32,
             ],
             depth_range: self.depth_range,
         }
@@ -474,7 +487,7 @@ impl<'a> Renderer<'a> {
         let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let m = zshift::projection::projection_f64(&c.frustum(), c.at.clip)
             .map_err(|e| e.to_string())?;
-        let [w, h] = VIEWPORT.map(|v| v as usize);
+        let [w, h] = viewport().map(|v| v as usize);
         let fw = c.framebuffer()[0] as usize;
         let [ox, oy] = c.origin.map(|v| v as usize);
         let mut rows = Vec::new();
@@ -616,9 +629,9 @@ fn run_case(
         })
         .collect();
     let plain = r.plain;
-    let asked = decal_shape(&plain, case.at.clip, VIEWPORT, &corners).and_then(|shape| {
+    let asked = decal_shape(&plain, case.at.clip, viewport(), &corners).and_then(|shape| {
         let decal = Decal {
-            viewport: VIEWPORT,
+            viewport: viewport(),
             format: Format::from_gl_internal_format(if case.at.packed {
                 match case.at.format {
                     DepthFormat::D24 => glow::DEPTH24_STENCIL8,
