@@ -93,7 +93,7 @@
 //!   `γ_W·Bᵢ` with `Bᵢ = Σₖ |Pᵢₖ|·Aₖ + |Pᵢ₃|`;
 //! * **and the eye position computed first** (`proj * (view * p)` in both shaders,
 //!   [`crate::model::Pipeline::eye_first`]) **with a listed receiver**: the error is an
-//!   eye-space vector `δp`, `|δpₖ| ≤ γ_E·Aₖ` (`γ_E = 10u`), and it moves depth off the
+//!   eye-space vector `δp`, `|δpₖ| ≤ γ_E·Aₖ` (`γ_E = 6u`), and it moves depth off the
 //!   receiver's plane only through the plane's form on eye coordinates `g = L∘P`
 //!   ([`crate::model::plane_form`]; `L` exact from the receiver's window plane in the map):
 //!   `|L(P·δp)| ≤ γ_E·Σₖ |gₖ|·Aₖ`. A move along the plane costs nothing here: for the caster it

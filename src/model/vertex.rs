@@ -38,8 +38,11 @@
 //!   `V·M` (4), `P·MV` (4), its storage as f32 (1), the product with `p` (4): `14u`.
 //!
 //! With the eye position computed first ([`crate::model::Pipeline::eye_first`]) the error is an
-//! eye-space vector `δp` with `|δpₖ| ≤ γ_E·A`, `γ_E = 10u` (the first way above, less the
-//! projection's own roundings, which the transform term `T` counts as in eye space), and it
+//! eye-space vector `δp` with `|δpₖ| ≤ γ_E·A`, `γ_E = 6u`: the first way above less the
+//! projection's own four roundings, which are relative to the eye position's own magnitudes
+//! and which the transform term `T` counts, as it does for eye-space vertices (`p` stored (1),
+//! `MV`'s elements stored (1, kept: base and decal may be drawn with model-view matrices of
+//! their own), `MV·p` (4)). It
 //! reaches depth through the form on eye coordinates `g = L∘P`, as eye rounding does:
 //! `|L(P·δp)| ≤ γ_E·A·(|gₓ| + |g_y| + |g_z|)`. A move along the plane costs nothing (level
 //! ground only feels an error of eye `y`), so this is far smaller than the independent clip
@@ -85,7 +88,7 @@ pub(crate) fn eye_rounding_bound(b: f64, d1: f64, slope: f64, e: f64) -> f64 {
 
 /// `γ_E`: the roundings of a world-space vertex through an f32 model-view matrix when the eye
 /// position is computed first (module docs), in units of the magnitude `A`.
-pub(crate) const EYE_FIRST_ROUNDINGS: f64 = 10.0;
+pub(crate) const EYE_FIRST_ROUNDINGS: f64 = 6.0;
 
 /// The magnitudes `Aₖ` of the terms each eye coordinate `k` sums, for a vertex within `extent`
 /// of the camera: with the engine's view matrix `V` and the box of the vertices it maps,
