@@ -164,6 +164,77 @@ mod tests {
     use super::*;
     use crate::projection::{projection_f64, ClipDepth, Frustum};
 
+    /// `γ_E` covers what a shader's `view * p` does in f32 to a world position: from an f64 view
+    /// (a rotation and the camera far from the origin) and an f64 point, each rounded to f32 as
+    /// an engine stores them, then the product in f32 in GLSL's order (and fused, as a GPU may),
+    /// against the f64 product of the f64 originals: every eye coordinate within `γ_E·A_k`
+    /// (`A_k` from the f32 matrix and the box, as the model computes it), and the bound not
+    /// loose by more than 8× on the worst of 4000 points.
+    #[test]
+    fn eye_first_roundings_cover_an_f32_view_transform() {
+        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut worst = 0.0f64;
+        for _ in 0..40 {
+            let (yaw, pitch) = (6.3 * next(), 1.5 * next() - 0.75);
+            let camera = [2e4 * next() - 1e4, 1.7 + 10.0 * next(), 2e4 * next() - 1e4];
+            let (sy, cy) = f64::sin_cos(yaw);
+            let (sp, cp) = f64::sin_cos(pitch);
+            // Rows of R = pitch · yaw (world → eye), t = −R·camera; column-major 4×4.
+            let r = [
+                [cy, 0.0, -sy],
+                [sy * sp, cp, cy * sp],
+                [sy * cp, -sp, cy * cp],
+            ];
+            let t: Vec<f64> = (0..3)
+                .map(|k| -(0..3).map(|j| r[k][j] * camera[j]).sum::<f64>())
+                .collect();
+            let mut view = [0.0f64; 16];
+            for k in 0..3 {
+                for j in 0..3 {
+                    view[4 * j + k] = r[k][j];
+                }
+                view[12 + k] = t[k];
+            }
+            view[15] = 1.0;
+            let view32 = view.map(|v| v as f32);
+            let lo = [camera[0] - 500.0, 0.0, camera[2] - 500.0];
+            let hi = [camera[0] + 500.0, 0.0, camera[2] + 500.0];
+            let pipeline = Pipeline {
+                view: Some(view32),
+                world_box: Some([lo, hi]),
+                eye_first: true,
+                ..Pipeline::default()
+            };
+            let a = eye_magnitudes(&pipeline, 0.0);
+            for _ in 0..100 {
+                let p = [0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * next());
+                let p32 = p.map(|c| c as f32);
+                for k in 0..3 {
+                    let exact: f64 =
+                        (0..3).map(|j| view[4 * j + k] * p[j]).sum::<f64>() + view[12 + k];
+                    let m = |j: usize| view32[4 * j + k];
+                    let plain = ((m(0) * p32[0] + m(1) * p32[1]) + m(2) * p32[2]) + m(3);
+                    let fused = m(2).mul_add(p32[2], m(1).mul_add(p32[1], m(0) * p32[0])) + m(3);
+                    for got in [plain, fused] {
+                        let ulps = (f64::from(got) - exact).abs() / (U * a[k]);
+                        assert!(
+                            ulps <= EYE_FIRST_ROUNDINGS,
+                            "{ulps} u·A at {p:?}, coordinate {k}"
+                        );
+                        worst = worst.max(ulps);
+                    }
+                }
+            }
+        }
+        assert!(worst > EYE_FIRST_ROUNDINGS / 8.0, "worst {worst}");
+    }
+
     /// The eye-rounding bound holds for perturbed vertices of a plane anywhere in the frustum:
     /// each coordinate moved by its full `u·|p|` in the worst direction moves NDC depth at the
     /// vertex, times `w/d` ≤ 1, by at most `K` (checked in f64 against the exact depths).
