@@ -131,6 +131,9 @@ struct Case {
     translate: f64,
     /// The camera's heading about the vertical, degrees (0: looking down world −z).
     yaw_deg: f64,
+    /// The camera's roll about its view axis, degrees (90: the ground is a wall on screen, seen
+    /// along its length when the camera is level).
+    roll_deg: f64,
     /// The camera's offset from the ground's centre in world x and z: engines' cameras sit at
     /// coordinates no f32 holds exactly.
     jitter: [f64; 2],
@@ -169,11 +172,16 @@ impl Case {
     fn rotation(&self) -> [[f64; 3]; 3] {
         let (s, c) = self.pitch_deg.to_radians().sin_cos();
         let (sy, cy) = self.yaw_deg.to_radians().sin_cos();
+        let (sr, cr) = self.roll_deg.to_radians().sin_cos();
+        let roll = [[cr, sr, 0.0], [-sr, cr, 0.0], [0.0, 0.0, 1.0]];
         let pitch = [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]];
         let yaw = [[cy, 0.0, -sy], [0.0, 1.0, 0.0], [sy, 0.0, cy]];
-        std::array::from_fn(|i| {
-            std::array::from_fn(|j| (0..3).map(|k| pitch[i][k] * yaw[k][j]).sum())
-        })
+        let product = |a: [[f64; 3]; 3], b: [[f64; 3]; 3]| -> [[f64; 3]; 3] {
+            std::array::from_fn(|i| {
+                std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum())
+            })
+        };
+        product(roll, product(pitch, yaw))
     }
 
     /// Eye coordinates of a world point, in f64.
@@ -370,10 +378,15 @@ impl Case {
 
     fn label(&self) -> String {
         format!(
-            "{} pitch {}° yaw {}° T {}{:+?} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
+            "{} pitch {}° yaw {}°{} T {}{:+?} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
             self.at.label,
             self.pitch_deg,
             self.yaw_deg,
+            if self.roll_deg != 0.0 {
+                format!(" roll {}°", self.roll_deg)
+            } else {
+                String::new()
+            },
             self.translate,
             self.jitter,
             if self.grid { "grid" } else { "quad" },
@@ -715,6 +728,8 @@ impl Pick {
 fn cases() -> Vec<Case> {
     let full = std::env::var("ZSHIFT_ENGINE_SCENES").is_ok_and(|v| v == "full");
     let mut pick = Pick(0x2545_F491_4F6C_DD1D);
+    // The roll from a stream of its own, so the other choices stay those of the unrolled sweep.
+    let mut roll_pick = Pick(0x0D1E_2026_1126_5EED);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
         for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {
@@ -735,6 +750,7 @@ fn cases() -> Vec<Case> {
                             pitch_deg,
                             translate,
                             yaw_deg: [0.0, 33.7][pick.index(2)],
+                            roll_deg: [0.0, 0.0, 90.0, 17.0][roll_pick.index(4)],
                             jitter: [[0.0, 0.0], [0.3719, -0.6143]][pick.index(2)],
                             grid,
                             near,
