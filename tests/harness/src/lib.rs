@@ -463,6 +463,7 @@ impl Gl {
                 ));
             }
             gl.viewport(0, 0, w, h);
+            gl.disable(glow::SCISSOR_TEST);
             gl.enable(glow::DEPTH_TEST);
         }
         Ok(())
@@ -662,6 +663,35 @@ impl Gl {
         })
     }
 
+    /// [`Gl::read_color`] of the `width × height` rectangle whose lower-left pixel is `origin`
+    /// (a viewport inside a larger framebuffer, without reading the rest).
+    ///
+    /// # Errors
+    /// No target, or a GL error.
+    pub fn read_color_at(
+        &mut self,
+        origin: [u32; 2],
+        width: u32,
+        height: u32,
+    ) -> Result<Image, String> {
+        self.require_target()?;
+        // SAFETY: this context is current on this thread (Gl's invariant).
+        let pixels = unsafe {
+            read_rgba8_at(
+                &self.gl,
+                origin.map(|c| c as i32),
+                width as i32,
+                height as i32,
+            )
+        };
+        self.check("glReadPixels(GL_RGBA)")?;
+        Ok(Image {
+            width: width as usize,
+            height: height as usize,
+            pixels,
+        })
+    }
+
     /// Reads the depth attachment as window depth: `glReadPixels(GL_DEPTH_COMPONENT, GL_FLOAT)`,
     /// rows bottom-up. For D16/D24 GL converts the stored integer `k` to `k / (2^m − 1)`.
     ///
@@ -807,13 +837,26 @@ void main() { frag = color; }
 /// # Safety
 /// `gl`'s context must be current on this thread.
 pub unsafe fn read_rgba8(gl: &glow::Context, width: i32, height: i32) -> Vec<[u8; 4]> {
+    read_rgba8_at(gl, [0, 0], width, height)
+}
+
+/// [`read_rgba8`] of the `width × height` rectangle whose lower-left pixel is `origin`.
+///
+/// # Safety
+/// `gl`'s context must be current on this thread.
+pub unsafe fn read_rgba8_at(
+    gl: &glow::Context,
+    origin: [i32; 2],
+    width: i32,
+    height: i32,
+) -> Vec<[u8; 4]> {
     let mut bytes = vec![0u8; (width * height * 4) as usize];
     gl.finish();
     gl.read_buffer(glow::COLOR_ATTACHMENT0);
     gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
     gl.read_pixels(
-        0,
-        0,
+        origin[0],
+        origin[1],
         width,
         height,
         glow::RGBA,

@@ -28,8 +28,9 @@ pub struct Window {
 }
 
 impl Gl {
-    /// Sets `glViewport` and `glDepthRange` from `window` (they stay until changed; the target
-    /// helpers reset the viewport to the whole target).
+    /// Sets `glViewport` and `glDepthRange` from `window`, and the scissor box to the viewport so
+    /// that clears touch only it (they stay until changed; the target helpers reset the
+    /// viewport to the whole target and turn the scissor test off).
     ///
     /// # Errors
     /// A GL error.
@@ -37,6 +38,8 @@ impl Gl {
         let [x, y, w, h] = window.viewport;
         unsafe {
             self.gl.viewport(x, y, w, h);
+            self.gl.scissor(x, y, w, h);
+            self.gl.enable(glow::SCISSOR_TEST);
             self.gl
                 .depth_range_f64(window.depth_range[0], window.depth_range[1]);
         }
