@@ -72,7 +72,7 @@ struct Attachment {
     packed: bool,
 }
 
-const ATTACHMENTS: [Attachment; 8] = [
+const ATTACHMENTS: [Attachment; 9] = [
     Attachment {
         label: "[-1,1] D24",
         clip: ClipDepth::NegOneToOne,
@@ -119,6 +119,13 @@ const ATTACHMENTS: [Attachment; 8] = [
         label: "[-1,1] D32F",
         clip: ClipDepth::NegOneToOne,
         format: DepthFormat::D32F,
+        packed: false,
+    },
+    // OpenGL ES's smallest required depth format, still a mobile engine's default.
+    Attachment {
+        label: "[-1,1] D16",
+        clip: ClipDepth::NegOneToOne,
+        format: DepthFormat::D16,
         packed: false,
     },
 ];
