@@ -116,6 +116,9 @@ fn finish(name: &'static str, verts: Vec<[f32; 3]>, tris: Vec<[u32; 3]>) -> Mesh
     }
 }
 
+/// A mesh generator: the sweep's meshes at a size and a distance.
+type MeshMaker = fn(f64, f64) -> Mesh;
+
 /// A UV sphere of radius `r` centred at eye depth `d`, 24 × 12, poles dropped to rings.
 fn sphere(r: f64, d: f64) -> Mesh {
     let (nu, nv) = (24, 12);
@@ -1082,7 +1085,7 @@ fn edges_over_faces_sweep() {
     let mut classes: Vec<(String, Class)> = Vec::new();
     let mut failures = Vec::new();
     let mut refusals = Refusals::default();
-    let meshes: [(&str, fn(f64, f64) -> Mesh); 4] = [
+    let meshes: [(&str, MeshMaker); 4] = [
         ("sphere", sphere),
         ("torus", torus),
         ("terrain", terrain),
@@ -1337,9 +1340,8 @@ fn edges_over_faces_sweep() {
         msaa.delete(&gl);
     }
     println!(
-        "\n{} run ({}); the peers' shown counts every hidden-edge pixel, zshift's only those beyond its reported gap",
+        "\n{} run (ZSHIFT_LINES_FULL=1 for the full grid); the peers' shown counts every hidden-edge pixel, zshift's only those beyond its reported gap",
         if full { "full grid".to_string() } else { format!("sampled, one scene in {SAMPLE}") },
-        "ZSHIFT_LINES_FULL=1 for the full grid"
     );
     println!("\n| class | scenes | answered | visible px lost | hidden px shown beyond gap | zshift ÷ smallest working (median, max; scenes needing none) | (1,1) lost/shown | (2,2) | (0,4) | (0,8) | (1,0) | δ=1e-3 | δ=1e-2 |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");

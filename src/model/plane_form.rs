@@ -119,7 +119,7 @@ mod tests {
             [2.0, -h, -11.0f32],
             [-2.0, -h, -11.0],
         ]
-        .map(|[x, y, z]| glam::Vec3::new(x, y as f32, z));
+        .map(|[x, y, z]| glam::Vec3::new(x, y, z));
         let shape =
             crate::footprint::decal_shape(&frustum, ClipDepth::NegOneToOne, [640, 384], &corners)
                 .unwrap();
@@ -129,7 +129,7 @@ mod tests {
         assert!((form.a0 + m[10]).abs() < 1e-9, "{form:?}");
         assert!(form.ax.abs() < 1e-9);
         let on_eye = form.on_eye(&m);
-        let h32 = f64::from(h as f32);
+        let h32 = f64::from(h);
         assert!(
             (on_eye[1] - m[14] / h32).abs() < 1e-6 * (m[14] / h32).abs(),
             "{on_eye:?}"
