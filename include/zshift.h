@@ -1269,7 +1269,9 @@ ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip c
  slightly inside (near plane at n * (1 + 2^-16), sides inward by 2^-16 of the frustum's
  width: less than a quarter pixel up to 16384 pixels; far at f * (1 - 2^-16), or where window
  depth is 2^-20 below 1 if nearer: f*n/(n + 2^-20*(f - n)), 1 % nearer than f at f/n = 1e4,
- 9 % at 1e5, since f32 resolves window depth near 1 only to 2^-24), so that the
+ 9 % at 1e5, half the range at 1e6, since f32 resolves window depth near 1 only to 2^-24;
+ under reversed Z the far plane is at window depth 0 and needs no such margin, but the cut
+ does not know the convention: there, prefer an infinite far plane), so that the
  rasterizer clips nothing of it: draw the result as a triangle fan and pass base_reach = 0.
  A base the rasterizer clips in float (a ground plane running behind the camera) carries the
  large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
