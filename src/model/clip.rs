@@ -170,14 +170,14 @@ pub(crate) fn clip_term(
 /// Cuts a planar polygon (eye-space vertices in order, f64) to the view frustum shrunk by a
 /// relative margin of 2⁻¹⁶ (the near plane moved to `n·(1 + 2⁻¹⁶)`, the side planes inward by
 /// 2⁻¹⁶ of the frustum's width) and the far plane moved to `f·(1 − 2⁻¹⁶)` or to where window
-/// depth is 2⁻²⁰ below 1 if nearer (`f·n/(n + 2⁻²⁰·(f − n))`: 1 % nearer at `f/n = 10⁴`,
-/// 9 % at 10⁵, half the range at 10⁶: f32 resolves window depth near 1 only to 2⁻²⁴, and under
-/// `[−1, 1]` and `[0, 1]` nothing beyond is resolved anyway; under reversed Z the far plane is at
-/// window depth 0 and needs no such margin, but the cut does not know the convention: there,
-/// prefer an infinite far plane), in f64: drawn
-/// in f32, the result needs no clipping by the rasterizer, and the recommendation holds for it
-/// with [`crate::recommend::Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a base
-/// crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
+/// depth is 2⁻²⁰ below 1 if nearer (`f·n/(n + 2⁻²⁰·(f − n))`: 1 % nearer at `f/n = 10⁴`, 9 % at
+/// 10⁵, half the range at 10⁶; f32 resolves window depth near 1 only to 2⁻²⁴, and under
+/// `[−1, 1]` and `[0, 1]` what is cut away spans the last 16 f32 steps of depth; under reversed
+/// Z the far plane is at window depth 0 and needs no such margin, but the cut does not know the
+/// convention: there, prefer an infinite far plane), in f64: drawn in f32, the result needs no
+/// clipping by the rasterizer, and the recommendation holds for it with
+/// [`crate::recommend::Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a
+/// base crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
 /// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
 ///
 /// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
