@@ -172,12 +172,12 @@ mod tests {
     /// loose by more than 8× on the worst of 4000 points.
     #[test]
     fn eye_first_roundings_cover_an_f32_view_transform() {
-        let mut state = 0x2545_F491_4F6C_DD1Du64;
+        // A Weyl sequence (the fractional parts of k·α for irrational α): deterministic and
+        // spread evenly, with no generator to carry.
+        let mut k = 0.0f64;
         let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
+            k += 1.0;
+            (k * 0.618_033_988_749_894_9 + 0.5 * (k * 0.414_213_562_373_095).fract()).fract()
         };
         let mut worst = 0.0f64;
         for _ in 0..40 {
