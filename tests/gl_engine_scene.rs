@@ -72,7 +72,7 @@ struct Attachment {
     packed: bool,
 }
 
-const ATTACHMENTS: [Attachment; 9] = [
+const ATTACHMENTS: [Attachment; 13] = [
     Attachment {
         label: "[-1,1] D24",
         clip: ClipDepth::NegOneToOne,
@@ -127,6 +127,31 @@ const ATTACHMENTS: [Attachment; 9] = [
         clip: ClipDepth::NegOneToOne,
         format: DepthFormat::D16,
         packed: false,
+    },
+    // The rest of the cross product of {D24, D24S8, D32F, D32F_S8} and the three conventions.
+    Attachment {
+        label: "[-1,1] D32F_S8",
+        clip: ClipDepth::NegOneToOne,
+        format: DepthFormat::D32F,
+        packed: true,
+    },
+    Attachment {
+        label: "[0,1] D24S8",
+        clip: ClipDepth::ZeroToOne,
+        format: DepthFormat::D24,
+        packed: true,
+    },
+    Attachment {
+        label: "reversed D24",
+        clip: ClipDepth::ReversedZeroToOne,
+        format: DepthFormat::D24,
+        packed: false,
+    },
+    Attachment {
+        label: "reversed D32F_S8",
+        clip: ClipDepth::ReversedZeroToOne,
+        format: DepthFormat::D32F,
+        packed: true,
     },
 ];
 
