@@ -382,7 +382,9 @@ typedef struct {
    coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
    world_box it tells the model each eye coordinate's rounding exactly, instead of the
    bound from world_reach over every rotation: far tighter for a ground under a level
-   camera, and far from the world origin (README, "The scene every engine draws").
+   camera, and far from the world origin (README, "The scene every engine draws"). Base and
+   decal must both be drawn through it (a decal with a model matrix of its own: pass
+   world_reach instead, whose bound covers model matrices).
    */
   const float *view_matrix;
   /*

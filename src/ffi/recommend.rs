@@ -53,7 +53,9 @@ pub struct ZshiftPipeline {
     /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With
     /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
     /// bound from world_reach over every rotation: far tighter for a ground under a level
-    /// camera, and far from the world origin (README, "The scene every engine draws").
+    /// camera, and far from the world origin (README, "The scene every engine draws"). Base and
+    /// decal must both be drawn through it (a decal with a model matrix of its own: pass
+    /// world_reach instead, whose bound covers model matrices).
     pub view_matrix: *const f32,
     /// With view_matrix: the box of the base and decal positions the shader receives (their
     /// world-space bounding box: min x, min y, min z, max x, max y, max z). Only the base's

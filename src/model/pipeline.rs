@@ -45,7 +45,9 @@ pub struct Pipeline {
     /// The f32 matrix the vertex shader applies to the positions it receives to make eye
     /// coordinates (the view, or model-view, matrix; column-major), with
     /// [`Pipeline::world_box`]: the model then knows each eye coordinate's rounding exactly
-    /// instead of bounding it from `world_reach` over every rotation. `None`: not given.
+    /// instead of bounding it from `world_reach` over every rotation. Base and decal must both
+    /// be drawn through it (a decal with a model matrix of its own: pass `world_reach`, whose
+    /// bound covers model matrices). `None`: not given.
     pub view: Option<[f32; 16]>,
     /// The box `[lo, hi]` of the base and decal positions the shader receives (in the space
     /// `view` maps from), with [`Pipeline::view`]. Only the base's triangles under the decal
