@@ -303,7 +303,8 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     shader computes ``proj * (view * p)``), and ``view_matrix`` with ``world_box`` (the
     shader's view matrix, 16 floats column-major, and the world-space box
     ``((min x, min y, min z), (max x, max y, max z))`` of the base and decal: for a
-    tessellated ground, of the cells the decal touches, the only base triangles under it)."""
+    tessellated ground, of the cells the decal touches, the only base triangles under it; base
+    and decal both drawn through that matrix, else pass ``world_reach``)."""
     record.depth_func = 0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF
     x, y = viewport_origin
     for name, value in (("viewport_origin x", x), ("viewport_origin y", y)):
