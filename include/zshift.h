@@ -939,7 +939,8 @@ typedef struct {
    */
   double reach;
   /*
-   q: the format's quantum.
+   q: the storage term, the format's quantum, or min(q, q/2 + u*w_max) where a probed
+   profile identified the rasterizer's conversion to UNORM.
    */
   double quantum;
   /*

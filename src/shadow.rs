@@ -57,7 +57,9 @@
 //!   with the map as viewport, the receivers' light depths as the decal's range and the
 //!   eye-space slope `√2·tan θ` of a plane at the limit angle to the light's axis (a measured
 //!   profile enters as it does there). `q` bounds the storage: the stored value is within one
-//!   quantum of the computed one. `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤ 2^−b·m` grows with the caster's
+//!   quantum of the computed one under any rounding GL allows, and within `q/2 + u·w_max` where
+//!   a measured profile identified the conversion (every candidate rounds to nearest; the `u`
+//!   is the f32 product `w·(2^m − 1)` it may round first). `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤ 2^−b·m` grows with the caster's
 //!   own slope `m` (below), so the slope factor carries it (`2a + 2^−b`) and the constant
 //!   `K` leaves it out. With world-space vertices (`world_reach > 0`, or the light's view
 //!   matrix given), `V` is the larger of the eye-space term and the f32 model-view term of
@@ -286,7 +288,9 @@ pub struct ShadowMap {
 pub struct ShadowTerms {
     /// `a`: texels per axis from the sample point to the farthest texel centre read.
     pub reach: f64,
-    /// `q`: the format's quantum at the receivers' largest window depth.
+    /// `q`: the storage term, the format's quantum at the receivers' largest window depth, or
+    /// `min(q, q/2 + u·w_max)` where a measured profile identified the rasterizer's conversion
+    /// to UNORM (its `facing_chain`).
     pub quantum: f64,
     /// `E = T + V + I`: the caster's rasterization error (the decal model's per-primitive
     /// terms).
@@ -588,6 +592,21 @@ pub fn shadow_bias_for_receivers(
     finish(&map, terms, needed, Some((along_light, along_normal)))
 }
 
+/// The storage term of `K`: the stored UNORM value is within the quantum `q` of the computed
+/// depth under any rounding GL allows; where the probe identified the rasterizer's conversion
+/// (a measured profile's [`RasterizerProfile::facing_chain`], every one of its candidates rounds
+/// to the nearest integer), within `q/2` plus the f32 rounding of the product `w·(2^m − 1)`
+/// the conversion may take first (`u·w_max`, relative). The smaller of the two. D32F stores
+/// the computed depth: `quantum` is its own term there and is left as it is.
+fn storage(map: &ShadowMap, quantum: f64, w_max: f64) -> f64 {
+    match map.profile.facing_chain {
+        Some(_) if map.profile.measured && map.format.is_unorm() => {
+            quantum.min(0.5 * quantum + U * w_max)
+        }
+        _ => quantum,
+    }
+}
+
 /// The vertex pipeline of the light's caster and lookup shaders ([`crate::model::vertex`]): the
 /// map's pipeline with the larger of the two `world_reach`es (both bound the same
 /// coordinates).
@@ -733,6 +752,7 @@ fn terms_of(
     } else {
         0.0
     };
+    let quantum = storage(map, quantum, w_max);
     let snap_factor = match map.profile.snapping {
         crate::profile::Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32)),
         crate::profile::Snapping::Unsnapped => 0.0,
@@ -988,6 +1008,51 @@ mod tests {
             profile: RasterizerProfile::worst_case(),
             pipeline: crate::model::Pipeline::default(),
         }
+    }
+
+    /// A measured profile whose conversion the probe identified stores D16 within half a
+    /// quantum (plus the f32 product's rounding): the storage term halves; without the chain, or
+    /// with the worst case, it stays a whole quantum; D32F has no conversion to halve.
+    #[test]
+    fn an_identified_conversion_halves_the_storage_term() {
+        let q16 = 1.0 / 65_535.0;
+        let chain = crate::depth_chain::DepthChain {
+            fused_clip: false,
+            reciprocal: true,
+            fused_viewport: false,
+            conversion: crate::depth_chain::Conversion::F32NearestEven,
+        };
+        let measured = RasterizerProfile {
+            measured: true,
+            facing_chain: Some(chain),
+            ..RasterizerProfile::worst_case()
+        };
+        let d16 = ShadowMap {
+            format: DepthFormat::Unorm16,
+            ..ground_map(Lookup::Nearest, 60.0)
+        };
+        let worst = shadow_bias(&d16).unwrap().terms.quantum;
+        assert!((worst - q16).abs() < 1e-12 * q16, "{worst}");
+        let probed = shadow_bias(&ShadowMap {
+            profile: measured,
+            ..d16
+        })
+        .unwrap()
+        .terms
+        .quantum;
+        assert!(probed >= 0.5 * q16 && probed <= 0.5 * q16 + U, "{probed}");
+        let unidentified = RasterizerProfile {
+            facing_chain: None,
+            ..measured
+        };
+        let kept = shadow_bias(&ShadowMap {
+            profile: unidentified,
+            ..d16
+        })
+        .unwrap()
+        .terms
+        .quantum;
+        assert_eq!(kept, worst);
     }
 
     /// The slope factor is `2a`; the footprint at the limit is `a·tan θ·σ/(f − n)` (computed

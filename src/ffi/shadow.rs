@@ -95,7 +95,8 @@ pub struct ZshiftShadowMap {
 pub struct ZshiftShadowBias {
     /// a: texels per axis from the sample point to the farthest texel centre read.
     pub reach: f64,
-    /// q: the format's quantum.
+    /// q: the storage term, the format's quantum, or min(q, q/2 + u*w_max) where a probed
+    /// profile identified the rasterizer's conversion to UNORM.
     pub quantum: f64,
     /// E: the caster's rasterization error.
     pub caster: f64,
