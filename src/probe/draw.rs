@@ -283,6 +283,17 @@ impl Plane {
 // Scenes: triangles on eye-space planes, projected with glFrustum in f64 and rounded to f32.
 // ---------------------------------------------------------------------------------------------
 
+/// `glFrustum`'s depth row `(m10, m14)` in f64 for near `n`, far `f` under `clip`:
+/// `(−(f + n)/(f − n), −2f·n/(f − n))` under `[−1, 1]`, `(−f/(f − n), −f·n/(f − n))` under
+/// `[0, 1]`, `(n/(f − n), f·n/(f − n))` reversed.
+pub(super) fn depth_row(n: f64, f: f64, clip: ClipDepth) -> (f64, f64) {
+    match clip {
+        ClipDepth::NegOneToOne => (-(f + n) / (f - n), -2.0 * f * n / (f - n)),
+        ClipDepth::ZeroToOne => (-f / (f - n), -f * n / (f - n)),
+        ClipDepth::ReversedZeroToOne => (n / (f - n), f * n / (f - n)),
+    }
+}
+
 /// A symmetric `glFrustum(−e·n, e·n, −e·n, e·n, n, f)`.
 #[derive(Clone, Copy)]
 pub(super) struct View {
@@ -299,30 +310,24 @@ impl View {
     /// The projection matrix, each element computed in f64 and rounded to f32 as an engine
     /// passes it (`glFrustum`'s, or its reversed `[0, 1]` form).
     pub(super) fn matrix(&self) -> [f32; 16] {
-        let (n, f) = (self.n, self.f);
-        let (m10, m14) = if self.reversed {
-            (n / (f - n), f * n / (f - n))
-        } else {
-            (-(f + n) / (f - n), -2.0 * f * n / (f - n))
+        self.matrix_for(false)
+    }
+
+    /// [`View::matrix`] with `glFrustum`'s depth row in its `[0, 1]` form for
+    /// `glClipControl(GL_ZERO_TO_ONE)` where `zero_to_one` (and the view is not reversed).
+    /// Window depth is the same function of eye depth under both.
+    pub(super) fn matrix_for(&self, zero_to_one: bool) -> [f32; 16] {
+        let clip = match (self.reversed, zero_to_one) {
+            (true, _) => ClipDepth::ReversedZeroToOne,
+            (false, true) => ClipDepth::ZeroToOne,
+            (false, false) => ClipDepth::NegOneToOne,
         };
+        let (m10, m14) = depth_row(self.n, self.f, clip);
         let (sx, sy) = (1.0 / self.e, 1.0 / (self.e * self.squash));
         [
             sx, 0.0, 0.0, 0.0, 0.0, sy, 0.0, 0.0, 0.0, 0.0, m10, -1.0, 0.0, 0.0, m14, 0.0,
         ]
         .map(|m| m as f32)
-    }
-
-    /// [`View::matrix`] with `glFrustum`'s depth row in its `[0, 1]` form for
-    /// `glClipControl(GL_ZERO_TO_ONE)` where `zero_to_one` (and the view is not reversed):
-    /// `−f/(f − n)`, `−f·n/(f − n)`. Window depth is the same function of eye depth under both.
-    pub(super) fn matrix_for(&self, zero_to_one: bool) -> [f32; 16] {
-        let mut m = self.matrix();
-        if zero_to_one && !self.reversed {
-            let (n, f) = (self.n, self.f);
-            m[10] = (-f / (f - n)) as f32;
-            m[14] = (-f * n / (f - n)) as f32;
-        }
-        m
     }
 
     /// The triangle `t` (eye space) as a vertex buffer holds it: f32 coordinates, `w = 1`.

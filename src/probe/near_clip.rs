@@ -235,11 +235,7 @@ pub(super) const SKEWED_NEAR_SIDES: [[f64; 4]; 2] =
 /// f32 (column-major).
 pub(super) fn near_view_matrix([l, r, b, t]: [f64; 4], clip: ClipDepth) -> [f32; 16] {
     let (n, f) = (NEAR_VIEW.n, NEAR_VIEW.f);
-    let (m10, m14) = match clip {
-        ClipDepth::NegOneToOne => (-(f + n) / (f - n), -2.0 * f * n / (f - n)),
-        ClipDepth::ZeroToOne => (-f / (f - n), -f * n / (f - n)),
-        ClipDepth::ReversedZeroToOne => (n / (f - n), f * n / (f - n)),
-    };
+    let (m10, m14) = depth_row(n, f, clip);
     [
         2.0 * n / (r - l),
         0.0,

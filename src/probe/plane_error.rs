@@ -269,7 +269,7 @@ pub(super) unsafe fn plane_error(
 /// constant: 1 under `[−1, 1]`, 2 under `[0, 1]` (nothing halves the transform's roundings:
 /// [`crate::model::measured`]), `|m10|` under reversed Z (they are relative to the product
 /// `m10·z`, and to the depth itself, in `M`).
-pub(super) fn pixel_ulps(
+fn pixel_ulps(
     format: Format,
     clip: ClipDepth,
     m10: f64,
