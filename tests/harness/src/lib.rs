@@ -653,14 +653,7 @@ impl Gl {
             let t = self.require_target()?;
             (t.width, t.height)
         };
-        // SAFETY: this context is current on this thread (Gl's invariant).
-        let pixels = unsafe { read_rgba8(&self.gl, w, h) };
-        self.check("glReadPixels(GL_RGBA)")?;
-        Ok(Image {
-            width: w as usize,
-            height: h as usize,
-            pixels,
-        })
+        self.read_color_at([0, 0], w as u32, h as u32)
     }
 
     /// [`Gl::read_color`] of the `width × height` rectangle whose lower-left pixel is `origin`
