@@ -59,9 +59,9 @@
 //!   profile enters as it does there). `q` bounds the storage: the stored value is within one
 //!   quantum of the computed one under any rounding GL allows, and within `q/2 + u·w_max` where
 //!   a measured profile identified the conversion (every candidate rounds to nearest; the `u`
-//!   is the f32 product `w·(2^m − 1)` it may round first). `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤ 2^−b·m` grows with the caster's
-//!   own slope `m` (below), so the slope factor carries it (`2a + 2^−b`) and the constant
-//!   `K` leaves it out. With world-space vertices (`world_reach > 0`, or the light's view
+//!   is the f32 product `w·(2^m − 1)` it may round first). `S ≤ 2^−(b+1)·(|gₓ| + |g_y|) ≤
+//!   2^−b·m` grows with the caster's own slope `m` (below), so the slope factor carries it
+//!   (`2a + 2^−b`) and the constant `K` leaves it out. With world-space vertices (`world_reach > 0`, or the light's view
 //!   matrix given), `V` is the larger of the eye-space term and the f32 model-view term of
 //!   [`crate::model::vertex`] ("The light's pipeline", below).
 //! * `T + V`: **the lookup's own rounding**. The shader computes the receiver's light-space
@@ -1053,6 +1053,21 @@ mod tests {
         .terms
         .quantum;
         assert_eq!(kept, worst);
+        // Receivers off the near plane, where D32F's polygon-offset unit does not vanish.
+        let d32f = ShadowMap {
+            format: DepthFormat::Float32,
+            receiver_depths: [3.0, 30.0],
+            ..d16
+        };
+        let float = shadow_bias(&d32f).unwrap().terms.quantum;
+        let measured_float = shadow_bias(&ShadowMap {
+            profile: measured,
+            ..d32f
+        })
+        .unwrap()
+        .terms
+        .quantum;
+        assert_eq!(measured_float, float);
     }
 
     /// The slope factor is `2a`; the footprint at the limit is `a·tan θ·σ/(f − n)` (computed

@@ -803,8 +803,9 @@ fn failures_of(rows: &[Row]) -> Vec<String> {
 
 /// The full grid's rasterizer-clipped scenes that lose decal pixels when the probe's clipper
 /// figure enters the model without its margin (`γ = 0.83u`, about the figure itself): they need
-/// up to 2u (four of them more than 1.25u, one more than 1.5u). The probed profile's `γ = 4·clip_ulps·u` must hold on
-/// each, so that CI, which samples one scene in 12, replays them every time.
+/// up to 2u (four of them more than 1.25u, one more than 1.5u). The probed profile's
+/// `γ = 4·clip_ulps·u` must hold on each, so that CI, which samples one scene in 12, replays
+/// them every time.
 const HARDEST_CLIPPED: [&str; 27] = [
     "[-1,1] D16  <  sloped clipped Less 320x180 off-centre f/n=1e3 s=(-6.56,-7.55) d=[1.8128e1,4.6440e1]",
     "[-1,1] D16  <= sloped clipped LessEqual 320x180 axis-off f/n=1e5 s=(-0.27,-0.96) d=[5.4609e1,7.4817e1]",
