@@ -1,5 +1,5 @@
 //! The depth readback confirms the precision formulas (seed 001) and the f32 transform term of
-//! the recommendation's error model (`src/recommend.rs`). Measured on llvmpipe:
+//! the recommendation's error model (`src/recommend/`). Measured on llvmpipe:
 //!
 //! * D16: `glReadPixels(GL_DEPTH_COMPONENT)` is within half a quantum of `zshift_window_depth`,
 //!   and facing planes one `zshift_depth_resolution` apart always sort; a quarter step apart

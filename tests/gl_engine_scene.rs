@@ -26,7 +26,9 @@
 //! (the counts the test asserts then fail: it is for looking at one scene);
 //! `ZSHIFT_ENGINE_SCENES_GROUND_ERROR=1` each scene's ground drawn alone against its exact plane,
 //! row by row; `ZSHIFT_ENGINE_SCENES_VIEWPORT=1920x1080` (or `3840x2160`) draws at an engine's
-//! own size instead of 320×180.
+//! own size instead of 320×180; `ZSHIFT_ENGINE_SCENES_SEED=<n>` another draw, with values between
+//! the grid's, the ground at a world height as far from the origin as the translation and a field
+//! of view of 40° to 100°.
 
 mod gl_common;
 
@@ -60,7 +62,8 @@ fn viewport() -> [u32; 2] {
             .unwrap_or([320, 180])
     })
 }
-/// glm::perspective's vertical field of view.
+/// glm::perspective's vertical field of view (other draws, `ZSHIFT_ENGINE_SCENES_SEED`, take
+/// 40° to 100°).
 const FOVY_DEG: f64 = 60.0;
 
 /// One convention and attachment.
@@ -169,6 +172,11 @@ struct Case {
     /// The camera's offset from the ground's centre in world x and z: engines' cameras sit at
     /// coordinates no f32 holds exactly.
     jitter: [f64; 2],
+    /// The ground's world height (f32-exact): 0, or with `ZSHIFT_ENGINE_SCENES_SEED` as far
+    /// from the origin as the translation (a world whose ground is not at y = 0).
+    ground_y: f64,
+    /// The vertical field of view, degrees.
+    fovy_deg: f64,
     grid: bool,
     near: f64,
     far: f64,
@@ -186,7 +194,7 @@ impl Case {
     }
 
     fn frustum(&self) -> Frustum {
-        let t = self.near * (FOVY_DEG.to_radians() / 2.0).tan();
+        let t = self.near * (self.fovy_deg.to_radians() / 2.0).tan();
         let r = t * f64::from(viewport()[0]) / f64::from(viewport()[1]);
         Frustum::new(-r, r, -t, t, self.near, self.far).expect("valid frustum")
     }
@@ -194,7 +202,7 @@ impl Case {
     fn camera(&self) -> [f64; 3] {
         [
             self.translate + self.jitter[0],
-            EYE_HEIGHT,
+            self.ground_y + EYE_HEIGHT,
             self.translate + self.jitter[1],
         ]
     }
@@ -245,7 +253,7 @@ impl Case {
         let at = |i: u32, j: u32| {
             [
                 (x0 + step * f64::from(i)) as f32,
-                0.0,
+                self.ground_y as f32,
                 (z0 + step * f64::from(j)) as f32,
             ]
         };
@@ -284,7 +292,7 @@ impl Case {
     }
 
     fn decal_world(&self) -> [[f32; 3]; 4] {
-        self.square(self.size / 2.0, 0.0)
+        self.square(self.size / 2.0, self.ground_y)
             .map(|p| p.map(|c| c as f32))
     }
 
@@ -340,7 +348,7 @@ impl Case {
             for j in j0..=j1 + 1 {
                 let x = self.translate - GROUND + step * i as f64;
                 let z = self.translate - GROUND + step * j as f64;
-                out.push([x, 0.0, z]);
+                out.push([x, self.ground_y, z]);
             }
         }
         out
@@ -383,7 +391,8 @@ impl Case {
     fn world_box(&self) -> [[f64; 3]; 2] {
         let g = self.translate;
         if !self.grid {
-            return [[g - GROUND, 0.0, g - GROUND], [g + GROUND, 0.0, g + GROUND]];
+            let y = self.ground_y;
+            return [[g - GROUND, y, g - GROUND], [g + GROUND, y, g + GROUND]];
         }
         let corners = self.decal_cell_corners();
         let lo = [0, 1, 2].map(|k| corners.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
@@ -402,7 +411,7 @@ impl Case {
         [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
             .iter()
             .map(|[sx, sz]| {
-                let e = self.eye([g + sx * GROUND, 0.0, g + sz * GROUND]);
+                let e = self.eye([g + sx * GROUND, self.ground_y, g + sz * GROUND]);
                 e.iter().fold(0.0f64, |a, c| a.max(c.abs()))
             })
             .fold(0.0, f64::max)
@@ -410,7 +419,7 @@ impl Case {
 
     fn label(&self) -> String {
         format!(
-            "{} pitch {}° yaw {}°{} T {}{:+?} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
+            "{} pitch {}° yaw {}°{} T {}{:+?}{} {} n {} f {} decal {}@{}{} {} vp@{:?} range {:?}",
             self.at.label,
             self.pitch_deg,
             self.yaw_deg,
@@ -421,6 +430,11 @@ impl Case {
             },
             self.translate,
             self.jitter,
+            if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
+                format!(" ground y {} fovy {:.1}°", self.ground_y, self.fovy_deg)
+            } else {
+                String::new()
+            },
             if self.grid { "grid" } else { "quad" },
             self.near,
             self.far,
@@ -525,7 +539,8 @@ impl<'a> Renderer<'a> {
         let c = self.case;
         let (l, r, b, t, n, f) = c.frustum().parameters();
         // The ground plane y = 0 in eye space: normal and offset from three world points.
-        let [o, ex, ez] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]].map(|p| c.eye(p));
+        let y = c.ground_y;
+        let [o, ex, ez] = [[0.0, y, 0.0], [1.0, y, 0.0], [0.0, y, 1.0]].map(|p| c.eye(p));
         let (u1, u2) = (
             [0, 1, 2].map(|k| ex[k] - o[k]),
             [0, 1, 2].map(|k| ez[k] - o[k]),
@@ -599,7 +614,7 @@ impl<'a> Renderer<'a> {
         let occluder = quad_triangles(
             &self
                 .case
-                .square(0.75 * self.case.size, lift)
+                .square(0.75 * self.case.size, self.case.ground_y + lift)
                 .map(|p| p.map(|c| c as f32)),
         );
         let occ_mask = self.coverage(&occluder)?;
@@ -758,6 +773,35 @@ impl Pick {
         self.0 ^= self.0 << 17;
         (self.0 % n as u64) as usize
     }
+
+    /// A number in [0, 1).
+    fn unit(&mut self) -> f64 {
+        self.index(1 << 20) as f64 / f64::from(1u32 << 20)
+    }
+}
+
+/// `ZSHIFT_ENGINE_SCENES_SEED=<n>`: another draw of the sweep (0, the default, is the one CI
+/// runs): the same classes, other picks, and values between the grid's — decal size and
+/// distance, pitch, heading, translation — with the ground's world height as far from the origin
+/// as the translation (up, down, or 0).
+fn seed() -> u64 {
+    std::env::var("ZSHIFT_ENGINE_SCENES_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0)
+}
+
+/// Moves a case off the grid's values (`ZSHIFT_ENGINE_SCENES_SEED`, [`seed`]).
+fn vary(mut case: Case, v: &mut Pick) -> Case {
+    case.size = (case.size * (0.8 + 0.45 * v.unit())).clamp(0.5, 4.0);
+    case.distance *= 0.8 + 0.45 * v.unit();
+    case.pitch_deg *= 1.0 + 0.08 * v.unit();
+    case.yaw_deg = 360.0 * v.unit();
+    case.translate *= 1.0 + 0.9 * v.unit();
+    let height = [0.0, 1.0, -1.0][v.index(3)] * case.translate + 10.0 * v.unit();
+    case.ground_y = f64::from(height as f32);
+    case.fovy_deg = 40.0 + 60.0 * v.unit();
+    case
 }
 
 /// The sweep: every attachment × pitch × translation × ground, each with one variation of
@@ -765,9 +809,11 @@ impl Pick {
 /// `ZSHIFT_ENGINE_SCENES=full`).
 fn cases() -> Vec<Case> {
     let full = std::env::var("ZSHIFT_ENGINE_SCENES").is_ok_and(|v| v == "full");
-    let mut pick = Pick(0x2545_F491_4F6C_DD1D);
+    let seed = seed();
+    let mut pick = Pick(0x2545_F491_4F6C_DD1D ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     // The roll from a stream of its own, so the other choices stay those of the unrolled sweep.
-    let mut roll_pick = Pick(0x0D1E_2026_1126_5EED);
+    let mut roll_pick = Pick(0x0D1E_2026_1126_5EED ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9));
+    let mut values = Pick(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
         for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {
@@ -783,7 +829,7 @@ fn cases() -> Vec<Case> {
                             &[3.0, 10.0, 50.0, 200.0]
                         };
                         let near = [0.1, 0.01][pick.index(2)];
-                        out.push(Case {
+                        let case = Case {
                             at,
                             pitch_deg,
                             translate,
@@ -799,6 +845,13 @@ fn cases() -> Vec<Case> {
                             equal_test: pick.index(2) == 1,
                             origin: [[0, 0], [3500, 1900]][pick.index(2)],
                             depth_range: [[0.0, 1.0], [0.0, 0.5], [0.5, 1.0]][pick.index(3)],
+                            ground_y: 0.0,
+                            fovy_deg: FOVY_DEG,
+                        };
+                        out.push(if seed == 0 {
+                            case
+                        } else {
+                            vary(case, &mut values)
                         });
                     }
                 }

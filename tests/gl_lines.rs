@@ -8,9 +8,11 @@
 //! 1-pixel `GL_LINES` and polygon-mode lines; both methods (faces pushed back by
 //! `glPolygonOffset`, edges pulled forward through element 10/14); the worst-case profile
 //! (unsnapped, as llvmpipe sets its depth plane up) and the profile `zshift::probe` measures in
-//! the same context. The default run draws one scene in [`SAMPLE`] (every mesh, f/n and
-//! position in turn); `ZSHIFT_LINES_FULL=1` draws the whole grid. Not covered: 4× MSAA and
-//! width-3 lines (a compatibility context).
+//! the same context; width-3 lines (a compatibility context) and 4× MSAA (every sample checked
+//! against its own reference) in fewer scenes. The default run draws one scene in [`SAMPLE`]
+//! (every mesh, f/n and position in turn), the width-3 and MSAA variants one in [`SAMPLE_MORE`];
+//! `ZSHIFT_LINES_FULL=1` draws the whole grid; `ZSHIFT_LINES_SEED=<n>` another draw
+//! ([`Variation`]).
 //!
 //! **Refusals**: in every answered scene with a smallest working offset, zshift is asked again
 //! with `hidden_separation` half its gap (it must refuse), and the smallest offset that keeps
@@ -1066,9 +1068,53 @@ const PEERS: [(&str, f32, f32); 5] = [
 ];
 const SEED_SHIFTS: [f64; 2] = [1e-3, 1e-2];
 
+/// `ZSHIFT_LINES_SEED=<n>`: another draw of the sweep (0, the default, is the grid CI runs):
+/// f/n anywhere in the decade above each of the grid's, the mesh's position in the depth range
+/// moved by up to ±0.07 of its log, its radius 0.2–0.4 of its distance (0.3) and the frustum's
+/// half width 0.3–0.9 of the near distance (0.5).
+struct Variation(u64);
+
+impl Variation {
+    fn from_env() -> Self {
+        let seed = std::env::var("ZSHIFT_LINES_SEED")
+            .ok()
+            .and_then(|s| s.parse::<u64>().ok())
+            .unwrap_or(0);
+        Variation(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15))
+    }
+
+    /// A number in [0, 1) (xorshift), or `None` for the default grid.
+    fn unit(&mut self) -> Option<f64> {
+        if self.0 == 0 {
+            return None;
+        }
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        Some((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn ratio_factor(&mut self) -> f64 {
+        self.unit().map_or(1.0, |r| 10f64.powf(0.9 * r))
+    }
+
+    fn position_shift(&mut self) -> f64 {
+        self.unit().map_or(0.0, |r| 0.14 * (r - 0.5))
+    }
+
+    fn radius_factor(&mut self) -> f64 {
+        self.unit().map_or(0.3, |r| 0.2 + 0.2 * r)
+    }
+
+    fn half_width(&mut self) -> f64 {
+        self.unit().map_or(0.5, |r| 0.3 + 0.6 * r)
+    }
+}
+
 #[test]
 fn edges_over_faces_sweep() {
     let full = std::env::var_os("ZSHIFT_LINES_FULL").is_some_and(|v| v != "0");
+    let mut draw = Variation::from_env();
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
@@ -1105,12 +1151,14 @@ fn edges_over_faces_sweep() {
             })
             .unwrap_or_else(|e| panic!("glClipControl is needed: {e}"));
             for (ri, ratio) in [10.0f64, 1e3, 1e6].into_iter().enumerate() {
+                let ratio = ratio * draw.ratio_factor();
                 let n = 1.0f64;
                 let f = n * ratio;
                 for (pi, (pos, frac)) in [("near", 0.15), ("mid", 0.5), ("far", 0.85)]
                     .into_iter()
                     .enumerate()
                 {
+                    let frac = frac + draw.position_shift();
                     let d0 = (n * ratio.powf(frac)).max(1.6 * n).min(0.7 * f);
                     for (mi, (_, make)) in meshes.iter().enumerate() {
                         // The default run samples one scene in SAMPLE (the meshes in turn at
@@ -1136,7 +1184,7 @@ fn edges_over_faces_sweep() {
                             (a.min(-f64::from(v[2])), c.max(-f64::from(v[2])))
                         });
                         let d = d0.max(1.1 * n / lo).min(0.95 * f / hi);
-                        let radius = 0.3 * d;
+                        let radius = draw.radius_factor() * d;
                         let mesh = make(radius, d);
                         // The terrain (wider than the view) does not fit in [n, f] at f/n 10:
                         // its near rows cross the near plane, a case the model leaves out.
@@ -1147,7 +1195,7 @@ fn edges_over_faces_sweep() {
                         {
                             continue;
                         }
-                        let t = 0.5 * n;
+                        let t = draw.half_width() * n;
                         let frustum = Frustum::new(-t, t, -t, t, n, f).unwrap();
                         let clip = conv.clip();
                         let m = projection(&frustum, clip).unwrap();

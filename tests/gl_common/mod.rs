@@ -30,7 +30,7 @@ pub fn probed(gl: &Gl) -> recommend::RasterizerProfile {
 }
 
 /// How this rasterizer positions vertices for depth: llvmpipe sets its depth plane up from the
-/// unsnapped float positions (measured, see `src/recommend.rs`); any other driver is assumed to
+/// unsnapped float positions (measured, see `src/recommend/`); any other driver is assumed to
 /// snap to GL_SUBPIXEL_BITS first (the conservative choice).
 pub fn snapping_of(gl: &Gl) -> Snapping {
     if gl.renderer().contains("llvmpipe") {
