@@ -12,7 +12,8 @@
 //! against its own reference) in fewer scenes. The default run draws one scene in [`SAMPLE`]
 //! (every mesh, f/n and position in turn), the width-3 and MSAA variants one in [`SAMPLE_MORE`];
 //! `ZSHIFT_LINES_FULL=1` draws the whole grid; `ZSHIFT_LINES_SEED=<n>` another draw
-//! ([`Variation`]).
+//! ([`Variation`]); `ZSHIFT_LINES_VARIANT=<text>` only the variants whose name contains it
+//! (`MSAA`, `w3`, `polymode`).
 //!
 //! **Refusals**: in every answered scene with a smallest working offset, zshift is asked again
 //! with `hidden_separation` half its gap (it must refuse), and the smallest offset that keeps
@@ -1115,6 +1116,8 @@ impl Variation {
 fn edges_over_faces_sweep() {
     let full = std::env::var_os("ZSHIFT_LINES_FULL").is_some_and(|v| v != "0");
     let mut draw = Variation::from_env();
+    // `ZSHIFT_LINES_VARIANT=<text>`: only the variants whose name contains it ("MSAA", "w3").
+    let only = std::env::var("ZSHIFT_LINES_VARIANT").ok();
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
@@ -1166,6 +1169,7 @@ fn edges_over_faces_sweep() {
                         let idx = (ri * 3 + pi) * meshes.len() + mi;
                         let variants: Vec<Variant> = VARIANTS
                             .into_iter()
+                            .filter(|v| only.as_ref().is_none_or(|o| v.name().contains(o.as_str())))
                             .filter(|v| {
                                 let turn = idx + 5 * (fi * 3 + ci);
                                 full || if v.width == 1.0 && v.samples == 1 {
