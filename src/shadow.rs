@@ -176,6 +176,19 @@
 //! times the largest cosine above (a point moved `δ_N` along the normal lies `δ_N/cos θ`
 //! from its surface along the ray).
 //!
+//! **Meshes.** A kernel tap that lands on a neighbouring receiver reads that receiver's caster
+//! depth, biased by *its* slope term `factor·m_j`, while the lookup point sits on a receiver `i`
+//! whose depth runs up to `a·(|gₓ| + |g_y|)` of the steepest faces the path crosses: where the
+//! neighbour is flatter (a facet nearer a sphere's lit pole, a terrain's valley floor beside its
+//! slope) its slope term falls short. Measured: a UV sphere and a terrain with hills under 5×5
+//! PCF showed acne (up to 18 pixels of 5376) with the receivers' own planes alone. So the
+//! constant gains `factor·(m_max − m_min)` over the listed receivers (the flattest one's caster
+//! bias then reaches the steepest one's slope term) and the clamp at least
+//! `K + S + a·(max |gₓ| + max |g_y|)` (the largest run a tap can read across them); one planar
+//! receiver, or several of one slope, are unchanged. [`shadow_bias`] promises planar receivers
+//! only (planar across the kernel: every tap on the receiver's own plane); for curved or creased
+//! ones list their faces (`tests/gl_shadow/receivers.rs`: 0 acne on both, every lookup).
+//!
 //! **Refusal.** When `K + S + F(θ_max)` reaches the map's whole depth range (1), the bias would lift
 //! every caster past the far plane: no bias both ends acne at that angle and still shadows
 //! anything. [`shadow_bias`] then refuses with [`crate::ErrorKind::Unresolvable`], naming the
@@ -359,7 +372,10 @@ pub struct ShadowBias {
 
 /// The smallest caster-side bias that (B1) guarantees keeps every surface within the limit
 /// angle free of acne, in every API's units, with its receiver-side alternatives and its cost
-/// (module docs).
+/// (module docs). Receivers must be planar across the lookup's reach (every kernel tap on the
+/// receiver's own plane): a mesh whose faces bend within a few texels (a sphere, a terrain) can
+/// show acne under wide kernels; list its faces with [`shadow_bias_for_receivers`] ("Meshes" in
+/// the module docs).
 ///
 /// # Errors
 /// [`ErrorKind::NotFinite`] or [`ErrorKind::Domain`] for a bad input, naming it;
@@ -467,8 +483,9 @@ fn finish(
 /// counter-clockwise seen from its front (the side that is lit), every corner inside the light's
 /// frustum (clip a larger polygon to it first). A receiver whose front faces away from the light
 /// by more than `map.limit_angle_deg` at every point is skipped (shading hides it); the others
-/// are acne-free at the returned bias, at every angle short of edge-on. `map.receiver_depths`
-/// is not used (the receivers' own depths are).
+/// are acne-free at the returned bias, at every angle short of edge-on, also where a kernel
+/// reads across from one to another (the faces of a mesh: "Meshes" in the module docs).
+/// `map.receiver_depths` is not used (the receivers' own depths are).
 ///
 /// # Errors
 /// As [`shadow_bias`]; [`ErrorKind::Domain`] for a receiver that is not a planar polygon inside
@@ -489,6 +506,7 @@ pub fn shadow_bias_for_receivers(
     let mut all: Option<ShadowTerms> = None;
     let (mut needed, mut along_light, mut along_normal) = (0.0f64, 0.0f64, 0.0f64);
     let mut depths = [f64::INFINITY, 0.0f64];
+    let mut slopes = SlopeSpread::default();
     for (i, corners) in receivers.iter().enumerate() {
         let named = |e: Error| e.with_integer("receiver", i as i64);
         let eye: Vec<[f64; 3]> = corners
@@ -561,6 +579,7 @@ pub fn shadow_bias_for_receivers(
             }
         };
         needed = needed.max(own);
+        slopes.add(shape.footprint.gradient, t.snap);
         along_light = along_light.max(light_distance);
         along_normal = along_normal.max(light_distance * cos_max);
         depths = [depths[0].min(d_min), depths[1].max(d_max)];
@@ -579,17 +598,57 @@ pub fn shadow_bias_for_receivers(
             },
         });
     }
-    let Some(terms) = all else {
+    let Some(mut terms) = all else {
         return Err(domain(
             "no receiver faces the light within limit_angle_deg: list a lit receiver or raise the limit",
         )
         .with_value("limit_angle_deg", map.limit_angle_deg));
     };
+    // Receivers of different slopes meet (a mesh): a kernel tap may read a neighbour whose own
+    // slope term is smaller than the receiver's ("Receivers of known geometry").
+    // Its clamp reaches the largest run a tap can read across them: `a` texels of the largest
+    // |gₓ| and of the largest |g_y|, on top of the constant and snapping terms.
+    needed = needed.max(terms.constant + slopes.snap + terms.reach * slopes.run());
+    terms.constant += terms.slope_factor * slopes.spread();
     let map = ShadowMap {
         receiver_depths: depths,
         ..*map
     };
     finish(&map, terms, needed, Some((along_light, along_normal)))
+}
+
+/// The slopes of the listed receivers, for a kernel that reads across from one to another.
+#[derive(Default)]
+struct SlopeSpread {
+    /// The smallest and largest `m = max(|gₓ|, |g_y|)`.
+    m: Option<[f64; 2]>,
+    /// The largest `|gₓ|` and `|g_y|`, each over every receiver.
+    g: [f64; 2],
+    /// The largest snapping term.
+    snap: f64,
+}
+
+impl SlopeSpread {
+    fn add(&mut self, gradient: [f64; 2], snap: f64) {
+        let [gx, gy] = gradient.map(f64::abs);
+        let m = gx.max(gy);
+        self.m = Some(self.m.map_or([m, m], |[lo, hi]| [lo.min(m), hi.max(m)]));
+        self.g = [self.g[0].max(gx), self.g[1].max(gy)];
+        self.snap = self.snap.max(snap);
+    }
+
+    /// `m_max − m_min`: what the constant adds so that the flattest receiver's caster bias
+    /// reaches the steepest one's slope term.
+    fn spread(&self) -> f64 {
+        self.m.map_or(0.0, |[lo, hi]| hi - lo)
+    }
+
+    /// `(max |gₓ| + max |g_y|)·(1 + 2⁻¹⁶)`: the largest depth run per texel of reach along a
+    /// path that crosses receivers (each texel step inside one of them), widened as each
+    /// receiver's own footprint term is.
+    fn run(&self) -> f64 {
+        (self.g[0] + self.g[1]) * (1.0 + 1.0 / 65_536.0)
+    }
 }
 
 /// The storage term of `K`: the stored UNORM value is within the quantum `q` of the computed
@@ -1248,5 +1307,66 @@ mod tests {
         wide[1].x = 40.0;
         let err = shadow_bias_for_receivers(&map, &[&ground, &wide]).unwrap_err();
         assert!(err.to_string().contains("frustum"), "{err}");
+    }
+
+    /// Two faces of a mesh under an orthographic light (window depth affine in the map, its
+    /// gradient computed here from three projected corners): listed together, the constant
+    /// gains `factor·(m_steep − m_flat)` over the larger of the two listed alone, and the clamp
+    /// covers `a·(max |gₓ| + max |g_y|)` on top of the constant; two faces of one slope change
+    /// nothing.
+    #[test]
+    fn faces_of_a_mesh_cover_the_spread_of_their_slopes() {
+        let map = ground_map(Lookup::Pcf(5), 80.0);
+        let [l, r, b, t, n, f] = [-8.0, 8.0, -8.0, 8.0, 2.0, 30.0];
+        let texel = |x: f64, y: f64, z: f64| {
+            // glOrtho's window position (texels) and window depth of an eye point.
+            [
+                (x - l) / (r - l) * 1024.0,
+                (y - b) / (t - b) * 1024.0,
+                (-z - n) / (f - n),
+            ]
+        };
+        // A face of the plane z = z0 + sx·x + sy·y, counter-clockwise seen from the light.
+        let face = |x0: f32, sx: f32, sy: f32, z0: f32| -> (Vec<glam::Vec3>, f64) {
+            let z = |x: f32, y: f32| z0 + sx * x + sy * y;
+            let corners: Vec<glam::Vec3> =
+                [(x0, -1.0), (x0 + 2.0, -1.0), (x0 + 2.0, 1.0), (x0, 1.0)]
+                    .iter()
+                    .map(|&(x, y)| glam::Vec3::new(x, y, z(x, y)))
+                    .collect();
+            let p = |c: glam::Vec3| texel(c.x.into(), c.y.into(), c.z.into());
+            let (a, b, c) = (p(corners[0]), p(corners[1]), p(corners[3]));
+            let gx = (b[2] - a[2]) / (b[0] - a[0]);
+            let gy = (c[2] - a[2]) / (c[1] - a[1]);
+            (corners, gx.abs().max(gy.abs()))
+        };
+        let (flat, m_flat) = face(-2.0, 0.05, 0.0, -10.0);
+        let (steep, m_steep) = face(0.0, 1.5, 0.0, -10.0);
+        let (level, _) = face(2.0, 0.05, 0.0, -10.0);
+        let alone = [&flat, &steep].map(|f| shadow_bias_for_receivers(&map, &[f]).unwrap());
+        let both = shadow_bias_for_receivers(&map, &[&flat, &steep]).unwrap();
+        let larger = alone[0].terms.constant.max(alone[1].terms.constant);
+        let spread = both.terms.slope_factor * (m_steep - m_flat);
+        assert!(m_steep > 10.0 * m_flat, "{m_steep} {m_flat}");
+        let gained = both.terms.constant - larger;
+        assert!(
+            (gained - spread).abs() <= 1e-9 * spread,
+            "{gained} vs {spread}"
+        );
+        let run = 2.5 * m_steep;
+        assert!(
+            both.gl_polygon_offset[2] >= larger + run,
+            "{:?}",
+            both.gl_polygon_offset
+        );
+        // One slope (to the f32 rounding of the corners): the larger of the two alone.
+        let same = shadow_bias_for_receivers(&map, &[&flat, &level]).unwrap();
+        let level_alone = shadow_bias_for_receivers(&map, &[&level]).unwrap();
+        let k = alone[0].terms.constant.max(level_alone.terms.constant);
+        assert!(
+            same.terms.constant >= k && same.terms.constant <= k * 1.01,
+            "{} vs {k}",
+            same.terms.constant
+        );
     }
 }

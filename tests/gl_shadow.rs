@@ -27,6 +27,9 @@
 //! `ZSHIFT_SHADOW_VERBOSE=1` every scene.
 
 mod gl_common;
+// Receivers other than flat ground (a sphere, a terrain): a test of their own.
+#[path = "gl_shadow/receivers.rs"]
+mod receivers;
 
 use glow::HasContext;
 use zshift::orthographic::Ortho;
@@ -194,6 +197,13 @@ fn corners() -> Vec<[f64; 3]> {
 }
 
 fn light_of(case: &Case) -> Light {
+    let points = corners();
+    light_for(case, &points, &points[..4])
+}
+
+/// The light of `case` fitted to `points` (every caster and receiver), with the receivers'
+/// light-depth range taken over `receivers`.
+fn light_for(case: &Case, points: &[[f64; 3]], receivers: &[[f64; 3]]) -> Light {
     let (e, a) = (case.elevation.to_radians(), AZIMUTH_DEG.to_radians());
     let to_light = [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()];
     let h = (2.0 * GROUND * GROUND).sqrt() + 2.0;
@@ -205,10 +215,10 @@ fn light_of(case: &Case) -> Light {
         [0.0, 1.0, 0.0]
     };
     let view = look_at(position, [0.0; 3], up);
-    let eye: Vec<[f64; 4]> = corners().iter().map(|&p| apply(&view, p)).collect();
+    let eye: Vec<[f64; 4]> = points.iter().map(|&p| apply(&view, p)).collect();
     let depth = |p: &[f64; 4]| -p[2];
     let zmax = eye.iter().map(depth).fold(f64::MIN, f64::max);
-    let ground: Vec<f64> = eye[..4].iter().map(depth).collect();
+    let ground: Vec<f64> = receivers.iter().map(|&p| depth(&apply(&view, p))).collect();
     let receivers = [
         ground.iter().cloned().fold(f64::MAX, f64::min) * (1.0 - 1e-6),
         ground.iter().cloned().fold(f64::MIN, f64::max) * (1.0 + 1e-6),
@@ -374,6 +384,15 @@ void main() {
 }
 ";
 
+/// A vertex buffer of `[x, y, z, nx, ny, nz]` vertices.
+unsafe fn upload(g: &glow::Context, v: &[[f32; 6]]) -> Result<glow::Buffer, String> {
+    let b = g.create_buffer()?;
+    g.bind_buffer(glow::ARRAY_BUFFER, Some(b));
+    let bytes: Vec<u8> = v.iter().flatten().flat_map(|x| x.to_ne_bytes()).collect();
+    g.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STATIC_DRAW);
+    Ok(b)
+}
+
 unsafe fn program(gl: &glow::Context, vs: &str, fs: &str) -> Result<glow::Program, String> {
     let p = gl.create_program()?;
     for (kind, src) in [(glow::VERTEX_SHADER, vs), (glow::FRAGMENT_SHADER, fs)] {
@@ -438,15 +457,8 @@ impl Rig {
         let camera = program(g, CAMERA_VS, CAMERA_FS)?;
         let vao = g.create_vertex_array()?;
         let (ground_v, box_v) = meshes();
-        let upload = |v: &[[f32; 6]]| -> Result<glow::Buffer, String> {
-            let b = g.create_buffer()?;
-            g.bind_buffer(glow::ARRAY_BUFFER, Some(b));
-            let bytes: Vec<u8> = v.iter().flatten().flat_map(|x| x.to_ne_bytes()).collect();
-            g.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STATIC_DRAW);
-            Ok(b)
-        };
-        let ground = upload(&ground_v)?;
-        let boxed = upload(&box_v)?;
+        let ground = upload(g, &ground_v)?;
+        let boxed = upload(g, &box_v)?;
         let camera_fbo = g.create_framebuffer()?;
         g.bind_framebuffer(glow::FRAMEBUFFER, Some(camera_fbo));
         let colour = g.create_renderbuffer()?;
@@ -462,6 +474,21 @@ impl Rig {
             glow::COLOR_ATTACHMENT0,
             glow::RENDERBUFFER,
             Some(colour),
+        );
+        // The camera's own depth buffer: the nearest of several receivers wins each pixel.
+        let camera_depth = g.create_renderbuffer()?;
+        g.bind_renderbuffer(glow::RENDERBUFFER, Some(camera_depth));
+        g.renderbuffer_storage(
+            glow::RENDERBUFFER,
+            glow::DEPTH_COMPONENT24,
+            CAMERA as i32,
+            CAMERA as i32,
+        );
+        g.framebuffer_renderbuffer(
+            glow::FRAMEBUFFER,
+            glow::DEPTH_ATTACHMENT,
+            glow::RENDERBUFFER,
+            Some(camera_depth),
         );
         let mut f = gl.proc_address("glPolygonOffsetClamp");
         if f.is_null() {
@@ -510,13 +537,30 @@ impl Rig {
         g.vertex_attrib_pointer_f32(1, 3, glow::FLOAT, false, 24, 12);
     }
 
-    /// Renders the map of `case` with `bias` into a new depth texture.
+    /// The ground and the box, as (buffer, vertex count).
+    fn ground_and_box(&self) -> [(glow::Buffer, i32); 2] {
+        [(self.ground, self.counts[0]), (self.boxed, self.counts[1])]
+    }
+
+    /// Renders the map of `case` with `bias` into a new depth texture (the ground and the box).
     unsafe fn map(
         &self,
         gl: &mut Gl,
         case: &Case,
         light: &Light,
         bias: CasterBias,
+    ) -> Result<(glow::Texture, glow::Framebuffer), String> {
+        self.map_of(gl, case, light, bias, &self.ground_and_box())
+    }
+
+    /// Renders the map of `case` with `bias` into a new depth texture: every mesh of `casters`.
+    unsafe fn map_of(
+        &self,
+        gl: &mut Gl,
+        case: &Case,
+        light: &Light,
+        bias: CasterBias,
+        casters: &[(glow::Buffer, i32)],
     ) -> Result<(glow::Texture, glow::Framebuffer), String> {
         gl.clip_control(if case.clip == ClipDepth::NegOneToOne {
             GlClip::NegativeOneToOne
@@ -574,7 +618,7 @@ impl Rig {
         g.uniform_1_i32(u("spot").as_ref(), (case.kind == Kind::Spot) as i32);
         g.uniform_1_f32(u("along_light").as_ref(), bias.along_light);
         g.uniform_1_f32(u("along_normal").as_ref(), bias.along_normal);
-        for (buffer, count) in [(self.ground, self.counts[0]), (self.boxed, self.counts[1])] {
+        for &(buffer, count) in casters {
             self.bind_mesh(g, buffer);
             g.draw_arrays(glow::TRIANGLES, 0, count);
         }
@@ -593,14 +637,34 @@ impl Rig {
         map: glow::Texture,
         bias: ReceiverBias,
     ) -> Result<Vec<[u8; 2]>, String> {
+        let ground = [(self.ground, self.counts[0])];
+        self.look_at(gl, case, light, camera, map, bias, &ground)
+    }
+
+    /// Looks `receivers` up from the camera through `map` (the nearest receiver at each pixel,
+    /// by the camera's depth test): per pixel (passing taps, taps).
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn look_at(
+        &self,
+        gl: &mut Gl,
+        case: &Case,
+        light: &Light,
+        camera: &M4,
+        map: glow::Texture,
+        bias: ReceiverBias,
+        receivers: &[(glow::Buffer, i32)],
+    ) -> Result<Vec<[u8; 2]>, String> {
         gl.clip_control(GlClip::NegativeOneToOne)?;
         let g = gl.glow();
         g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.camera_fbo));
         g.draw_buffer(glow::COLOR_ATTACHMENT0);
         g.viewport(0, 0, CAMERA as i32, CAMERA as i32);
-        g.disable(glow::DEPTH_TEST);
+        g.enable(glow::DEPTH_TEST);
+        g.depth_mask(true);
+        g.depth_func(glow::LESS);
+        g.clear_depth_f64(1.0);
         g.clear_color(0.0, 0.0, 0.0, 0.0);
-        g.clear(glow::COLOR_BUFFER_BIT);
+        g.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
         g.use_program(Some(self.camera));
         let u = |name: &str| g.get_uniform_location(self.camera, name);
         g.active_texture(glow::TEXTURE0);
@@ -631,8 +695,11 @@ impl Rig {
         g.uniform_1_f32(u("r_light").as_ref(), bias.along_light);
         g.uniform_1_f32(u("r_normal").as_ref(), bias.along_normal);
         g.uniform_1_i32(u("r_normal_sine").as_ref(), bias.sine as i32);
-        self.bind_mesh(g, self.ground);
-        g.draw_arrays(glow::TRIANGLES, 0, self.counts[0]);
+        for &(buffer, count) in receivers {
+            self.bind_mesh(g, buffer);
+            g.draw_arrays(glow::TRIANGLES, 0, count);
+        }
+        g.disable(glow::DEPTH_TEST);
         let pixels = zshift_harness::read_rgba8(g, CAMERA as i32, CAMERA as i32);
         zshift_harness::check_gl_errors(g, "camera pass")?;
         Ok(pixels

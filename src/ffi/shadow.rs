@@ -227,6 +227,9 @@ impl ZshiftShadowMap {
 /// Writes the smallest caster-side shadow bias that keeps every receiver within the limit
 /// angle free of acne on the rasterizer `map->profile` describes (NULL: the worst case), in
 /// every API's units, with its receiver-side alternatives and its cost (docs/shadows.md).
+/// Receivers must be planar across the lookup's reach: for a mesh whose faces bend within a
+/// few texels (a sphere, a terrain) under a wide kernel, list its faces with
+/// zshift_shadow_bias_receivers.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER (map or out NULL), ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
 /// (bad projection, receivers outside [n, f], an angle outside [0, 90), an unknown enum, a
@@ -273,7 +276,9 @@ const MAX_RECEIVER_CORNERS: u32 = 64;
 /// `corners` (3 floats each: x0, y0, z0, x1, ...), `corner_counts[i]` (3 to 64) corners for
 /// receiver i, counter-clockwise seen from its lit front, every corner inside the light's
 /// frustum. The bias, its clamp and its receiver-side offsets follow from each receiver's
-/// own window-depth plane in the map, at any angle short of edge-on; receivers facing away
+/// own window-depth plane in the map, at any angle short of edge-on, also where a kernel reads
+/// across from one receiver to another (the faces of one mesh may be listed: the constant then
+/// covers the spread of their slopes); receivers facing away
 /// from the light by more than `map->limit_angle_deg` everywhere are skipped;
 /// `map->receiver_near` and `receiver_far` are not used (but must lie in [n, f]).
 ///

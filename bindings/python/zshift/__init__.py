@@ -1077,7 +1077,9 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
                 elevation_deg=90.0, profile=None, view_matrix=None, world_box=None, eye_first=False):
     """The smallest caster-side shadow bias that keeps every receiver within ``limit_angle_deg``
     of the light free of acne (``zshift_shadow_bias``), in every API's units, with the
-    receiver-side alternatives and the cost; a :data:`ShadowBias`.
+    receiver-side alternatives and the cost; a :data:`ShadowBias`. Receivers must be planar
+    across the lookup's reach: for a mesh that bends within a few texels (a sphere, a terrain)
+    under a wide kernel, list its faces with :func:`shadow_bias_receivers`.
 
     ``light`` a :class:`Light`; ``projection`` the light's ``(l, r, b, t, n, f)``; ``clip`` a
     :class:`Clip`; ``resolution`` ``(width, height)`` in texels; ``depth_format`` a
@@ -1135,7 +1137,8 @@ def shadow_bias_receivers(light, projection, clip, resolution, depth_format, rec
     ``receivers`` a sequence of planar polygons, each a sequence of 3 to 64 ``(x, y, z)`` corners
     in the light's view space (a spot light at the origin, looking down -z), counter-clockwise
     seen from the lit front, inside the light's frustum. The bias follows from each receiver's
-    own plane, at any angle short of edge-on; receivers facing away by more than
+    own plane, at any angle short of edge-on, also where a kernel reads across from one receiver
+    to another (a mesh's faces may be listed); receivers facing away by more than
     ``limit_angle_deg`` everywhere are skipped; ``view_matrix``, ``world_box`` and ``eye_first`` as
     for :func:`shadow_bias` (with ``eye_first``, only the error off each receiver's plane counts).
     Raises :class:`ZshiftError` as :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""

@@ -1,0 +1,562 @@
+//! Receivers other than flat ground: a UV sphere resting on the ground, and a terrain with
+//! hills, each casting on itself. The map holds every mesh, the camera looks at every mesh
+//! (its own depth test picks the nearest), and the reference is a ray test in f64 against the
+//! very f32 triangles drawn.
+//!
+//! A camera pixel is **judged** when the five rays through its centre and ±0.6 pixel hit the
+//! same object at nearly the same distance (no silhouette), the face hit is lit (nothing on the
+//! segment to the light), it faces the light (`n·l > 0`) within the limit angle of the light's
+//! axis (what zshift promises), and every light ray through a 5 × 5 grid of map positions within
+//! `a + 1.5` texels of it first hits a lit face of the same object within the limit angle (no
+//! shadow edge, no surface the promise leaves out, feeds the lookup). **Acne**: a judged pixel
+//! the map darkens. Asserted: 0 acne at zshift's bias, from the limit angle alone
+//! (`shadow_bias`) and with every face listed (`shadow_bias_for_receivers`), with the worst-case
+//! and the probed profile; a refusal must be a scene where no constant lookup bias below 1 is
+//! acne-free. `ZSHIFT_SHADOW_SCENES=full` draws every combination.
+
+use super::*;
+
+/// One drawn triangle: its f32 corners (as f64), its face normal (outward, f64) and object.
+#[derive(Clone, Copy)]
+struct Tri {
+    v: [[f64; 3]; 3],
+    n: [f64; 3],
+    object: u8,
+}
+
+/// A run of triangles with the sphere that bounds them (rays that miss it skip them).
+struct Cluster {
+    range: std::ops::Range<usize>,
+    centre: [f64; 3],
+    radius: f64,
+}
+
+/// A receiver scene: its triangles in clusters, and the vertex buffer the GPU draws.
+struct World {
+    name: &'static str,
+    tris: Vec<Tri>,
+    clusters: Vec<Cluster>,
+}
+
+impl World {
+    /// Triangles from f32 corners, each turned so that its normal points along `outward` of
+    /// its centroid; `groups` of consecutive triangles become clusters.
+    fn new(
+        name: &'static str,
+        groups: Vec<(u8, Vec<[[f32; 3]; 3]>)>,
+        outward: impl Fn(u8, [f64; 3]) -> [f64; 3],
+    ) -> World {
+        let mut tris = Vec::new();
+        let mut clusters = Vec::new();
+        for (object, group) in groups {
+            let start = tris.len();
+            for t in group {
+                let mut v = t.map(|p| p.map(f64::from));
+                let centroid = [0, 1, 2].map(|k| (v[0][k] + v[1][k] + v[2][k]) / 3.0);
+                let mut n = norm(cross(sub(v[1], v[0]), sub(v[2], v[0])));
+                if dot(n, outward(object, centroid)) < 0.0 {
+                    v.swap(1, 2);
+                    n = n.map(|c| -c);
+                }
+                tris.push(Tri { v, n, object });
+            }
+            let range = start..tris.len();
+            let points: Vec<[f64; 3]> = tris[range.clone()].iter().flat_map(|t| t.v).collect();
+            let centre =
+                [0, 1, 2].map(|k| points.iter().map(|p| p[k]).sum::<f64>() / points.len() as f64);
+            let radius = points
+                .iter()
+                .map(|p| dot(sub(*p, centre), sub(*p, centre)).sqrt())
+                .fold(0.0, f64::max)
+                * (1.0 + 1e-9)
+                + 1e-9;
+            clusters.push(Cluster {
+                range,
+                centre,
+                radius,
+            });
+        }
+        World {
+            name,
+            tris,
+            clusters,
+        }
+    }
+
+    /// The vertices as the shaders take them (flat normals).
+    fn vertices(&self) -> Vec<[f32; 6]> {
+        self.tris
+            .iter()
+            .flat_map(|t| {
+                t.v.map(|p| {
+                    [
+                        p[0] as f32,
+                        p[1] as f32,
+                        p[2] as f32,
+                        t.n[0] as f32,
+                        t.n[1] as f32,
+                        t.n[2] as f32,
+                    ]
+                })
+            })
+            .collect()
+    }
+
+    fn points(&self) -> Vec<[f64; 3]> {
+        self.tris.iter().flat_map(|t| t.v).collect()
+    }
+
+    /// The first triangle the ray `o + t·d` hits for `t` in `(t_min, t_max)`, other than `skip`.
+    fn first_hit(
+        &self,
+        o: [f64; 3],
+        d: [f64; 3],
+        t_min: f64,
+        t_max: f64,
+        skip: Option<usize>,
+    ) -> Option<(f64, usize)> {
+        let mut best: Option<(f64, usize)> = None;
+        let dd = dot(d, d);
+        for c in &self.clusters {
+            let w = sub(c.centre, o);
+            let tc = dot(w, d) / dd;
+            let off = sub(w, d.map(|x| x * tc));
+            if dot(off, off) > c.radius * c.radius {
+                continue;
+            }
+            for i in c.range.clone() {
+                if Some(i) == skip {
+                    continue;
+                }
+                if let Some(t) = ray_triangle(o, d, &self.tris[i].v) {
+                    if t > t_min && t < t_max && best.is_none_or(|(b, _)| t < b) {
+                        best = Some((t, i));
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Möller–Trumbore in f64, edges included (a hair's tolerance so a shared edge is hit).
+fn ray_triangle(o: [f64; 3], d: [f64; 3], v: &[[f64; 3]; 3]) -> Option<f64> {
+    let (e1, e2) = (sub(v[1], v[0]), sub(v[2], v[0]));
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-300 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = sub(o, v[0]);
+    let u = dot(s, p) * inv;
+    const TOL: f64 = 1e-12;
+    if !(-TOL..=1.0 + TOL).contains(&u) {
+        return None;
+    }
+    let q = cross(s, e1);
+    let w = dot(d, q) * inv;
+    if w < -TOL || u + w > 1.0 + TOL {
+        return None;
+    }
+    Some(dot(e2, q) * inv)
+}
+
+fn f32p(p: [f64; 3]) -> [f32; 3] {
+    p.map(|c| c as f32)
+}
+
+/// The ground (object 0) and a UV sphere resting on it (object 1, 32 × 16).
+fn sphere_world() -> World {
+    let g = GROUND;
+    let ground = vec![
+        [[-g, 0.0, -g], [-g, 0.0, g], [g, 0.0, g]].map(f32p),
+        [[-g, 0.0, -g], [g, 0.0, g], [g, 0.0, -g]].map(f32p),
+    ];
+    let (c, r) = ([-1.8, 1.2, 1.6], 1.2);
+    let (nu, nv) = (32usize, 16usize);
+    let at = |i: usize, j: usize| {
+        let (theta, phi) = (
+            std::f64::consts::PI * j as f64 / nv as f64,
+            2.0 * std::f64::consts::PI * (i % nu) as f64 / nu as f64 + 0.2,
+        );
+        f32p([
+            c[0] + r * theta.sin() * phi.cos(),
+            c[1] + r * theta.cos(),
+            c[2] + r * theta.sin() * phi.sin(),
+        ])
+    };
+    let mut groups = vec![(0u8, ground)];
+    for j in 0..nv {
+        let mut ring = Vec::new();
+        for i in 0..nu {
+            let (a, b, cc, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            if j > 0 {
+                ring.push([a, b, cc]);
+            }
+            if j + 1 < nv {
+                ring.push([a, cc, d]);
+            }
+        }
+        groups.push((1, ring));
+    }
+    World::new("sphere on ground", groups, move |object, p| {
+        if object == 0 {
+            [0.0, 1.0, 0.0]
+        } else {
+            sub(p, c)
+        }
+    })
+}
+
+/// A terrain with hills over the ground's square (40 × 40 cells, object 0), in 5 × 5-cell
+/// clusters.
+fn terrain_world() -> World {
+    let cells = 40usize;
+    let step = 2.0 * GROUND / cells as f64;
+    let height = |x: f64, z: f64| {
+        0.5 * (0.8 * x + 0.3).sin() * (0.6 * z).cos() + 0.25 * (1.3 * z - 0.5 * x).sin()
+    };
+    let at = |i: usize, j: usize| {
+        let (x, z) = (-GROUND + step * i as f64, -GROUND + step * j as f64);
+        f32p([x, height(x, z), z])
+    };
+    let mut groups = Vec::new();
+    for bi in (0..cells).step_by(5) {
+        for bj in (0..cells).step_by(5) {
+            let mut block = Vec::new();
+            for i in bi..bi + 5 {
+                for j in bj..bj + 5 {
+                    let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                    block.push([a, b, c]);
+                    block.push([a, c, d]);
+                }
+            }
+            groups.push((0u8, block));
+        }
+    }
+    World::new("terrain", groups, |_, _| [0.0, 1.0, 0.0])
+}
+
+/// The limit angle asked for at `elevation`: the flat ground's own angle to the light plus 35°
+/// (the sphere's upper half, the terrain's slopes), at most 80°.
+fn limit_for(elevation: f64) -> f64 {
+    (125.0 - elevation).min(80.0)
+}
+
+/// The exact answer per camera pixel: `Some(true)` for a judged pixel (module docs), else None.
+#[allow(clippy::too_many_arguments)]
+fn judged(
+    case: &Case,
+    light: &Light,
+    camera: &M4,
+    eye: [f64; 3],
+    reach: f64,
+    world: &World,
+    limit_deg: f64,
+    planar: bool,
+) -> Vec<Option<bool>> {
+    let inverse = invert(camera);
+    let light_vp = mul(&light.proj, &light.view);
+    let light_inv = invert(&light_vp);
+    let n = f64::from(case.resolution);
+    let cos_limit = limit_deg.to_radians().cos();
+    let toward_light = |p: [f64; 3]| -> ([f64; 3], f64) {
+        match case.kind {
+            Kind::Directional => (light.to_light, f64::INFINITY),
+            Kind::Spot => (sub(light.position, p), 1.0),
+        }
+    };
+    // A face the promise covers, lit from `p` on it.
+    let promised = |i: usize, p: [f64; 3]| -> bool {
+        let t = &world.tris[i];
+        let (l, t_max) = toward_light(p);
+        dot(t.n, light.to_light) >= cos_limit
+            && dot(t.n, l) > 0.0
+            && world.first_hit(p, l, 1e-7, t_max, Some(i)).is_none()
+    };
+    let to_map = |p: [f64; 3]| -> [f64; 2] {
+        let c = apply(&light_vp, p);
+        [(c[0] / c[3] * 0.5 + 0.5) * n, (c[1] / c[3] * 0.5 + 0.5) * n]
+    };
+    // The first face the light sees through map position `uv` (texels).
+    let light_ray = |uv: [f64; 2]| -> Option<(usize, [f64; 3])> {
+        let (x, y) = (uv[0] / n * 2.0 - 1.0, uv[1] / n * 2.0 - 1.0);
+        let a = apply(&light_inv, [x, y, -1.0]);
+        let b = apply(&light_inv, [x, y, 0.5]);
+        let a = [a[0] / a[3], a[1] / a[3], a[2] / a[3]];
+        let b = [b[0] / b[3], b[1] / b[3], b[2] / b[3]];
+        let d = sub(b, a);
+        let (t, i) = world.first_hit(a, d, 0.0, f64::INFINITY, None)?;
+        Some((i, [0, 1, 2].map(|k| a[k] + t * d[k])))
+    };
+    let camera_ray = |x: f64, y: f64| -> Option<(f64, usize)> {
+        let far = apply(&inverse, [x, y, 1.0]);
+        let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
+        world.first_hit(eye, sub(far, eye), 0.0, f64::INFINITY, None)
+    };
+    let edge = reach + 1.5;
+    let pixel = 2.0 / CAMERA as f64;
+    let mut out = Vec::with_capacity(CAMERA * CAMERA);
+    for py in 0..CAMERA {
+        for px in 0..CAMERA {
+            let x = (px as f64 + 0.5) * pixel - 1.0;
+            let y = (py as f64 + 0.5) * pixel - 1.0;
+            out.push((|| {
+                let (t, i) = camera_ray(x, y)?;
+                let object = world.tris[i].object;
+                for (dx, dy) in [(-0.6, -0.6), (0.6, -0.6), (-0.6, 0.6), (0.6, 0.6)] {
+                    let (ti, j) = camera_ray(x + dx * pixel, y + dy * pixel)?;
+                    if world.tris[j].object != object || (ti - t).abs() > 0.05 * t {
+                        return None;
+                    }
+                }
+                let far = apply(&inverse, [x, y, 1.0]);
+                let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
+                let d = sub(far, eye);
+                let p = [0, 1, 2].map(|k| eye[k] + t * d[k]);
+                if !promised(i, p) {
+                    return None;
+                }
+                let uv = to_map(p);
+                if uv.iter().any(|&c| c < edge + 1.0 || c > n - edge - 1.0) {
+                    return None;
+                }
+                for a in -2..=2 {
+                    for b in -2..=2 {
+                        let at = [uv[0] + edge * a as f64 / 2.0, uv[1] + edge * b as f64 / 2.0];
+                        let (j, q) = light_ray(at)?;
+                        if world.tris[j].object != object || !promised(j, q) {
+                            return None;
+                        }
+                        if planar && !coplanar(&world.tris[i], &world.tris[j]) {
+                            return None;
+                        }
+                    }
+                }
+                Some(true)
+            })());
+        }
+    }
+    out
+}
+
+/// Whether two triangles lie in one plane (to f32 rounding of their corners).
+fn coplanar(a: &Tri, b: &Tri) -> bool {
+    let scale = a.v.iter().flatten().fold(1.0f64, |m, c| m.max(c.abs()));
+    dot(a.n, b.n) > 1.0 - 1e-9
+        && b.v
+            .iter()
+            .all(|&p| dot(a.n, sub(p, a.v[0])).abs() < 1e-6 * scale)
+}
+
+/// The sweep's cases for the receiver scenes: both lights at 20°–89°, every lookup, each with
+/// one pick of f/n, map size, format and convention (every pick under `full`).
+fn receiver_cases(full: bool) -> Vec<Case> {
+    use zshift_harness::DepthFormat as F;
+    let ratios = [10.0, 1e3, 1e5];
+    let sizes = [256, 1024, 2048];
+    let formats = [F::D16, F::D24, F::D32F];
+    let clips = [
+        ClipDepth::NegOneToOne,
+        ClipDepth::ZeroToOne,
+        ClipDepth::ReversedZeroToOne,
+    ];
+    let mut v = Vec::new();
+    let mut i = 0usize;
+    for kind in [Kind::Directional, Kind::Spot] {
+        for elevation in [20.0, 45.0, 70.0, 89.0] {
+            for pcf in [1, 0, 3, 5] {
+                let combos: Vec<usize> = if full {
+                    (0..81).step_by(4).collect()
+                } else if (i + pcf as usize) % 2 == 0 {
+                    vec![(i * 31 + 7) % 81]
+                } else {
+                    Vec::new()
+                };
+                for c in combos {
+                    v.push(Case {
+                        kind,
+                        elevation,
+                        ratio: ratios[c % 3],
+                        resolution: sizes[(c / 3) % 3],
+                        format: formats[(c / 9) % 3],
+                        clip: clips[(c / 27) % 3],
+                        pcf,
+                    });
+                }
+                i += 1;
+            }
+        }
+    }
+    v
+}
+
+#[test]
+fn spheres_and_terrain_receive_without_acne() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no GL context for the shadow sweep: {e}"));
+    let probed = gl_common::probed(&gl);
+    let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
+    let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
+    let eye = [-9.0, 9.0, 8.0];
+    let camera = {
+        let v = look_at(eye, [0.5, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let p = zshift::projection::projection_f64(
+            &Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(),
+            ClipDepth::NegOneToOne,
+        )
+        .unwrap();
+        mul(&p, &v)
+    };
+    let mut failures = Vec::new();
+    let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
+    let started = std::time::Instant::now();
+    for world in [sphere_world(), terrain_world()] {
+        let buffer =
+            unsafe { upload(gl.glow(), &world.vertices()) }.unwrap_or_else(|e| panic!("{e}"));
+        let meshes = [(buffer, 3 * world.tris.len() as i32)];
+        let points = world.points();
+        for case in receiver_cases(full) {
+            let light = light_for(&case, &points, &points);
+            let reach = match case.pcf {
+                1 => 0.5,
+                0 => 1.0,
+                k => k as f64 / 2.0,
+            };
+            let limit = limit_for(case.elevation);
+            // `shadow_bias` promises planar receivers (planar across the kernel: every tap on
+            // the receiver's own plane); `shadow_bias_for_receivers` every listed face.
+            let truths = [false, true]
+                .map(|planar| judged(&case, &light, &camera, eye, reach, &world, limit, planar));
+            judged_pixels += truths.iter().flatten().flatten().count();
+            let faces: Vec<Vec<glam::Vec3>> = world
+                .tris
+                .iter()
+                .map(|t| {
+                    t.v.iter()
+                        .map(|&p| {
+                            let e = apply(&light.view, p);
+                            glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
+                        })
+                        .collect()
+                })
+                .collect();
+            let face_refs: Vec<&[glam::Vec3]> = faces.iter().map(|f| f.as_slice()).collect();
+            let world_reach = light.position.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+            let where_ = format!("{} {} limit {limit}°", world.name, case.label());
+            for (pname, profile, listed) in [
+                ("worst", RasterizerProfile::worst_case(), false),
+                ("probed", probed, false),
+                ("worst, receivers", RasterizerProfile::worst_case(), true),
+                ("probed, receivers", probed, true),
+            ] {
+                let map = ShadowMap {
+                    light: light.projection,
+                    clip: case.clip,
+                    resolution: [case.resolution; 2],
+                    format: gl_common::format_of(case.format),
+                    lookup: match case.pcf {
+                        1 => Lookup::Nearest,
+                        0 => Lookup::Hardware2x2,
+                        k => Lookup::Pcf(k),
+                    },
+                    limit_angle_deg: limit,
+                    receiver_depths: light.receivers,
+                    world_reach,
+                    elevation_deg: case.elevation,
+                    profile,
+                    pipeline: Default::default(),
+                };
+                asked += 1;
+                let answer = if listed {
+                    shadow_bias_for_receivers(&map, &face_refs)
+                } else {
+                    shadow_bias(&map)
+                };
+                match answer {
+                    Ok(bias) => {
+                        answered += 1;
+                        let truth = &truths[usize::from(!listed)];
+                        let [f, u, c] = bias.gl_polygon_offset;
+                        let offset = Some((f as f32, u as f32, c as f32));
+                        let caster = CasterBias {
+                            offset,
+                            ..Default::default()
+                        };
+                        let m = unsafe { rig.map_of(&mut gl, &case, &light, caster, &meshes) }
+                            .unwrap_or_else(|e| panic!("{e}"));
+                        let px = unsafe {
+                            rig.look_at(
+                                &mut gl,
+                                &case,
+                                &light,
+                                &camera,
+                                m.0,
+                                ReceiverBias::default(),
+                                &meshes,
+                            )
+                        }
+                        .unwrap_or_else(|e| panic!("{e}"));
+                        unsafe {
+                            gl.glow().delete_framebuffer(m.1);
+                            gl.glow().delete_texture(m.0);
+                        }
+                        let got = count(&px, truth);
+                        if got.acne > 0 {
+                            failures.push(format!(
+                                "{where_} ({pname}): {} acne pixels of {} judged at {:?}",
+                                got.acne, got.lit, bias.gl_polygon_offset
+                            ));
+                        }
+                    }
+                    Err(e) if e.kind() == ErrorKind::Unresolvable => {
+                        refused += 1;
+                        let unbiased = unsafe {
+                            rig.map_of(&mut gl, &case, &light, CasterBias::default(), &meshes)
+                        }
+                        .unwrap_or_else(|e| panic!("{e}"));
+                        let px = unsafe {
+                            rig.look_at(
+                                &mut gl,
+                                &case,
+                                &light,
+                                &camera,
+                                unbiased.0,
+                                ReceiverBias {
+                                    beta: 0.999,
+                                    ..Default::default()
+                                },
+                                &meshes,
+                            )
+                        }
+                        .unwrap_or_else(|e| panic!("{e}"));
+                        unsafe {
+                            gl.glow().delete_framebuffer(unbiased.1);
+                            gl.glow().delete_texture(unbiased.0);
+                        }
+                        if count(&px, &truths[usize::from(!listed)]).acne == 0 {
+                            failures.push(format!(
+                                "{where_} ({pname}): refused ({e}) but a lookup bias below 1 is acne-free"
+                            ));
+                        }
+                    }
+                    // Every face beyond the limit angle: nothing to promise.
+                    Err(e) if listed && e.kind() == ErrorKind::Domain => {}
+                    Err(e) => failures.push(format!("{where_} ({pname}): {e}")),
+                }
+            }
+        }
+        unsafe { gl.glow().delete_buffer(buffer) };
+    }
+    println!(
+        "shadow receivers: {asked} asked, {answered} answered, {refused} refused, {judged_pixels} judged pixels, {:.1} s",
+        started.elapsed().as_secs_f64()
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
