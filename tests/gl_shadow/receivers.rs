@@ -350,8 +350,9 @@ fn coplanar(a: &Tri, b: &Tri) -> bool {
             .all(|&p| dot(a.n, sub(p, a.v[0])).abs() < 1e-6 * scale)
 }
 
-/// The sweep's cases for the receiver scenes: both lights at 20°–89°, every lookup, each with
-/// one pick of f/n, map size, format and convention (every pick under `full`).
+/// The sweep's cases for the receiver scenes: both lights at 20°–89°, two lookups per light and
+/// elevation in turn (every lookup under `full`), each with one pick of f/n, map size, format and
+/// convention (21 picks under `full`).
 fn receiver_cases(full: bool) -> Vec<Case> {
     use zshift_harness::DepthFormat as F;
     let ratios = [10.0, 1e3, 1e5];
@@ -364,12 +365,13 @@ fn receiver_cases(full: bool) -> Vec<Case> {
     ];
     let mut v = Vec::new();
     let mut i = 0usize;
-    for kind in [Kind::Directional, Kind::Spot] {
-        for elevation in [20.0, 45.0, 70.0, 89.0] {
-            for pcf in [1, 0, 3, 5] {
+    for (k, kind) in [Kind::Directional, Kind::Spot].into_iter().enumerate() {
+        for (e, elevation) in [20.0, 45.0, 70.0, 89.0].into_iter().enumerate() {
+            for (l, pcf) in [1, 0, 3, 5].into_iter().enumerate() {
+                // The default run: two lookups per light and elevation, in turn.
                 let combos: Vec<usize> = if full {
                     (0..81).step_by(4).collect()
-                } else if (i + pcf as usize) % 2 == 0 {
+                } else if (k + e + l) % 2 == 0 {
                     vec![(i * 31 + 7) % 81]
                 } else {
                     Vec::new()
