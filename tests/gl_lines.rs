@@ -13,7 +13,9 @@
 //! (every mesh, f/n and position in turn), the width-3 and MSAA variants one in [`SAMPLE_MORE`];
 //! `ZSHIFT_LINES_FULL=1` draws the whole grid; `ZSHIFT_LINES_SEED=<n>` another draw
 //! ([`Variation`]); `ZSHIFT_LINES_VARIANT=<text>` only the variants whose name contains it
-//! (`MSAA`, `w3`, `polymode`).
+//! (`MSAA`, `w3`, `polymode`); `ZSHIFT_LINES_ONLY=<text>` only the scenes whose label contains it,
+//! and with `ZSHIFT_LINES_VERBOSE=1` each lost pixel of a failing scene and the offsets that keep
+//! it.
 //!
 //! **Refusals**: in every answered scene with a smallest working offset, zshift is asked again
 //! with `hidden_separation` half its gap (it must refuse), and the smallest offset that keeps
@@ -1118,6 +1120,8 @@ fn edges_over_faces_sweep() {
     let mut draw = Variation::from_env();
     // `ZSHIFT_LINES_VARIANT=<text>`: only the variants whose name contains it ("MSAA", "w3").
     let only = std::env::var("ZSHIFT_LINES_VARIANT").ok();
+    // `ZSHIFT_LINES_ONLY=<text>`: only the scenes whose label contains it (for looking at one).
+    let only_scene = std::env::var("ZSHIFT_LINES_ONLY").ok();
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
@@ -1267,6 +1271,12 @@ fn edges_over_faces_sweep() {
                                         }
                                     );
                                     let where_ = format!("{label} {} f/n {ratio} {pos}", mesh.name);
+                                    if only_scene
+                                        .as_ref()
+                                        .is_some_and(|o| !where_.contains(o.as_str()))
+                                    {
+                                        continue;
+                                    }
                                     let class = class_of(&mut classes, &label);
                                     class.scenes += 1;
                                     let rec = match recommend(&m, clip, &edges, method) {
@@ -1290,6 +1300,42 @@ fn edges_over_faces_sweep() {
                                     class.shown += shown;
                                     if lost + shown > 0 {
                                         failures.push(format!("{where_}: {lost} of {} visible lost, {shown} of {} hidden shown (gap {:.3e}, {rec:?})", c.visible.len(), c.hidden.len(), rec.hidden_gap));
+                                        if std::env::var_os("ZSHIFT_LINES_VERBOSE").is_some() {
+                                            let img = scene.render(&scaled(&rec, &m, clip, 1.0));
+                                            let n = SIZE as usize;
+                                            for &j in
+                                                c.visible.iter().filter(|&&j| img[j][..3] != EDGE)
+                                            {
+                                                let (plane, i) = (j / (n * n), j % (n * n));
+                                                let front = rfs[plane].front[i];
+                                                let grad =
+                                                    front.map(|(t, _)| b * rfs[plane].tri_grad[t]);
+                                                let edges_here: Vec<String> = ids[j].iter().map(|&e| {
+                                                    let (inv_e, along) = edge_at(scene.mesh, &p, e, i % n, i / n, scene.offsets()[plane]);
+                                                    format!("edge {e} tris {:?} 1/d {inv_e:.9e} along {:.3e}", scene.mesh.edge_tris[e], b * along)
+                                                }).collect();
+                                                println!("  lost pixel ({}, {}) sample {plane}: colour {:?}, front {front:?} grad {grad:?} of g {g:.3e}; {}", i % n, i / n, img[j], edges_here.join("; "));
+                                            }
+                                            let scales: Vec<String> =
+                                                [1.1, 1.25, 1.5, 2.0, 4.0, 16.0, 256.0]
+                                                    .iter()
+                                                    .map(|&k| {
+                                                        format!(
+                                                            "×{k}: {}",
+                                                            scene
+                                                                .count(
+                                                                    &scaled(&rec, &m, clip, k),
+                                                                    &c
+                                                                )
+                                                                .0
+                                                        )
+                                                    })
+                                                    .collect();
+                                            println!(
+                                                "  lost at larger offsets: {}",
+                                                scales.join(", ")
+                                            );
+                                        }
                                     }
                                     // The smallest working scale of zshift's offset (0 lost), in
                                     // log2 steps.
@@ -1316,7 +1362,9 @@ fn edges_over_faces_sweep() {
                                     }
                                     // (ZSHIFT_LINES_FULL only: the refusal scenes below confirm
                                     // refusals where they can be.)
-                                    if hi.is_finite() && full {
+                                    // (Only where zshift's own offset held: a scene that failed above is
+                                    // already a failure, and its bisection found no smaller offset.)
+                                    if hi.is_finite() && full && lost + shown == 0 {
                                         // A refusal asked for: hidden edges must not show from
                                         // half the reported gap on. Confirmed when the smallest
                                         // offset that keeps every visible edge (the best one for
@@ -1329,7 +1377,9 @@ fn edges_over_faces_sweep() {
                                                 let cs = classify(&scene, &p, rfs, &ids, b, g, sep);
                                                 let (l, shown) = scene
                                                     .count(&scaled(&rec, &m, clip, hi.exp2()), &cs);
-                                                assert_eq!(l, 0, "{where_}");
+                                                if l > 0 {
+                                                    failures.push(format!("{where_}: the smallest working offset lost {l} visible pixels on the second look"));
+                                                }
                                                 refusals.asked += 1;
                                                 if shown > 0 {
                                                     refusals.confirmed += 1;
