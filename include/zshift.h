@@ -805,13 +805,14 @@ typedef struct {
    */
   double window_offset;
   /*
-   The line term g*line_reach, window depth.
+   The line term g*line_reach (polygon-mode lines: 2*g*line_reach, the neighbouring
+   triangle's outline adds its own slope term), window depth.
    */
   double line_term;
   /*
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
-   depth is taken: (w + 1)/2 in the worst case, the probed reach + (w - 1)/2 with a profile,
-   sqrt(2)*(w + 1)/2 under MSAA.
+   depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines, the probed reach
+   + 1/16 + (w - 1)/2 for GL_LINES with a profile, sqrt(2)*(w + 1)/2 under MSAA.
    */
   double line_reach;
   /*

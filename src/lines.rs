@@ -34,6 +34,18 @@
 //! line kind at width 1, plus 1/16 pixel (a sampled maximum: a sweep scene needed 0.503 where
 //! the probe found 0.5006), plus `(w − 1)/2`.
 //!
+//! **Polygon-mode lines** ([`LineKind::PolygonMode`]): every triangle draws its own outline, so
+//! along a shared edge a face's pixel may take its line fragment from the neighbour's outline.
+//! Measured in another draw of the sweep (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=1`): on a torus
+//! and a chamfered box, polygon-mode edges lost single pixels with the probe's reach (0.50 on
+//! planes drawn alone) and with the worst case (kept from 1.1–2× the offset), where the
+//! neighbouring face is steeper than the pixel's: the fragment is off the pixel's face by up to
+//! `Δ·(m_F + m_G)`, both faces' slope terms (the outline's pixel lies up to `Δ` from the shared
+//! edge, on the neighbour's side of the line). So polygon-mode lines keep the worst-case reach
+//! `(w + 1)/2` with either profile and the line term doubles, `L = 2·g·Δ` (the neighbour up to
+//! the face-slope limit); under (a) the factor `Δ` pays the face's own part and the units the
+//! neighbour's `g·Δ`, which the face's factor does not see.
+//!
 //! **MSAA** ([`Edges::samples`] > 1): a multisampled line is a rectangle `w` wide whose samples
 //! take the line's depth at their projection on it (or along the minor axis), and the face's
 //! depth is taken at the sample. A sample lies up to `w/2` from the point whose depth it takes,
@@ -422,10 +434,12 @@ fn line_reach(edges: &Edges) -> f64 {
         return std::f64::consts::SQRT_2 * (w + 1.0) / 2.0;
     }
     let p = &edges.profile;
-    let measured = p.line_reach[match edges.kind {
-        LineKind::Lines => 0,
-        LineKind::PolygonMode => 1,
-    }];
+    // Polygon-mode lines keep the worst case: the probe draws them in one plane per tile, where
+    // no neighbour's outline can land on a face (module docs, "Polygon-mode lines").
+    let measured = match edges.kind {
+        LineKind::Lines => p.line_reach[0],
+        LineKind::PolygonMode => f64::NAN,
+    };
     if p.measured && edges.samples == 1 && measured.is_finite() && measured > 0.0 {
         (measured + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min((w + 1.0) / 2.0)
     } else {
@@ -477,7 +491,16 @@ fn unchecked_gap(
     let terms = crate::recommend::clip_error_terms(&scene, clip)?;
     let mapping = crate::recommend::mapping_of(&scene, clip)?;
     let reach = line_reach(edges);
-    let line = representable(g * reach, "the line term overflows f64")?;
+    // Polygon-mode edges: every triangle draws its own outline, so a face's pixel along a shared
+    // edge may take its line fragment from the neighbour's outline, off the face by the slope
+    // terms of both (module docs, "Polygon-mode lines"): the neighbour's part, up to the
+    // face-slope limit, is `neighbour`.
+    let neighbour = if edges.kind == LineKind::PolygonMode {
+        representable(g * reach, "the line term overflows f64")?
+    } else {
+        0.0
+    };
+    let line = representable(g * reach + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
@@ -508,7 +531,8 @@ fn unchecked_gap(
             // units·r ≥ B + q_s + the bias's own roundings, r counted at the smallest window
             // depth (D32F's r follows the primitive's largest depth, so it is never smaller).
             let pipeline = edges.pipeline;
-            let need = budget + strict_q(terms.quantum) + 2.0 * U * (1.0 + w_hi);
+            // The face's factor pays its own slope term; the units pay the neighbour's.
+            let need = budget + strict_q(terms.quantum) + 2.0 * U * (1.0 + w_hi) + neighbour;
             let r_of = |api: BiasApi, w: f64| -> Result<f64> {
                 Ok(pipeline.per_unit(resolvable_difference(
                     api,
@@ -716,15 +740,38 @@ mod tests {
             (r.window_offset - (0.5625 * g + units_push)).abs() < 1e-12,
             "{r:?}"
         );
-        e.kind = LineKind::PolygonMode;
         e.line_width = 3.0;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        assert!((r.line_reach - 1.7825).abs() < 1e-15);
+        assert!((r.line_reach - 1.5625).abs() < 1e-15);
         // Never above the worst case: a reach measured at 0.98 stays at (w + 1)/2.
-        e.profile.line_reach = [0.5, 0.98];
+        e.profile.line_reach = [0.98, 0.72];
         e.line_width = 1.0;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
         assert_eq!(r.line_reach, 1.0);
+        // Polygon-mode lines keep the worst case whatever the probe measured, and under (a)
+        // their units also cover the line term (a neighbour's outline).
+        e.profile.line_reach = [0.5, 0.5];
+        e.kind = LineKind::PolygonMode;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert_eq!(r.line_reach, 1.0);
+        assert_eq!(r.line_term, 2.0 * r.face_gradient);
+        let lines_a = recommend(
+            &m,
+            clip,
+            &Edges {
+                kind: LineKind::Lines,
+                ..e
+            },
+            EdgeMethod::PolygonOffset,
+        )
+        .unwrap();
+        let poly_a = recommend(&m, clip, &e, EdgeMethod::PolygonOffset).unwrap();
+        let (g, r_gl) = (poly_a.face_gradient, 1.0 / (2f64.powi(24) - 1.0));
+        let extra_units = poly_a.polygon_offset[1] - lines_a.polygon_offset[1];
+        assert!(
+            (extra_units * r_gl - g).abs() < 1e-9 * g,
+            "{extra_units} units for a line term {g}"
+        );
         e.line_width = 3.0;
         e.samples = 4;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();

@@ -88,11 +88,12 @@ pub struct ZshiftEdgeOffset {
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies.
     pub window_offset: f64,
-    /// The line term g*line_reach, window depth.
+    /// The line term g*line_reach (polygon-mode lines: 2*g*line_reach, the neighbouring
+    /// triangle's outline adds its own slope term), window depth.
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
-    /// depth is taken: (w + 1)/2 in the worst case, the probed reach + (w - 1)/2 with a profile,
-    /// sqrt(2)*(w + 1)/2 under MSAA.
+    /// depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines, the probed reach
+    /// + 1/16 + (w - 1)/2 for GL_LINES with a profile, sqrt(2)*(w + 1)/2 under MSAA.
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,
