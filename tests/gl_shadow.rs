@@ -895,18 +895,28 @@ fn ground_slope(case: &Case, light: &Light) -> f64 {
     gx.abs().max(gy.abs())
 }
 
-fn cases(full: bool) -> Vec<Case> {
+/// The case of combination `c` in `0..81` of light f/n, map size, format and convention.
+fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
     use zshift_harness::DepthFormat as F;
-    let mut v = Vec::new();
-    let elevations = [1.0, 5.0, 20.0, 45.0, 89.0];
-    let ratios = [10.0, 1e3, 1e5];
-    let sizes = [256, 1024, 2048];
-    let formats = [F::D16, F::D24, F::D32F];
     let clips = [
         ClipDepth::NegOneToOne,
         ClipDepth::ZeroToOne,
         ClipDepth::ReversedZeroToOne,
     ];
+    Case {
+        kind,
+        elevation,
+        ratio: [10.0, 1e3, 1e5][c % 3],
+        resolution: [256, 1024, 2048][(c / 3) % 3],
+        format: [F::D16, F::D24, F::D32F][(c / 9) % 3],
+        clip: clips[(c / 27) % 3],
+        pcf,
+    }
+}
+
+fn cases(full: bool) -> Vec<Case> {
+    let mut v = Vec::new();
+    let elevations = [1.0, 5.0, 20.0, 45.0, 89.0];
     let mut i = 0usize;
     for kind in [Kind::Directional, Kind::Spot] {
         for &elevation in &elevations {
@@ -919,17 +929,7 @@ fn cases(full: bool) -> Vec<Case> {
                 } else {
                     (0..take).map(|j| (i * 7 + j * 13) % 81).collect()
                 };
-                for c in combos {
-                    v.push(Case {
-                        kind,
-                        elevation,
-                        ratio: ratios[c % 3],
-                        resolution: sizes[(c / 3) % 3],
-                        format: formats[(c / 9) % 3],
-                        clip: clips[(c / 27) % 3],
-                        pcf,
-                    });
-                }
+                v.extend(combos.into_iter().map(|c| case_of(kind, elevation, pcf, c)));
                 i += 1;
             }
         }

@@ -354,15 +354,6 @@ fn coplanar(a: &Tri, b: &Tri) -> bool {
 /// elevation in turn (every lookup under `full`), each with one pick of f/n, map size, format and
 /// convention (21 picks under `full`).
 fn receiver_cases(full: bool) -> Vec<Case> {
-    use zshift_harness::DepthFormat as F;
-    let ratios = [10.0, 1e3, 1e5];
-    let sizes = [256, 1024, 2048];
-    let formats = [F::D16, F::D24, F::D32F];
-    let clips = [
-        ClipDepth::NegOneToOne,
-        ClipDepth::ZeroToOne,
-        ClipDepth::ReversedZeroToOne,
-    ];
     let mut v = Vec::new();
     let mut i = 0usize;
     for (k, kind) in [Kind::Directional, Kind::Spot].into_iter().enumerate() {
@@ -376,22 +367,43 @@ fn receiver_cases(full: bool) -> Vec<Case> {
                 } else {
                     Vec::new()
                 };
-                for c in combos {
-                    v.push(Case {
-                        kind,
-                        elevation,
-                        ratio: ratios[c % 3],
-                        resolution: sizes[(c / 3) % 3],
-                        format: formats[(c / 9) % 3],
-                        clip: clips[(c / 27) % 3],
-                        pcf,
-                    });
-                }
+                v.extend(combos.into_iter().map(|c| case_of(kind, elevation, pcf, c)));
                 i += 1;
             }
         }
     }
     v
+}
+
+/// One case's map of every mesh, looked up from the camera.
+struct Through<'a> {
+    rig: &'a Rig,
+    case: &'a Case,
+    light: &'a Light,
+    camera: &'a M4,
+    meshes: &'a [(glow::Buffer, i32)],
+}
+
+impl Through<'_> {
+    /// Renders the map with `caster`, looks every mesh up through it with `receiver`, and
+    /// deletes the map: per pixel (passing taps, taps).
+    fn look(&self, gl: &mut Gl, caster: CasterBias, receiver: ReceiverBias) -> Vec<[u8; 2]> {
+        let (case, light) = (self.case, self.light);
+        // SAFETY: the harness's context is current on this thread.
+        unsafe {
+            let m = self
+                .rig
+                .map_of(gl, case, light, caster, self.meshes)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let px = self
+                .rig
+                .look_at(gl, case, light, self.camera, m.0, receiver, self.meshes)
+                .unwrap_or_else(|e| panic!("{e}"));
+            gl.glow().delete_framebuffer(m.1);
+            gl.glow().delete_texture(m.0);
+            px
+        }
+    }
 }
 
 #[test]
@@ -476,6 +488,13 @@ fn spheres_and_terrain_receive_without_acne() {
                 } else {
                     shadow_bias(&map)
                 };
+                let through = Through {
+                    rig: &rig,
+                    case: &case,
+                    light: &light,
+                    camera: &camera,
+                    meshes: &meshes,
+                };
                 match answer {
                     Ok(bias) => {
                         answered += 1;
@@ -486,24 +505,7 @@ fn spheres_and_terrain_receive_without_acne() {
                             offset,
                             ..Default::default()
                         };
-                        let m = unsafe { rig.map_of(&mut gl, &case, &light, caster, &meshes) }
-                            .unwrap_or_else(|e| panic!("{e}"));
-                        let px = unsafe {
-                            rig.look_at(
-                                &mut gl,
-                                &case,
-                                &light,
-                                &camera,
-                                m.0,
-                                ReceiverBias::default(),
-                                &meshes,
-                            )
-                        }
-                        .unwrap_or_else(|e| panic!("{e}"));
-                        unsafe {
-                            gl.glow().delete_framebuffer(m.1);
-                            gl.glow().delete_texture(m.0);
-                        }
+                        let px = through.look(&mut gl, caster, ReceiverBias::default());
                         let got = count(&px, truth);
                         if got.acne > 0 {
                             failures.push(format!(
@@ -514,29 +516,11 @@ fn spheres_and_terrain_receive_without_acne() {
                     }
                     Err(e) if e.kind() == ErrorKind::Unresolvable => {
                         refused += 1;
-                        let unbiased = unsafe {
-                            rig.map_of(&mut gl, &case, &light, CasterBias::default(), &meshes)
-                        }
-                        .unwrap_or_else(|e| panic!("{e}"));
-                        let px = unsafe {
-                            rig.look_at(
-                                &mut gl,
-                                &case,
-                                &light,
-                                &camera,
-                                unbiased.0,
-                                ReceiverBias {
-                                    beta: 0.999,
-                                    ..Default::default()
-                                },
-                                &meshes,
-                            )
-                        }
-                        .unwrap_or_else(|e| panic!("{e}"));
-                        unsafe {
-                            gl.glow().delete_framebuffer(unbiased.1);
-                            gl.glow().delete_texture(unbiased.0);
-                        }
+                        let nearly_all = ReceiverBias {
+                            beta: 0.999,
+                            ..Default::default()
+                        };
+                        let px = through.look(&mut gl, CasterBias::default(), nearly_all);
                         if count(&px, &truths[usize::from(!listed)]).acne == 0 {
                             failures.push(format!(
                                 "{where_} ({pname}): refused ({e}) but a lookup bias below 1 is acne-free"
