@@ -1102,6 +1102,18 @@ fn tally(tallies: &mut Vec<(String, Tally)>, name: &str, class: &str) -> usize {
     }
 }
 
+/// The camera both sweeps look from: its position and its view-projection (f64).
+fn camera() -> ([f64; 3], M4) {
+    let eye = [-9.0, 9.0, 8.0];
+    let v = look_at(eye, [0.5, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let p = zshift::projection::projection_f64(
+        &Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(),
+        ClipDepth::NegOneToOne,
+    )
+    .unwrap();
+    (eye, mul(&p, &v))
+}
+
 #[test]
 fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let mut gl = Gl::new(Profile::Core)
@@ -1111,16 +1123,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
     let verbose = std::env::var("ZSHIFT_SHADOW_VERBOSE").is_ok_and(|v| v == "1");
     let all = cases(full);
-    let eye = [-9.0, 9.0, 8.0];
-    let camera = {
-        let v = look_at(eye, [0.5, 0.0, 0.0], [0.0, 1.0, 0.0]);
-        let p = zshift::projection::projection_f64(
-            &Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(),
-            ClipDepth::NegOneToOne,
-        )
-        .unwrap();
-        mul(&p, &v)
-    };
+    let (eye, camera) = camera();
     let mut failures = Vec::new();
     let mut tallies: Vec<(String, Tally)> = Vec::new();
     let mut refusals = 0;

@@ -413,16 +413,7 @@ fn spheres_and_terrain_receive_without_acne() {
     let probed = gl_common::probed(&gl);
     let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
     let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
-    let eye = [-9.0, 9.0, 8.0];
-    let camera = {
-        let v = look_at(eye, [0.5, 0.0, 0.0], [0.0, 1.0, 0.0]);
-        let p = zshift::projection::projection_f64(
-            &Frustum::new(-0.05, 0.05, -0.05, 0.05, 0.1, 100.0).unwrap(),
-            ClipDepth::NegOneToOne,
-        )
-        .unwrap();
-        mul(&p, &v)
-    };
+    let (eye, camera) = camera();
     let mut failures = Vec::new();
     let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
     let started = std::time::Instant::now();
