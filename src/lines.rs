@@ -428,22 +428,21 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 /// case), else `(w + 1)/2` (module docs, "The line term").
 fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
+    let worst = (w + 1.0) / 2.0;
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
-        return std::f64::consts::SQRT_2 * (w + 1.0) / 2.0;
+        return std::f64::consts::SQRT_2 * worst;
     }
     let p = &edges.profile;
-    // Polygon-mode lines keep the worst case: the probe draws them in one plane per tile, where
-    // no neighbour's outline can land on a face (module docs, "Polygon-mode lines").
-    let measured = match edges.kind {
-        LineKind::Lines => p.line_reach[0],
-        LineKind::PolygonMode => f64::NAN,
-    };
-    if p.measured && edges.samples == 1 && measured.is_finite() && measured > 0.0 {
-        (measured + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min((w + 1.0) / 2.0)
-    } else {
-        (w + 1.0) / 2.0
+    let measured = p.line_reach[0];
+    match edges.kind {
+        LineKind::Lines if p.measured && measured.is_finite() && measured > 0.0 => {
+            (measured + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
+        }
+        // Polygon-mode lines keep the worst case: the probe draws them in one plane per tile,
+        // where no neighbour's outline can land on a face (module docs, "Polygon-mode lines").
+        LineKind::Lines | LineKind::PolygonMode => worst,
     }
 }
 
@@ -495,12 +494,13 @@ fn unchecked_gap(
     // edge may take its line fragment from the neighbour's outline, off the face by the slope
     // terms of both (module docs, "Polygon-mode lines"): the neighbour's part, up to the
     // face-slope limit, is `neighbour`.
+    let own = representable(g * reach, "the line term overflows f64")?;
     let neighbour = if edges.kind == LineKind::PolygonMode {
-        representable(g * reach, "the line term overflows f64")?
+        own
     } else {
         0.0
     };
-    let line = representable(g * reach + neighbour, "the line term overflows f64")?;
+    let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);

@@ -604,10 +604,10 @@ pub fn shadow_bias_for_receivers(
         )
         .with_value("limit_angle_deg", map.limit_angle_deg));
     };
-    // Receivers of different slopes meet (a mesh): a kernel tap may read a neighbour whose own
-    // slope term is smaller than the receiver's ("Receivers of known geometry").
-    // Its clamp reaches the largest run a tap can read across them: `a` texels of the largest
-    // |gₓ| and of the largest |g_y|, on top of the constant and snapping terms.
+    // Receivers of different slopes meet (a mesh: "Meshes" in the module docs). The clamp
+    // reaches the largest run a tap can read across them (`a` texels of the largest |gₓ| and of
+    // the largest |g_y|) on top of the constant and snapping terms, and a tap that reads a
+    // flatter neighbour gets, in the constant, what its smaller slope term lacks.
     needed = needed.max(terms.constant + slopes.snap + terms.reach * slopes.run());
     terms.constant += terms.slope_factor * slopes.spread();
     let map = ShadowMap {
@@ -616,6 +616,10 @@ pub fn shadow_bias_for_receivers(
     };
     finish(&map, terms, needed, Some((along_light, along_normal)))
 }
+
+/// A receiver's footprint term is widened by the coplanarity tolerance its corners are accepted
+/// with (2⁻¹⁶ of their size).
+const COPLANARITY_WIDENING: f64 = 1.0 + 1.0 / 65_536.0;
 
 /// The slopes of the listed receivers, for a kernel that reads across from one to another.
 #[derive(Default)]
@@ -647,7 +651,7 @@ impl SlopeSpread {
     /// path that crosses receivers (each texel step inside one of them), widened as each
     /// receiver's own footprint term is.
     fn run(&self) -> f64 {
-        (self.g[0] + self.g[1]) * (1.0 + 1.0 / 65_536.0)
+        (self.g[0] + self.g[1]) * COPLANARITY_WIDENING
     }
 }
 
@@ -714,10 +718,9 @@ fn terms_of(
 ) -> Result<ShadowTerms> {
     let reach = map.lookup.reach()?;
     let theta = map.limit_angle_deg.to_radians();
-    // The receiver's own footprint term: exact in f64 from its window plane, widened by the
-    // coplanarity tolerance the corners are accepted with (2⁻¹⁶ of their size).
+    // The receiver's own footprint term: exact in f64 from its window plane, widened.
     let own = receiver
-        .map(|fp| reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * (1.0 + 1.0 / 65_536.0));
+        .map(|fp| reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * COPLANARITY_WIDENING);
     let [w_px, h_px] = map.resolution.map(f64::from);
     let (caster, snap, lookup, quantum, footprint, w_max) = match map.light {
         LightProjection::Perspective(frustum) => {
