@@ -1337,6 +1337,7 @@ fn edges_over_faces_sweep() {
                                             let faces = scene.face_ids();
                                             let img = scene.render(&scaled(&rec, &m, clip, 1.0));
                                             let n = SIZE as usize;
+                                            let offsets = scene.offsets();
                                             for &j in
                                                 c.visible.iter().filter(|&&j| img[j][..3] != EDGE)
                                             {
@@ -1345,7 +1346,7 @@ fn edges_over_faces_sweep() {
                                                 let grad =
                                                     front.map(|(t, _)| b * rfs[plane].tri_grad[t]);
                                                 let edges_here: Vec<String> = ids[j].iter().map(|&e| {
-                                                    let (inv_e, along) = edge_at(scene.mesh, &p, e, i % n, i / n, scene.offsets()[plane]);
+                                                    let (inv_e, along) = edge_at(scene.mesh, &p, e, i % n, i / n, offsets[plane]);
                                                     let grads: Vec<String> = scene.mesh.edge_tris[e].iter().map(|&t| format!("{:.3e}", b * rfs[plane].tri_grad[t])).collect();
                                                     format!("edge {e} tris {:?} (gradients {}) 1/d {inv_e:.9e} along {:.3e}", scene.mesh.edge_tris[e], grads.join(", "), b * along)
                                                 }).collect();

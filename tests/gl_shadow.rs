@@ -149,6 +149,49 @@ struct Case {
 }
 
 impl Case {
+    /// The lookup zshift is told about.
+    fn lookup(&self) -> Lookup {
+        match self.pcf {
+            1 => Lookup::Nearest,
+            0 => Lookup::Hardware2x2,
+            k => Lookup::Pcf(k),
+        }
+    }
+
+    /// Texels per axis from the lookup point to the farthest texel centre the shader reads
+    /// (this file's own statement of its lookups, for the reference's shadow-edge margin).
+    fn kernel_reach(&self) -> f64 {
+        match self.pcf {
+            1 => 0.5,
+            0 => 1.0,
+            k => f64::from(k) / 2.0,
+        }
+    }
+
+    /// The map as zshift is asked about it: the case's light, format, lookup and convention,
+    /// the light's largest world coordinate as `world_reach`.
+    fn shadow_map(
+        &self,
+        light: &Light,
+        limit_angle_deg: f64,
+        profile: RasterizerProfile,
+        pipeline: zshift::model::Pipeline,
+    ) -> ShadowMap {
+        ShadowMap {
+            light: light.projection,
+            clip: self.clip,
+            resolution: [self.resolution; 2],
+            format: gl_common::format_of(self.format),
+            lookup: self.lookup(),
+            limit_angle_deg,
+            receiver_depths: light.receivers,
+            world_reach: light.position.iter().fold(0.0f64, |a, x| a.max(x.abs())),
+            elevation_deg: self.elevation,
+            profile,
+            pipeline,
+        }
+    }
+
     fn label(&self) -> String {
         format!(
             "{:?} e={}° f/n={:e} {}² {} {:?} {}",
@@ -1132,12 +1175,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let started = std::time::Instant::now();
     for case in &all {
         let light = light_of(case);
-        let reach = match case.pcf {
-            1 => 0.5,
-            0 => 1.0,
-            k => k as f64 / 2.0,
-        };
-        let truth = reference(case, &light, &camera, eye, reach);
+        let truth = reference(case, &light, &camera, eye, case.kernel_reach());
         let class = format!(
             "{} {}",
             if case.kind == Kind::Spot {
@@ -1152,7 +1190,6 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 _ => "PCF 5x5",
             }
         );
-        let world_reach = light.position.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
             .unwrap_or_else(|e| panic!("{e}"));
         let acne_at = |gl: &mut Gl, beta: f64| -> Count {
@@ -1250,27 +1287,12 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                 Some(light_pipeline),
             ),
         ] {
-            let map = ShadowMap {
-                light: light.projection,
-                clip: case.clip,
-                resolution: [case.resolution; 2],
-                format: gl_common::format_of(case.format),
-                lookup: match case.pcf {
-                    1 => Lookup::Nearest,
-                    0 => Lookup::Hardware2x2,
-                    k => Lookup::Pcf(k),
-                },
-                limit_angle_deg: if receivers {
-                    RECEIVER_LIMIT_DEG
-                } else {
-                    90.0 - case.elevation
-                },
-                receiver_depths: light.receivers,
-                world_reach,
-                elevation_deg: case.elevation,
-                profile,
-                pipeline: pipeline.unwrap_or_default(),
+            let limit = if receivers {
+                RECEIVER_LIMIT_DEG
+            } else {
+                90.0 - case.elevation
             };
+            let map = case.shadow_map(&light, limit, profile, pipeline.unwrap_or_default());
             let t = tally(&mut tallies, &format!("zshift ({pname})"), &class);
             let answer = if receivers {
                 shadow_bias_for_receivers(&map, &[&ground_quad])

@@ -290,10 +290,12 @@ fn judged(
         let (t, i) = world.first_hit(a, d, 0.0, f64::INFINITY, None)?;
         Some((i, [0, 1, 2].map(|k| a[k] + t * d[k])))
     };
-    let camera_ray = |x: f64, y: f64| -> Option<(f64, usize)> {
+    // The first face a camera ray hits: its distance parameter, index and point.
+    let camera_ray = |x: f64, y: f64| -> Option<(f64, usize, [f64; 3])> {
         let far = apply(&inverse, [x, y, 1.0]);
-        let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
-        world.first_hit(eye, sub(far, eye), 0.0, f64::INFINITY, None)
+        let d = sub([far[0] / far[3], far[1] / far[3], far[2] / far[3]], eye);
+        let (t, i) = world.first_hit(eye, d, 0.0, f64::INFINITY, None)?;
+        Some((t, i, [0, 1, 2].map(|k| eye[k] + t * d[k])))
     };
     let edge = reach + 1.5;
     let pixel = 2.0 / CAMERA as f64;
@@ -303,18 +305,14 @@ fn judged(
             let x = (px as f64 + 0.5) * pixel - 1.0;
             let y = (py as f64 + 0.5) * pixel - 1.0;
             out.push((|| {
-                let (t, i) = camera_ray(x, y)?;
+                let (t, i, p) = camera_ray(x, y)?;
                 let object = world.tris[i].object;
                 for (dx, dy) in [(-0.6, -0.6), (0.6, -0.6), (-0.6, 0.6), (0.6, 0.6)] {
-                    let (ti, j) = camera_ray(x + dx * pixel, y + dy * pixel)?;
+                    let (ti, j, _) = camera_ray(x + dx * pixel, y + dy * pixel)?;
                     if world.tris[j].object != object || (ti - t).abs() > 0.05 * t {
                         return None;
                     }
                 }
-                let far = apply(&inverse, [x, y, 1.0]);
-                let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
-                let d = sub(far, eye);
-                let p = [0, 1, 2].map(|k| eye[k] + t * d[k]);
                 if !promised(i, p) {
                     return None;
                 }
@@ -424,11 +422,7 @@ fn spheres_and_terrain_receive_without_acne() {
         let points = world.points();
         for case in receiver_cases(full) {
             let light = light_for(&case, &points, &points);
-            let reach = match case.pcf {
-                1 => 0.5,
-                0 => 1.0,
-                k => k as f64 / 2.0,
-            };
+            let reach = case.kernel_reach();
             let limit = limit_for(case.elevation);
             // `shadow_bias` promises planar receivers (planar across the kernel: every tap on
             // the receiver's own plane); `shadow_bias_for_receivers` every listed face.
@@ -448,7 +442,6 @@ fn spheres_and_terrain_receive_without_acne() {
                 })
                 .collect();
             let face_refs: Vec<&[glam::Vec3]> = faces.iter().map(|f| f.as_slice()).collect();
-            let world_reach = light.position.iter().fold(0.0f64, |a, x| a.max(x.abs()));
             let where_ = format!("{} {} limit {limit}°", world.name, case.label());
             for (pname, profile, listed) in [
                 ("worst", RasterizerProfile::worst_case(), false),
@@ -456,23 +449,7 @@ fn spheres_and_terrain_receive_without_acne() {
                 ("worst, receivers", RasterizerProfile::worst_case(), true),
                 ("probed, receivers", probed, true),
             ] {
-                let map = ShadowMap {
-                    light: light.projection,
-                    clip: case.clip,
-                    resolution: [case.resolution; 2],
-                    format: gl_common::format_of(case.format),
-                    lookup: match case.pcf {
-                        1 => Lookup::Nearest,
-                        0 => Lookup::Hardware2x2,
-                        k => Lookup::Pcf(k),
-                    },
-                    limit_angle_deg: limit,
-                    receiver_depths: light.receivers,
-                    world_reach,
-                    elevation_deg: case.elevation,
-                    profile,
-                    pipeline: Default::default(),
-                };
+                let map = case.shadow_map(&light, limit, profile, Default::default());
                 asked += 1;
                 let answer = if listed {
                     shadow_bias_for_receivers(&map, &face_refs)
