@@ -889,8 +889,10 @@ typedef struct {
    */
   double kernel_radius;
   /*
-   The limit angle in degrees, [0, 90), between the light (a spot light's axis) and a
-   surface normal beyond which a surface counts as facing away (acne allowed there).
+   The limit angle in degrees, [0, 90), between the light and a surface normal beyond
+   which a surface counts as facing away (acne allowed there). For a spot light,
+   zshift_shadow_bias measures it to the light's axis, zshift_shadow_bias_receivers to the
+   ray from the light to each point of a receiver (the angle shading sees).
    */
   double limit_angle_deg;
   /*
@@ -1805,7 +1807,8 @@ ZshiftStatus zshift_shadow_bias(const ZshiftShadowMap *map, ZshiftShadowBias *ou
  own window-depth plane in the map, at any angle short of edge-on, also where a kernel reads
  across from one receiver to another (the faces of one mesh may be listed: the constant then
  covers the spread of their slopes); receivers facing away
- from the light by more than `map->limit_angle_deg` everywhere are skipped;
+ from the light by more than `map->limit_angle_deg` everywhere are skipped (under a spot
+ light, the angle to the ray from the light to each point);
  `map->receiver_near` and `receiver_far` are not used (but must lie in [n, f]).
 
  Errors: as zshift_shadow_bias; ZSHIFT_ERR_NULL_POINTER (corners or corner_counts NULL with

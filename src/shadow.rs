@@ -165,7 +165,7 @@
 //!   both arguments reach `K_i + S_i + F_i`.
 //!
 //! A receiver whose front faces away from the light by more than the limit angle at every
-//! point is skipped: the largest cosine of that angle over the polygon is `N_z` under an
+//! point (for a spot light, the angle to the ray from the light to the point) is skipped: the largest cosine of that angle over the polygon is `N_z` under an
 //! orthographic light, and at most `h/d_min` under a spot (`h` the light's height above the
 //! plane, `d_min` the receiver's nearest light depth, `|p| ≥ d_min`). Casters that are not
 //! listed receivers (the far side of a box, a thin pole) get at most the clamp: they may show
@@ -270,9 +270,12 @@ pub struct ShadowMap {
     pub format: DepthFormat,
     /// How the lookup reads it.
     pub lookup: Lookup,
-    /// The limit angle, in degrees, between the light (the direction of an orthographic light,
-    /// a spot light's axis) and a surface normal beyond which the surface counts as facing
-    /// away: `0 ≤ θ < 90`. Surfaces beyond it may show acne (shading hides them).
+    /// The limit angle, in degrees, between the light and a surface normal beyond which the
+    /// surface counts as facing away: `0 ≤ θ < 90`. Surfaces beyond it may show acne (shading
+    /// hides them). The light is an orthographic light's direction; for a spot light,
+    /// [`shadow_bias`] takes its axis (it knows no positions) and
+    /// [`shadow_bias_for_receivers`] the ray from the light to each point of a receiver, the
+    /// angle the shading sees (a face at 78° to the axis may be 85° to its ray).
     pub limit_angle_deg: f64,
     /// The receivers' nearest and farthest light-space depth (`−z` in the light's view), inside
     /// `[n, f]`: pass `[n, f]` when unknown.

@@ -1139,7 +1139,8 @@ def shadow_bias_receivers(light, projection, clip, resolution, depth_format, rec
     seen from the lit front, inside the light's frustum. The bias follows from each receiver's
     own plane, at any angle short of edge-on, also where a kernel reads across from one receiver
     to another (a mesh's faces may be listed); receivers facing away by more than
-    ``limit_angle_deg`` everywhere are skipped; ``view_matrix``, ``world_box`` and ``eye_first`` as
+    ``limit_angle_deg`` everywhere are skipped (under a spot light, the angle to the ray from the
+    light to each point, not to its axis); ``view_matrix``, ``world_box`` and ``eye_first`` as
     for :func:`shadow_bias` (with ``eye_first``, only the error off each receiver's plane counts).
     Raises :class:`ZshiftError` as :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""
     polygons = [list(polygon) for polygon in receivers]
