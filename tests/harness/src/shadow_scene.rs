@@ -947,11 +947,7 @@ pub fn reference(
     let mut out = Vec::with_capacity(CAMERA * CAMERA);
     for py in 0..CAMERA {
         for px in 0..CAMERA {
-            let x = (px as f64 + 0.5) / CAMERA as f64 * 2.0 - 1.0;
-            let y = (py as f64 + 0.5) / CAMERA as f64 * 2.0 - 1.0;
-            let far = apply(&inverse, [x, y, 1.0]);
-            let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
-            let d = sub(far, eye);
+            let d = pixel_ray(&inverse, eye, px, py);
             let t = -eye[1] / d[1];
             let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
             let inside_box = p[0] >= BOX[0][0] - 0.05
@@ -1033,24 +1029,57 @@ pub fn invert(m: &M4) -> M4 {
 /// tap passes is a leak.
 pub fn count(pixels: &[[u8; 2]], truth: &[Option<bool>]) -> Count {
     let mut c = Count::default();
-    for (p, t) in pixels.iter().zip(truth) {
-        match t {
-            Some(true) if p[1] > 0 => {
-                c.lit += 1;
-                if p[0] < p[1] {
-                    c.acne += 1;
-                }
-            }
-            Some(false) if p[1] > 0 => {
-                c.shadowed += 1;
-                if p[0] == p[1] {
-                    c.leak += 1;
-                }
-            }
-            _ => {}
+    for (&p, &t) in pixels.iter().zip(truth) {
+        match judge(p, t) {
+            Some(Verdict::Lit) => c.lit += 1,
+            Some(Verdict::Acne) => (c.lit, c.acne) = (c.lit + 1, c.acne + 1),
+            Some(Verdict::Shadowed) => c.shadowed += 1,
+            Some(Verdict::Leak) => (c.shadowed, c.leak) = (c.shadowed + 1, c.leak + 1),
+            None => {}
         }
     }
     c
+}
+
+/// One counted camera pixel against the reference.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Verdict {
+    /// Lit, and the map leaves it lit.
+    Lit,
+    /// Lit, but the map darkens it (a tap fails).
+    Acne,
+    /// Shadowed, and the map darkens it.
+    Shadowed,
+    /// Shadowed, but the map leaves it fully lit (every tap passes).
+    Leak,
+}
+
+/// The verdict on a pixel (passing taps, taps) whose reference answer is `truth`; none where
+/// the reference leaves it out or the pixel shows no ground.
+pub fn judge(pixel: [u8; 2], truth: Option<bool>) -> Option<Verdict> {
+    match truth {
+        Some(true) if pixel[1] > 0 => Some(if pixel[0] < pixel[1] {
+            Verdict::Acne
+        } else {
+            Verdict::Lit
+        }),
+        Some(false) if pixel[1] > 0 => Some(if pixel[0] == pixel[1] {
+            Verdict::Leak
+        } else {
+            Verdict::Shadowed
+        }),
+        _ => None,
+    }
+}
+
+/// The direction from `eye` through the centre of camera pixel `(px, py)` (rows bottom-up),
+/// `inverse` being the camera's inverse view-projection.
+pub fn pixel_ray(inverse: &M4, eye: [f64; 3], px: usize, py: usize) -> [f64; 3] {
+    let x = (px as f64 + 0.5) / CAMERA as f64 * 2.0 - 1.0;
+    let y = (py as f64 + 0.5) / CAMERA as f64 * 2.0 - 1.0;
+    let far = apply(inverse, [x, y, 1.0]);
+    let far = [far[0] / far[3], far[1] / far[3], far[2] / far[3]];
+    sub(far, eye)
 }
 
 /// An engine's default shadow bias: what it does to the casters and to the lookup.
@@ -1058,6 +1087,8 @@ pub fn count(pixels: &[[u8; 2]], truth: &[Option<bool>]) -> Count {
 pub struct Engine {
     /// The engine's name.
     pub name: &'static str,
+    /// Its bias in a few words, in capitals (a picture's label).
+    pub short: &'static str,
     /// Its caster-side bias for a case and its light.
     pub caster: fn(&Case, &Light) -> CasterBias,
     /// Its receiver-side bias for a case and its light.
@@ -1100,6 +1131,7 @@ pub fn engines() -> [Engine; 5] {
     [
         Engine {
             name: "Unity URP",
+            short: "OFFSET 2.5,1 + NORMAL",
             caster: |c, l| {
                 let s = flip(c);
                 let t = l.texel_world as f32 * soft(c);
@@ -1113,6 +1145,7 @@ pub fn engines() -> [Engine; 5] {
         },
         Engine {
             name: "Godot 4",
+            short: "RECEIVER NORMAL 1 TEXEL",
             caster: |_, _| CasterBias::default(),
             receiver: |_, l| ReceiverBias {
                 beta: 0.0,
@@ -1123,6 +1156,7 @@ pub fn engines() -> [Engine; 5] {
         },
         Engine {
             name: "Filament",
+            short: "OFFSET 2,0.5 + NORMAL",
             caster: |c, _| {
                 let s = flip(c);
                 CasterBias {
@@ -1140,6 +1174,7 @@ pub fn engines() -> [Engine; 5] {
         },
         Engine {
             name: "bevy",
+            short: "DEPTH 0.02 + NORMAL 1.8",
             caster: |_, _| CasterBias::default(),
             receiver: |_, l| ReceiverBias {
                 beta: 0.0,
@@ -1150,6 +1185,7 @@ pub fn engines() -> [Engine; 5] {
         },
         Engine {
             name: "three.js",
+            short: "WINDOW BIAS 0.0005",
             caster: |_, _| CasterBias::default(),
             receiver: |_, _| ReceiverBias {
                 beta: 0.0005,
