@@ -152,6 +152,7 @@ fn zshift_bias(s: &Setting) -> Result<(CasterBias, [String; 2]), String> {
         offset: Some((f, u, c)),
         ..Default::default()
     };
+    println!("zshift: glPolygonOffsetClamp({f}, {u}, {c:e})");
     let label = format!("OFFSET {f:.2}, {u:.0}, {c:.1E}");
     Ok((caster, ["ZSHIFT".into(), label]))
 }
