@@ -3,7 +3,7 @@
 //! 1.2 × 2 × 0.8 box standing on it, lit by a directional or a spot light ([`Case`], [`Light`]);
 //! the GL rig that renders the light's depth map and looks the ground up through it from a
 //! camera ([`Rig`]); the exact f64 reference that says, per camera pixel, whether the ground
-//! point is lit ([`reference`]); the count of acne and leak against it ([`count`]); and the
+//! point is lit ([`reference()`]); the count of acne and leak against it ([`count`]); and the
 //! shadow-bias defaults of five engines ([`engines`]). In one place so that the test's figures
 //! and the demonstration's picture come from the same code.
 //!
@@ -1025,7 +1025,7 @@ pub fn invert(m: &M4) -> M4 {
 }
 
 /// Counts `pixels` (per pixel: passing taps, taps, as [`Rig::look`] returns them) against
-/// `truth` ([`reference`]): a lit pixel with a failing tap is acne, a shadowed pixel whose every
+/// `truth` ([`reference()`]): a lit pixel with a failing tap is acne, a shadowed pixel whose every
 /// tap passes is a leak.
 pub fn count(pixels: &[[u8; 2]], truth: &[Option<bool>]) -> Count {
     let mut c = Count::default();
