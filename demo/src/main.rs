@@ -29,6 +29,9 @@
 
 use std::path::{Path, PathBuf};
 
+// `--shadows DIR`: the shadow-bias picture (demo/src/shadows.rs).
+mod shadows;
+
 use zshift_demo::picture::{compose, write_gif, Picture};
 use zshift_demo::scene::{
     compare, percent, report, verdict, Canvas, Comparison, Scene, DEPTH, MAIN, SIZE,
@@ -192,6 +195,13 @@ fn sweep(gl: &mut Gl) -> Result<(), String> {
 
 fn main() {
     let arg = std::env::args_os().nth(1);
+    if arg.as_deref() == Some(std::ffi::OsStr::new("--shadows")) {
+        if let Err(e) = shadows::run(std::env::args_os().nth(2)) {
+            eprintln!("zshift-demo: {e}");
+            std::process::exit(1);
+        }
+        return;
+    }
     let mut gl = match Gl::new(Profile::Compatibility)
         .and_then(|mut gl| gl.set_target(SIZE, SIZE, DEPTH).map(|_| gl))
     {

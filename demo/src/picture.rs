@@ -45,14 +45,18 @@ impl Picture {
     /// `top` above `bottom`, left-aligned, on the background colour.
     pub fn stacked(top: &Picture, bottom: &Picture) -> Picture {
         let mut p = Picture::new(top.width.max(bottom.width), top.height + bottom.height);
-        for (part, y0) in [(top, 0), (bottom, top.height)] {
-            for y in 0..part.height {
-                for x in 0..part.width {
-                    p.set(x, y0 + y, part.pixels[y * part.width + x]);
-                }
+        p.paste(top, 0, 0);
+        p.paste(bottom, 0, top.height);
+        p
+    }
+
+    /// Copies `part` with its top-left at `(x, y)` (clipped to this picture).
+    pub fn paste(&mut self, part: &Picture, x: usize, y: usize) {
+        for row in 0..part.height {
+            for col in 0..part.width {
+                self.set(x + col, y + row, part.pixels[row * part.width + col]);
             }
         }
-        p
     }
 
     fn set(&mut self, x: usize, y: usize, color: [u8; 3]) {
@@ -131,46 +135,81 @@ fn text_width(text: &str) -> usize {
     text.chars().count() * 6 * SCALE
 }
 
+/// One labelled render of a picture made by [`compose_panels`].
+pub struct Panel {
+    /// The render, as it is to appear.
+    pub picture: Picture,
+    /// Two label lines over it: a head (bright) and a sub-line (dim).
+    pub label: [String; 2],
+    /// Count lines under it, each with whether it is good (green) or not (red).
+    pub counts: Vec<(String, bool)>,
+}
+
 /// Lays a comparison out: `title` lines on top, then each method's render between its two label
 /// lines and its lost / bled counts (green when 0, red otherwise), then `footer` lines.
 pub fn compose(c: &Comparison, title: &[String], footer: &[String]) -> Picture {
     let side = SIZE as usize;
-    let k = c.rows.len();
-    let width = k * side + (k + 1) * GAP;
-    let panel_top = GAP + title.len() * LINE + GAP + 2 * LINE + GAP / 2;
-    let counts_top = panel_top + side + GAP;
-    let height = counts_top + 2 * LINE + GAP + footer.len() * LINE + GAP;
+    let panels: Vec<Panel> = c
+        .rows
+        .iter()
+        .map(|row| {
+            let mut picture = Picture::from_image(&row.image);
+            picture.outline(&c.decal, side, 0, 0);
+            let count = |what: &str, n: usize, of: usize| {
+                (format!("{what} {n} ({:.0}%)", percent(n, of)), n == 0)
+            };
+            Panel {
+                picture,
+                label: row.method.label.map(String::from),
+                counts: vec![
+                    count("LOST", row.lost, c.visible),
+                    count("BLED", row.bled, c.covered),
+                ],
+            }
+        })
+        .collect();
+    compose_panels(&panels, panels.len(), title, footer)
+}
+
+/// Lays `panels` (all the same size, the same number of count lines) out `columns` to a row:
+/// `title` lines on top, then each panel between its two label lines and its counts, then
+/// `footer` lines.
+pub fn compose_panels(
+    panels: &[Panel],
+    columns: usize,
+    title: &[String],
+    footer: &[String],
+) -> Picture {
+    let (w, h) = panels
+        .first()
+        .map_or((0, 0), |p| (p.picture.width, p.picture.height));
+    let counts = panels.first().map_or(0, |p| p.counts.len());
+    let rows = panels.len().div_ceil(columns.max(1));
+    let width = columns * w + (columns + 1) * GAP;
+    let top = GAP + title.len() * LINE + GAP;
+    // One row: two label lines, the panels, their count lines.
+    let block = 2 * LINE + GAP / 2 + h + GAP + counts * LINE + GAP;
+    let height = top + rows * block + footer.len() * LINE + GAP;
     let mut p = Picture::new(width, height);
     for (i, line) in title.iter().enumerate() {
         p.text(GAP, GAP + i * LINE, line, TEXT);
     }
-    for (i, row) in c.rows.iter().enumerate() {
-        let x = GAP + i * (side + GAP);
-        let centre = |t: &str| x + side.saturating_sub(text_width(t)) / 2;
-        let [head, sub] = row.method.label;
-        let top = GAP + title.len() * LINE + GAP;
-        p.text(centre(head), top, head, TEXT);
-        p.text(centre(sub), top + LINE, sub, DIM);
-        p.blit(&row.image, x, panel_top);
-        p.outline(&c.decal, side, x, panel_top);
-        let count = |what: &str, n: usize, of: usize| {
-            (
-                format!("{what} {n} ({:.0}%)", percent(n, of)),
-                if n == 0 { GOOD } else { BAD },
-            )
-        };
-        for (j, (text, color)) in [
-            count("LOST", row.lost, c.visible),
-            count("BLED", row.bled, c.covered),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            p.text(centre(&text), counts_top + j * LINE, &text, color);
+    for (i, panel) in panels.iter().enumerate() {
+        let x = GAP + (i % columns) * (w + GAP);
+        let label_top = top + (i / columns) * block;
+        let panel_top = label_top + 2 * LINE + GAP / 2;
+        let centre = |t: &str| x + w.saturating_sub(text_width(t)) / 2;
+        let [head, sub] = &panel.label;
+        p.text(centre(head), label_top, head, TEXT);
+        p.text(centre(sub), label_top + LINE, sub, DIM);
+        p.paste(&panel.picture, x, panel_top);
+        for (j, (text, good)) in panel.counts.iter().enumerate() {
+            let color = if *good { GOOD } else { BAD };
+            p.text(centre(text), panel_top + h + GAP + j * LINE, text, color);
         }
     }
     for (i, line) in footer.iter().enumerate() {
-        p.text(GAP, counts_top + 2 * LINE + GAP + i * LINE, line, DIM);
+        p.text(GAP, top + rows * block + i * LINE, line, DIM);
     }
     p
 }
