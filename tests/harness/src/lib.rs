@@ -43,6 +43,7 @@ use khronos_egl as egl;
 pub use glow;
 
 pub mod coplanar;
+pub mod edges;
 pub mod world;
 
 /// `EGL_PLATFORM_SURFACELESS_MESA`: a display with no window system.
