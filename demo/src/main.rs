@@ -5,6 +5,7 @@
 //! cargo run --release -p zshift-demo               # writes target/decal/decal.png and decal.gif
 //! cargo run --release -p zshift-demo -- DIR        # writes them into DIR
 //! cargo run --release -p zshift-demo -- --sweep    # lost pixels over slopes, far planes, depths
+//! cargo run --release -p zshift-demo -- --edges DIR  # edges over their faces: DIR/edges.png
 //! ```
 //!
 //! A floor (blue) and a smaller decal (red) lie in the same plane, tilted away from the camera
@@ -203,6 +204,9 @@ fn main() {
     };
     let result = if arg.as_deref() == Some(std::ffi::OsStr::new("--sweep")) {
         sweep(&mut gl)
+    } else if arg.as_deref() == Some(std::ffi::OsStr::new("--edges")) {
+        let out_dir = std::env::args_os().nth(2).map(PathBuf::from);
+        zshift_demo::edges::demonstrate(&mut gl, &out_dir.unwrap_or("target/edges".into()))
     } else {
         let out_dir = arg
             .map(PathBuf::from)

@@ -131,46 +131,68 @@ fn text_width(text: &str) -> usize {
     text.chars().count() * 6 * SCALE
 }
 
+/// One labelled render in a row of a picture ([`compose_row`]).
+pub struct Panel<'a> {
+    /// Two label lines over the render: the method, then a dimmer detail.
+    pub label: [&'a str; 2],
+    /// The render (rows bottom-up, as `glReadPixels` gives them).
+    pub image: &'a Image,
+    /// The count lines under the render: what, how many, out of how many (green when 0, red
+    /// otherwise, with the percentage).
+    pub counts: Vec<(&'a str, usize, usize)>,
+    /// A mask the size of the render whose border is drawn in [`OUTLINE`], or none.
+    pub outline: Option<&'a [bool]>,
+}
+
 /// Lays a comparison out: `title` lines on top, then each method's render between its two label
 /// lines and its lost / bled counts (green when 0, red otherwise), then `footer` lines.
 pub fn compose(c: &Comparison, title: &[String], footer: &[String]) -> Picture {
+    let panels: Vec<Panel> = c
+        .rows
+        .iter()
+        .map(|row| Panel {
+            label: row.method.label,
+            image: &row.image,
+            counts: vec![("LOST", row.lost, c.visible), ("BLED", row.bled, c.covered)],
+            outline: Some(&c.decal),
+        })
+        .collect();
+    compose_row(&panels, title, footer)
+}
+
+/// Lays panels out side by side: `title` lines on top, then each render between its two label
+/// lines and its count lines, then `footer` lines. Every render is [`SIZE`] square.
+pub fn compose_row(panels: &[Panel], title: &[String], footer: &[String]) -> Picture {
     let side = SIZE as usize;
-    let k = c.rows.len();
+    let k = panels.len();
+    let lines = panels.iter().map(|p| p.counts.len()).max().unwrap_or(0);
     let width = k * side + (k + 1) * GAP;
     let panel_top = GAP + title.len() * LINE + GAP + 2 * LINE + GAP / 2;
     let counts_top = panel_top + side + GAP;
-    let height = counts_top + 2 * LINE + GAP + footer.len() * LINE + GAP;
+    let height = counts_top + lines * LINE + GAP + footer.len() * LINE + GAP;
     let mut p = Picture::new(width, height);
     for (i, line) in title.iter().enumerate() {
         p.text(GAP, GAP + i * LINE, line, TEXT);
     }
-    for (i, row) in c.rows.iter().enumerate() {
+    for (i, panel) in panels.iter().enumerate() {
         let x = GAP + i * (side + GAP);
         let centre = |t: &str| x + side.saturating_sub(text_width(t)) / 2;
-        let [head, sub] = row.method.label;
+        let [head, sub] = panel.label;
         let top = GAP + title.len() * LINE + GAP;
         p.text(centre(head), top, head, TEXT);
         p.text(centre(sub), top + LINE, sub, DIM);
-        p.blit(&row.image, x, panel_top);
-        p.outline(&c.decal, side, x, panel_top);
-        let count = |what: &str, n: usize, of: usize| {
-            (
-                format!("{what} {n} ({:.0}%)", percent(n, of)),
-                if n == 0 { GOOD } else { BAD },
-            )
-        };
-        for (j, (text, color)) in [
-            count("LOST", row.lost, c.visible),
-            count("BLED", row.bled, c.covered),
-        ]
-        .into_iter()
-        .enumerate()
-        {
+        p.blit(panel.image, x, panel_top);
+        if let Some(mask) = panel.outline {
+            p.outline(mask, side, x, panel_top);
+        }
+        for (j, &(what, n, of)) in panel.counts.iter().enumerate() {
+            let text = format!("{what} {n} ({:.0}%)", percent(n, of));
+            let color = if n == 0 { GOOD } else { BAD };
             p.text(centre(&text), counts_top + j * LINE, &text, color);
         }
     }
     for (i, line) in footer.iter().enumerate() {
-        p.text(GAP, counts_top + 2 * LINE + GAP + i * LINE, line, DIM);
+        p.text(GAP, counts_top + lines * LINE + GAP + i * LINE, line, DIM);
     }
     p
 }
