@@ -68,31 +68,22 @@ pub struct EdgeScene {
 /// factor no longer covers the line's reach), and 3 pixels wide in the middle of a deep D16 one
 /// (VTK's units push the faces back past hidden edges).
 pub const SCENES: [EdgeScene; 3] = [
-    EdgeScene {
-        what: "TORUS",
-        mesh: torus,
-        distance: 31.6,
-        far: 1e3,
-        format: DepthFormat::D24,
-        width: 1.0,
-    },
-    EdgeScene {
-        what: "TORUS",
-        mesh: torus,
-        distance: 31.6,
-        far: 1e3,
-        format: DepthFormat::D24,
-        width: 3.0,
-    },
-    EdgeScene {
-        what: "TORUS",
-        mesh: torus,
-        distance: 1000.0,
-        far: 1e6,
-        format: DepthFormat::D16,
-        width: 3.0,
-    },
+    torus_at(31.6, 1e3, DepthFormat::D24, 1.0),
+    torus_at(31.6, 1e3, DepthFormat::D24, 3.0),
+    torus_at(1000.0, 1e6, DepthFormat::D16, 3.0),
 ];
+
+/// The sweep's torus at `distance`, far plane `far`, depth `format`, lines `width` pixels wide.
+const fn torus_at(distance: f64, far: f64, format: DepthFormat, width: f32) -> EdgeScene {
+    EdgeScene {
+        what: "TORUS",
+        mesh: torus,
+        distance,
+        far,
+        format,
+        width,
+    }
+}
 
 /// How a panel draws: no offset, an offset on the faces (`glPolygonOffset(factor, units)`), or
 /// zshift's answer by one of its methods.

@@ -4,7 +4,7 @@
 //!
 //! **Reference** (f64, from the f32 vertices and the f64 matrix, nothing from zshift): an exact
 //! z-buffer of the faces at every pixel centre (which triangle is in front and its `1/d`,
-//! [`reference`]), and for every edge that drew a pixel (two ID renders with `gl_PrimitiveID`,
+//! [`reference()`]), and for every edge that drew a pixel (two ID renders with `gl_PrimitiveID`,
 //! forward and reversed order, [`edge_ids`]) its exact depth at the pixel (the point of the edge
 //! at the pixel's major-axis coordinate). [`classify`] sorts the pixels: **visible** when the
 //! front face contains the edge, or the edge is in front of the front face; **hidden beyond the
@@ -34,12 +34,6 @@ pub const FACE: [u8; 3] = [0, 0, 255];
 /// The edges' flat colour.
 pub const EDGE: [u8; 3] = [255, 255, 255];
 
-/// Eye-space vertices through the projection matrix (the model-view is the identity).
-const VS: &str = "#version 330 core
-layout(location = 0) in vec3 eye;
-uniform mat4 proj;
-void main() { gl_Position = proj * vec4(eye, 1.0); }
-";
 /// A flat colour (`id_mode` 0), or the primitive's ID + 1 in RGB, in drawing order (1) or
 /// reversed (2), so that two renders see both of two primitives that share a pixel.
 const FS: &str = "#version 330 core
@@ -191,37 +185,12 @@ pub struct Renderer {
     ebo: glow::Buffer,
 }
 
-/// Compiles and links a vertex and a fragment shader, failing with the driver's log.
-///
-/// # Safety
-/// `gl` must be current on this thread.
-pub unsafe fn link_program(gl: &glow::Context, vs: &str, fs: &str) -> glow::Program {
-    let program = gl.create_program().unwrap();
-    for (kind, src) in [(glow::VERTEX_SHADER, vs), (glow::FRAGMENT_SHADER, fs)] {
-        let s = gl.create_shader(kind).unwrap();
-        gl.shader_source(s, src);
-        gl.compile_shader(s);
-        assert!(
-            gl.get_shader_compile_status(s),
-            "{}",
-            gl.get_shader_info_log(s)
-        );
-        gl.attach_shader(program, s);
-    }
-    gl.link_program(program);
-    assert!(
-        gl.get_program_link_status(program),
-        "{}",
-        gl.get_program_info_log(program)
-    );
-    program
-}
-
 impl Renderer {
     /// The program and buffers, in `gl`'s current context.
     pub fn new(gl: &glow::Context) -> Renderer {
         unsafe {
-            let program = link_program(gl, VS, FS);
+            let program =
+                crate::link_program(gl, crate::VERTEX_SHADER, FS).unwrap_or_else(|e| panic!("{e}"));
             let vao = gl.create_vertex_array().unwrap();
             let vbo = gl.create_buffer().unwrap();
             let ebo = gl.create_buffer().unwrap();
@@ -451,7 +420,8 @@ impl Msaa {
                 g.check_framebuffer_status(glow::FRAMEBUFFER),
                 glow::FRAMEBUFFER_COMPLETE
             );
-            let program = link_program(g, RESOLVE_VS, RESOLVE_FS);
+            let program =
+                crate::link_program(g, RESOLVE_VS, RESOLVE_FS).unwrap_or_else(|e| panic!("{e}"));
             let vao = g.create_vertex_array().unwrap();
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(target));
             gl.check("MSAA target").unwrap();

@@ -59,27 +59,35 @@ pub fn finish(name: &'static str, verts: Vec<[f32; 3]>, tris: Vec<[u32; 3]>) -> 
     }
 }
 
+/// `rows` rings of `per_ring` vertices, ring by ring: `point(ring, index)`.
+fn rings(rows: usize, per_ring: usize, point: impl Fn(usize, usize) -> [f32; 3]) -> Vec<[f32; 3]> {
+    (0..rows)
+        .flat_map(|j| (0..per_ring).map(move |i| (j, i)))
+        .map(|(j, i)| point(j, i))
+        .collect()
+}
+
+/// The corners of cell `i` between ring `j` and ring `next` of [`rings`]: two on ring `j`, then
+/// two on `next`, the second of each one step further round.
+fn cell(per_ring: usize, j: usize, next: usize, i: usize) -> [u32; 4] {
+    let at = |ring: usize, k: usize| (ring * per_ring + k % per_ring) as u32;
+    [at(j, i), at(j, i + 1), at(next, i), at(next, i + 1)]
+}
+
 /// A UV sphere of radius `r` centred at eye depth `d`, 24 × 12, poles dropped to rings.
 pub fn sphere(r: f64, d: f64) -> Mesh {
     let (nu, nv) = (24, 12);
-    let mut verts = Vec::new();
-    for j in 0..=nv {
+    let verts = rings(nv + 1, nu, |j, i| {
         let v = std::f64::consts::PI * j as f64 / nv as f64;
-        for i in 0..nu {
-            let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64 + 0.3;
-            // Tilted 20° about x so that the poles are not on the axis.
-            let (x, y, z) = (r * v.sin() * u.cos(), r * v.cos(), r * v.sin() * u.sin());
-            let (c, s) = (0.35f64.cos(), 0.35f64.sin());
-            verts.push([x as f32, (c * y - s * z) as f32, (s * y + c * z - d) as f32]);
-        }
-    }
+        let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64 + 0.3;
+        // Tilted 20° about x so that the poles are not on the axis.
+        let (x, y, z) = (r * v.sin() * u.cos(), r * v.cos(), r * v.sin() * u.sin());
+        place([x, y, z], 0.35, 0.0, d)
+    });
     let mut tris = Vec::new();
     for j in 0..nv {
         for i in 0..nu {
-            let a = (j * nu + i) as u32;
-            let b = (j * nu + (i + 1) % nu) as u32;
-            let c = a + nu as u32;
-            let e = b + nu as u32;
+            let [a, b, c, e] = cell(nu, j, j + 1, i);
             if j > 0 {
                 tris.push([a, b, e]);
             }
@@ -94,24 +102,17 @@ pub fn sphere(r: f64, d: f64) -> Mesh {
 /// A torus of major radius `r`, minor `0.35r`, 24 × 12, tilted 55° toward the camera.
 pub fn torus(r: f64, d: f64) -> Mesh {
     let (nu, nv) = (24, 12);
-    let mut verts = Vec::new();
-    for j in 0..nv {
+    let verts = rings(nv, nu, |j, i| {
         let v = 2.0 * std::f64::consts::PI * j as f64 / nv as f64;
-        for i in 0..nu {
-            let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
-            let rr = r + 0.35 * r * v.cos();
-            let (x, y, z) = (rr * u.cos(), 0.35 * r * v.sin(), rr * u.sin());
-            let (c, s) = (0.96f64.cos(), 0.96f64.sin());
-            verts.push([x as f32, (c * y - s * z) as f32, (s * y + c * z - d) as f32]);
-        }
-    }
+        let u = 2.0 * std::f64::consts::PI * i as f64 / nu as f64;
+        let rr = r + 0.35 * r * v.cos();
+        let (x, y, z) = (rr * u.cos(), 0.35 * r * v.sin(), rr * u.sin());
+        place([x, y, z], 0.96, 0.0, d)
+    });
     let mut tris = Vec::new();
     for j in 0..nv {
         for i in 0..nu {
-            let a = (j * nu + i) as u32;
-            let b = (j * nu + (i + 1) % nu) as u32;
-            let c = (((j + 1) % nv) * nu + i) as u32;
-            let e = (((j + 1) % nv) * nu + (i + 1) % nu) as u32;
+            let [a, b, c, e] = cell(nu, j, (j + 1) % nv, i);
             tris.push([a, b, e]);
             tris.push([a, e, c]);
         }
