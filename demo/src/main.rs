@@ -5,6 +5,8 @@
 //! cargo run --release -p zshift-demo               # writes target/decal/decal.png and decal.gif
 //! cargo run --release -p zshift-demo -- DIR        # writes them into DIR
 //! cargo run --release -p zshift-demo -- --sweep    # lost pixels over slopes, far planes, depths
+//! cargo run --release -p zshift-demo -- --edges DIR    # edges over their faces: DIR/edges.png
+//! cargo run --release -p zshift-demo -- --shadows DIR  # shadow-map bias: DIR/shadows.png
 //! ```
 //!
 //! A floor (blue) and a smaller decal (red) lie in the same plane, tilted away from the camera
@@ -28,9 +30,6 @@
 //! [−1, 1], column-major matrices.
 
 use std::path::{Path, PathBuf};
-
-// `--shadows DIR`: the shadow-bias picture (demo/src/shadows.rs).
-mod shadows;
 
 use zshift_demo::picture::{compose, write_gif, Picture};
 use zshift_demo::scene::{
@@ -195,8 +194,9 @@ fn sweep(gl: &mut Gl) -> Result<(), String> {
 
 fn main() {
     let arg = std::env::args_os().nth(1);
+    // The shadows demonstration makes its own (core) context.
     if arg.as_deref() == Some(std::ffi::OsStr::new("--shadows")) {
-        if let Err(e) = shadows::run(std::env::args_os().nth(2)) {
+        if let Err(e) = zshift_demo::shadows::run(std::env::args_os().nth(2)) {
             eprintln!("zshift-demo: {e}");
             std::process::exit(1);
         }
@@ -213,6 +213,9 @@ fn main() {
     };
     let result = if arg.as_deref() == Some(std::ffi::OsStr::new("--sweep")) {
         sweep(&mut gl)
+    } else if arg.as_deref() == Some(std::ffi::OsStr::new("--edges")) {
+        let out_dir = std::env::args_os().nth(2).map(PathBuf::from);
+        zshift_demo::edges::demonstrate(&mut gl, &out_dir.unwrap_or("target/edges".into()))
     } else {
         let out_dir = arg
             .map(PathBuf::from)

@@ -155,20 +155,26 @@ pub fn compose(c: &Comparison, title: &[String], footer: &[String]) -> Picture {
         .map(|row| {
             let mut picture = Picture::from_image(&row.image);
             picture.outline(&c.decal, side, 0, 0);
-            let count = |what: &str, n: usize, of: usize| {
-                (format!("{what} {n} ({:.0}%)", percent(n, of)), n == 0)
-            };
             Panel {
                 picture,
                 label: row.method.label.map(String::from),
                 counts: vec![
-                    count("LOST", row.lost, c.visible),
-                    count("BLED", row.bled, c.covered),
+                    count_line("LOST", row.lost, c.visible, 0),
+                    count_line("BLED", row.bled, c.covered, 0),
                 ],
             }
         })
         .collect();
     compose_panels(&panels, panels.len(), title, footer)
+}
+
+/// A panel's count line, `WHAT n (p%)` with `decimals` digits of the percentage of `of`, and
+/// whether it is good (`n == 0`, drawn green).
+pub fn count_line(what: &str, n: usize, of: usize, decimals: usize) -> (String, bool) {
+    (
+        format!("{what} {n} ({:.decimals$}%)", percent(n, of)),
+        n == 0,
+    )
 }
 
 /// Lays `panels` (all the same size, the same number of count lines) out `columns` to a row:

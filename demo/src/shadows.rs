@@ -8,10 +8,11 @@
 //! the shadow detached, peter-panning). Writes `DIR/shadows.png`, prints the table, and fails if
 //! zshift's lookup shows an acne pixel.
 
+use crate::picture::{compose_panels, count_line, Panel, Picture};
+use crate::scene::percent;
 use zshift::projection::ClipDepth;
 use zshift::recommend::RasterizerProfile;
 use zshift::shadow::shadow_bias_for_receivers;
-use zshift_demo::picture::{compose_panels, Panel, Picture};
 use zshift_harness::shadow_scene::{
     blocked, camera, engines, invert, judge, light_of, pixel_ray, reference, Case, CasterBias,
     Count, Kind, Light, ReceiverBias, Rig, Verdict, CAMERA, RECEIVER_LIMIT_DEG,
@@ -178,10 +179,6 @@ fn print_table(gl: &Gl, s: &Setting, lookups: &[Lookup]) {
     }
 }
 
-fn percent(n: usize, of: usize) -> f64 {
-    100.0 * n as f64 / of.max(1) as f64
-}
-
 /// The picture: every lookup's panel with its counts, a title naming the light and a footer
 /// saying how it was counted.
 fn picture(gl: &Gl, s: &Setting, lookups: &[Lookup]) -> Picture {
@@ -194,14 +191,8 @@ fn picture(gl: &Gl, s: &Setting, lookups: &[Lookup]) -> Picture {
                 picture: panel(l, s, &see_through),
                 label: l.label.clone(),
                 counts: vec![
-                    (
-                        format!("ACNE {} ({:.1}%)", c.acne, percent(c.acne, c.lit)),
-                        c.acne == 0,
-                    ),
-                    (
-                        format!("LEAK {} ({:.1}%)", c.leak, percent(c.leak, c.shadowed)),
-                        c.leak == 0,
-                    ),
+                    count_line("ACNE", c.acne, c.lit, 1),
+                    count_line("LEAK", c.leak, c.shadowed, 1),
                 ],
             }
         })

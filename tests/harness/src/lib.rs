@@ -43,6 +43,7 @@ use khronos_egl as egl;
 pub use glow;
 
 pub mod coplanar;
+pub mod edges;
 pub mod shadow_scene;
 pub mod world;
 
@@ -813,6 +814,7 @@ impl Legacy {
     }
 }
 
+/// Eye-space vertices through the projection matrix (the model-view is the identity).
 const VERTEX_SHADER: &str = "#version 330 core
 layout(location = 0) in vec3 eye;
 uniform mat4 proj;
@@ -914,24 +916,22 @@ pub unsafe fn use_quad_pipeline(
     gl.buffer_data_u8_slice(glow::ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
 }
 
-/// Links `vertex_shader` (GLSL 3.30 core, eye-space position at attribute location 0) with the
-/// harness's flat-colour fragment shader (`uniform vec4 color`) and makes the VAO/VBO (3 floats
-/// per vertex at location 0). For tests that bring their own vertex transform, such as the
-/// shipped `ftransform_mdp.glsl`.
+/// Compiles `vertex_shader` and `fragment_shader` and links them into a program.
 ///
 /// # Safety
 /// `gl` must be current on this thread.
 ///
 /// # Errors
 /// A compile or link failure, with the driver's log.
-pub unsafe fn flat_colour_pipeline(
+pub unsafe fn link_program(
     gl: &glow::Context,
     vertex_shader: &str,
-) -> Result<(glow::Program, glow::VertexArray, glow::Buffer), String> {
+    fragment_shader: &str,
+) -> Result<glow::Program, String> {
     let program = gl.create_program()?;
     for (kind, source) in [
         (glow::VERTEX_SHADER, vertex_shader),
-        (glow::FRAGMENT_SHADER, FRAGMENT_SHADER),
+        (glow::FRAGMENT_SHADER, fragment_shader),
     ] {
         let shader = gl.create_shader(kind)?;
         gl.shader_source(shader, source);
@@ -952,6 +952,24 @@ pub unsafe fn flat_colour_pipeline(
             gl.get_program_info_log(program)
         ));
     }
+    Ok(program)
+}
+
+/// Links `vertex_shader` (GLSL 3.30 core, eye-space position at attribute location 0) with the
+/// harness's flat-colour fragment shader (`uniform vec4 color`) and makes the VAO/VBO (3 floats
+/// per vertex at location 0). For tests that bring their own vertex transform, such as the
+/// shipped `ftransform_mdp.glsl`.
+///
+/// # Safety
+/// `gl` must be current on this thread.
+///
+/// # Errors
+/// A compile or link failure, with the driver's log.
+pub unsafe fn flat_colour_pipeline(
+    gl: &glow::Context,
+    vertex_shader: &str,
+) -> Result<(glow::Program, glow::VertexArray, glow::Buffer), String> {
+    let program = link_program(gl, vertex_shader, FRAGMENT_SHADER)?;
     let vao = gl.create_vertex_array()?;
     let vbo = gl.create_buffer()?;
     gl.bind_vertex_array(Some(vao));
