@@ -41,6 +41,7 @@ use zshift_harness::coplanar::{
     bisect_smallest_passing, stepped_toward_camera, steps_between, Count, BASE, CLEAR, DECAL,
     OCCLUDER,
 };
+use zshift_harness::draw::Xorshift;
 use zshift_harness::world::Window;
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile};
 
@@ -764,22 +765,6 @@ fn run_case(
 }
 
 /// A tiny deterministic generator for picking each base scene's variation.
-struct Pick(u64);
-
-impl Pick {
-    fn index(&mut self, n: usize) -> usize {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 % n as u64) as usize
-    }
-
-    /// A number in [0, 1).
-    fn unit(&mut self) -> f64 {
-        self.index(1 << 20) as f64 / f64::from(1u32 << 20)
-    }
-}
-
 /// `ZSHIFT_ENGINE_SCENES_SEED=<n>`: another draw of the sweep (0, the default, is the one CI
 /// runs): the same classes, other picks, and values between the grid's — decal size and
 /// distance, pitch, heading, translation — with the ground's world height as far from the origin
@@ -792,7 +777,7 @@ fn seed() -> u64 {
 }
 
 /// Moves a case off the grid's values (`ZSHIFT_ENGINE_SCENES_SEED`, [`seed`]).
-fn vary(mut case: Case, v: &mut Pick) -> Case {
+fn vary(mut case: Case, v: &mut Xorshift) -> Case {
     case.size = (case.size * (0.8 + 0.45 * v.unit())).clamp(0.5, 4.0);
     case.distance *= 0.8 + 0.45 * v.unit();
     case.pitch_deg *= 1.0 + 0.08 * v.unit();
@@ -810,10 +795,10 @@ fn vary(mut case: Case, v: &mut Pick) -> Case {
 fn cases() -> Vec<Case> {
     let full = std::env::var("ZSHIFT_ENGINE_SCENES").is_ok_and(|v| v == "full");
     let seed = seed();
-    let mut pick = Pick(0x2545_F491_4F6C_DD1D ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    let mut pick = Xorshift(0x2545_F491_4F6C_DD1D ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     // The roll from a stream of its own, so the other choices stay those of the unrolled sweep.
-    let mut roll_pick = Pick(0x0D1E_2026_1126_5EED ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9));
-    let mut values = Pick(0x94D0_49BB_1331_11EB ^ seed);
+    let mut roll_pick = Xorshift(0x0D1E_2026_1126_5EED ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9));
+    let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
         for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {

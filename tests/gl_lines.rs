@@ -47,6 +47,7 @@ use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
 use zshift::precision::DepthFormat as Format;
 use zshift::projection::{projection, projection_f64, ClipDepth, Frustum};
 use zshift::recommend::{DepthTest, RasterizerProfile};
+use zshift_harness::draw::Xorshift;
 use zshift_harness::edges::meshes::{chamfered_box, finish, place, sphere, terrain, torus};
 use zshift_harness::edges::{
     classify, edge_at, edge_ids, project, reference, Draw, Mesh, Msaa, Primitive, Reference,
@@ -201,7 +202,7 @@ const SEED_SHIFTS: [f64; 2] = [1e-3, 1e-2];
 /// f/n anywhere in the decade above each of the grid's, the mesh's position in the depth range
 /// moved by up to ±0.07 of its log, its radius 0.2–0.4 of its distance (0.3) and the frustum's
 /// half width 0.3–0.9 of the near distance (0.5).
-struct Variation(u64);
+struct Variation(Xorshift);
 
 impl Variation {
     fn from_env() -> Self {
@@ -209,18 +210,15 @@ impl Variation {
             .ok()
             .and_then(|s| s.parse::<u64>().ok())
             .unwrap_or(0);
-        Variation(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15))
+        Variation(Xorshift(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15)))
     }
 
-    /// A number in [0, 1) (xorshift), or `None` for the default grid.
+    /// A number in [0, 1) (53 bits), or `None` for the default grid (seed 0, state 0).
     fn unit(&mut self) -> Option<f64> {
-        if self.0 == 0 {
+        if self.0 .0 == 0 {
             return None;
         }
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        Some((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+        Some((self.0.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
     }
 
     fn ratio_factor(&mut self) -> f64 {

@@ -24,7 +24,7 @@
 //!
 //! Fails (never skips) without GL. `ZSHIFT_SHADOW_SCENES=full` runs every combination (slow);
 //! the default a deterministic sample. `--nocapture` prints the table;
-//! `ZSHIFT_SHADOW_VERBOSE=1` every scene.
+//! `ZSHIFT_SHADOW_VERBOSE=1` every scene; `ZSHIFT_SHADOW_SEED=<n>` another draw ([`seed`]).
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -38,6 +38,7 @@ use zshift::shadow::{shadow_bias, shadow_bias_for_receivers};
 use zshift::ErrorKind;
 // The scene, the rig, the reference and the engines: shared with the demonstration
 // (`cargo run --release -p zshift-demo -- --shadows DIR`).
+use zshift_harness::draw::Xorshift;
 use zshift_harness::shadow_scene::*;
 use zshift_harness::{Gl, Profile};
 
@@ -79,6 +80,7 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
     Case {
         kind,
         elevation,
+        azimuth: AZIMUTH_DEG,
         ratio: [10.0, 1e3, 1e5][c % 3],
         resolution: [256, 1024, 2048][(c / 3) % 3],
         format: [F::D16, F::D24, F::D32F][(c / 9) % 3],
@@ -87,6 +89,48 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
     }
 }
 
+/// `ZSHIFT_SHADOW_SEED=<n>`: another draw of the sweep (0, the default, is the grid CI runs):
+/// the same classes and picks, each case moved off the grid's values — elevation anywhere
+/// between its grid neighbours, any azimuth, light f/n log-uniform in 10–10⁵, maps of 256–4096
+/// texels (not only powers of two).
+fn seed() -> u64 {
+    std::env::var("ZSHIFT_SHADOW_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0)
+}
+
+/// Moves `case` off the grid's values ([`seed`]).
+fn vary(mut case: Case, v: &mut Xorshift) -> Case {
+    let (lo, hi) = match case.elevation {
+        e if e <= 1.0 => (0.5, 5.0),
+        e if e <= 5.0 => (1.0, 20.0),
+        e if e <= 20.0 => (5.0, 45.0),
+        e if e <= 45.0 => (20.0, 89.0),
+        _ => (45.0, 89.5),
+    };
+    let round = |x: f64, to: f64| (x / to).round() * to;
+    case.elevation = round(lo + (hi - lo) * v.unit(), 0.01);
+    case.azimuth = round(360.0 * v.unit(), 0.1);
+    let ratio = 10f64.powf(1.0 + 4.0 * v.unit());
+    let digits = 10f64.powi(ratio.log10().floor() as i32 - 2);
+    case.ratio = round(ratio, digits);
+    case.resolution = (256.0 * 16f64.powf(v.unit())).round() as u32;
+    case
+}
+
+/// The grid's `cases`, or with a seed ([`seed`]) another draw of them.
+fn drawn(cases: Vec<Case>) -> Vec<Case> {
+    let seed = seed();
+    let mut draw = Xorshift(0x5EED_5AD0_2026_1126 ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    if seed == 0 {
+        return cases;
+    }
+    cases.into_iter().map(|c| vary(c, &mut draw)).collect()
+}
+
+/// The grid: every light, elevation and lookup, with a deterministic sample of f/n, map size,
+/// format and convention (every combination under `full`); another draw under a seed.
 fn cases(full: bool) -> Vec<Case> {
     let mut v = Vec::new();
     let elevations = [1.0, 5.0, 20.0, 45.0, 89.0];
@@ -107,7 +151,7 @@ fn cases(full: bool) -> Vec<Case> {
             }
         }
     }
-    v
+    drawn(v)
 }
 
 #[derive(Default)]

@@ -15,7 +15,7 @@ use zshift::recommend::RasterizerProfile;
 use zshift::shadow::shadow_bias_for_receivers;
 use zshift_harness::shadow_scene::{
     blocked, camera, engines, invert, judge, light_of, pixel_ray, reference, Case, CasterBias,
-    Count, Kind, Light, ReceiverBias, Rig, Verdict, CAMERA, RECEIVER_LIMIT_DEG,
+    Count, Kind, Light, ReceiverBias, Rig, Verdict, AZIMUTH_DEG, CAMERA, RECEIVER_LIMIT_DEG,
 };
 use zshift_harness::{glow::HasContext, DepthFormat, Gl, Profile};
 
@@ -23,6 +23,7 @@ use zshift_harness::{glow::HasContext, DepthFormat, Gl, Profile};
 const SCENE: Case = Case {
     kind: Kind::Spot,
     elevation: 20.0,
+    azimuth: AZIMUTH_DEG,
     ratio: 1e3,
     resolution: 1024,
     format: DepthFormat::D16,

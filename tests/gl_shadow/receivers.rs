@@ -355,7 +355,7 @@ fn coplanar(a: &Tri, b: &Tri) -> bool {
 
 /// The sweep's cases for the receiver scenes: both lights at 20°–89°, two lookups per light and
 /// elevation in turn (every lookup under `full`), each with one pick of f/n, map size, format and
-/// convention (21 picks under `full`).
+/// convention (21 picks under `full`); another draw under `ZSHIFT_SHADOW_SEED`.
 fn receiver_cases(full: bool) -> Vec<Case> {
     let mut v = Vec::new();
     let mut i = 0usize;
@@ -375,7 +375,7 @@ fn receiver_cases(full: bool) -> Vec<Case> {
             }
         }
     }
-    v
+    drawn(v)
 }
 
 /// One case's map of every mesh, looked up from the camera.

@@ -43,6 +43,7 @@ use khronos_egl as egl;
 pub use glow;
 
 pub mod coplanar;
+pub mod draw;
 pub mod edges;
 pub mod shadow_scene;
 pub mod world;

@@ -25,7 +25,7 @@ pub const GROUND: f64 = 6.0;
 pub const BOX: [[f64; 3]; 2] = [[0.2, 0.0, -0.9], [1.4, 2.0, -0.1]];
 /// The camera's square render, in pixels per side.
 pub const CAMERA: usize = 160;
-/// The light's azimuth (degrees from +x toward +z).
+/// The light's azimuth (degrees from +x toward +z) in the grid's cases.
 pub const AZIMUTH_DEG: f64 = 30.0;
 /// The box of every world position the caster and lookup shaders transform: the ground and
 /// the box standing on it.
@@ -138,6 +138,8 @@ pub struct Case {
     pub kind: Kind,
     /// The light's elevation above the ground, degrees.
     pub elevation: f64,
+    /// The light's azimuth, degrees from +x toward +z ([`AZIMUTH_DEG`] in the grid).
+    pub azimuth: f64,
     /// The light's far / near.
     pub ratio: f64,
     /// The map's texels per side.
@@ -197,8 +199,14 @@ impl Case {
 
     /// One line naming the case (light, elevation, f/n, map, format, convention, lookup).
     pub fn label(&self) -> String {
+        // The grid's azimuth is left out, so that its labels stay those the docs cite.
+        let azimuth = if self.azimuth == AZIMUTH_DEG {
+            String::new()
+        } else {
+            format!(" az={}°", self.azimuth)
+        };
         format!(
-            "{:?} e={}° f/n={:e} {}² {} {:?} {}",
+            "{:?} e={}°{azimuth} f/n={:e} {}² {} {:?} {}",
             self.kind,
             self.elevation,
             self.ratio,
@@ -293,7 +301,7 @@ pub fn light_of(case: &Case) -> Light {
 /// The light of `case` fitted to `points` (every caster and receiver), with the receivers'
 /// light-depth range taken over `receivers`.
 pub fn light_for(case: &Case, points: &[[f64; 3]], receivers: &[[f64; 3]]) -> Light {
-    let (e, a) = (case.elevation.to_radians(), AZIMUTH_DEG.to_radians());
+    let (e, a) = (case.elevation.to_radians(), case.azimuth.to_radians());
     let to_light = [e.cos() * a.cos(), e.sin(), e.cos() * a.sin()];
     let h = (2.0 * GROUND * GROUND).sqrt() + 2.0;
     let distance = 2.5 * h + 1.0;
