@@ -1,5 +1,6 @@
-//! Receivers other than flat ground: a UV sphere resting on the ground, and a terrain with
-//! hills, each casting on itself. The map holds every mesh, the camera looks at every mesh
+//! Receivers other than flat ground: a UV sphere resting on the ground, a terrain with hills,
+//! and a box standing on the ground turned 25° to it (its faces meet at right angles, the
+//! widest spread of slopes a kernel can read across), each casting on itself. The map holds every mesh, the camera looks at every mesh
 //! (its own depth test picks the nearest), and the reference is a ray test in f64 against the
 //! very f32 triangles drawn.
 //!
@@ -209,6 +210,55 @@ fn sphere_world() -> World {
             sub(p, c)
         }
     })
+}
+
+/// A 4 × 3 × 3 box (object 1: top and four sides) standing on the ground (object 0), turned
+/// 25° about the vertical, so that no face is aligned with the map's axes.
+fn box_world() -> World {
+    let g = GROUND;
+    let ground = vec![
+        [[-g, 0.0, -g], [-g, 0.0, g], [g, 0.0, g]].map(f32p),
+        [[-g, 0.0, -g], [g, 0.0, g], [g, 0.0, -g]].map(f32p),
+    ];
+    let (centre, half) = ([-1.5, 1.5, 1.5], [2.0, 1.5, 1.5]);
+    let (s, c) = 25f64.to_radians().sin_cos();
+    // Corner `k` (bits: x, y, z sign) in world space.
+    let at = |k: usize| {
+        let local = [0, 1, 2].map(|a| if k >> a & 1 == 1 { half[a] } else { -half[a] });
+        f32p([
+            centre[0] + c * local[0] - s * local[2],
+            centre[1] + local[1],
+            centre[2] + s * local[0] + c * local[2],
+        ])
+    };
+    // Each face as two triangles of its four corners (the bottom, on the ground, left out).
+    let faces = [
+        [2, 3, 7, 6],
+        [0, 1, 3, 2],
+        [4, 5, 7, 6],
+        [0, 2, 6, 4],
+        [1, 3, 7, 5],
+    ];
+    let sides = faces
+        .iter()
+        .flat_map(|f| {
+            [
+                [at(f[0]), at(f[1]), at(f[2])],
+                [at(f[0]), at(f[2]), at(f[3])],
+            ]
+        })
+        .collect();
+    World::new(
+        "box on ground",
+        vec![(0, ground), (1, sides)],
+        move |object, p| {
+            if object == 0 {
+                [0.0, 1.0, 0.0]
+            } else {
+                sub(p, centre)
+            }
+        },
+    )
 }
 
 /// A terrain with hills over the ground's square (40 × 40 cells, object 0), in 5 × 5-cell
@@ -422,7 +472,7 @@ fn spheres_and_terrain_receive_without_acne() {
     let mut failures = Vec::new();
     let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
     let started = std::time::Instant::now();
-    for world in [sphere_world(), terrain_world()] {
+    for world in [sphere_world(), terrain_world(), box_world()] {
         let buffer =
             unsafe { upload(gl.glow(), &world.vertices()) }.unwrap_or_else(|e| panic!("{e}"));
         let meshes = [(buffer, 3 * world.tris.len() as i32)];
