@@ -24,7 +24,8 @@
 //!
 //! Fails (never skips) without GL. `ZSHIFT_SHADOW_SCENES=full` runs every combination (slow);
 //! the default a deterministic sample. `--nocapture` prints the table;
-//! `ZSHIFT_SHADOW_VERBOSE=1` every scene; `ZSHIFT_SHADOW_SEED=<n>` another draw ([`seed`]).
+//! `ZSHIFT_SHADOW_VERBOSE=1` every scene; `ZSHIFT_SHADOW_SEED=<n>` another draw ([`seed`]);
+//! `ZSHIFT_SHADOW_ONLY=<a>&<b>` only the scenes whose label contains every part.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -229,7 +230,12 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
     let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
     let verbose = std::env::var("ZSHIFT_SHADOW_VERBOSE").is_ok_and(|v| v == "1");
-    let all = cases(full);
+    // `ZSHIFT_SHADOW_ONLY=<a>&<b>…`: only the scenes whose label contains every part.
+    let only = std::env::var("ZSHIFT_SHADOW_ONLY").unwrap_or_default();
+    let all: Vec<Case> = cases(full)
+        .into_iter()
+        .filter(|c| only.split('&').all(|part| c.label().contains(part)))
+        .collect();
     let (eye, camera) = camera();
     let mut failures = Vec::new();
     let mut tallies: Vec<(String, Tally)> = Vec::new();
