@@ -764,16 +764,12 @@ fn run_case(
     Ok(Some(out))
 }
 
-/// A tiny deterministic generator for picking each base scene's variation.
 /// `ZSHIFT_ENGINE_SCENES_SEED=<n>`: another draw of the sweep (0, the default, is the one CI
 /// runs): the same classes, other picks, and values between the grid's — decal size and
 /// distance, pitch, heading, translation — with the ground's world height as far from the origin
 /// as the translation (up, down, or 0).
 fn seed() -> u64 {
-    std::env::var("ZSHIFT_ENGINE_SCENES_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0)
+    zshift_harness::draw::seed("ZSHIFT_ENGINE_SCENES_SEED")
 }
 
 /// Moves a case off the grid's values (`ZSHIFT_ENGINE_SCENES_SEED`, [`seed`]).

@@ -206,10 +206,7 @@ struct Variation(Xorshift);
 
 impl Variation {
     fn from_env() -> Self {
-        let seed = std::env::var("ZSHIFT_LINES_SEED")
-            .ok()
-            .and_then(|s| s.parse::<u64>().ok())
-            .unwrap_or(0);
+        let seed = zshift_harness::draw::seed("ZSHIFT_LINES_SEED");
         Variation(Xorshift(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15)))
     }
 

@@ -95,10 +95,7 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
 /// between its grid neighbours, any azimuth, light f/n log-uniform in 10–10⁵, maps of 256–4096
 /// texels (not only powers of two).
 fn seed() -> u64 {
-    std::env::var("ZSHIFT_SHADOW_SEED")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(0)
+    zshift_harness::draw::seed("ZSHIFT_SHADOW_SEED")
 }
 
 /// Moves `case` off the grid's values ([`seed`]).

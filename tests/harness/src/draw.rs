@@ -2,6 +2,15 @@
 //! their scenes off the grid's values when a seed is given, so that scenes nobody tuned for are
 //! drawn. Deterministic, so a seed's failures reproduce.
 
+/// The seed a sweep's environment variable `var` names (`ZSHIFT_…_SEED=<n>`), 0 (the grid CI
+/// runs) when it is unset or not a number.
+pub fn seed(var: &str) -> u64 {
+    std::env::var(var)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(0)
+}
+
 /// Marsaglia's xorshift64 (13, 7, 17). The state must not be 0 (it would stay 0).
 #[derive(Debug, Clone, Copy)]
 pub struct Xorshift(pub u64);
