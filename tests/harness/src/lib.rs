@@ -5,10 +5,11 @@
 //! Not part of the shipped library: only zshift's tests and examples depend on this crate.
 //!
 //! # How a context is made
-//! EGL on the surfaceless platform (`EGL_PLATFORM_SURFACELESS_MESA`, 0x31DD), no config
-//! (`EGL_KHR_no_config_context`), no surface: every draw goes to the [`Gl`]'s own FBO. See
-//! `../shared/NOTES.md` for why this recipe (eglChooseConfig finds nothing on Mesa's
-//! surfaceless display; the viewport starts at 0×0).
+//! EGL on the surfaceless platform (`EGL_PLATFORM_SURFACELESS_MESA`, 0x31DD), or on an
+//! enumerated device where there is none (a GPU vendor's EGL; `ZSHIFT_EGL_PLATFORM=device`
+//! asks for it), no config where `EGL_KHR_no_config_context` allows, no surface: every draw
+//! goes to the [`Gl`]'s own FBO. See `../shared/NOTES.md` for why this recipe (eglChooseConfig
+//! finds nothing on Mesa's surfaceless display; the viewport starts at 0×0).
 //!
 //! # Conventions
 //! As zshift's: OpenGL right-handed eye space looking down −z, NDC depth `[−1, 1]` (unless
@@ -43,13 +44,12 @@ use khronos_egl as egl;
 pub use glow;
 
 pub mod coplanar;
+mod display;
 pub mod draw;
 pub mod edges;
 pub mod shadow_scene;
 pub mod world;
 
-/// `EGL_PLATFORM_SURFACELESS_MESA`: a display with no window system.
-const PLATFORM_SURFACELESS_MESA: egl::Enum = 0x31DD;
 /// `GL_SUBPIXEL_BITS`: bits of sub-pixel precision the rasterizer snaps window x, y to.
 const GL_SUBPIXEL_BITS: u32 = 0x0D50;
 /// `GL_PROJECTION` matrix mode and `GL_PROJECTION_MATRIX` query (compatibility profile).
@@ -288,27 +288,18 @@ impl Gl {
     /// profile, ...), or the shader compiler's log.
     pub fn new(profile: Profile) -> Result<Gl, String> {
         let egl = egl::Instance::new(egl::Static);
-        // SAFETY: the surfaceless platform takes EGL_DEFAULT_DISPLAY and no attributes.
-        let display = unsafe {
-            egl.get_platform_display(
-                PLATFORM_SURFACELESS_MESA,
-                egl::DEFAULT_DISPLAY,
-                &[egl::ATTRIB_NONE],
-            )
-        }
-        .map_err(|e| format!("eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA) failed: {e}"))?;
-        egl.initialize(display)
-            .map_err(|e| format!("eglInitialize failed: {e}"))?;
+        let (display, found) = display::open(&egl)?;
         let extensions = egl
             .query_string(Some(display), egl::EXTENSIONS)
-            .map_err(|e| format!("eglQueryString(EGL_EXTENSIONS) failed: {e}"))?
+            .map_err(|e| format!("eglQueryString(EGL_EXTENSIONS) failed on {found}: {e}"))?
             .to_string_lossy()
             .into_owned();
-        if !extensions.contains("EGL_KHR_no_config_context") {
+        if !extensions.contains("EGL_KHR_surfaceless_context") {
             return Err(format!(
-                "EGL lacks EGL_KHR_no_config_context; it offers: {extensions}"
+                "EGL on {found} lacks EGL_KHR_surfaceless_context; it offers: {extensions}"
             ));
         }
+        let config = display::config(&egl, display, &extensions)?;
         egl.bind_api(egl::OPENGL_API)
             .map_err(|e| format!("eglBindAPI(EGL_OPENGL_API) failed: {e}"))?;
         let attribs: &[egl::Int] = match profile {
@@ -327,11 +318,9 @@ impl Gl {
                 egl::NONE,
             ],
         };
-        // SAFETY: EGL_NO_CONFIG_KHR is the null config, allowed by EGL_KHR_no_config_context.
-        let no_config = unsafe { egl::Config::from_ptr(std::ptr::null_mut()) };
         let context = egl
-            .create_context(display, no_config, None, attribs)
-            .map_err(|e| format!("eglCreateContext({profile:?}, EGL_NO_CONFIG_KHR) failed: {e}"))?;
+            .create_context(display, config, None, attribs)
+            .map_err(|e| format!("eglCreateContext({profile:?}) on {found} failed: {e}"))?;
         if let Err(e) = egl.make_current(display, None, None, Some(context)) {
             let _ = egl.destroy_context(display, context);
             return Err(format!("eglMakeCurrent(EGL_NO_SURFACE) failed: {e}"));
