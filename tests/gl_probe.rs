@@ -60,20 +60,38 @@ fn offset_of_one_unit(gl: &mut Gl, format: DepthFormat, depth: f32) -> f64 {
     (offset - plain) / units as f64
 }
 
+/// On any rasterizer: the probe's polygon-offset unit `r` equals the harness's own readback of
+/// one offset draw. On llvmpipe (CI's): every figure as its source code says it must be. On
+/// another rasterizer (a GPU through EGL) the llvmpipe figures are not asserted, and the test
+/// says so.
 #[test]
-fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
+fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
     for kind in [Profile::Core, Profile::Compatibility] {
         let mut gl = context(kind);
-        assert!(
-            gl.renderer().contains("llvmpipe"),
-            "these figures are llvmpipe's: {}",
-            gl.renderer()
-        );
         // SAFETY: as in `measured`.
         let (p, figures) = unsafe { probe_with_figures(loader(&gl)) }.unwrap();
         println!("{kind:?}: {p:?}\n{figures:?}");
         assert!(p.measured);
         assert!(p.probe_seconds > 0.0);
+        for (slot, format, depth, quantum) in [
+            (0, DepthFormat::D16, 0.5f32, 1.0 / 65535.0),
+            (1, DepthFormat::D24, 0.5, 1.0 / 16_777_215.0),
+            (3, DepthFormat::D32F, 0.75, 2f64.powi(-24)),
+        ] {
+            let r = offset_of_one_unit(&mut gl, format, depth) / quantum;
+            assert!(
+                (p.resolvable[slot] - r).abs() < 0.01,
+                "{format:?}: probe {} vs readback {r}",
+                p.resolvable[slot]
+            );
+        }
+        if !gl.renderer().contains("llvmpipe") {
+            println!(
+                "{kind:?} on {}: probe and readback agree on r; llvmpipe's own figures not asserted here",
+                gl.renderer()
+            );
+            continue;
+        }
         // llvmpipe snaps coverage to GL_SUBPIXEL_BITS but sets the depth plane up from the float
         // positions (lp_setup_tri.c): unsnapped, and clearly so.
         // A facing decal over its shared-z base: a few f32 steps of element 10 on D24 (one step
@@ -121,25 +139,12 @@ fn llvmpipe_profile_matches_what_is_known_and_an_independent_readback() {
             "{figures:?}"
         );
         // r: lp_state_setup.c scales units by 2·mrd on UNORM (mrd = 1/(2^m − 1)) and by 2^(e−23)
-        // on float depth. Checked against the harness's own readback of one offset draw.
-        for (slot, format, depth, quantum) in [
-            (0, DepthFormat::D16, 0.5f32, 1.0 / 65535.0),
-            (1, DepthFormat::D24, 0.5, 1.0 / 16_777_215.0),
-            (3, DepthFormat::D32F, 0.75, 2f64.powi(-24)),
-        ] {
-            let r = offset_of_one_unit(&mut gl, format, depth) / quantum;
-            let expected = if format == DepthFormat::D32F {
-                1.0
-            } else {
-                2.0
-            };
-            assert!((r - expected).abs() < 0.01, "{format:?}: readback r = {r}");
-            assert!(
-                (p.resolvable[slot] - r).abs() < 0.01,
-                "{format:?}: probe {} vs readback {r}",
-                p.resolvable[slot]
-            );
-        }
+        // on float depth (the readback above agrees with the probe).
+        let r = [p.resolvable[0], p.resolvable[1], p.resolvable[3]];
+        assert!(
+            (r[0] - 2.0).abs() < 0.01 && (r[1] - 2.0).abs() < 0.01 && (r[2] - 1.0).abs() < 0.01,
+            "r = {r:?}"
+        );
         // The same r by Wine's bisection: the units that separate a coplanar quad are 1/r on
         // D16. On D24 one quantum is one f32 ulp of the depth, and the f32 sum depth + offset
         // needs a little more (1.25 quanta measured): between 1 and 1.5 quanta.
@@ -570,7 +575,12 @@ fn the_c_entry_point_checks_pointers_and_leaves_out_untouched_on_error() {
     c.probe_seconds = rust.probe_seconds;
     assert!(same(&c, &rust), "{c:?} vs {rust:?}");
     assert_eq!(out.measured, 1);
-    assert_eq!(out.subpixel_bits, -1);
+    // -1 unsnapped (llvmpipe), else the bits the rasterizer snaps to.
+    let bits = match rust.snapping {
+        Snapping::Unsnapped => -1,
+        Snapping::SubpixelBits(b) => b as i32,
+    };
+    assert_eq!(out.subpixel_bits, bits);
     assert_eq!(out.near_clip, ZSHIFT_NEAR_CLIP_CLIPPED_F32);
     // A zero-filled record is refused, naming the field.
     let zero: ZshiftProfile = unsafe { std::mem::zeroed() };

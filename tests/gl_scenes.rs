@@ -1052,9 +1052,11 @@ fn error_growth(
     case: &Case,
     profile: RasterizerProfile,
 ) -> Result<(f64, f64, f64), String> {
+    // The plane's own error and, on a rasterizer that snaps window positions before setting
+    // depth up, the snapping term: the exact plane here is through the unsnapped vertices.
     let plane_error = |p: RasterizerProfile| {
         zshift::recommend::clip_error_terms(&case.scene(p), case.clip)
-            .map(|t| t.plane)
+            .map(|t| t.plane + t.snap)
             .map_err(|e| e.to_string())
     };
     let measured = plane_error(profile)?;

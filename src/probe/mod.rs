@@ -339,6 +339,16 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         offset_slope_axis: f64::NAN,
     };
     let mut seen = Vec::new();
+    // Snapping first: the plane errors are measured against the plane the rasterizer sets up,
+    // through its snapped window positions (what snapping moves is the model's `S`, not `I`).
+    if !attach(gl, o, DEPTH_COMPONENT32F)? {
+        return Err(Error::new(
+            ErrorKind::Gl,
+            incomplete_detail(DEPTH_COMPONENT32F),
+        ));
+    }
+    let snap;
+    (profile.snapping, figures.snapping_residual, snap) = snapping(gl, o, figures.subpixel_bits)?;
     for (slot, internal, format) in Format::ALL {
         if !attach(gl, o, internal)? {
             return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
@@ -369,7 +379,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
                 profile.facing_reversed = q;
             }
         }
-        let errors = plane_error(gl, o, format, ClipDepth::NegOneToOne)?;
+        let errors = plane_error(gl, o, format, ClipDepth::NegOneToOne, snap)?;
         profile.plane_error[slot] = errors.worst;
         figures.plane_pixels[slot] = errors.pixels;
         figures.error_ulps[slot] = errors.error_ulps;
@@ -378,11 +388,13 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             profile.error_ulps = figures.error_ulps.iter().copied().fold(0.0, f64::max);
             // The model takes one figure for [-1, 1] and [0, 1] (with its own constant, 2 under
             // [0, 1]): the larger of the two conventions'.
-            if let Some(zero_to_one) = zero_to_one_plane_error(gl, o, ClipDepth::ZeroToOne)? {
+            if let Some(zero_to_one) = zero_to_one_plane_error(gl, o, ClipDepth::ZeroToOne, snap)? {
                 figures.error_ulps_zero_to_one = zero_to_one.error_ulps;
                 profile.error_ulps = profile.error_ulps.max(zero_to_one.error_ulps);
             }
-            if let Some(reversed) = zero_to_one_plane_error(gl, o, ClipDepth::ReversedZeroToOne)? {
+            if let Some(reversed) =
+                zero_to_one_plane_error(gl, o, ClipDepth::ReversedZeroToOne, snap)?
+            {
                 profile.plane_error_reversed = reversed.worst;
                 profile.error_ulps_reversed = reversed.error_ulps;
                 figures.reversed_pixels = reversed.pixels;
@@ -390,7 +402,6 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             }
         }
         if format == Format::Float {
-            (profile.snapping, figures.snapping_residual) = snapping(gl, o, figures.subpixel_bits)?;
             let lines = line_reach(gl, o)?;
             profile.line_reach = lines.reach;
             profile.offset_slope = lines.slope[0];
@@ -597,12 +608,12 @@ mod tests {
 
     #[test]
     fn snapping_hypotheses_round_window_positions() {
-        let t: Triangle = [
+        let t: ClipTriangle = [
             [0.30, -0.25, 0.0, 1.0],
             [0.5, 0.5, 0.0, 1.0],
             [-0.5, 0.5, 0.0, 1.0],
         ];
-        assert_eq!(snap(&t, 0), t.map(|v| v.map(f64::from)));
+        assert_eq!(snap(&t, 0), t);
         // b = 0, nearest: window x = (0.3 + 1)·32 = 41.6 → 42; down: 41
         let window_x = |t: ClipTriangle| (t[0][0] + 1.0) * SIZE as f64 / 2.0;
         assert_eq!(window_x(snap(&t, 1)), 42.0);
@@ -610,5 +621,10 @@ mod tests {
         // b = 2: quarter pixels, 41.6 → 41.5 (nearest), 41.5 (down)
         assert_eq!(window_x(snap(&t, 5)), 41.5);
         assert_eq!(window_x(snap(&t, 6)), 41.5);
+        // The same vertex with w = 2 (clip x 0.6): its window position snaps the same way.
+        let w2 = t.map(|v| v.map(|c| 2.0 * c));
+        let snapped = snap(&w2, 1);
+        assert_eq!(snapped[0][3], 2.0);
+        assert!((window_x(snapped.map(|v| v.map(|c| c / 2.0))) - 42.0).abs() < 1e-12);
     }
 }

@@ -203,6 +203,7 @@ pub(super) unsafe fn plane_error(
     o: &Objects,
     format: Format,
     clip: ClipDepth,
+    snapped_by: usize,
 ) -> Result<PlaneErrors> {
     let reversed = clip == ClipDepth::ReversedZeroToOne;
     let zero_to_one = clip != ClipDepth::NegOneToOne;
@@ -224,7 +225,7 @@ pub(super) unsafe fn plane_error(
         stored_tiles.extend(draw_tiles(gl, o, format, batch)?);
     }
     for (i, (scene, stored)) in scenes.iter().zip(stored_tiles).enumerate() {
-        let plane = Plane::with_mapping(&scene.exact()[0], zero_to_one);
+        let plane = Plane::with_mapping(&snap(&scene.exact()[0], snapped_by), zero_to_one);
         // D32F under [−1, 1] errs mostly in absolute terms (u·|m10| from the transform), so its
         // unit is 2⁻²⁴, the spacing at w ≥ ½; under reversed Z the error is relative to the
         // primitive's largest depth, and so is its unit.
@@ -299,12 +300,13 @@ pub(super) unsafe fn zero_to_one_plane_error(
     gl: &Gl,
     o: &Objects,
     clip: ClipDepth,
+    snapped_by: usize,
 ) -> Result<Option<PlaneErrors>> {
     let Some(clip_control) = gl.ClipControl else {
         return Ok(None);
     };
     clip_control(LOWER_LEFT, ZERO_TO_ONE);
-    let result = plane_error(gl, o, Format::Float, clip);
+    let result = plane_error(gl, o, Format::Float, clip, snapped_by);
     clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
     result.map(Some)
 }

@@ -15,12 +15,13 @@ pub(super) const SNAP_FIT: f64 = 1e-6;
 /// Which snapping hypothesis the stored depth of steep triangles fits best (module docs). When
 /// none fits to [`SNAP_FIT`] the rasterizer does something the hypotheses do not describe, and
 /// the answer is the conservative `GL_SUBPIXEL_BITS` it reports (8 if it reports none in
-/// 1..=12).
+/// 1..=12). Also the hypothesis believed ([`snap`]'s `h`; 0, none, when none fits), for the
+/// plane-error reference.
 pub(super) unsafe fn snapping(
     gl: &Gl,
     o: &Objects,
     reported_bits: i32,
-) -> Result<(Snapping, (f64, u32, f64))> {
+) -> Result<(Snapping, (f64, u32, f64), usize)> {
     // Window positions with assorted sub-pixel parts; depth grows with x only.
     let sets: [[[f64; 2]; 3]; 2] = [
         [[6.3071, 5.1187], [58.6523, 9.4402], [11.8816, 59.7311]],
@@ -45,6 +46,7 @@ pub(super) unsafe fn snapping(
             .map(|i| (i % SIZE, i / SIZE))
             .filter(|&(px, py)| plane.depth_inside(px, py).is_some())
             .collect();
+        let t = t.map(|v| v.map(f64::from));
         for (h, slot) in residual.iter_mut().enumerate() {
             let snapped = Plane::new(&snap(&t, h));
             for &(px, py) in &inside {
@@ -67,28 +69,29 @@ pub(super) unsafe fn snapping(
         _ => 8,
     };
     Ok(match best {
-        _ if residual[best] > SNAP_FIT => (Snapping::SubpixelBits(conservative), figures),
-        0 => (Snapping::Unsnapped, figures),
-        h => (Snapping::SubpixelBits(((h - 1) / 2) as u32), figures),
+        _ if residual[best] > SNAP_FIT => (Snapping::SubpixelBits(conservative), figures, 0),
+        0 => (Snapping::Unsnapped, figures, 0),
+        h => (Snapping::SubpixelBits(((h - 1) / 2) as u32), figures, h),
     })
 }
 
-/// `t` (with w = 1) with its window positions snapped per hypothesis `h`: 0 none; `1 + 2b` to
-/// the nearest `2^-b` pixel; `2 + 2b` down to it.
-pub(super) fn snap(t: &Triangle, h: usize) -> ClipTriangle {
-    let (b, down) = (h.saturating_sub(1) / 2, h > 0 && (h - 1) % 2 == 1);
+/// `t`'s clip coordinates with each vertex's window position in a tile snapped per hypothesis
+/// `h`: 0 none; `1 + 2b` to the nearest `2^-b` pixel; `2 + 2b` down to it. Tiles start at whole
+/// pixels, so a tile's grid is the framebuffer's. Every vertex must lie in front of the camera
+/// (`w > 0`): the plane a snapping rasterizer sets its depth up from.
+pub(super) fn snap(t: &ClipTriangle, h: usize) -> ClipTriangle {
+    if h == 0 {
+        return *t;
+    }
+    let (b, down) = ((h - 1) / 2, (h - 1) % 2 == 1);
     let grid = 2f64.powi(b as i32);
-    let s = SIZE as f64;
-    t.map(|v| {
-        let [x, y, z, w] = v.map(f64::from);
-        let snap_ndc = |c: f64| {
-            if h == 0 {
-                return c;
-            }
-            let window = (c + 1.0) * s / 2.0 * grid;
+    let half = SIZE as f64 / 2.0;
+    t.map(|[x, y, z, w]| {
+        let snap_clip = |c: f64| {
+            let window = (c / w + 1.0) * half * grid;
             let window = if down { window.floor() } else { window.round() } / grid;
-            window * 2.0 / s - 1.0
+            (window / half - 1.0) * w
         };
-        [snap_ndc(x), snap_ndc(y), z, w]
+        [snap_clip(x), snap_clip(y), z, w]
     })
 }
