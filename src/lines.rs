@@ -86,7 +86,9 @@
 //!
 //! # The hidden-line gap
 //! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
-//! front face's stored depth (pushed back by up to `Δ·g·ρ + units·r_max` under (a), `ρ` the
+//! front face's stored depth (pushed back by up to `Δ·g·ρ + units·r_max` under (a), `r_max` at
+//! the mesh's largest depth and, for a profile that did not measure `r`, 4 quanta (the largest
+//! an implementation is known to use), `ρ` the
 //! profile's [`RasterizerProfile::offset_slope`] — 1 for GL's `max` rule, `√2` for a root sum of
 //! squares and in the worst case —, or against
 //! the edge's pull `Δw` under (b)), each off its plane by `E + S`, and the hidden edge's own
@@ -446,6 +448,14 @@ fn line_reach(edges: &Edges) -> f64 {
     }
 }
 
+/// The largest `glPolygonOffset` unit known, in quanta of the format (UNORM `1/(2^m − 1)`, float
+/// `2^(e−23)`): radeonsi's ×4 on D16 (`../shared/NOTES.md`; NVIDIA ×2 on every format, measured
+/// on an H200 with driver 580; llvmpipe ×2 UNORM, ×1 float). The worst-case profile computes
+/// units against the smallest `r` (1: enough wherever `r` is larger) and the push they make,
+/// for the hidden-line gap, against this one: on the H200 the worst-case gap of a D32F mesh
+/// counted ×1 and 8 hidden-edge pixels showed past it.
+const LARGEST_KNOWN_RESOLVABLE: f64 = 4.0;
+
 /// `glPolygonOffset`'s slope term over `max(|gₓ|, |g_y|)` at its largest: the measured rule
 /// (1 for GL's max), else `√2` (a root sum of squares, which Vulkan allows).
 fn offset_slope(p: &RasterizerProfile) -> f64 {
@@ -549,8 +559,14 @@ fn unchecked_gap(
             out.polygon_offset = [reach, units];
             out.d3d_bias = [fits(d3d)?, reach];
             out.vulkan_bias = [fits(vk)?, reach];
-            // The push at the steepest face that matters, with r at the largest depth.
-            let r_hi = quanta * r_of(BiasApi::OpenGl, w_hi)?;
+            // The push at the steepest face that matters, with r at the largest depth and, for a
+            // profile that did not measure r, the largest r an implementation is known to use.
+            let quanta_hi = if edges.profile.measured {
+                quanta
+            } else {
+                quanta.max(LARGEST_KNOWN_RESOLVABLE)
+            };
+            let r_hi = quanta_hi * r_of(BiasApi::OpenGl, w_hi)?;
             let push = fits(reach * g * offset_slope(&edges.profile) + units * r_hi)?;
             out.window_offset = push;
             Box::new(move |_| Ok(push))
@@ -735,7 +751,10 @@ mod tests {
         assert_eq!((worst.line_reach, r.line_reach), (1.0, 0.5625));
         assert_eq!(r.polygon_offset[0], 0.5625);
         let g = r.face_gradient;
-        let units_push = worst.window_offset - std::f64::consts::SQRT_2 * g;
+        // The worst case pushes with the largest known r (4 quanta); this profile measured its
+        // own (the worst case's 1, kept).
+        let units_push =
+            (worst.window_offset - std::f64::consts::SQRT_2 * g) / LARGEST_KNOWN_RESOLVABLE;
         assert!(
             (r.window_offset - (0.5625 * g + units_push)).abs() < 1e-12,
             "{r:?}"
