@@ -524,7 +524,9 @@ typedef struct {
   /*
    The constant units of the equivalent glPolygonOffset(-factor, -units): the constant part
    of the offset over r quanta, r the profile's `resolvable` for the format (1 without a
-   profile: the smallest r known, so the units suffice on every implementation).
+   profile: the smallest r known, so the units suffice on every implementation). bleed_gap
+   is the matrix offset's: where r is larger (2 on NVIDIA and llvmpipe's UNORM, up to 4
+   known), these units move depth up to 4 times as far; probe the context to know r.
    */
   double polygon_offset_units;
   /*

@@ -416,7 +416,10 @@ pub struct Recommendation {
     /// this are never overdrawn by the decal (R2).
     pub bleed_gap: f64,
     /// The equivalent `glPolygonOffset(−factor, −units)` magnitudes, `units` counted in the
-    /// profile's [`RasterizerProfile::resolvable`] quanta.
+    /// profile's [`RasterizerProfile::resolvable`] quanta (1 in the worst case: the smallest `r`
+    /// known, so the units suffice everywhere). [`Recommendation::bleed_gap`] is the matrix
+    /// offset's: where `r` is larger than the profile's (2 on NVIDIA, and on llvmpipe's UNORM;
+    /// up to 4 known), these units move depth up to 4 times as far.
     pub polygon_offset: [f64; 2],
     /// The terms the offset was built from.
     pub terms: ErrorTerms,
