@@ -182,8 +182,9 @@
 //! neighbour is flatter (a facet nearer a sphere's lit pole, a terrain's valley floor beside its
 //! slope) its slope term falls short. Measured: a UV sphere and a terrain with hills under 5×5
 //! PCF showed acne (up to 18 pixels of 5376) with the receivers' own planes alone. So the
-//! constant gains `factor·(m_max − m_min)` over the listed receivers (the flattest one's caster
-//! bias then reaches the steepest one's slope term) and the clamp at least
+//! constant gains `factor·(m_i − m_j)` at its largest over receivers a kernel reads across
+//! (extents within `a + 1` texels of each other in the map: the flatter one's caster bias then
+//! reaches the steeper one's slope term) and the clamp at least
 //! `K + S + a·(max |gₓ| + max |g_y|)` (the largest run a tap can read across them); one planar
 //! receiver, or several of one slope, are unchanged. [`shadow_bias`] promises planar receivers
 //! only (planar across the kernel: every tap on the receiver's own plane); for curved or creased
@@ -549,11 +550,14 @@ pub fn shadow_bias_for_receivers(
                 .map_err(named)?;
         let [w, h] = map.resolution.map(f64::from);
         let slack = 1e-6 * w.max(h);
+        // The receiver's extent in the map (texels), for the kernels that read across to it.
+        let mut extent = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
         for p in &eye {
             let c = [0, 1, 3].map(|r| {
                 matrix[r] * p[0] + matrix[4 + r] * p[1] + matrix[8 + r] * p[2] + matrix[12 + r]
             });
             let (x, y) = ((0.5 * c[0] / c[2] + 0.5) * w, (0.5 * c[1] / c[2] + 0.5) * h);
+            extent = [extent[0].min(x), extent[1].max(x), extent[2].min(y), extent[3].max(y)];
             if !(-slack..=w + slack).contains(&x) || !(-slack..=h + slack).contains(&y) {
                 return Err(named(domain(
                     "every receiver corner must lie inside the light's frustum (clip the receiver to it)",
@@ -582,7 +586,7 @@ pub fn shadow_bias_for_receivers(
             }
         };
         needed = needed.max(own);
-        slopes.add(shape.footprint.gradient, t.snap);
+        slopes.add(shape.footprint.gradient, t.snap, extent);
         along_light = along_light.max(light_distance);
         along_normal = along_normal.max(light_distance * cos_max);
         depths = [depths[0].min(d_min), depths[1].max(d_max)];
@@ -612,7 +616,7 @@ pub fn shadow_bias_for_receivers(
     // the largest |g_y|) on top of the constant and snapping terms, and a tap that reads a
     // flatter neighbour gets, in the constant, what its smaller slope term lacks.
     needed = needed.max(terms.constant + slopes.snap + terms.reach * slopes.run());
-    terms.constant += terms.slope_factor * slopes.spread();
+    terms.constant += terms.slope_factor * slopes.spread(terms.reach);
     let map = ShadowMap {
         receiver_depths: depths,
         ..*map
@@ -627,8 +631,9 @@ const COPLANARITY_WIDENING: f64 = 1.0 + 1.0 / 65_536.0;
 /// The slopes of the listed receivers, for a kernel that reads across from one to another.
 #[derive(Default)]
 struct SlopeSpread {
-    /// The smallest and largest `m = max(|gₓ|, |g_y|)`.
-    m: Option<[f64; 2]>,
+    /// Each receiver's `m = max(|gₓ|, |g_y|)` and its extent in the map, `[x₀, x₁, y₀, y₁]`
+    /// (texels).
+    faces: Vec<(f64, [f64; 4])>,
     /// The largest `|gₓ|` and `|g_y|`, each over every receiver.
     g: [f64; 2],
     /// The largest snapping term.
@@ -636,18 +641,34 @@ struct SlopeSpread {
 }
 
 impl SlopeSpread {
-    fn add(&mut self, gradient: [f64; 2], snap: f64) {
+    fn add(&mut self, gradient: [f64; 2], snap: f64, extent: [f64; 4]) {
         let [gx, gy] = gradient.map(f64::abs);
-        let m = gx.max(gy);
-        self.m = Some(self.m.map_or([m, m], |[lo, hi]| [lo.min(m), hi.max(m)]));
+        self.faces.push((gx.max(gy), extent));
         self.g = [self.g[0].max(gx), self.g[1].max(gy)];
         self.snap = self.snap.max(snap);
     }
 
-    /// `m_max − m_min`: what the constant adds so that the flattest receiver's caster bias
-    /// reaches the steepest one's slope term.
-    fn spread(&self) -> f64 {
-        self.m.map_or(0.0, |[lo, hi]| hi - lo)
+    /// The largest `m_i − m_j` over receivers a kernel of `reach` texels reads across: a tap on
+    /// `j` reads a caster biased by `j`'s slope term while the lookup on `i` runs at `i`'s, so
+    /// the constant adds the difference. A tap lands at most `reach` texels from the lookup
+    /// point and takes the texel whose centre its face covers, half a texel further: only
+    /// receivers whose extents come within `reach + 1` texels of each other count (a sweep
+    /// over the extents sorted by `x₀`). Separate meshes listed together then do not pay for
+    /// each other's slopes; on one smooth mesh (a sphere towards its terminator) neighbours'
+    /// slopes differ almost as much as the mesh's extremes, and little changes.
+    fn spread(&self, reach: f64) -> f64 {
+        let near = reach + 1.0;
+        let mut order: Vec<&(f64, [f64; 4])> = self.faces.iter().collect();
+        order.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]));
+        let mut spread = 0.0f64;
+        for (i, (m_i, e_i)) in order.iter().enumerate() {
+            for (m_j, e_j) in order[i + 1..].iter().take_while(|(_, e)| e[0] <= e_i[1] + near) {
+                if e_j[2] <= e_i[3] + near && e_i[2] <= e_j[3] + near {
+                    spread = spread.max((m_i - m_j).abs());
+                }
+            }
+        }
+        spread
     }
 
     /// `(max |gₓ| + max |g_y|)·(1 + 2⁻¹⁶)`: the largest depth run per texel of reach along a
@@ -1364,6 +1385,17 @@ mod tests {
             both.gl_polygon_offset[2] >= larger + run,
             "{:?}",
             both.gl_polygon_offset
+        );
+        // A steep face far from the flat one in the map (x from 5 to 7: 320 texels off, beyond
+        // the 5×5 kernel's reach): its slope does not enter the constant.
+        let (far_steep, _) = face(5.0, 1.5, 0.0, -20.0);
+        let apart = shadow_bias_for_receivers(&map, &[&flat, &far_steep]).unwrap();
+        let far_alone = shadow_bias_for_receivers(&map, &[&far_steep]).unwrap();
+        let k = alone[0].terms.constant.max(far_alone.terms.constant);
+        assert!(
+            (apart.terms.constant - k).abs() <= 1e-12 * k,
+            "{} vs {k}",
+            apart.terms.constant
         );
         // One slope (to the f32 rounding of the corners): the larger of the two alone.
         let same = shadow_bias_for_receivers(&map, &[&flat, &level]).unwrap();

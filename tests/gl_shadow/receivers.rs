@@ -403,6 +403,92 @@ fn coplanar(a: &Tri, b: &Tri) -> bool {
             .all(|&p| dot(a.n, sub(p, a.v[0])).abs() < 1e-6 * scale)
 }
 
+/// The smallest multiple `s` of zshift's bias (factor, units and clamp scaled together) that is
+/// acne-free, by geometric bisection over `[2⁻¹⁰, 1]` (`acne_at(s)` counts acne pixels):
+/// `Some(0)` when no bias is needed, `None` when even 2⁻¹⁰ of it is acne-free.
+fn smallest_scale(gl: &mut Gl, mut acne_at: impl FnMut(&mut Gl, f32) -> usize) -> Option<f64> {
+    if acne_at(gl, 0.0) == 0 {
+        return Some(0.0);
+    }
+    let (mut lo, mut hi) = (1.0f64 / 1024.0, 1.0f64);
+    if acne_at(gl, lo as f32) == 0 {
+        return None;
+    }
+    for _ in 0..10 {
+        let mid = (lo * hi).sqrt();
+        if acne_at(gl, mid as f32) > 0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(hi)
+}
+
+/// The peers' tally on the mesh receivers: per scene, each engine default's asks with acne and
+/// its worst acne fraction, and zshift's bias (receivers path, probed) over its smallest
+/// acne-free multiple. Printed, not asserted (docs/shadows.md).
+#[derive(Default)]
+struct Peers {
+    /// (scene, engine) → (asks, asks with acne, worst acne fraction of judged pixels).
+    engines: Vec<((&'static str, &'static str), (usize, usize, f64))>,
+    /// scene → zshift's bias ÷ its smallest acne-free multiple; asks needing no bias; asks whose
+    /// every multiple down to 2⁻¹⁰ is acne-free.
+    ratios: Vec<(&'static str, (Vec<f64>, usize, usize))>,
+}
+
+impl Peers {
+    fn engine(&mut self, scene: &'static str, engine: &'static str, got: Count) {
+        let key = (scene, engine);
+        let i = match self.engines.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
+            None => {
+                self.engines.push((key, (0, 0, 0.0)));
+                self.engines.len() - 1
+            }
+        };
+        let t = &mut self.engines[i].1;
+        t.0 += 1;
+        if got.acne > 0 {
+            t.1 += 1;
+            t.2 = t.2.max(got.acne as f64 / got.lit.max(1) as f64);
+        }
+    }
+
+    fn scale(&mut self, scene: &'static str, smallest: Option<f64>) {
+        let i = match self.ratios.iter().position(|(k, _)| *k == scene) {
+            Some(i) => i,
+            None => {
+                self.ratios.push((scene, (Vec::new(), 0, 0)));
+                self.ratios.len() - 1
+            }
+        };
+        let t = &mut self.ratios[i].1;
+        match smallest {
+            Some(s) if s > 0.0 => t.0.push(1.0 / s),
+            Some(_) => t.1 += 1,
+            None => t.2 += 1,
+        }
+    }
+
+    fn print(&self) {
+        println!("| mesh | engine default | asks with acne | worst acne (% of judged) |");
+        println!("|---|---|---|---|");
+        for ((scene, engine), (asks, acne, worst)) in &self.engines {
+            println!("| {scene} | {engine} | {acne} of {asks} | {:.2} % |", 100.0 * worst);
+        }
+        println!("| mesh | zshift (probed, receivers) ÷ its smallest acne-free multiple: median, max | asks needing no bias | asks acne-free at 2^-10 of it |");
+        println!("|---|---|---|---|");
+        for (scene, (ratios, none, tiny)) in &self.ratios {
+            let mut r = ratios.clone();
+            r.sort_by(f64::total_cmp);
+            let median = r.get(r.len() / 2).copied().unwrap_or(f64::NAN);
+            let max = r.last().copied().unwrap_or(f64::NAN);
+            println!("| {scene} | {median:.2}, {max:.2} | {none} | {tiny} |");
+        }
+    }
+}
+
 /// The sweep's cases for the receiver scenes: both lights at 20°–89°, two lookups per light and
 /// elevation in turn (every lookup under `full`), each with one pick of f/n, map size, format and
 /// convention (21 picks under `full`); another draw under `ZSHIFT_SHADOW_SEED`.
@@ -471,6 +557,7 @@ fn spheres_and_terrain_receive_without_acne() {
     let (eye, camera) = camera();
     let mut failures = Vec::new();
     let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
+    let mut peers = Peers::default();
     let started = std::time::Instant::now();
     for world in [sphere_world(), terrain_world(), box_world()] {
         let buffer =
@@ -542,6 +629,18 @@ fn spheres_and_terrain_receive_without_acne() {
                                 got.acne, got.lit, bias.gl_polygon_offset
                             ));
                         }
+                        if pname == "probed, receivers" {
+                            let acne_at = |gl: &mut Gl, s: f32| {
+                                let offset = Some((f as f32 * s, u as f32 * s, c as f32 * s));
+                                let caster = CasterBias {
+                                    offset,
+                                    ..Default::default()
+                                };
+                                count(&through.look(gl, caster, ReceiverBias::default()), truth)
+                                    .acne
+                            };
+                            peers.scale(world.name, smallest_scale(&mut gl, acne_at));
+                        }
                     }
                     Err(e) if e.kind() == ErrorKind::Unresolvable => {
                         refused += 1;
@@ -561,9 +660,23 @@ fn spheres_and_terrain_receive_without_acne() {
                     Err(e) => failures.push(format!("{where_} ({pname}): {e}")),
                 }
             }
+            // The engines' defaults on the same meshes, judged as the receivers path is.
+            let through = Through {
+                rig: &rig,
+                case: &case,
+                light: &light,
+                camera: &camera,
+                meshes: &meshes,
+            };
+            for engine in engines() {
+                let (caster, receiver) = engine.biases(&case, &light);
+                let got = count(&through.look(&mut gl, caster, receiver), &truths[0]);
+                peers.engine(world.name, engine.name, got);
+            }
         }
         unsafe { gl.glow().delete_buffer(buffer) };
     }
+    peers.print();
     println!(
         "shadow receivers: {asked} asked, {answered} answered, {refused} refused, {judged_pixels} judged pixels, {:.1} s",
         started.elapsed().as_secs_f64()
