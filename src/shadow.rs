@@ -551,13 +551,23 @@ pub fn shadow_bias_for_receivers(
         let [w, h] = map.resolution.map(f64::from);
         let slack = 1e-6 * w.max(h);
         // The receiver's extent in the map (texels), for the kernels that read across to it.
-        let mut extent = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+        let mut extent = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
         for p in &eye {
             let c = [0, 1, 3].map(|r| {
                 matrix[r] * p[0] + matrix[4 + r] * p[1] + matrix[8 + r] * p[2] + matrix[12 + r]
             });
             let (x, y) = ((0.5 * c[0] / c[2] + 0.5) * w, (0.5 * c[1] / c[2] + 0.5) * h);
-            extent = [extent[0].min(x), extent[1].max(x), extent[2].min(y), extent[3].max(y)];
+            extent = [
+                extent[0].min(x),
+                extent[1].max(x),
+                extent[2].min(y),
+                extent[3].max(y),
+            ];
             if !(-slack..=w + slack).contains(&x) || !(-slack..=h + slack).contains(&y) {
                 return Err(named(domain(
                     "every receiver corner must lie inside the light's frustum (clip the receiver to it)",
@@ -662,7 +672,10 @@ impl SlopeSpread {
         order.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]));
         let mut spread = 0.0f64;
         for (i, (m_i, e_i)) in order.iter().enumerate() {
-            for (m_j, e_j) in order[i + 1..].iter().take_while(|(_, e)| e[0] <= e_i[1] + near) {
+            for (m_j, e_j) in order[i + 1..]
+                .iter()
+                .take_while(|(_, e)| e[0] <= e_i[1] + near)
+            {
                 if e_j[2] <= e_i[3] + near && e_i[2] <= e_j[3] + near {
                     spread = spread.max((m_i - m_j).abs());
                 }

@@ -475,7 +475,10 @@ impl Peers {
         println!("| mesh | engine default | asks with acne | worst acne (% of judged) |");
         println!("|---|---|---|---|");
         for ((scene, engine), (asks, acne, worst)) in &self.engines {
-            println!("| {scene} | {engine} | {acne} of {asks} | {:.2} % |", 100.0 * worst);
+            println!(
+                "| {scene} | {engine} | {acne} of {asks} | {:.2} % |",
+                100.0 * worst
+            );
         }
         println!("| mesh | zshift (probed, receivers) ÷ its smallest acne-free multiple: median, max | asks needing no bias | asks acne-free at 2^-10 of it |");
         println!("|---|---|---|---|");
