@@ -425,69 +425,104 @@ fn smallest_scale(gl: &mut Gl, mut acne_at: impl FnMut(&mut Gl, f32) -> usize) -
     Some(hi)
 }
 
-/// The peers' tally on the mesh receivers: per scene, each engine default's asks with acne and
-/// its worst acne fraction, and zshift's bias (receivers path, probed) over its smallest
-/// acne-free multiple. Printed, not asserted (docs/shadows.md).
+/// One engine default's tally on one mesh: its asks, those with acne, the worst acne fraction
+/// of judged pixels.
+struct EngineTally {
+    scene: &'static str,
+    engine: &'static str,
+    asks: usize,
+    acne: usize,
+    worst: f64,
+}
+
+/// zshift's bias (receivers path, probed) over its smallest acne-free multiple on one mesh; asks
+/// needing no bias; asks whose every multiple down to 2⁻¹⁰ is acne-free.
+struct ScaleTally {
+    scene: &'static str,
+    ratios: Vec<f64>,
+    none: usize,
+    tiny: usize,
+}
+
+/// The peers' tally on the mesh receivers. Printed, not asserted (docs/shadows.md).
 #[derive(Default)]
 struct Peers {
-    /// (scene, engine) → (asks, asks with acne, worst acne fraction of judged pixels).
-    engines: Vec<((&'static str, &'static str), (usize, usize, f64))>,
-    /// scene → zshift's bias ÷ its smallest acne-free multiple; asks needing no bias; asks whose
-    /// every multiple down to 2⁻¹⁰ is acne-free.
-    ratios: Vec<(&'static str, (Vec<f64>, usize, usize))>,
+    engines: Vec<EngineTally>,
+    scales: Vec<ScaleTally>,
 }
 
 impl Peers {
     fn engine(&mut self, scene: &'static str, engine: &'static str, got: Count) {
-        let key = (scene, engine);
-        let i = match self.engines.iter().position(|(k, _)| *k == key) {
+        let i = match self
+            .engines
+            .iter()
+            .position(|t| t.scene == scene && t.engine == engine)
+        {
             Some(i) => i,
             None => {
-                self.engines.push((key, (0, 0, 0.0)));
+                self.engines.push(EngineTally {
+                    scene,
+                    engine,
+                    asks: 0,
+                    acne: 0,
+                    worst: 0.0,
+                });
                 self.engines.len() - 1
             }
         };
-        let t = &mut self.engines[i].1;
-        t.0 += 1;
+        let t = &mut self.engines[i];
+        t.asks += 1;
         if got.acne > 0 {
-            t.1 += 1;
-            t.2 = t.2.max(got.acne as f64 / got.lit.max(1) as f64);
+            t.acne += 1;
+            t.worst = t.worst.max(got.acne as f64 / got.lit.max(1) as f64);
         }
     }
 
     fn scale(&mut self, scene: &'static str, smallest: Option<f64>) {
-        let i = match self.ratios.iter().position(|(k, _)| *k == scene) {
+        let i = match self.scales.iter().position(|t| t.scene == scene) {
             Some(i) => i,
             None => {
-                self.ratios.push((scene, (Vec::new(), 0, 0)));
-                self.ratios.len() - 1
+                self.scales.push(ScaleTally {
+                    scene,
+                    ratios: Vec::new(),
+                    none: 0,
+                    tiny: 0,
+                });
+                self.scales.len() - 1
             }
         };
-        let t = &mut self.ratios[i].1;
+        let t = &mut self.scales[i];
         match smallest {
-            Some(s) if s > 0.0 => t.0.push(1.0 / s),
-            Some(_) => t.1 += 1,
-            None => t.2 += 1,
+            Some(s) if s > 0.0 => t.ratios.push(1.0 / s),
+            Some(_) => t.none += 1,
+            None => t.tiny += 1,
         }
     }
 
     fn print(&self) {
         println!("| mesh | engine default | asks with acne | worst acne (% of judged) |");
         println!("|---|---|---|---|");
-        for ((scene, engine), (asks, acne, worst)) in &self.engines {
+        for t in &self.engines {
             println!(
-                "| {scene} | {engine} | {acne} of {asks} | {:.2} % |",
-                100.0 * worst
+                "| {} | {} | {} of {} | {:.2} % |",
+                t.scene,
+                t.engine,
+                t.acne,
+                t.asks,
+                100.0 * t.worst
             );
         }
         println!("| mesh | zshift (probed, receivers) ÷ its smallest acne-free multiple: median, max | asks needing no bias | asks acne-free at 2^-10 of it |");
         println!("|---|---|---|---|");
-        for (scene, (ratios, none, tiny)) in &self.ratios {
-            let mut r = ratios.clone();
+        for t in &self.scales {
+            let mut r = t.ratios.clone();
             r.sort_by(f64::total_cmp);
             let median = r.get(r.len() / 2).copied().unwrap_or(f64::NAN);
             let max = r.last().copied().unwrap_or(f64::NAN);
-            println!("| {scene} | {median:.2}, {max:.2} | {none} | {tiny} |");
+            println!(
+                "| {} | {median:.2}, {max:.2} | {} | {} |",
+                t.scene, t.none, t.tiny
+            );
         }
     }
 }
