@@ -629,6 +629,13 @@ fn spheres_and_terrain_receive_without_acne() {
                 .collect();
             let face_refs: Vec<&[glam::Vec3]> = faces.iter().map(|f| f.as_slice()).collect();
             let where_ = format!("{} {} limit {limit}°", world.name, case.label());
+            let through = Through {
+                rig: &rig,
+                case: &case,
+                light: &light,
+                camera: &camera,
+                meshes: &meshes,
+            };
             for (pname, profile, listed) in [
                 ("worst", RasterizerProfile::worst_case(), false),
                 ("probed", probed, false),
@@ -641,13 +648,6 @@ fn spheres_and_terrain_receive_without_acne() {
                     shadow_bias_for_receivers(&map, &face_refs)
                 } else {
                     shadow_bias(&map)
-                };
-                let through = Through {
-                    rig: &rig,
-                    case: &case,
-                    light: &light,
-                    camera: &camera,
-                    meshes: &meshes,
                 };
                 match answer {
                     Ok(bias) => {
@@ -699,13 +699,6 @@ fn spheres_and_terrain_receive_without_acne() {
                 }
             }
             // The engines' defaults on the same meshes, judged as the receivers path is.
-            let through = Through {
-                rig: &rig,
-                case: &case,
-                light: &light,
-                camera: &camera,
-                meshes: &meshes,
-            };
             for engine in engines() {
                 let (caster, receiver) = engine.biases(&case, &light);
                 let got = count(&through.look(&mut gl, caster, receiver), &truths[0]);
