@@ -414,7 +414,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
                 figures.near_clip_error,
                 figures.near_preclipped_error,
                 profile.clip_ulps,
-            ) = near_clip(gl, o)?;
+            ) = near_clip(gl, o, profile.snapping)?;
         }
     }
     profile.facing_chain = identify_chain(&seen);

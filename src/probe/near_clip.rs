@@ -9,7 +9,11 @@ use crate::projection::ClipDepth;
 /// twice the near distance (nothing left for the rasterizer to clip); on the pixels both cover,
 /// each is compared with the plane of the coordinates it was given (D24 quanta). Returns the
 /// verdict and the two worst errors.
-pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f64, f64)> {
+pub(super) unsafe fn near_clip(
+    gl: &Gl,
+    o: &Objects,
+    snapping: Snapping,
+) -> Result<(NearClip, f64, f64, f64)> {
     let view = NEAR_VIEW;
     let grounds = near_grounds();
     let given = grounds.iter().map(|g| Scene {
@@ -26,11 +30,17 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
     // The clipper's figure, under every depth convention the context has: `[−1, 1]`, and with
     // `glClipControl` also `[0, 1]` and reversed Z (0.84, 0.86 and 0.22 on llvmpipe). The model
     // takes the largest, a sampled maximum, with a margin (crate::model::clip).
-    let mut clip_ulps = clipper_figure(gl, o, ClipDepth::NegOneToOne)?;
+    let mut clip_ulps = clipper_figure(gl, o, ClipDepth::NegOneToOne, snapping)?;
     if let Some(clip_control) = gl.ClipControl {
         clip_control(LOWER_LEFT, ZERO_TO_ONE);
-        let others = clipper_figure(gl, o, ClipDepth::ZeroToOne)
-            .and_then(|z| Ok(z.max(clipper_figure(gl, o, ClipDepth::ReversedZeroToOne)?)));
+        let others = clipper_figure(gl, o, ClipDepth::ZeroToOne, snapping).and_then(|z| {
+            Ok(z.max(clipper_figure(
+                gl,
+                o,
+                ClipDepth::ReversedZeroToOne,
+                snapping,
+            )?))
+        });
         clip_control(LOWER_LEFT, NEGATIVE_ONE_TO_ONE);
         clip_ulps = clip_ulps.max(others?);
     }
@@ -47,6 +57,7 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
             &scenes[i],
             &stored[i],
             &preclipped_errors,
+            snapping,
         ));
         let both: Vec<(f64, f64)> = given_errors
             .iter()
@@ -79,7 +90,7 @@ pub(super) unsafe fn near_clip(gl: &Gl, o: &Objects) -> Result<(NearClip, f64, f
 /// through all three frusta, each drawn as given (the rasterizer clips it) and cut to the
 /// frustum in f64 first (nothing left for the rasterizer to clip): the largest
 /// [`clipper_ulps`]. At most `TILES²` tiles a draw.
-unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth) -> Result<f64> {
+unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth, snapping: Snapping) -> Result<f64> {
     let random = random_clipped_grounds();
     let views: Vec<[f64; 4]> = std::iter::once(CENTRED_NEAR_SIDES)
         .chain(SKEWED_NEAR_SIDES)
@@ -121,6 +132,7 @@ unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth) -> Result<f64> {
                 &scenes[2 * i],
                 &stored[2 * i],
                 &unclipped,
+                snapping,
             ));
         }
     }
@@ -132,7 +144,9 @@ unsafe fn clipper_figure(gl: &Gl, o: &Objects, clip: ClipDepth) -> Result<f64> {
 /// `(|stored − exact| − e − q)⁺·d / (c·2⁻²⁴·L(A))` over the pixels (`c` the window depth per NDC
 /// unit: ½ under `[−1, 1]`, 1 under `[0, 1]` and reversed Z), `e` the error at the same pixel of the same ground cut to the frustum in
 /// f64 before drawing (`unclipped`: what the rasterizer errs without clipping), `d` the pixel's
-/// eye depth, `q` one D24 quantum of conversion, `A` the
+/// eye depth, `q` one D24 quantum of conversion (and, on a rasterizer that snaps to `2⁻ᵇ`
+/// pixel, `2S = 2⁻ᵇ·(|gₓ| + |g_y|)` of the plane: the clipped and the pre-cut ground's vertices
+/// snap differently, and the model's `S` carries snapping, not `C`), `A` the
 /// magnitudes of the ground's clip coordinates for its reach `R` (the largest eye coordinate of
 /// its corners: `A = ((|m0| + |m8|)·R, (|m5| + |m9|)·R, |m10|·R + |m14|, R)`), and `L` the
 /// ground plane's form on clip coordinates (`|aₓ|·A_x + |a_y|·A_y + A_z + |a₀|·A_w`, `aₓ`, `a_y`,
@@ -143,6 +157,7 @@ pub(super) fn clipper_ulps(
     scene: &Scene,
     stored: &[f64],
     unclipped: &[Option<f64>],
+    snapping: Snapping,
 ) -> f64 {
     let reach = ground.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()));
     let m = scene.matrix.map(f64::from);
@@ -170,12 +185,24 @@ pub(super) fn clipper_ulps(
     let l = a[2] + ax.abs() * a[0] + ay.abs() * a[1] + a0.abs() * a[3];
     let q = Format::Unorm(24).quantum(0.5);
     let unit = window_per_ndc * l / 16_777_216.0;
+    // Both grounds' snapping, at most `S` each (crate::model::snap), with the plane's window
+    // gradient per pixel.
+    let snaps = match snapping {
+        Snapping::Unsnapped => 0.0,
+        Snapping::SubpixelBits(b) => {
+            let (gx, gy) = (
+                (plane.extended(1.0, 0.0) - plane.extended(0.0, 0.0)).abs(),
+                (plane.extended(0.0, 1.0) - plane.extended(0.0, 0.0)).abs(),
+            );
+            2f64.powi(-(b as i32)) * (gx + gy)
+        }
+    };
     (0..SIZE * SIZE)
         .filter_map(|i| {
             let exact = plane.depth_inside(i % SIZE, i / SIZE)?;
             let own = unclipped[i]? * q;
             let d = view.distance_at_depth(exact);
-            Some(((stored[i] - exact).abs() - own - q).max(0.0) * d / unit)
+            Some(((stored[i] - exact).abs() - own - q - snaps).max(0.0) * d / unit)
         })
         .fold(0.0, f64::max)
 }
