@@ -165,7 +165,8 @@
 //!   both arguments reach `K_i + S_i + F_i`.
 //!
 //! A receiver whose front faces away from the light by more than the limit angle at every
-//! point (for a spot light, the angle to the ray from the light to the point) is skipped: the largest cosine of that angle over the polygon is `N_z` under an
+//! point (for a spot light, the angle to the ray from the light to the point) is skipped: the
+//! largest cosine of that angle over the polygon is `N_z` under an
 //! orthographic light, and at most `h/d_min` under a spot (`h` the light's height above the
 //! plane, `d_min` the receiver's nearest light depth, `|p| ≥ d_min`). Casters that are not
 //! listed receivers (the far side of a box, a thin pole) get at most the clamp: they may show

@@ -341,18 +341,11 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
     let mut seen = Vec::new();
     // Snapping first: the plane errors are measured against the plane the rasterizer sets up,
     // through its snapped window positions (what snapping moves is the model's `S`, not `I`).
-    if !attach(gl, o, DEPTH_COMPONENT32F)? {
-        return Err(Error::new(
-            ErrorKind::Gl,
-            incomplete_detail(DEPTH_COMPONENT32F),
-        ));
-    }
+    attach(gl, o, DEPTH_COMPONENT32F)?;
     let snap;
     (profile.snapping, figures.snapping_residual, snap) = snapping(gl, o, figures.subpixel_bits)?;
     for (slot, internal, format) in Format::ALL {
-        if !attach(gl, o, internal)? {
-            return Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)));
-        }
+        attach(gl, o, internal)?;
         let bands = resolvable(gl, o, format)?;
         profile.resolvable[slot] = bands.iter().copied().fold(0.0, f64::max);
         if format == Format::Float {
@@ -504,9 +497,9 @@ const FRAGMENT_SHADER_KIND: Enum = gl::FRAGMENT_SHADER;
 const ALWAYS: Enum = 0x0207;
 const DEPTH_BUFFER_BIT: u32 = 0x0100;
 
-/// Gives the renderbuffer `internal` storage and attaches it; `false` if the framebuffer is then
-/// incomplete (or the format refused).
-unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
+/// Gives the renderbuffer `internal` storage and attaches it; an error naming the format if the
+/// framebuffer is then incomplete (or the format refused).
+unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<()> {
     (gl.BindRenderbuffer)(RENDERBUFFER, o.renderbuffer);
     let side = (SIZE * TILES) as Sizei;
     (gl.RenderbufferStorage)(RENDERBUFFER, internal, side, side);
@@ -514,7 +507,11 @@ unsafe fn attach(gl: &Gl, o: &Objects, internal: Enum) -> Result<bool> {
     (gl.FramebufferRenderbuffer)(FRAMEBUFFER, DEPTH_ATTACHMENT, RENDERBUFFER, o.renderbuffer);
     let complete = (gl.CheckFramebufferStatus)(FRAMEBUFFER) == FRAMEBUFFER_COMPLETE;
     gl.check("attaching the probe's depth renderbuffer raised a GL error")?;
-    Ok(complete && !refused)
+    if complete && !refused {
+        Ok(())
+    } else {
+        Err(Error::new(ErrorKind::Gl, incomplete_detail(internal)))
+    }
 }
 
 #[cfg(test)]

@@ -185,18 +185,14 @@ pub(super) fn clipper_ulps(
     let l = a[2] + ax.abs() * a[0] + ay.abs() * a[1] + a0.abs() * a[3];
     let q = Format::Unorm(24).quantum(0.5);
     let unit = window_per_ndc * l / 16_777_216.0;
-    // Both grounds' snapping, at most `S` each (crate::model::snap), with the plane's window
-    // gradient per pixel.
-    let snaps = match snapping {
-        Snapping::Unsnapped => 0.0,
-        Snapping::SubpixelBits(b) => {
-            let (gx, gy) = (
-                (plane.extended(1.0, 0.0) - plane.extended(0.0, 0.0)).abs(),
-                (plane.extended(0.0, 1.0) - plane.extended(0.0, 0.0)).abs(),
-            );
-            2f64.powi(-(b as i32)) * (gx + gy)
-        }
-    };
+    // Both grounds' snapping, at most the model's `S` each, from the plane's window gradient
+    // per pixel.
+    let origin = plane.extended(0.0, 0.0);
+    let gradient = [
+        plane.extended(1.0, 0.0) - origin,
+        plane.extended(0.0, 1.0) - origin,
+    ];
+    let snaps = 2.0 * crate::model::snap::snap(snapping, gradient, 1.0);
     (0..SIZE * SIZE)
         .filter_map(|i| {
             let exact = plane.depth_inside(i % SIZE, i / SIZE)?;
