@@ -313,35 +313,21 @@ fn judged(
     let light_inv = invert(&light_vp);
     let n = f64::from(case.resolution);
     let cos_limit = limit_deg.to_radians().cos();
-    let toward_light = |p: [f64; 3]| -> ([f64; 3], f64) {
-        match case.kind {
-            Kind::Directional => (light.to_light, f64::INFINITY),
-            Kind::Spot => (sub(light.position, p), 1.0),
-        }
-    };
     // A face the promise covers, lit from `p` on it. The limit angle is measured to the light's
     // axis by `shadow_bias` (it knows no positions), to the ray from the light to `p` by
     // `shadow_bias_for_receivers` (`ShadowMap::limit_angle_deg`): they differ under a spot.
     let promised = |i: usize, p: [f64; 3]| -> bool {
         let t = &world.tris[i];
-        let (l, t_max) = toward_light(p);
+        let (l, t_max) = toward_light(case, light, p);
         let direction = if planar { light.to_light } else { norm(l) };
         dot(t.n, direction) >= cos_limit
             && dot(t.n, l) > 0.0
             && world.first_hit(p, l, 1e-7, t_max, Some(i)).is_none()
     };
-    let to_map = |p: [f64; 3]| -> [f64; 2] {
-        let c = apply(&light_vp, p);
-        [(c[0] / c[3] * 0.5 + 0.5) * n, (c[1] / c[3] * 0.5 + 0.5) * n]
-    };
+    let to_map = |p: [f64; 3]| map_position(&light_vp, n, p);
     // The first face the light sees through map position `uv` (texels).
     let light_ray = |uv: [f64; 2]| -> Option<(usize, [f64; 3])> {
-        let (x, y) = (uv[0] / n * 2.0 - 1.0, uv[1] / n * 2.0 - 1.0);
-        let a = apply(&light_inv, [x, y, -1.0]);
-        let b = apply(&light_inv, [x, y, 0.5]);
-        let a = [a[0] / a[3], a[1] / a[3], a[2] / a[3]];
-        let b = [b[0] / b[3], b[1] / b[3], b[2] / b[3]];
-        let d = sub(b, a);
+        let (a, d) = map_ray(&light_inv, n, uv);
         let (t, i) = world.first_hit(a, d, 0.0, f64::INFINITY, None)?;
         Some((i, [0, 1, 2].map(|k| a[k] + t * d[k])))
     };

@@ -906,6 +906,35 @@ fn light_uniform(case: &Case, light: &Light) -> [f32; 3] {
     }
 }
 
+/// The direction from `p` toward `case`'s light and the ray parameter at which it reaches the
+/// light: the light's direction and `∞` for a directional light, the segment to the light and 1
+/// for a spot.
+pub fn toward_light(case: &Case, light: &Light, p: [f64; 3]) -> ([f64; 3], f64) {
+    match case.kind {
+        Kind::Directional => (light.to_light, f64::INFINITY),
+        Kind::Spot => (sub(light.position, p), 1.0),
+    }
+}
+
+/// The map position (texels) of world point `p` under the light's view-projection `vp`, for a
+/// map `n` texels a side.
+pub fn map_position(vp: &M4, n: f64, p: [f64; 3]) -> [f64; 2] {
+    let c = apply(vp, p);
+    [(c[0] / c[3] * 0.5 + 0.5) * n, (c[1] / c[3] * 0.5 + 0.5) * n]
+}
+
+/// The light's ray through map position `uv` (texels) of a map `n` texels a side, from the
+/// inverse of its view-projection: its point on the near plane and its direction (to NDC depth
+/// ½), in world space.
+pub fn map_ray(inverse: &M4, n: f64, uv: [f64; 2]) -> ([f64; 3], [f64; 3]) {
+    let (x, y) = (uv[0] / n * 2.0 - 1.0, uv[1] / n * 2.0 - 1.0);
+    let a = apply(inverse, [x, y, -1.0]);
+    let b = apply(inverse, [x, y, 0.5]);
+    let a = [a[0] / a[3], a[1] / a[3], a[2] / a[3]];
+    let b = [b[0] / b[3], b[1] / b[3], b[2] / b[3]];
+    (a, sub(b, a))
+}
+
 /// The exact answer per camera pixel: None (not counted: off the ground, under the box, off the
 /// map, or near a shadow edge), Some(true) lit, Some(false) shadowed.
 pub fn reference(
@@ -919,32 +948,14 @@ pub fn reference(
     let light_vp = mul(&light.proj, &light.view);
     let light_inv = invert(&light_vp);
     let n = f64::from(case.resolution);
-    let ray_to_light = |p: [f64; 3]| -> ([f64; 3], f64) {
-        match case.kind {
-            Kind::Directional => (light.to_light, f64::INFINITY),
-            Kind::Spot => {
-                let d = sub(light.position, p);
-                (d, 1.0)
-            }
-        }
-    };
     let shadowed = |p: [f64; 3]| {
-        let (d, t) = ray_to_light(p);
+        let (d, t) = toward_light(case, light, p);
         blocked(p, d, t)
     };
     // The map texel position (in texels) of a world point, and back to the ground.
-    let to_map = |p: [f64; 3]| -> [f64; 2] {
-        let c = apply(&light_vp, p);
-        [(c[0] / c[3] * 0.5 + 0.5) * n, (c[1] / c[3] * 0.5 + 0.5) * n]
-    };
+    let to_map = |p: [f64; 3]| map_position(&light_vp, n, p);
     let to_ground = |uv: [f64; 2]| -> Option<[f64; 3]> {
-        let x = uv[0] / n * 2.0 - 1.0;
-        let y = uv[1] / n * 2.0 - 1.0;
-        let a = apply(&light_inv, [x, y, -1.0]);
-        let b = apply(&light_inv, [x, y, 0.5]);
-        let a = [a[0] / a[3], a[1] / a[3], a[2] / a[3]];
-        let b = [b[0] / b[3], b[1] / b[3], b[2] / b[3]];
-        let d = sub(b, a);
+        let (a, d) = map_ray(&light_inv, n, uv);
         if d[1].abs() < 1e-300 {
             return None;
         }
