@@ -379,6 +379,8 @@ fn offset_ortho_decided(
 // ---------------------------------------------------------------------------------------------
 
 use crate::decal::Decal;
+use crate::model::interpolation;
+use crate::model::quantum::unit_quantum;
 use crate::recommend::{ClipRecommendation, ErrorTerms, Snapping};
 
 /// The unit roundoff of f32.
@@ -395,14 +397,21 @@ pub struct Scene {
 
 /// The model's terms for an orthographic `scene` under `clip` (window-depth units):
 ///
-/// * `q`: the format's spacing at the decal's largest window depth.
+/// * `q`: the format's spacing at the decal's largest window depth (under `glDepthRange`, at
+///   its stored depth, in unit window depth: [`crate::model::quantum`]).
 /// * `T`: `clip_z = m10·z + m14` (two roundings, relative to `|m10|·d₂` and `|ndc|`), `w = 1`
-///   exactly, the viewport mapping (one rounding relative to `w`):
-///   `T = u·(k·(|m10|·d_max + |ndc|_max) + w_max)`, `k` = ½ under `[−1, 1]`, 1 otherwise.
+///   exactly, the viewport mapping (one rounding relative to the stored depth, `w` lifted by
+///   `near/(far − near)` under `glDepthRange(near, far)`):
+///   `T = u·(k·(|m10|·d_max + |ndc|_max) + w_max + lift)`, `k` = ½ under `[−1, 1]`, 1
+///   otherwise.
 /// * `V`: rounding the decal's eye z (`u·d₂`) and, on a plane of slope `s`, its x or y
 ///   (`s·u·X`, `X` the box's largest half-extent), through `g`: `V = u·g·(d₂ + s·X)`; 0 with
 ///   `exact_depth`.
-/// * `I`: `u·(3·w_max + 3·(w_max − w_min))`, as in the perspective model; 0 with `exact_depth`.
+/// * `I`: the perspective model's [`crate::model::interpolation`],
+///   `u·(3·(w_max + lift) + 6·max(w_max − w_min, G))`, with `G = s·g·max((r − l)·X/W,
+///   (t − b)·Y/H)` the plane's run from the framebuffer's origin to the viewport's far corner
+///   `(X, Y)` (the viewport may lie inside a larger framebuffer: a shadow atlas's tile); 0 with
+///   `exact_depth`.
 /// * `S`: `2^-(b+1)·(gₓ + g_y)` with `gₓ = s·g·(r − l)/W`, `g_y = s·g·(t − b)/H` per pixel; 0
 ///   unsnapped.
 ///
@@ -429,27 +438,39 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         .into_iter()
         .fold(0.0f64, |a, x| a.max(x.abs()));
     let s = scene.decal.slope;
+    let pipeline = &scene.decal.pipeline;
+    // Under glDepthRange(near, far) the roundings after the projection are relative to the
+    // stored depth, w + lift in unit window depth.
+    let lift = pipeline.depth_range[0] / pipeline.span();
+    // The window gradient per pixel of a plane of slope s, with the whole slope on either axis.
+    let [width, height] = scene.decal.viewport.map(f64::from);
+    let gradient = [
+        s * g * (o.right - o.left).abs() / width,
+        s * g * (o.top - o.bottom).abs() / height,
+    ];
     let (vertex, interpolation) = if scene.decal.exact_depth {
         (0.0, 0.0)
     } else {
+        let extent = interpolation::framebuffer_extent(pipeline, scene.decal.viewport);
+        let extrapolated = interpolation::extrapolation_bound(gradient, extent, 1.0);
         (
             U * g * (d_max + s * half_extent),
-            U * (3.0 * w_max + 3.0 * (w_max - w_min)),
+            interpolation::interpolation(w_min, w_max, extrapolated, lift),
         )
     };
     let snap = match scene.decal.rasterizer().snapping {
         Snapping::Unsnapped => 0.0,
-        Snapping::SubpixelBits(b) => {
-            let [width, height] = scene.decal.viewport.map(f64::from);
-            let gx = s * g * (o.right - o.left).abs() / width;
-            let gy = s * g * (o.top - o.bottom).abs() / height;
-            2f64.powi(-(b as i32) - 1) * (gx + gy)
-        }
+        Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32) - 1) * (gradient[0] + gradient[1]),
     };
-    let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max);
+    let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max + lift);
+    let quantum = if pipeline.depth_range == [0.0, 1.0] {
+        scene.decal.format.spacing_at(w_max)?
+    } else {
+        unit_quantum(scene.decal.format, pipeline, w_max)?
+    };
     Ok(ErrorTerms {
         decal_clip: 0.0,
-        quantum: scene.decal.format.spacing_at(w_max)?,
+        quantum,
         transform,
         vertex,
         interpolation,
@@ -522,10 +543,12 @@ pub fn check(scene: &Scene) -> Result<()> {
     if scene.decal.viewport.contains(&0) {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
-    if scene.decal.pipeline != crate::model::Pipeline::default() {
+    scene.decal.pipeline.check()?;
+    if scene.decal.pipeline.world_space() {
         return Err(domain(
-            "the orthographic model takes eye-space vertices, the viewport at the framebuffer's origin and glDepthRange(0, 1): set world_reach, viewport_x, viewport_y to 0 and the depth range to 0, 1",
-        ));
+            "the orthographic decal model takes eye-space vertices: set world_reach to 0 and pass no view matrix (the viewport origin and glDepthRange are modelled)",
+        )
+        .with_value("world_reach", scene.decal.pipeline.world_reach));
     }
     if scene.decal.depth_test.is_some_and(|t| !t.is_strict()) {
         return Err(domain(

@@ -110,8 +110,17 @@
 //! (`Σ μᵢ = 1`), so the term is the bound over `d₁`, the nearest receiver
 //! ([`vertex::world_rounding`]). The lookup transforms a receiver position of the same box
 //! with the same `V` and `P`, so its `V` is the same bound, counted a second time in `T + V`.
-//! The viewport origin and depth range of [`crate::model::Pipeline`] are not modelled for shadow
-//! maps (they must stay at their defaults).
+//!
+//! **Shadow atlases.** A map drawn as a tile of a larger texture passes the tile's corner as
+//! [`crate::model::Pipeline::viewport_origin`] and its `glDepthRange` as
+//! [`crate::model::Pipeline::depth_range`]: the caster's interpolation term `I` then counts the
+//! plane's run from the atlas's corner ([`crate::model::interpolation`]), the quantum is taken at
+//! the stored depth and counted in unit window depth ([`crate::model::quantum`]), and the
+//! roundings after the projection (`T`, the read `R`) are relative to the stored depth. The
+//! terms stay in unit window depth; the units (against each API's `r` of stored depth) and the
+//! clamp are in stored depth, as the APIs apply them (the slope factor needs no change: the
+//! slope it multiplies is of stored depth too). `tests/gl_shadow.rs`
+//! (`atlas_tiles_are_acne_free`) draws such tiles.
 //!
 //! # Outputs
 //! The constant part `K` goes to each API's units against its own resolvable difference `r`
@@ -296,8 +305,13 @@ pub struct ShadowMap {
     /// ([`crate::model::Pipeline::view`], [`crate::model::Pipeline::world_box`]), and whether
     /// the shaders compute the light-space eye position first
     /// ([`crate::model::Pipeline::eye_first`]). Its `world_reach` adds to the map's (the larger
-    /// counts). [`Default`]: today's scalar bound from `world_reach` alone. The viewport origin
-    /// and depth range must stay at their defaults (not modelled for shadow maps).
+    /// counts). [`Default`]: today's scalar bound from `world_reach` alone. Its framebuffer
+    /// state is the map's: [`crate::model::Pipeline::viewport_origin`] is the tile's corner in
+    /// a shadow atlas (the rasterizer extrapolates the caster's depth plane from the atlas's
+    /// origin, [`crate::model::interpolation`]), [`crate::model::Pipeline::depth_range`] the
+    /// `glDepthRange` the map is drawn with (the lookup must compare against
+    /// `near + (far − near)·w` too). The terms stay in unit window depth; the bias's units
+    /// and clamp are in stored depth, as the APIs apply them.
     pub pipeline: crate::model::Pipeline,
 }
 
@@ -418,16 +432,33 @@ fn finish(
         1.0
     };
     let factor = round_up_f32(terms.slope_factor * (1.0 + 6.0 * U));
-    let clamp = if needed.is_finite() { needed } else { 0.0 };
+    // The clamp bounds the offset in stored depth: the unit window depth it needs, times
+    // far − near of glDepthRange (the slope factor needs no change: the slope it multiplies is
+    // of stored depth too).
+    let clamp = if needed.is_finite() {
+        needed * map.pipeline.span()
+    } else {
+        0.0
+    };
     let clamp32 = round_up_f32(clamp);
     // The smallest resolvable difference over the receivers: UNORM's is constant; float's
     // grows with depth, so take it at the smallest window depth.
     let w_small = smallest_window_depth(map)?;
     let units_of = |r: f64| -> f64 { terms.constant / r };
-    let gl_r = resolvable_difference(BiasApi::OpenGl, map.format, w_small)?
+    // Each API's r is a difference of stored depth, taken at the stored depth of w_small under
+    // glDepthRange; counted here in unit window depth, as the terms are.
+    let pipeline = &map.pipeline;
+    let unit_r = |api: BiasApi| -> Result<f64> {
+        Ok(pipeline.per_unit(resolvable_difference(
+            api,
+            map.format,
+            pipeline.actual(w_small),
+        )?))
+    };
+    let gl_r = unit_r(BiasApi::OpenGl)?
         * map.profile.resolvable[crate::model::measured::profile_index(map.format)];
-    let d3d_r = resolvable_difference(BiasApi::Direct3d, map.format, w_small)?;
-    let vk_r = resolvable_difference(BiasApi::Vulkan, map.format, w_small)?;
+    let d3d_r = unit_r(BiasApi::Direct3d)?;
+    let vk_r = unit_r(BiasApi::Vulkan)?;
     let gl_units = units_of(gl_r);
     let vk_count = units_of(vk_r);
     if vk_count.is_nan() || vk_count > f64::from(i32::MAX) {
@@ -817,7 +848,13 @@ fn terms_of(
                 profile: Some(map.profile),
                 footprint: None,
                 depth_test: None,
-                pipeline: crate::model::Pipeline::default(),
+                // The framebuffer state (an atlas tile's origin, glDepthRange); the vertex
+                // pipeline is the light's own term, ortho_world_term.
+                pipeline: crate::model::Pipeline {
+                    viewport_origin: map.pipeline.viewport_origin,
+                    depth_range: map.pipeline.depth_range,
+                    ..crate::model::Pipeline::default()
+                },
             };
             let t = crate::orthographic::error_terms(
                 &crate::orthographic::Scene { ortho, decal },
@@ -847,12 +884,15 @@ fn terms_of(
             )
         }
     };
+    // Under glDepthRange(near, far) the stored depth is near + (far − near)·w: roundings of it
+    // are relative to w + lift in unit window depth.
+    let lift = map.pipeline.depth_range[0] / map.pipeline.span();
     let read = if map.format.is_unorm() {
-        U * w_max
+        U * (w_max + lift)
     } else {
         0.0
     };
-    let quantum = storage(map, quantum, w_max);
+    let quantum = storage(map, quantum, w_max + lift);
     let snap_factor = match map.profile.snapping {
         crate::profile::Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32)),
         crate::profile::Snapping::Unsnapped => 0.0,
@@ -1039,18 +1079,6 @@ pub fn check(map: &ShadowMap) -> Result<()> {
         return Err(domain("world_reach must be >= 0").with_value("world_reach", w));
     }
     map.pipeline.check()?;
-    if map.pipeline.viewport_origin != [0, 0] {
-        return Err(domain(
-            "a shadow map's pipeline must keep viewport_x and viewport_y at 0 (an atlas tile's origin is not modelled)",
-        )
-        .with_integer("viewport_x", i64::from(map.pipeline.viewport_origin[0])));
-    }
-    if map.pipeline.depth_range != [0.0, 1.0] {
-        return Err(domain(
-            "a shadow map's pipeline must keep glDepthRange(0, 1) (pass 0 and 0, or 0 and 1)",
-        )
-        .with_value("depth_range_near", map.pipeline.depth_range[0]));
-    }
     let [d1, d2] = map.receiver_depths;
     for (name, d) in [("receiver_near", d1), ("receiver_far", d2)] {
         finite(d, "a receiver depth is NaN or infinite").map_err(|x| x.with_value(name, d))?;
@@ -1192,8 +1220,10 @@ mod tests {
             assert!(f64::from(bias.d3d.slope_scaled) >= factor);
             assert!(f64::from(bias.d3d.slope_scaled) < factor * (1.0 + 1e-6));
             assert!(bias.terms.constant > 1.0 / 16_777_215.0);
+            // A few tens of quanta: the caster's interpolation term counts the plane's run
+            // from the map's origin (1.4 units of window depth at 60° here).
             assert!(
-                bias.terms.constant < 20.0 / 16_777_215.0,
+                bias.terms.constant < 30.0 / 16_777_215.0,
                 "{:?}",
                 bias.terms
             );
@@ -1269,8 +1299,7 @@ mod tests {
 
     /// The light's pipeline: with its view matrix and the world box, the f32 view term is the
     /// exact per-coordinate one, no larger than the bound from `world_reach` (here far smaller);
-    /// a zeroed pipeline is the scalar bound; a view without its box, or a viewport origin, is
-    /// refused by name.
+    /// a zeroed pipeline is the scalar bound; a view without its box is refused by name.
     #[test]
     fn the_lights_view_tightens_the_vertex_term() {
         let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
@@ -1300,11 +1329,43 @@ mod tests {
                 .unwrap_err()
                 .to_string()
                 .contains("world_box"));
-            let mut tile = viewed;
-            tile.pipeline.viewport_origin = [512, 0];
-            assert_eq!(
-                shadow_bias(&tile).unwrap_err().input().unwrap().0,
-                "viewport_x"
+        }
+    }
+
+    /// A map in a shadow atlas: a tile far from the atlas's origin extrapolates the caster's
+    /// plane further (the caster term grows, the quantum does not); `glDepthRange(0.5, 1)`
+    /// doubles a UNORM quantum in unit window depth, and the clamp, which GL applies to stored
+    /// depth, is the unit bias times 0.5. Both answered, neither refused.
+    #[test]
+    fn an_atlas_tile_and_a_depth_range_are_modelled() {
+        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+        for light in [
+            LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
+            LightProjection::Perspective(frustum),
+        ] {
+            let map = ShadowMap {
+                light,
+                receiver_depths: [10.0, 30.0],
+                ..ground_map(Lookup::Nearest, 30.0)
+            };
+            let whole = shadow_bias(&map).unwrap();
+            let mut tile = map;
+            tile.pipeline.viewport_origin = [3072, 2048];
+            let tiled = shadow_bias(&tile).unwrap();
+            assert!(tiled.terms.caster > whole.terms.caster, "{light:?}");
+            assert_eq!(tiled.terms.quantum, whole.terms.quantum);
+            assert_eq!(tiled.terms.footprint, whole.terms.footprint);
+            let mut ranged = map;
+            ranged.pipeline.depth_range = [0.5, 1.0];
+            let half = shadow_bias(&ranged).unwrap();
+            assert_eq!(half.terms.quantum, 2.0 * whole.terms.quantum);
+            let needed = half.terms.constant + half.terms.snap + half.terms.footprint;
+            assert!((half.gl_polygon_offset[2] - 0.5 * needed).abs() <= 1e-6 * needed);
+            // Units of the stored r: the unit constant times 0.5, over 2⁻²⁴ (D24).
+            let units = half.terms.constant * 0.5 * 16_777_215.0;
+            assert!(
+                (half.gl_polygon_offset[1] - units.ceil()).abs() <= 1.0,
+                "{half:?}"
             );
         }
     }

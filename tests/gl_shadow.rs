@@ -26,6 +26,9 @@
 //! the default a deterministic sample. `--nocapture` prints the table;
 //! `ZSHIFT_SHADOW_VERBOSE=1` every scene; `ZSHIFT_SHADOW_SEED=<n>` another draw ([`seed`]);
 //! `ZSHIFT_SHADOW_ONLY=<a>&<b>` only the scenes whose label contains every part.
+//!
+//! `atlas_tiles_are_acne_free`: maps drawn as tiles of a shadow atlas under `glDepthRange`
+//! sub-ranges, zshift told the tile's origin and the range.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -87,6 +90,7 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
         format: [F::D16, F::D24, F::D32F][(c / 9) % 3],
         clip: clips[(c / 27) % 3],
         pcf,
+        atlas: None,
     }
 }
 
@@ -459,6 +463,176 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     }
     // Not asserted: zshift leaks more than an acne-free peer in some pairs (docs/shadows.md
     // says where and why); `ZSHIFT_SHADOW_VERBOSE=1` lists them.
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The atlas cases: a deterministic sample of the grid, each map drawn as a tile of a 4096²
+/// atlas far from its origin (where the rasterizer's plane set-up extrapolates furthest), under
+/// a `glDepthRange` sub-range or the full one.
+fn atlas_cases() -> Vec<Case> {
+    let origins = |res: u32| {
+        [
+            [4096 - res, 4096 - res],
+            [4096 - res, 0],
+            [res / 2, 4096 - res],
+        ]
+    };
+    let ranges = [[0.0, 1.0], [0.25, 0.75], [0.5, 1.0], [0.0, 0.5]];
+    let mut v = Vec::new();
+    let mut i = 0usize;
+    for kind in [Kind::Directional, Kind::Spot] {
+        for elevation in [5.0, 20.0, 45.0, 89.0] {
+            for pcf in [1, 0, 3] {
+                let mut case = case_of(kind, elevation, pcf, (i * 29 + 5) % 81);
+                case.atlas = Some(Atlas {
+                    size: 4096,
+                    origin: origins(case.resolution)[i % 3],
+                    depth_range: ranges[i % 4],
+                });
+                v.push(case);
+                i += 1;
+            }
+        }
+    }
+    drawn(v)
+}
+
+/// A shadow atlas: every map a tile far from the atlas's origin, some under a `glDepthRange`
+/// sub-range, the lookup reading the tile and comparing against `near + (far − near)·w`.
+/// zshift is told the tile's origin and the depth range (`ShadowMap::pipeline`); every answer
+/// must show 0 acne pixels, with both profiles, for the bound over the limit angle and for the
+/// ground listed. Without bias the same maps show acne (the check can fail).
+#[test]
+fn atlas_tiles_are_acne_free() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no GL context for the shadow atlas: {e}"));
+    let probed = gl_common::probed(&gl);
+    let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
+    let verbose = std::env::var("ZSHIFT_SHADOW_VERBOSE").is_ok_and(|v| v == "1");
+    let (eye, camera) = camera();
+    let (mut failures, mut asked, mut unbiased_acne) = (Vec::new(), 0, 0);
+    let mut cost = Vec::new();
+    let cases = atlas_cases();
+    for case in &cases {
+        let light = light_of(case);
+        let truth = reference(case, &light, &camera, eye, case.kernel_reach());
+        let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
+            .unwrap_or_else(|e| panic!("{e}"));
+        let plain = unsafe {
+            rig.look(
+                &mut gl,
+                case,
+                &light,
+                &camera,
+                unbiased.0,
+                ReceiverBias::default(),
+            )
+        }
+        .unwrap_or_else(|e| panic!("{e}"));
+        unbiased_acne += count(&plain, &truth).acne;
+        let ground_quad = light.ground_quad();
+        for (pname, profile) in [
+            ("worst", RasterizerProfile::worst_case()),
+            ("probed", probed),
+        ] {
+            for receivers in [false, true] {
+                let limit = if receivers {
+                    RECEIVER_LIMIT_DEG
+                } else {
+                    90.0 - case.elevation
+                };
+                let map = case.shadow_map(&light, limit, profile, light.pipeline());
+                let ask = |map: &zshift::shadow::ShadowMap| {
+                    if receivers {
+                        shadow_bias_for_receivers(map, &[&ground_quad])
+                    } else {
+                        shadow_bias(map)
+                    }
+                };
+                let bias = match ask(&map) {
+                    Ok(b) => b,
+                    Err(e) if e.kind() == ErrorKind::Unresolvable => continue,
+                    Err(e) => {
+                        failures.push(format!("{} ({pname}): {e}", case.label()));
+                        continue;
+                    }
+                };
+                asked += 1;
+                // What the tile costs: the units against the same map as a texture of its own
+                // (in stored depth both).
+                let alone = Case {
+                    atlas: None,
+                    ..*case
+                };
+                let own = ask(&alone.shadow_map(&light, limit, profile, light.pipeline()));
+                if let Ok(own) = own {
+                    let span = map.pipeline.span();
+                    cost.push(bias.gl_polygon_offset[1] / (own.gl_polygon_offset[1] * span));
+                }
+                let [f, u, c] = bias.gl_polygon_offset;
+                let caster = CasterBias {
+                    offset: Some((f as f32, u as f32, c as f32)),
+                    ..Default::default()
+                };
+                let px = unsafe {
+                    rig.look_biased(
+                        &mut gl,
+                        case,
+                        &light,
+                        &camera,
+                        unbiased.0,
+                        caster,
+                        ReceiverBias::default(),
+                    )
+                }
+                .unwrap_or_else(|e| panic!("{e}"));
+                let got = count(&px, &truth);
+                if verbose {
+                    println!(
+                        "{} ({pname}{}): acne {}/{} leak {}/{} bias {:?}",
+                        case.label(),
+                        if receivers { ", receivers" } else { "" },
+                        got.acne,
+                        got.lit,
+                        got.leak,
+                        got.shadowed,
+                        bias.gl_polygon_offset
+                    );
+                }
+                if got.acne > 0 {
+                    failures.push(format!(
+                        "{} ({pname}{}): {} acne pixels of {} lit at {:?}",
+                        case.label(),
+                        if receivers { ", receivers" } else { "" },
+                        got.acne,
+                        got.lit,
+                        bias.gl_polygon_offset
+                    ));
+                }
+            }
+        }
+        unsafe {
+            gl.glow().delete_framebuffer(unbiased.1);
+            gl.glow().delete_texture(unbiased.0);
+        }
+    }
+    cost.sort_by(f64::total_cmp);
+    println!(
+        "shadow atlas: {} tiles, {asked} answers, {unbiased_acne} acne pixels without bias; units ÷ the map's own (unit window depth): median {:.3}, max {:.3}",
+        cases.len(),
+        cost.get(cost.len() / 2).copied().unwrap_or(f64::NAN),
+        cost.last().copied().unwrap_or(f64::NAN)
+    );
+    assert!(asked > cases.len(), "too few answers: {asked}");
+    assert!(
+        unbiased_acne > 0,
+        "no acne without bias: the check cannot fail"
+    );
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",

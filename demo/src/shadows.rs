@@ -29,6 +29,7 @@ const SCENE: Case = Case {
     format: DepthFormat::D16,
     clip: ClipDepth::NegOneToOne,
     pcf: 3,
+    atlas: None,
 };
 /// Each camera pixel drawn as `ZOOM × ZOOM` picture pixels, panels three to a row.
 const ZOOM: usize = 2;

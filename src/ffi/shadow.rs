@@ -83,8 +83,12 @@ pub struct ZshiftShadowMap {
     /// them the model knows each light-space eye coordinate's float rounding exactly instead of
     /// bounding it from world_reach, and with listed receivers (zshift_shadow_bias_receivers)
     /// and eye_first only the error off each receiver's plane counts. `world_reach` here adds to
-    /// the map's (the larger counts). A zeroed record is the behaviour without it;
-    /// viewport_x/y and depth_range_near/far must stay 0 (not modelled for shadow maps).
+    /// the map's (the larger counts). A zeroed record is the behaviour without it.
+    /// `viewport_x`/`viewport_y` place the map's tile in a shadow atlas (the glViewport the
+    /// casters are drawn with; width and height are the tile's), and
+    /// `depth_range_near`/`depth_range_far` are the glDepthRange they are drawn with (the lookup
+    /// must compare against `near + (far - near) * depth`); the units and clamp returned are in
+    /// stored depth, as the APIs apply them.
     pub pipeline: ZshiftPipeline,
 }
 

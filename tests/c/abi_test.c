@@ -1256,7 +1256,8 @@ static void test_shadow_bias_pipeline(void) {
   CHECK(exact.lookup > 0 && exact.lookup < scalar.lookup, "lookup with the view %.9g vs scalar %.9g", exact.lookup, scalar.lookup);
   CHECK(exact.constant < scalar.constant, "constant with the view %.9g vs scalar %.9g", exact.constant, scalar.constant);
   CHECK_STATUS(zshift_shadow_bias_receivers(&m, ground, counts, 1, &exact), ZSHIFT_OK);
-  /* Refusals: a view matrix without its box names world_box; a viewport origin is not modelled. */
+  /* Refusals: a view matrix without its box names world_box; a reversed depth range names
+     depth_range_far. */
   memset(&untouched_out, PATTERN, sizeof untouched_out);
   memset(m.pipeline.world_box, 0, sizeof m.pipeline.world_box);
   CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
@@ -1264,10 +1265,32 @@ static void test_shadow_bias_pipeline(void) {
   CHECK_STATUS(zshift_shadow_bias_receivers(&m, ground, counts, 1, &untouched_out), ZSHIFT_ERR_DOMAIN);
   CHECK(strstr(zshift_last_error(), "world_box") != NULL, "detail: %s", zshift_last_error());
   memcpy(m.pipeline.world_box, box, sizeof box);
-  m.pipeline.viewport_x = 512;
+  m.pipeline.depth_range_near = 0.75;
+  m.pipeline.depth_range_far = 0.25;
   CHECK_STATUS(zshift_shadow_bias(&m, &untouched_out), ZSHIFT_ERR_DOMAIN);
-  CHECK(strstr(zshift_last_error(), "viewport_x") != NULL, "detail: %s", zshift_last_error());
+  CHECK(strstr(zshift_last_error(), "depth_range_far") != NULL, "detail: %s", zshift_last_error());
   CHECK(untouched(&untouched_out, sizeof untouched_out), "zshift_shadow_bias wrote its output on error");
+  /* A shadow atlas: a tile far from the atlas's corner extrapolates the caster's plane further
+     (the caster term grows, the quantum stays); glDepthRange(0.5, 1) doubles a D24 quantum in
+     unit window depth and halves the clamp's share of stored depth. */
+  {
+    ZshiftShadowBias whole, tiled, half;
+    m.pipeline.depth_range_near = 0.0;
+    m.pipeline.depth_range_far = 0.0;
+    CHECK_STATUS(zshift_shadow_bias(&m, &whole), ZSHIFT_OK);
+    m.pipeline.viewport_x = 3072;
+    m.pipeline.viewport_y = 2048;
+    CHECK_STATUS(zshift_shadow_bias(&m, &tiled), ZSHIFT_OK);
+    CHECK(tiled.caster > whole.caster && tiled.quantum == whole.quantum,
+          "tile: caster %.9g vs %.9g, quantum %.9g vs %.9g", tiled.caster, whole.caster, tiled.quantum, whole.quantum);
+    m.pipeline.viewport_x = m.pipeline.viewport_y = 0;
+    m.pipeline.depth_range_near = 0.5;
+    m.pipeline.depth_range_far = 1.0;
+    CHECK_STATUS(zshift_shadow_bias(&m, &half), ZSHIFT_OK);
+    CHECK(fabs(half.quantum * 16777215.0 - 2.0) < 1e-9, "quantum under [0.5, 1]: %.9g", half.quantum);
+    CHECK(fabs(half.gl_clamp - 0.5 * (half.constant + half.snap + half.footprint)) <= 1e-6 * half.gl_clamp,
+          "clamp under [0.5, 1]: %.9g", half.gl_clamp);
+  }
 }
 
 int main(void) {

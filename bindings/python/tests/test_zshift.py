@@ -598,6 +598,22 @@ class ShadowBiasTest(unittest.TestCase):
         with self.assertRaises(TypeError):
             zshift.shadow_bias(**dict(self.ARGS, lookup=zshift.Clip.ZERO_TO_ONE))
 
+    def test_an_atlas_tile(self):
+        # A tile far from the atlas's origin: the caster's plane runs further, the quantum is
+        # the same. glDepthRange(0.5, 1): a D24 quantum is 2 / (2**24 - 1) in unit window
+        # depth, and the clamp, applied to stored depth, is half the unit bias.
+        whole = zshift.shadow_bias(**self.ARGS)
+        tile = zshift.shadow_bias(**self.ARGS, viewport_origin=(3072, 2048))
+        self.assertGreater(tile.caster, whole.caster)
+        self.assertEqual(tile.quantum, whole.quantum)
+        half = zshift.shadow_bias(**self.ARGS, depth_range=(0.5, 1.0))
+        self.assertAlmostEqual(half.quantum * 16777215.0, 2.0, places=9)
+        needed = half.constant + half.snap + half.footprint
+        self.assertAlmostEqual(half.gl_clamp / (0.5 * needed), 1.0, places=6)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.shadow_bias(**self.ARGS, depth_range=(0.5, 0.5))
+        self.assertIn("depth_range_far", str(caught.exception))
+
     def test_a_profile_changes_the_units(self):
         worst = zshift.profile_worst_case()
         llvmpipe = worst._replace(resolvable=(2.0, 2.0, 2.0, 1.0), subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)

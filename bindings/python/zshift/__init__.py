@@ -306,15 +306,22 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     tessellated ground, of the cells the decal touches, the only base triangles under it; base
     and decal both drawn through that matrix, else pass ``world_reach``)."""
     record.depth_func = 0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF
+    _attach_framebuffer(record.pipeline, viewport_origin, depth_range)
+    record.pipeline.world_reach = world_reach
+    record.pipeline.eye_first = 1 if eye_first else 0
+    _attach_view(record, view_matrix, world_box)
+
+
+def _attach_framebuffer(pipeline, viewport_origin, depth_range):
+    """Fills a ``ZshiftPipeline``'s framebuffer state: ``viewport_x``/``viewport_y`` from
+    ``viewport_origin`` (``glViewport``'s origin, integers) and ``depth_range_near``/``far`` from
+    ``depth_range`` (``glDepthRange``)."""
     x, y = viewport_origin
     for name, value in (("viewport_origin x", x), ("viewport_origin y", y)):
         if not isinstance(value, int) or not 0 <= value < 2**32:
             raise ZshiftError(Status.DOMAIN, f"the {name} must be an integer in [0, 2**32) ({name} = {value!r})")
-    record.pipeline.viewport_x, record.pipeline.viewport_y = x, y
-    record.pipeline.depth_range_near, record.pipeline.depth_range_far = depth_range
-    record.pipeline.world_reach = world_reach
-    record.pipeline.eye_first = 1 if eye_first else 0
-    _attach_view(record, view_matrix, world_box)
+    pipeline.viewport_x, pipeline.viewport_y = x, y
+    pipeline.depth_range_near, pipeline.depth_range_far = depth_range
 
 
 def _attach_view(record, view_matrix, world_box):
@@ -1074,7 +1081,8 @@ ShadowBias = _collections.namedtuple("ShadowBias", [name for name, _ in _ShadowB
 
 def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
                 lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0, world_reach=0.0,
-                elevation_deg=90.0, profile=None, view_matrix=None, world_box=None, eye_first=False):
+                elevation_deg=90.0, profile=None, view_matrix=None, world_box=None, eye_first=False,
+                viewport_origin=(0, 0), depth_range=(0.0, 1.0)):
     """The smallest caster-side shadow bias that keeps every receiver within ``limit_angle_deg``
     of the light free of acne (``zshift_shadow_bias``), in every API's units, with the
     receiver-side alternatives and the cost; a :data:`ShadowBias`. Receivers must be planar
@@ -1090,11 +1098,16 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
     world positions, 16 floats column-major) with ``world_box`` (``((min x, min y, min z), (max x,
     max y, max z))`` of every caster and receiver position) replace the bound from
     ``world_reach`` by each light-space coordinate's own rounding; ``eye_first`` says both
-    shaders compute ``proj * (view * p)`` (``ZshiftShadowMap.pipeline``). Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
+    shaders compute ``proj * (view * p)`` (``ZshiftShadowMap.pipeline``). In a shadow atlas,
+    ``viewport_origin`` is the tile's corner (the ``glViewport`` the casters are drawn with;
+    ``resolution`` is the tile's size) and ``depth_range`` the ``glDepthRange`` they are drawn
+    with (the lookup compares against ``near + (far - near) * depth``); units and clamp are then
+    in stored depth, as the APIs apply them. Raises :class:`ZshiftError` (``Status.UNRESOLVABLE`` with the remedy when no bias
     is acne-free at that angle)."""
     record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
                             receiver_depths, lookup, pcf_size, kernel_radius, world_reach,
-                            elevation_deg, profile, view_matrix, world_box, eye_first)
+                            elevation_deg, profile, view_matrix, world_box, eye_first,
+                            viewport_origin, depth_range)
     lib = _lib()
     fn = lib.zshift_shadow_bias
     fn.argtypes = [_ctypes.POINTER(_ShadowMap), _ctypes.POINTER(_ShadowBias)]
@@ -1106,7 +1119,7 @@ def shadow_bias(light, projection, clip, resolution, depth_format, limit_angle_d
 
 def _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg, receiver_depths,
                    lookup, pcf_size, kernel_radius, world_reach, elevation_deg, profile, view_matrix,
-                   world_box, eye_first):
+                   world_box, eye_first, viewport_origin, depth_range):
     """A ``_ShadowMap`` from :func:`shadow_bias`'s arguments."""
     record = _ShadowMap()
     record.light = _enum(light, Light)
@@ -1125,6 +1138,7 @@ def _shadow_record(light, projection, clip, resolution, depth_format, limit_angl
     record.elevation_deg = elevation_deg
     _attach_profile(record, profile)
     record.pipeline.eye_first = 1 if eye_first else 0
+    _attach_framebuffer(record.pipeline, viewport_origin, depth_range)
     _attach_view(record, view_matrix, world_box)
     return record
 
@@ -1132,7 +1146,8 @@ def _shadow_record(light, projection, clip, resolution, depth_format, limit_angl
 def shadow_bias_receivers(light, projection, clip, resolution, depth_format, receivers,
                           limit_angle_deg=89.9, lookup=Lookup.NEAREST, pcf_size=0, kernel_radius=0.0,
                           world_reach=0.0, elevation_deg=90.0, profile=None, view_matrix=None,
-                          world_box=None, eye_first=False):
+                          world_box=None, eye_first=False, viewport_origin=(0, 0),
+                          depth_range=(0.0, 1.0)):
     """:func:`shadow_bias` for the receivers an engine lists (``zshift_shadow_bias_receivers``):
     ``receivers`` a sequence of planar polygons, each a sequence of 3 to 64 ``(x, y, z)`` corners
     in the light's view space (a spot light at the origin, looking down -z), counter-clockwise
@@ -1141,12 +1156,14 @@ def shadow_bias_receivers(light, projection, clip, resolution, depth_format, rec
     to another (a mesh's faces may be listed); receivers facing away by more than
     ``limit_angle_deg`` everywhere are skipped (under a spot light, the angle to the ray from the
     light to each point, not to its axis); ``view_matrix``, ``world_box`` and ``eye_first`` as
-    for :func:`shadow_bias` (with ``eye_first``, only the error off each receiver's plane counts).
+    for :func:`shadow_bias` (with ``eye_first``, only the error off each receiver's plane counts),
+    and ``viewport_origin`` and ``depth_range`` (an atlas tile) as for :func:`shadow_bias`.
     Raises :class:`ZshiftError` as :func:`shadow_bias` does (``Status.DOMAIN`` naming a bad receiver)."""
     polygons = [list(polygon) for polygon in receivers]
     record = _shadow_record(light, projection, clip, resolution, depth_format, limit_angle_deg,
                             (projection[4], projection[5]), lookup, pcf_size, kernel_radius,
-                            world_reach, elevation_deg, profile, view_matrix, world_box, eye_first)
+                            world_reach, elevation_deg, profile, view_matrix, world_box, eye_first,
+                            viewport_origin, depth_range)
     flat = [float(x) for polygon in polygons for corner in polygon for x in corner]
     if any(len(corner) != 3 for polygon in polygons for corner in polygon):
         raise ZshiftError(Status.DOMAIN, "every receiver corner needs 3 coordinates (x, y, z)")

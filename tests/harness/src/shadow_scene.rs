@@ -150,6 +150,20 @@ pub struct Case {
     pub clip: ClipDepth,
     /// The lookup: 1 nearest, 0 hardware 2×2 comparison, k ≥ 2 k×k PCF.
     pub pcf: u32,
+    /// The map as a tile of a shadow atlas, or `None`: a texture of its own.
+    pub atlas: Option<Atlas>,
+}
+
+/// A shadow map drawn as a tile of a larger texture (a shadow atlas), with a depth range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Atlas {
+    /// The atlas's texels per side.
+    pub size: u32,
+    /// The tile's lower-left corner in the atlas, texels (`glViewport`'s x, y).
+    pub origin: [u32; 2],
+    /// `glDepthRange(near, far)` the tile is drawn with; the lookup compares against
+    /// `near + (far − near)·w`.
+    pub depth_range: [f64; 2],
 }
 
 impl Case {
@@ -193,7 +207,14 @@ impl Case {
             world_reach: light.position.iter().fold(0.0f64, |a, x| a.max(x.abs())),
             elevation_deg: self.elevation,
             profile,
-            pipeline,
+            pipeline: match self.atlas {
+                Some(a) => zshift::model::Pipeline {
+                    viewport_origin: a.origin,
+                    depth_range: a.depth_range,
+                    ..pipeline
+                },
+                None => pipeline,
+            },
         }
     }
 
@@ -205,8 +226,14 @@ impl Case {
         } else {
             format!(" az={}°", self.azimuth)
         };
+        let atlas = self.atlas.map_or(String::new(), |a| {
+            format!(
+                " tile@{:?} of {}² range {:?}",
+                a.origin, a.size, a.depth_range
+            )
+        });
         format!(
-            "{:?} e={}°{azimuth} f/n={:e} {}² {} {:?} {}",
+            "{:?} e={}°{azimuth} f/n={:e} {}² {} {:?} {}{atlas}",
             self.kind,
             self.elevation,
             self.ratio,
@@ -447,6 +474,11 @@ uniform float beta;    // window-depth bias in the lookup
 uniform float r_light; // receiver moved toward the light (world units)
 uniform float r_normal; // receiver moved along its normal (world units)
 uniform int r_normal_sine; // scale r_normal by sin(theta)
+uniform int atlas;       // 1: the map is a tile of a larger texture
+uniform vec2 tile_origin; // the tile's corner in the texture, texels (atlas)
+uniform vec2 tile_size;   // the tile's size, texels (atlas)
+uniform float depth_lo;   // glDepthRange's near end the map was drawn with
+uniform float depth_span; // glDepthRange's far minus near end
 out vec4 colour;
 void main() {
     vec3 l = spot == 1 ? normalize(light_pos - v_world) : normalize(light_pos);
@@ -457,22 +489,31 @@ void main() {
     vec3 ndc = c.xyz / c.w;
     float z = clip == 0 ? ndc.z * 0.5 + 0.5 : ndc.z;
     ivec2 size = textureSize(map, 0);
+    // Without an atlas the tile is the texture, depth_lo = 0 and depth_span = 1: every
+    // expression below is then exactly the one without them.
+    vec2 origin = atlas == 1 ? tile_origin : vec2(0.0);
+    vec2 tsize = atlas == 1 ? tile_size : vec2(size);
     if (k == 0) {
-        float ref = clip == 2 ? z + beta : z - beta;
-        float lit = texture(smap, vec3(ndc.xy * 0.5 + 0.5, ref));
+        float ref = depth_lo + depth_span * (clip == 2 ? z + beta : z - beta);
+        vec2 at = atlas == 1 ? (origin + (ndc.xy * 0.5 + 0.5) * tsize) / vec2(size)
+                             : ndc.xy * 0.5 + 0.5;
+        float lit = texture(smap, vec3(at, ref));
         colour = vec4(lit >= 1.0 ? 1.0 / 255.0 : 0.0, 1.0 / 255.0, 1.0, 1.0);
         return;
     }
-    vec2 uv = (ndc.xy * 0.5 + 0.5) * vec2(size);
+    vec2 uv = origin + (ndc.xy * 0.5 + 0.5) * tsize;
     ivec2 t = ivec2(floor(uv));
+    ivec2 first = ivec2(origin);
+    ivec2 last = ivec2(origin + tsize) - 1;
+    float zr = depth_lo + depth_span * (clip == 2 ? z + beta : z - beta);
     int h = (k - 1) / 2;
     int pass = 0;
     int total = 0;
     for (int i = -h; i <= k - 1 - h; ++i) {
         for (int j = -h; j <= k - 1 - h; ++j) {
-            ivec2 q = clamp(t + ivec2(i, j), ivec2(0), size - 1);
+            ivec2 q = clamp(t + ivec2(i, j), first, last);
             float stored = texelFetch(map, q, 0).r;
-            bool lit = clip == 2 ? z + beta >= stored : z - beta <= stored;
+            bool lit = clip == 2 ? zr >= stored : zr <= stored;
             pass += lit ? 1 : 0;
             total += 1;
         }
@@ -704,9 +745,10 @@ impl Rig {
         })?;
         let g = gl.glow();
         let n = case.resolution as i32;
+        let side = case.atlas.map_or(n, |a| a.size as i32);
         let tex = g.create_texture()?;
         g.bind_texture(glow::TEXTURE_2D, Some(tex));
-        g.tex_storage_2d(glow::TEXTURE_2D, 1, case.format.gl_enum(), n, n);
+        g.tex_storage_2d(glow::TEXTURE_2D, 1, case.format.gl_enum(), side, side);
         for (p, v) in [
             (glow::TEXTURE_MIN_FILTER, glow::NEAREST),
             (glow::TEXTURE_MAG_FILTER, glow::NEAREST),
@@ -729,13 +771,20 @@ impl Rig {
         if status != glow::FRAMEBUFFER_COMPLETE {
             return Err(format!("shadow map FBO incomplete: 0x{status:04X}"));
         }
-        g.viewport(0, 0, n, n);
         let reversed = case.clip == ClipDepth::ReversedZeroToOne;
         g.enable(glow::DEPTH_TEST);
         g.depth_mask(true);
         g.depth_func(if reversed { glow::GREATER } else { glow::LESS });
         g.clear_depth_f64(if reversed { 0.0 } else { 1.0 });
+        g.viewport(0, 0, side, side);
         g.clear(glow::DEPTH_BUFFER_BIT);
+        match case.atlas {
+            Some(a) => {
+                g.viewport(a.origin[0] as i32, a.origin[1] as i32, n, n);
+                g.depth_range_f64(a.depth_range[0], a.depth_range[1]);
+            }
+            None => g.viewport(0, 0, n, n),
+        }
         g.disable(glow::CULL_FACE);
         match bias.offset {
             Some((factor, units, clamp)) => {
@@ -758,6 +807,7 @@ impl Rig {
             g.draw_arrays(glow::TRIANGLES, 0, count);
         }
         g.disable(glow::POLYGON_OFFSET_FILL);
+        g.depth_range_f64(0.0, 1.0);
         crate::check_gl_errors(g, "shadow map")?;
         Ok((tex, fbo))
     }
@@ -884,6 +934,22 @@ impl Rig {
         g.uniform_1_f32(u("r_light").as_ref(), bias.along_light);
         g.uniform_1_f32(u("r_normal").as_ref(), bias.along_normal);
         g.uniform_1_i32(u("r_normal_sine").as_ref(), bias.sine as i32);
+        let (tile, range) = match case.atlas {
+            Some(a) => (
+                [
+                    a.origin[0] as f32,
+                    a.origin[1] as f32,
+                    case.resolution as f32,
+                ],
+                a.depth_range,
+            ),
+            None => ([0.0, 0.0, case.resolution as f32], [0.0, 1.0]),
+        };
+        g.uniform_1_i32(u("atlas").as_ref(), case.atlas.is_some() as i32);
+        g.uniform_2_f32(u("tile_origin").as_ref(), tile[0], tile[1]);
+        g.uniform_2_f32(u("tile_size").as_ref(), tile[2], tile[2]);
+        g.uniform_1_f32(u("depth_lo").as_ref(), range[0] as f32);
+        g.uniform_1_f32(u("depth_span").as_ref(), (range[1] - range[0]) as f32);
         for &(buffer, count) in receivers {
             self.bind_mesh(g, buffer);
             g.draw_arrays(glow::TRIANGLES, 0, count);
