@@ -471,35 +471,40 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
     );
 }
 
-/// The atlas cases: a deterministic sample of the grid, each map drawn as a tile of a 4096²
-/// atlas far from its origin (where the rasterizer's plane set-up extrapolates furthest), under
-/// a `glDepthRange` sub-range or the full one.
+/// The atlas cases: a deterministic sample of the grid (another draw under a seed), each map
+/// drawn as a tile of a 4096² atlas (8192² for tiles over 2048) far from its origin (where the
+/// rasterizer's plane set-up extrapolates furthest), under a `glDepthRange` sub-range or the
+/// full one.
 fn atlas_cases() -> Vec<Case> {
-    let origins = |res: u32| {
-        [
-            [4096 - res, 4096 - res],
-            [4096 - res, 0],
-            [res / 2, 4096 - res],
-        ]
-    };
     let ranges = [[0.0, 1.0], [0.25, 0.75], [0.5, 1.0], [0.0, 0.5]];
     let mut v = Vec::new();
-    let mut i = 0usize;
     for kind in [Kind::Directional, Kind::Spot] {
         for elevation in [5.0, 20.0, 45.0, 89.0] {
             for pcf in [1, 0, 3] {
-                let mut case = case_of(kind, elevation, pcf, (i * 29 + 5) % 81);
-                case.atlas = Some(Atlas {
-                    size: 4096,
-                    origin: origins(case.resolution)[i % 3],
-                    depth_range: ranges[i % 4],
-                });
-                v.push(case);
-                i += 1;
+                v.push(case_of(kind, elevation, pcf, (v.len() * 29 + 5) % 81));
             }
         }
     }
+    // The tile placed after the draw, which may change the map's size.
     drawn(v)
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut case)| {
+            let res = case.resolution;
+            let size = if res > 2048 { 8192 } else { 4096 };
+            let origins = [
+                [size - res, size - res],
+                [size - res, 0],
+                [res / 2, size - res],
+            ];
+            case.atlas = Some(Atlas {
+                size,
+                origin: origins[i % 3],
+                depth_range: ranges[i % 4],
+            });
+            case
+        })
+        .collect()
 }
 
 /// A shadow atlas: every map a tile far from the atlas's origin, some under a `glDepthRange`

@@ -746,6 +746,11 @@ impl Rig {
         let g = gl.glow();
         let n = case.resolution as i32;
         let side = case.atlas.map_or(n, |a| a.size as i32);
+        if let Some(a) = case.atlas {
+            if a.origin.iter().any(|&o| o + case.resolution > a.size) {
+                return Err(format!("the tile {a:?} of {n}² leaves the atlas"));
+            }
+        }
         let tex = g.create_texture()?;
         g.bind_texture(glow::TEXTURE_2D, Some(tex));
         g.tex_storage_2d(glow::TEXTURE_2D, 1, case.format.gl_enum(), side, side);
