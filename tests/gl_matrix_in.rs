@@ -31,8 +31,29 @@ fn lost(
     base: &[f32; 16],
     decal: &[f32; 16],
 ) -> (usize, usize) {
+    lost_in(gl, s, clip, base, decal, [0, 0], [0.0, 1.0])
+}
+
+/// [`lost`] with the setup's viewport at `origin` in a framebuffer that holds it, under
+/// `glDepthRange(depth_range)` (clears touch the viewport only).
+fn lost_in(
+    gl: &mut Gl,
+    s: &Setup,
+    clip: ClipDepth,
+    base: &[f32; 16],
+    decal: &[f32; 16],
+    origin: [u32; 2],
+    depth_range: [f64; 2],
+) -> (usize, usize) {
     let reversed = clip == ClipDepth::ReversedZeroToOne;
-    gl.set_target(s.size, s.size, s.format).expect("target");
+    let [x, y] = origin;
+    gl.set_target(x + s.size, y + s.size, s.format)
+        .expect("target");
+    gl.set_window(&zshift_harness::world::Window {
+        viewport: [x as i32, y as i32, s.size as i32, s.size as i32],
+        depth_range,
+    })
+    .expect("viewport");
     gl.clip_control(if clip == ClipDepth::NegOneToOne {
         GlClip::NegativeOneToOne
     } else {
@@ -191,6 +212,69 @@ fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
         tighter * 2 > rows,
         "the probed profile with corners was tighter in only {tighter} of {rows}"
     );
+    assert!(
+        control_lost > 0,
+        "no z-fighting without an offset: the experiment cannot fail"
+    );
+}
+
+/// Orthographic decals in a viewport far from the framebuffer's origin and under `glDepthRange`
+/// sub-ranges, zshift told both (`Decal::pipeline`): 0 pixels lost at the recommendation; the
+/// same scenes lose pixels without an offset.
+#[test]
+fn orthographic_decals_in_a_viewport_and_a_depth_range_lose_no_pixel() {
+    let mut gl = context();
+    let mut control_lost = 0;
+    let mut scenes = 0;
+    for clip in [
+        ClipDepth::NegOneToOne,
+        ClipDepth::ZeroToOne,
+        ClipDepth::ReversedZeroToOne,
+    ] {
+        for format in [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F] {
+            for (origin, depth_range) in [
+                ([3500, 1900], [0.0, 1.0]),
+                ([0, 0], [0.5, 1.0]),
+                ([1200, 700], [0.0, 0.5]),
+                ([2900, 0], [0.25, 0.75]),
+            ] {
+                for (ratio, p) in [(100.0, 0.3), (1e3, 0.8)] {
+                    for slope in [0.0, 1.0, 3.0] {
+                        let s = gl_common::setup(format, ratio, p, slope, SIZE);
+                        let h = (s.axis_depth() * s.tan_half) as f32;
+                        let (n, f) = (s.n as f32, s.f as f32);
+                        let base = match clip {
+                            ClipDepth::NegOneToOne => rh::opengl::orthographic(-h, h, -h, h, n, f),
+                            ClipDepth::ZeroToOne => rh::directx::orthographic(-h, h, -h, h, n, f),
+                            ClipDepth::ReversedZeroToOne => {
+                                rh::directx::orthographic(-h, h, -h, h, f, n)
+                            }
+                        }
+                        .to_cols_array();
+                        let label = format!(
+                            "ortho {clip:?} {} viewport at {origin:?} range {depth_range:?}",
+                            s.label()
+                        );
+                        let mut decal = decal_of(&gl, &s);
+                        decal.pipeline.viewport_origin = origin;
+                        decal.pipeline.depth_range = depth_range;
+                        let rec = recommend(&base, clip, &decal)
+                            .unwrap_or_else(|err| panic!("{label}: {err}"));
+                        let (hit, of) =
+                            lost_in(&mut gl, &s, clip, &base, &rec.matrix, origin, depth_range);
+                        assert_eq!(
+                            hit, 0,
+                            "{label}: recommended decal matrix lost {hit} of {of} pixels"
+                        );
+                        control_lost +=
+                            lost_in(&mut gl, &s, clip, &base, &base, origin, depth_range).0;
+                        scenes += 1;
+                    }
+                }
+            }
+        }
+    }
+    println!("{scenes} orthographic scenes in viewports and depth ranges: 0 pixels lost; {control_lost} lost without an offset");
     assert!(
         control_lost > 0,
         "no z-fighting without an offset: the experiment cannot fail"
