@@ -40,8 +40,16 @@
 //!
 //! `cargo test --release --test gl_lines -- --nocapture` prints the table. Fails (never skips)
 //! without GL.
+//!
+//! `engine::edges_drawn_as_engines_draw` (`tests/gl_lines/engine.rs`): the same meshes in world
+//! space far from the origin, through an f32 view matrix, in a viewport inside a larger
+//! framebuffer, under `glDepthRange` sub-ranges.
 
 mod gl_common;
+// The same meshes drawn as engines draw them (world space, a viewport inside a larger
+// framebuffer, glDepthRange): a test of its own.
+#[path = "gl_lines/engine.rs"]
+mod engine;
 
 use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
 use zshift::precision::DepthFormat as Format;

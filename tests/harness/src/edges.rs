@@ -16,7 +16,8 @@
 //! with `glReadPixels` and counts the visible pixels lost and the hidden ones shown.
 //!
 //! Faces are drawn `GL_LESS` (`GL_GREATER` under reversed Z), edges `GL_LEQUAL` (`GL_GEQUAL`),
-//! into a [`SIZE`]² target of the [`Gl`]; the vertex shader computes `proj * vec4(eye, 1)`.
+//! into a [`SIZE`]² target of the [`Gl`]; the vertex shader computes `proj * vec4(eye, 1)`, or
+//! for a mesh loaded in world space ([`Scene::view`]) `proj * (view * vec4(p, 1))`.
 
 use glow::HasContext;
 
@@ -33,6 +34,18 @@ pub const SIZE: u32 = 256;
 pub const FACE: [u8; 3] = [0, 0, 255];
 /// The edges' flat colour.
 pub const EDGE: [u8; 3] = [255, 255, 255];
+
+/// Eye-space positions through the projection, or (`world` 1) world-space positions through the
+/// f32 view matrix first, as engines draw (`proj * (view * p)`).
+const VS: &str = "#version 330 core
+layout(location = 0) in vec3 position;
+uniform mat4 proj;
+uniform mat4 view;
+uniform int world;
+void main() {
+    gl_Position = world == 1 ? proj * (view * vec4(position, 1.0)) : proj * vec4(position, 1.0);
+}
+";
 
 /// A flat colour (`id_mode` 0), or the primitive's ID + 1 in RGB, in drawing order (1) or
 /// reversed (2), so that two renders see both of two primitives that share a pixel.
@@ -61,11 +74,17 @@ pub struct Projected {
 
 /// `mesh` through the f64 matrix `m` (a perspective projection) into the [`SIZE`]² viewport.
 pub fn project(mesh: &Mesh, m: &[f64; 16]) -> Projected {
+    let eye: Vec<[f64; 3]> = mesh.verts.iter().map(|v| v.map(f64::from)).collect();
+    project_points(&eye, m)
+}
+
+/// [`project`] of the mesh's vertices at the eye positions `eye` (f64: the exact eye positions of
+/// a mesh drawn in world space, its f32 world positions through its f32 view matrix).
+pub fn project_points(eye: &[[f64; 3]], m: &[f64; 16]) -> Projected {
     let s = f64::from(SIZE);
     let mut xy = Vec::new();
     let mut inv_d = Vec::new();
-    for v in &mesh.verts {
-        let [x, y, z] = v.map(f64::from);
+    for &[x, y, z] in eye {
         let w = -z;
         let xn = (m[0] * x + m[8] * z) / w;
         let yn = (m[5] * y + m[9] * z) / w;
@@ -189,8 +208,7 @@ impl Renderer {
     /// The program and buffers, in `gl`'s current context.
     pub fn new(gl: &glow::Context) -> Renderer {
         unsafe {
-            let program =
-                crate::link_program(gl, crate::VERTEX_SHADER, FS).unwrap_or_else(|e| panic!("{e}"));
+            let program = crate::link_program(gl, VS, FS).unwrap_or_else(|e| panic!("{e}"));
             let vao = gl.create_vertex_array().unwrap();
             let vbo = gl.create_buffer().unwrap();
             let ebo = gl.create_buffer().unwrap();
@@ -210,8 +228,13 @@ impl Renderer {
 
     /// Loads `mesh`'s vertices (the index buffers come with each draw).
     pub fn load(&self, gl: &glow::Context, mesh: &Mesh) {
-        let bytes: Vec<u8> = mesh
-            .verts
+        self.load_positions(gl, &mesh.verts);
+    }
+
+    /// Loads positions for the mesh's indices: its eye-space vertices, or its world-space ones
+    /// (drawn with a view matrix, [`Scene::view`]).
+    pub fn load_positions(&self, gl: &glow::Context, positions: &[[f32; 3]]) {
+        let bytes: Vec<u8> = positions
             .iter()
             .flatten()
             .flat_map(|v| v.to_ne_bytes())
@@ -222,8 +245,8 @@ impl Renderer {
         }
     }
 
-    /// Draws `indices` as `mode` (`TRIANGLES` or `LINES`) with `proj`; `id` 0 flat colour, 1/2
-    /// primitive IDs forward / reversed.
+    /// Draws `indices` as `mode` (`TRIANGLES` or `LINES`) with `proj` (after `view` for
+    /// world-space positions); `id` 0 flat colour, 1/2 primitive IDs forward / reversed.
     #[allow(clippy::too_many_arguments)]
     pub fn draw(
         &self,
@@ -231,6 +254,7 @@ impl Renderer {
         indices: &[u32],
         mode: u32,
         proj: &[f32; 16],
+        view: Option<&[f32; 16]>,
         color: [u8; 3],
         id: i32,
         count: i32,
@@ -243,6 +267,12 @@ impl Renderer {
             gl.buffer_data_u8_slice(glow::ELEMENT_ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
             let p = gl.get_uniform_location(self.program, "proj");
             gl.uniform_matrix_4_f32_slice(p.as_ref(), false, proj);
+            let w = gl.get_uniform_location(self.program, "world");
+            gl.uniform_1_i32(w.as_ref(), i32::from(view.is_some()));
+            if let Some(view) = view {
+                let v = gl.get_uniform_location(self.program, "view");
+                gl.uniform_matrix_4_f32_slice(v.as_ref(), false, view);
+            }
             let c = gl.get_uniform_location(self.program, "color");
             let [r, g, b] = color.map(|x| f32::from(x) / 255.0);
             gl.uniform_4_f32(c.as_ref(), r, g, b, 1.0);
@@ -504,6 +534,12 @@ pub struct Scene<'a> {
     pub tri_idx: Vec<u32>,
     /// The edges' indices, laid end to end.
     pub line_idx: Vec<u32>,
+    /// The f32 view matrix of a mesh loaded in world space ([`Renderer::load_positions`]), or
+    /// `None`: eye-space vertices.
+    pub view: Option<[f32; 16]>,
+    /// The viewport's lower-left corner in the target (the caller sets `glViewport` and
+    /// `glDepthRange`): where [`Scene::read`] reads the [`SIZE`]² image (single-sampled only).
+    pub origin: [u32; 2],
 }
 
 impl<'a> Scene<'a> {
@@ -527,6 +563,8 @@ impl<'a> Scene<'a> {
             msaa,
             tri_idx: mesh.tris.iter().flatten().copied().collect(),
             line_idx: mesh.edges.iter().flatten().copied().collect(),
+            view: None,
+            origin: [0, 0],
         }
     }
 
@@ -554,7 +592,7 @@ impl<'a> Scene<'a> {
     pub fn read(&self) -> Vec<[u8; 4]> {
         match self.msaa {
             Some(ms) => ms.read_samples(self.gl),
-            None => read(self.gl),
+            None => read_at(self.gl, self.origin),
         }
     }
 
@@ -563,11 +601,28 @@ impl<'a> Scene<'a> {
         let g = self.gl.glow();
         unsafe { g.line_width(self.variant.width) };
         match self.variant.kind {
-            Primitive::Lines => self.r.draw(g, indices, glow::LINES, proj, EDGE, id, count),
+            Primitive::Lines => self.r.draw(
+                g,
+                indices,
+                glow::LINES,
+                proj,
+                self.view.as_ref(),
+                EDGE,
+                id,
+                count,
+            ),
             Primitive::PolygonMode => unsafe {
                 g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
-                self.r
-                    .draw(g, indices, glow::TRIANGLES, proj, EDGE, id, count);
+                self.r.draw(
+                    g,
+                    indices,
+                    glow::TRIANGLES,
+                    proj,
+                    self.view.as_ref(),
+                    EDGE,
+                    id,
+                    count,
+                );
                 g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
             },
         }
@@ -597,8 +652,16 @@ impl<'a> Scene<'a> {
                 None => g.disable(glow::POLYGON_OFFSET_FILL),
             }
         }
-        self.r
-            .draw(g, &self.tri_idx, glow::TRIANGLES, &self.m, FACE, 0, 0);
+        self.r.draw(
+            g,
+            &self.tri_idx,
+            glow::TRIANGLES,
+            &self.m,
+            self.view.as_ref(),
+            FACE,
+            0,
+            0,
+        );
         unsafe {
             g.disable(glow::POLYGON_OFFSET_FILL);
             g.depth_func(if reversed { glow::GEQUAL } else { glow::LEQUAL });
@@ -625,8 +688,16 @@ impl<'a> Scene<'a> {
             g.depth_func(if reversed { glow::GREATER } else { glow::LESS });
         }
         let count = self.mesh.tris.len() as i32;
-        self.r
-            .draw(g, &self.tri_idx, glow::TRIANGLES, &self.m, FACE, 1, count);
+        self.r.draw(
+            g,
+            &self.tri_idx,
+            glow::TRIANGLES,
+            &self.m,
+            self.view.as_ref(),
+            FACE,
+            1,
+            count,
+        );
         self.read()
             .iter()
             .map(|px| px[0] as usize | (px[1] as usize) << 8 | (px[2] as usize) << 16)
@@ -648,9 +719,15 @@ pub fn count_in(img: &[[u8; 4]], c: &Classes) -> (usize, usize) {
 
 /// The target's colour, [`SIZE`]², rows bottom-up.
 pub fn read(gl: &Gl) -> Vec<[u8; 4]> {
+    read_at(gl, [0, 0])
+}
+
+/// The target's colour in the [`SIZE`]² square whose lower-left pixel is `origin`.
+pub fn read_at(gl: &Gl, origin: [u32; 2]) -> Vec<[u8; 4]> {
     let n = SIZE as i32;
+    let at = origin.map(|c| c as i32);
     // SAFETY: the harness's context is current on this thread.
-    let pixels = unsafe { crate::read_rgba8(gl.glow(), n, n) };
+    let pixels = unsafe { crate::read_rgba8_at(gl.glow(), at, n, n) };
     gl.check("glReadPixels").unwrap();
     pixels
 }
