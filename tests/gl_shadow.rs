@@ -28,7 +28,8 @@
 //! `ZSHIFT_SHADOW_ONLY=<a>&<b>` only the scenes whose label contains every part.
 //!
 //! `atlas_tiles_are_acne_free`: maps drawn as tiles of a shadow atlas under `glDepthRange`
-//! sub-ranges, zshift told the tile's origin and the range.
+//! sub-ranges, zshift told the tile's origin and the range. `far_from_the_origin_is_acne_free`:
+//! the whole scene 10²–10⁵ units from the world's origin, in f32 world positions.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -91,6 +92,7 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
         clip: clips[(c / 27) % 3],
         pcf,
         atlas: None,
+        shift: [0.0; 3],
     }
 }
 
@@ -633,6 +635,203 @@ fn atlas_tiles_are_acne_free() {
         cost.get(cost.len() / 2).copied().unwrap_or(f64::NAN),
         cost.last().copied().unwrap_or(f64::NAN)
     );
+    assert!(asked > cases.len(), "too few answers: {asked}");
+    assert!(
+        unbiased_acne > 0,
+        "no acne without bias: the check cannot fail"
+    );
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// The scene far from the world's origin: the ground, the box, the light and the camera moved by
+/// 10², 10³, 10⁴ or 10⁵ units (f32 world positions, the light's and the camera's f32 matrices of
+/// the moved scene, as an engine with a large world holds them); zshift told the light's
+/// position and the scene's origin (`world_reach`), and with the view variants the light's f32
+/// view matrix and the moved world box. Every answer must show 0 acne pixels.
+#[test]
+fn far_from_the_origin_is_acne_free() {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no GL context for the shadow sweep: {e}"));
+    let probed = gl_common::probed(&gl);
+    let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
+    let verbose = std::env::var("ZSHIFT_SHADOW_VERBOSE").is_ok_and(|v| v == "1");
+    let (eye, camera) = camera();
+    let (mut failures, mut asked, mut refused, mut unbiased_acne) = (Vec::new(), 0, 0, 0);
+    // Per distance from the origin, probed profile, from world_reach alone and with the light's
+    // view matrix: shadowed pixels left lit (leak), the same at the origin, shadowed pixels.
+    let mut leaks = std::collections::BTreeMap::<u64, [[usize; 3]; 2]>::new();
+    let mut cases = Vec::new();
+    for kind in [Kind::Directional, Kind::Spot] {
+        for elevation in [5.0, 20.0, 45.0, 89.0] {
+            for pcf in [1, 0, 3] {
+                cases.push(case_of(kind, elevation, pcf, (cases.len() * 31 + 11) % 81));
+            }
+        }
+    }
+    let cases: Vec<Case> = drawn(cases)
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut case)| {
+            let t = [1e2, 1e3, 1e4, 1e5][i % 4];
+            case.shift =
+                [[0.8, 0.0, -0.6], [0.0, 1.0, 0.0], [-0.6, 0.1, 0.79]][i % 3].map(|c| c * t);
+            case
+        })
+        .collect();
+    for case in &cases {
+        let light = light_of(case);
+        let truth = reference(case, &light, &camera, eye, case.kernel_reach());
+        let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
+            .unwrap_or_else(|e| panic!("{e}"));
+        let plain = unsafe {
+            rig.look(
+                &mut gl,
+                case,
+                &light,
+                &camera,
+                unbiased.0,
+                ReceiverBias::default(),
+            )
+        }
+        .unwrap_or_else(|e| panic!("{e}"));
+        unbiased_acne += count(&plain, &truth).acne;
+        let ground_quad = light.ground_quad();
+        for (pname, profile) in [
+            ("worst", RasterizerProfile::worst_case()),
+            ("probed", probed),
+        ] {
+            for receivers in [false, true] {
+                for view in [false, true] {
+                    let limit = if receivers {
+                        RECEIVER_LIMIT_DEG
+                    } else {
+                        90.0 - case.elevation
+                    };
+                    let pipeline = if view {
+                        light.pipeline()
+                    } else {
+                        Default::default()
+                    };
+                    let map = case.shadow_map(&light, limit, profile, pipeline);
+                    let answer = if receivers {
+                        shadow_bias_for_receivers(&map, &[&ground_quad])
+                    } else {
+                        shadow_bias(&map)
+                    };
+                    let name = format!(
+                        "{} shift {:?} ({pname}{}{})",
+                        case.label(),
+                        case.shift,
+                        if receivers { ", receivers" } else { "" },
+                        if view { ", view" } else { "" }
+                    );
+                    let bias = match answer {
+                        Ok(b) => b,
+                        Err(e) if e.kind() == ErrorKind::Unresolvable => {
+                            refused += 1;
+                            continue;
+                        }
+                        Err(e) => {
+                            failures.push(format!("{name}: {e}"));
+                            continue;
+                        }
+                    };
+                    asked += 1;
+                    let [f, u, c] = bias.gl_polygon_offset;
+                    let caster = CasterBias {
+                        offset: Some((f as f32, u as f32, c as f32)),
+                        ..Default::default()
+                    };
+                    let px = unsafe {
+                        rig.look_biased(
+                            &mut gl,
+                            case,
+                            &light,
+                            &camera,
+                            unbiased.0,
+                            caster,
+                            ReceiverBias::default(),
+                        )
+                    }
+                    .unwrap_or_else(|e| panic!("{e}"));
+                    let got = count(&px, &truth);
+                    if pname == "probed" && !receivers {
+                        // The same scene at the origin, asked and drawn the same way.
+                        let home = Case {
+                            shift: [0.0; 3],
+                            ..*case
+                        };
+                        let at_home =
+                            shadow_bias(&home.shadow_map(&light, limit, profile, pipeline))
+                                .ok()
+                                .map(|b| {
+                                    let [f, u, c] = b.gl_polygon_offset;
+                                    let caster = CasterBias {
+                                        offset: Some((f as f32, u as f32, c as f32)),
+                                        ..Default::default()
+                                    };
+                                    let px = unsafe {
+                                        rig.look_biased(
+                                            &mut gl,
+                                            &home,
+                                            &light,
+                                            &camera,
+                                            unbiased.0,
+                                            caster,
+                                            ReceiverBias::default(),
+                                        )
+                                    }
+                                    .unwrap_or_else(|e| panic!("{e}"));
+                                    count(&px, &truth).leak
+                                });
+                        let t = case.shift.iter().map(|c| c * c).sum::<f64>().sqrt();
+                        let key = 10f64.powf(t.log10().round()) as u64;
+                        let row = &mut leaks.entry(key).or_default()[usize::from(view)];
+                        row[0] += got.leak;
+                        row[1] += at_home.unwrap_or(got.leak);
+                        row[2] += got.shadowed;
+                    }
+                    if verbose {
+                        println!(
+                            "{name}: acne {}/{} leak {}/{} bias {:?}",
+                            got.acne, got.lit, got.leak, got.shadowed, bias.gl_polygon_offset
+                        );
+                    }
+                    if got.acne > 0 {
+                        failures.push(format!(
+                            "{name}: {} acne pixels of {} lit at {:?}",
+                            got.acne, got.lit, bias.gl_polygon_offset
+                        ));
+                    }
+                }
+            }
+        }
+        unsafe {
+            gl.glow().delete_framebuffer(unbiased.1);
+            gl.glow().delete_texture(unbiased.0);
+        }
+    }
+    println!(
+        "far from the origin: {} scenes, {asked} answers, {refused} refusals, {unbiased_acne} acne pixels without bias",
+        cases.len()
+    );
+    println!("shadowed pixels left lit, probed (the same scenes at the origin): world_reach alone | the light's view matrix");
+    for (t, [scalar, view]) in &leaks {
+        let pct = |r: [usize; 3], k: usize| 100.0 * r[k] as f64 / r[2].max(1) as f64;
+        println!(
+            "  {t:>7}: {:5.1} % ({:4.1} %) | {:5.1} % ({:4.1} %) of {}",
+            pct(*scalar, 0),
+            pct(*scalar, 1),
+            pct(*view, 0),
+            pct(*view, 1),
+            scalar[2]
+        );
+    }
     assert!(asked > cases.len(), "too few answers: {asked}");
     assert!(
         unbiased_acne > 0,

@@ -30,6 +30,7 @@ const SCENE: Case = Case {
     clip: ClipDepth::NegOneToOne,
     pcf: 3,
     atlas: None,
+    shift: [0.0; 3],
 };
 /// Each camera pixel drawn as `ZOOM × ZOOM` picture pixels, panels three to a row.
 const ZOOM: usize = 2;

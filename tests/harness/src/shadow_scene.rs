@@ -48,6 +48,16 @@ pub fn mul(a: &M4, b: &M4) -> M4 {
 }
 
 /// `m · (p, 1)`: the homogeneous image of point `p`.
+/// The translation by `t` (column-major).
+pub fn translation(t: [f64; 3]) -> M4 {
+    let mut m = [0.0; 16];
+    for k in 0..4 {
+        m[5 * k] = 1.0;
+    }
+    m[12..15].copy_from_slice(&t);
+    m
+}
+
 pub fn apply(m: &M4, p: [f64; 3]) -> [f64; 4] {
     [0, 1, 2, 3].map(|r| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r])
 }
@@ -152,6 +162,11 @@ pub struct Case {
     pub pcf: u32,
     /// The map as a tile of a shadow atlas, or `None`: a texture of its own.
     pub atlas: Option<Atlas>,
+    /// The whole scene (ground, box, light, camera) moved this far from the world's origin: the
+    /// shaders add it to every position in f32, as an engine's f32 world positions hold it, and
+    /// the light's and the camera's f32 matrices are those of the moved scene. The reference
+    /// stays where it is (the scene moved by exactly this).
+    pub shift: [f64; 3],
 }
 
 /// A shadow map drawn as a tile of a larger texture (a shadow atlas), with a depth range.
@@ -204,18 +219,49 @@ impl Case {
             lookup: self.lookup(),
             limit_angle_deg,
             receiver_depths: light.receivers,
-            world_reach: light.position.iter().fold(0.0f64, |a, x| a.max(x.abs())),
+            // The light's position and the models' origin (the scene's, at the shift).
+            world_reach: (0..3).fold(0.0f64, |a, k| {
+                a.max((light.position[k] + self.shift[k]).abs())
+                    .max(self.shift[k].abs())
+            }),
             elevation_deg: self.elevation,
             profile,
             pipeline: match self.atlas {
                 Some(a) => zshift::model::Pipeline {
                     viewport_origin: a.origin,
                     depth_range: a.depth_range,
-                    ..pipeline
+                    ..self.moved(light, pipeline)
                 },
-                None => pipeline,
+                None => self.moved(light, pipeline),
             },
         }
+    }
+
+    /// `pipeline` with the light's view matrix and the world box of the moved scene
+    /// ([`Case::shift`]) where it names a view matrix.
+    fn moved(&self, light: &Light, pipeline: zshift::model::Pipeline) -> zshift::model::Pipeline {
+        if pipeline.view.is_none() {
+            return pipeline;
+        }
+        let [lo, hi] = WORLD_BOX;
+        zshift::model::Pipeline {
+            view: Some(to_f32(&self.light_view(light))),
+            world_box: Some([
+                [0, 1, 2].map(|k| lo[k] + self.shift[k]),
+                [0, 1, 2].map(|k| hi[k] + self.shift[k]),
+            ]),
+            ..pipeline
+        }
+    }
+
+    /// The light's view matrix of the moved scene: its view after a translation by −shift.
+    pub fn light_view(&self, light: &Light) -> M4 {
+        mul(&light.view, &translation(self.shift.map(|x| -x)))
+    }
+
+    /// The camera's matrix of the moved scene.
+    pub fn camera_of(&self, camera: &M4) -> M4 {
+        mul(camera, &translation(self.shift.map(|x| -x)))
     }
 
     /// One line naming the case (light, elevation, f/n, map, format, convention, lookup).
@@ -441,10 +487,12 @@ uniform vec3 light_pos;
 uniform int spot;
 uniform float along_light; // caster moved toward the light by this (world units)
 uniform float along_normal; // caster moved along its normal by this times 1 - N.L
+uniform vec3 shift; // the scene's distance from the world's origin (f32 world positions)
 void main() {
-    vec3 l = spot == 1 ? normalize(light_pos - world) : normalize(light_pos);
+    vec3 w = world + shift;
+    vec3 l = spot == 1 ? normalize(light_pos - w) : normalize(light_pos);
     float inv = 1.0 - clamp(dot(l, normal), 0.0, 1.0);
-    vec3 p = world + l * along_light + normal * (along_normal * inv);
+    vec3 p = w + l * along_light + normal * (along_normal * inv);
     gl_Position = proj * (view * vec4(p, 1.0));
 }
 ";
@@ -455,9 +503,15 @@ const CAMERA_VS: &str = "#version 330 core
 layout(location = 0) in vec3 world;
 layout(location = 1) in vec3 normal;
 uniform mat4 camera;
+uniform vec3 shift; // the scene's distance from the world's origin (f32 world positions)
 out vec3 v_world;
 out vec3 v_normal;
-void main() { v_world = world; v_normal = normal; gl_Position = camera * vec4(world, 1.0); }
+void main() {
+    vec3 w = world + shift;
+    v_world = w;
+    v_normal = normal;
+    gl_Position = camera * vec4(w, 1.0);
+}
 ";
 const CAMERA_FS: &str = "#version 330 core
 in vec3 v_world;
@@ -800,8 +854,10 @@ impl Rig {
         }
         g.use_program(Some(self.caster));
         let u = |name: &str| g.get_uniform_location(self.caster, name);
-        g.uniform_matrix_4_f32_slice(u("view").as_ref(), false, &to_f32(&light.view));
+        g.uniform_matrix_4_f32_slice(u("view").as_ref(), false, &to_f32(&case.light_view(light)));
         g.uniform_matrix_4_f32_slice(u("proj").as_ref(), false, &light.proj32);
+        let sh = case.shift.map(|x| x as f32);
+        g.uniform_3_f32(u("shift").as_ref(), sh[0], sh[1], sh[2]);
         let lp = light_uniform(case, light);
         g.uniform_3_f32(u("light_pos").as_ref(), lp[0], lp[1], lp[2]);
         g.uniform_1_i32(u("spot").as_ref(), (case.kind == Kind::Spot) as i32);
@@ -920,9 +976,15 @@ impl Rig {
         g.bind_sampler(1, Some(self.compare[reversed as usize]));
         g.uniform_1_i32(u("smap").as_ref(), 1);
         g.active_texture(glow::TEXTURE0);
-        g.uniform_matrix_4_f32_slice(u("camera").as_ref(), false, &to_f32(camera));
-        g.uniform_matrix_4_f32_slice(u("view").as_ref(), false, &to_f32(&light.view));
+        g.uniform_matrix_4_f32_slice(
+            u("camera").as_ref(),
+            false,
+            &to_f32(&case.camera_of(camera)),
+        );
+        g.uniform_matrix_4_f32_slice(u("view").as_ref(), false, &to_f32(&case.light_view(light)));
         g.uniform_matrix_4_f32_slice(u("proj").as_ref(), false, &light.proj32);
+        let sh = case.shift.map(|x| x as f32);
+        g.uniform_3_f32(u("shift").as_ref(), sh[0], sh[1], sh[2]);
         let lp = light_uniform(case, light);
         g.uniform_3_f32(u("light_pos").as_ref(), lp[0], lp[1], lp[2]);
         g.uniform_1_i32(u("spot").as_ref(), (case.kind == Kind::Spot) as i32);
@@ -972,7 +1034,7 @@ impl Rig {
 /// The light's position (spot) or direction toward it (directional), for the shaders.
 fn light_uniform(case: &Case, light: &Light) -> [f32; 3] {
     match case.kind {
-        Kind::Spot => light.position.map(|x| x as f32),
+        Kind::Spot => [0, 1, 2].map(|k| (light.position[k] + case.shift[k]) as f32),
         Kind::Directional => light.to_light.map(|x| x as f32),
     }
 }
