@@ -128,9 +128,10 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
 /*
  The version of this C ABI. It changes when a declaration in this header changes
  incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
- the decal's depth test and the clipper's measured error; rebuild against this header).
+ the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
+ engine's pipeline; rebuild against this header).
  */
-#define ZSHIFT_ABI_VERSION 2
+#define ZSHIFT_ABI_VERSION 3
 
 /*
  `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
@@ -768,6 +769,14 @@ typedef struct {
    `subpixel_bits`.
    */
   const ZshiftProfile *profile;
+  /*
+   How the engine draws the mesh besides its matrix, as the decal's ZshiftScene.pipeline:
+   vertices in world space through a float view matrix (`world_reach`, or `view_matrix`
+   with `world_box`, the box of the mesh's world positions, and `eye_first`), the
+   viewport's origin in a larger framebuffer, glDepthRange. Zero-filled: eye-space
+   vertices, the viewport at the framebuffer's origin, glDepthRange(0, 1).
+   */
+  ZshiftPipeline pipeline;
 } ZshiftEdges;
 
 /*

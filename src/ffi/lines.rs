@@ -64,6 +64,12 @@ pub struct ZshiftEdges {
     /// The rasterizer's profile from `zshift_probe`, or NULL for the worst case with
     /// `subpixel_bits`.
     pub profile: *const super::probe::ZshiftProfile,
+    /// How the engine draws the mesh besides its matrix, as the decal's ZshiftScene.pipeline:
+    /// vertices in world space through a float view matrix (`world_reach`, or `view_matrix`
+    /// with `world_box`, the box of the mesh's world positions, and `eye_first`), the
+    /// viewport's origin in a larger framebuffer, glDepthRange. Zero-filled: eye-space
+    /// vertices, the viewport at the framebuffer's origin, glDepthRange(0, 1).
+    pub pipeline: super::recommend::ZshiftPipeline,
 }
 
 /// The offset for a mesh's edges by one method, in every form an engine applies it.
@@ -171,7 +177,7 @@ fn edges_of(e: &ZshiftEdges) -> Result<Edges> {
         face_slope,
         hidden_separation: e.hidden_separation,
         profile,
-        pipeline: crate::model::Pipeline::default(),
+        pipeline: super::recommend::pipeline_from_c(&e.pipeline)?,
     })
 }
 

@@ -766,7 +766,7 @@ static void test_versions(void) {
   const char *version = zshift_version();
   CHECK(version != NULL && strcmp(version, EXPECTED_VERSION) == 0, "zshift_version() is \"%s\", Cargo.toml says \"%s\"",
         version ? version : "(null)", EXPECTED_VERSION);
-  CHECK(ZSHIFT_ABI_VERSION == 2, "ZSHIFT_ABI_VERSION is %d; this test was written for 2", ZSHIFT_ABI_VERSION);
+  CHECK(ZSHIFT_ABI_VERSION == 3, "ZSHIFT_ABI_VERSION is %d; this test was written for 3", ZSHIFT_ABI_VERSION);
 }
 
 /* The detail of an error names the input, its value and the rule; it is per thread, replaced by
@@ -1135,6 +1135,33 @@ static void test_edges(void) {
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, NULL, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_NULL_POINTER);
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, NULL), ZSHIFT_ERR_NULL_POINTER);
   CHECK_STATUS(zshift_edge_planes(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, NULL), ZSHIFT_ERR_NULL_POINTER);
+  /* The engine's pipeline: world-space vertices far from the origin need more offset than eye
+     space; the view matrix with the mesh's box less than world_reach alone; a bad depth range
+     is named. A zeroed pipeline (edges_for) is the eye-space default. */
+  {
+    static const float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1e4f, 0, 0, 1};
+    const double box[6] = {1e4 - 5, -5, -25, 1e4 + 5, 5, -5};
+    ZshiftEdgeOffset eye, far_away, known;
+    engine_perspective(1.0471976f, 1.0f, 1.0f, 1000.0f, m);
+    e = edges_for();
+    CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &eye), ZSHIFT_OK);
+    e.pipeline.world_reach = 1e4;
+    CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &far_away), ZSHIFT_OK);
+    e.pipeline.view_matrix = view;
+    memcpy(e.pipeline.world_box, box, sizeof box);
+    e.pipeline.eye_first = 1;
+    CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &known), ZSHIFT_OK);
+    CHECK(far_away.window_offset > eye.window_offset && known.window_offset >= eye.window_offset &&
+              known.window_offset <= far_away.window_offset,
+          "edges in world space: offsets %.9g (eye), %.9g (world_reach), %.9g (view)", eye.window_offset,
+          far_away.window_offset, known.window_offset);
+    e.pipeline.depth_range_near = 0.75;
+    e.pipeline.depth_range_far = 0.25;
+    memset(&out, PATTERN, sizeof out);
+    CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &out), ZSHIFT_ERR_DOMAIN);
+    expect_detail("edges depth range", "depth_range_far");
+    CHECK(untouched(&out, sizeof out), "zshift_edge_offset wrote its output on a bad pipeline");
+  }
 }
 
 /* ---- shadow bias: a directional light's map (zshift_shadow_bias) ---- */

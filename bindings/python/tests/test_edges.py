@@ -61,6 +61,26 @@ class Edges(unittest.TestCase):
                                        hidden_separation=free.hidden_gap / 2, **kw)
         self.assertTrue(40.0 < near <= 50.0 and far >= 60.0, (near, far))
 
+    def test_the_engines_pipeline(self):
+        # World space 10^4 units from the origin costs offset; the view matrix with the mesh's box
+        # less than world_reach alone; a viewport origin and glDepthRange are accepted, a reversed
+        # range is named.
+        eye = self.offset(zshift.EdgeMethod.MATRIX)
+        far_away = self.offset(zshift.EdgeMethod.MATRIX, world_reach=1e4)
+        view = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1e4, 0, 0, 1]
+        box = ((1e4 - 5, -5, -25), (1e4 + 5, 5, -5))
+        known = self.offset(zshift.EdgeMethod.MATRIX, world_reach=1e4, view_matrix=view, world_box=box,
+                            eye_first=True)
+        self.assertLess(eye.window_offset, far_away.window_offset)
+        self.assertLessEqual(known.window_offset, far_away.window_offset)
+        self.assertGreaterEqual(known.window_offset, eye.window_offset)
+        tile = self.offset(zshift.EdgeMethod.POLYGON_OFFSET, viewport_origin=(1500, 900),
+                           framebuffer_depth_range=(0.5, 1.0))
+        self.assertGreater(tile.polygon_offset[1], 0.0)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            self.offset(zshift.EdgeMethod.MATRIX, framebuffer_depth_range=(0.75, 0.25))
+        self.assertIn("depth_range_far", str(caught.exception))
+
     def test_bad_field_is_named(self):
         with self.assertRaises(zshift.ZshiftError) as caught:
             self.offset(zshift.EdgeMethod.MATRIX, line_width=0.5)

@@ -47,7 +47,7 @@ __all__ = [
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
-ABI_VERSION = 2
+ABI_VERSION = 3
 
 #: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
 #: Never a default: the recommendation functions require ``subpixel_bits`` (the rasterizer's
@@ -933,6 +933,7 @@ class _Edges(_ctypes.Structure):
         ("hidden_separation", _ctypes.c_double),
         ("depth_func", _ctypes.c_uint32),
         ("profile", _ctypes.c_void_p),
+        ("pipeline", _library.ZshiftPipeline),  # world space, viewport origin, glDepthRange
     ]
 
 
@@ -970,7 +971,9 @@ def _edges_lib():
 
 
 def _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle, face_gradient,
-           hidden_separation, depth_test, subpixel_bits, profile):
+           hidden_separation, depth_test, subpixel_bits, profile, viewport_origin=(0, 0),
+           framebuffer_depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None,
+           world_box=None):
     width, height = viewport
     for name, value in (("viewport width", width), ("viewport height", height), ("samples", samples)):
         if not isinstance(value, int) or not 0 <= value < 2**32:
@@ -981,12 +984,18 @@ def _edges(viewport, depth_format, depth_range, line_width, polygon_mode, sample
                     face_angle, face_gradient, hidden_separation,
                     0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF)
     _attach_profile(record, profile)
+    _attach_framebuffer(record.pipeline, viewport_origin, framebuffer_depth_range)
+    record.pipeline.world_reach = world_reach
+    record.pipeline.eye_first = 1 if eye_first else 0
+    _attach_view(record, view_matrix, world_box)
     return record
 
 
 def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width=1.0, polygon_mode=False,
                 samples=1, face_angle=0.0, face_gradient=0.0, hidden_separation=0.0, depth_test=None,
-                subpixel_bits=None, profile=None):
+                subpixel_bits=None, profile=None, viewport_origin=(0, 0),
+                framebuffer_depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None,
+                world_box=None):
     """The offset that keeps a mesh's edges in front of its own faces (``zshift_edge_offset``):
     ``m`` the engine's perspective projection (16 floats, column-major) under ``clip``, the mesh
     over eye depths ``depth_range`` (nearest, farthest), ``method`` an :class:`EdgeMethod`, edges as
@@ -994,11 +1003,17 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     pixel (above 1 the line reach is sqrt(2)*(w + 1)/2), the steepest face that matters as
     ``face_angle`` (radians from the view axis) or ``face_gradient`` (window depth per pixel), and
     ``hidden_separation`` the eye depth from which hidden edges must not show (0: no promise).
-    Returns an :data:`EdgeOffset`. Raises :class:`ZshiftError` naming the field (``UNRESOLVABLE``
+    How the engine draws the mesh (``ZshiftEdges.pipeline``): ``viewport_origin`` (``glViewport``'s
+    x, y in a larger framebuffer), ``framebuffer_depth_range`` (``glDepthRange``), ``world_reach``
+    (vertices in world space through a float view matrix: the largest world coordinate of the
+    camera and of the mesh's origin), ``view_matrix`` with ``world_box`` (that matrix, 16 floats
+    column-major, and the box of the mesh's world positions) and ``eye_first`` (the shader
+    computes ``proj * (view * p)``). Returns an :data:`EdgeOffset`. Raises :class:`ZshiftError` naming the field (``UNRESOLVABLE``
     where the hidden-line gap exceeds ``hidden_separation``: see :func:`edge_planes`)."""
     mat = _engine_matrix(m)
     record = _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle,
-                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile)
+                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile, viewport_origin,
+                    framebuffer_depth_range, world_reach, eye_first, view_matrix, world_box)
     out = _EdgeOffset()
     _check(_edges_lib().zshift_edge_offset(mat, _enum(clip, Clip), _ctypes.byref(record),
                                            _enum(method, EdgeMethod, "method"), _ctypes.byref(out)))
@@ -1008,12 +1023,15 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
 
 def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width=1.0, polygon_mode=False,
                 samples=1, face_angle=0.0, face_gradient=0.0, hidden_separation=0.0, depth_test=None,
-                subpixel_bits=None, profile=None):
+                subpixel_bits=None, profile=None, viewport_origin=(0, 0),
+                framebuffer_depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False, view_matrix=None,
+                world_box=None):
     """Near and far planes with which :func:`edge_offset` answers (``zshift_edge_planes``): the
     tight planes of ``depth_range``. Arguments as :func:`edge_offset`; returns ``(near, far)``."""
     mat = _engine_matrix(m)
     record = _edges(viewport, depth_format, depth_range, line_width, polygon_mode, samples, face_angle,
-                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile)
+                    face_gradient, hidden_separation, depth_test, subpixel_bits, profile, viewport_origin,
+                    framebuffer_depth_range, world_reach, eye_first, view_matrix, world_box)
     out = (_ctypes.c_double * 2)()
     _check(_edges_lib().zshift_edge_planes(mat, _enum(clip, Clip), _ctypes.byref(record),
                                            _enum(method, EdgeMethod, "method"), out))
