@@ -100,9 +100,9 @@ impl Conv {
 
 /// The variants of the sweep: 1-pixel `GL_LINES` and polygon-mode lines; width-3 `GL_LINES`
 /// (the context is a compatibility one, where `glLineWidth(3)` is valid); the same under 4×
-/// MSAA. The default run draws the first two in one scene in [`SAMPLE`], the others in one in
-/// [`SAMPLE_MORE`].
-const VARIANTS: [Variant; 5] = [
+/// MSAA; width-3 polygon-mode lines, and 1-pixel ones under 4× MSAA. The default run draws the
+/// first two in one scene in [`SAMPLE`], the others in one in [`SAMPLE_MORE`].
+const VARIANTS: [Variant; 7] = [
     Variant {
         kind: Primitive::Lines,
         width: 1.0,
@@ -126,6 +126,16 @@ const VARIANTS: [Variant; 5] = [
     Variant {
         kind: Primitive::Lines,
         width: 3.0,
+        samples: 4,
+    },
+    Variant {
+        kind: Primitive::PolygonMode,
+        width: 3.0,
+        samples: 1,
+    },
+    Variant {
+        kind: Primitive::PolygonMode,
+        width: 1.0,
         samples: 4,
     },
 ];
