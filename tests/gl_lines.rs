@@ -182,6 +182,24 @@ fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDept
     }
 }
 
+/// The worst-case profile with this context's snapping, and the profile the probe measures in it.
+fn profiles(gl: &Gl) -> [(&'static str, RasterizerProfile); 2] {
+    let worst = RasterizerProfile {
+        snapping: gl_common::snapping_of(gl),
+        ..RasterizerProfile::worst_case()
+    };
+    [("worst", worst), ("probed", gl_common::probed(gl))]
+}
+
+/// `make`'s mesh near eye distance `d0`, moved to lie inside `[1.1n, 0.95f]` (its depth extent
+/// per unit of distance taken from a unit mesh), its radius `radius_factor` of its distance;
+/// and that distance.
+fn placed(make: MeshMaker, n: f64, f: f64, d0: f64, radius_factor: f64) -> (Mesh, f64) {
+    let (lo, hi) = make(0.3, 1.0).depth_range();
+    let d = d0.max(1.1 * n / lo).min(0.95 * f / hi);
+    (make(radius_factor * d, d), d)
+}
+
 #[derive(Default)]
 struct Class {
     scenes: usize,
@@ -264,16 +282,12 @@ fn edges_over_faces_sweep() {
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
-    let worst = RasterizerProfile {
-        snapping: gl_common::snapping_of(&gl),
-        ..RasterizerProfile::worst_case()
-    };
-    let probed = gl_common::probed(&gl);
+    let profiles = profiles(&gl);
+    let probed = profiles[1].1;
     println!(
         "probed line_reach {:?}, offset_slope {}",
         probed.line_reach, probed.offset_slope
     );
-    let profiles = [("worst", worst), ("probed", probed)];
     let mut classes: Vec<(String, Class)> = Vec::new();
     let mut failures = Vec::new();
     let mut refusals = Refusals::default();
@@ -325,12 +339,7 @@ fn edges_over_faces_sweep() {
                         if variants.is_empty() {
                             continue;
                         }
-                        // The mesh inside [1.1n, 0.95f]: its depth extent per unit of d.
-                        let unit = make(0.3, 1.0);
-                        let (lo, hi) = unit.depth_range();
-                        let d = d0.max(1.1 * n / lo).min(0.95 * f / hi);
-                        let radius = draw.radius_factor() * d;
-                        let mesh = make(radius, d);
+                        let (mesh, d) = placed(*make, n, f, d0, draw.radius_factor());
                         // The terrain (wider than the view) does not fit in [n, f] at f/n 10:
                         // its near rows cross the near plane, a case the model leaves out.
                         if mesh

@@ -221,6 +221,18 @@ fn decals_over_the_engines_own_perspective_matrices_lose_no_pixel() {
 /// Orthographic decals in a viewport far from the framebuffer's origin and under `glDepthRange`
 /// sub-ranges, zshift told both (`Decal::pipeline`): 0 pixels lost at the recommendation; the
 /// same scenes lose pixels without an offset.
+/// The orthographic base matrix an engine builds (glam) for the setup's square box and `clip`.
+fn ortho_base(s: &Setup, clip: ClipDepth) -> [f32; 16] {
+    let h = (s.axis_depth() * s.tan_half) as f32;
+    let (n, f) = (s.n as f32, s.f as f32);
+    match clip {
+        ClipDepth::NegOneToOne => rh::opengl::orthographic(-h, h, -h, h, n, f),
+        ClipDepth::ZeroToOne => rh::directx::orthographic(-h, h, -h, h, n, f),
+        ClipDepth::ReversedZeroToOne => rh::directx::orthographic(-h, h, -h, h, f, n),
+    }
+    .to_cols_array()
+}
+
 #[test]
 fn orthographic_decals_in_a_viewport_and_a_depth_range_lose_no_pixel() {
     let mut gl = context();
@@ -241,16 +253,7 @@ fn orthographic_decals_in_a_viewport_and_a_depth_range_lose_no_pixel() {
                 for (ratio, p) in [(100.0, 0.3), (1e3, 0.8)] {
                     for slope in [0.0, 1.0, 3.0] {
                         let s = gl_common::setup(format, ratio, p, slope, SIZE);
-                        let h = (s.axis_depth() * s.tan_half) as f32;
-                        let (n, f) = (s.n as f32, s.f as f32);
-                        let base = match clip {
-                            ClipDepth::NegOneToOne => rh::opengl::orthographic(-h, h, -h, h, n, f),
-                            ClipDepth::ZeroToOne => rh::directx::orthographic(-h, h, -h, h, n, f),
-                            ClipDepth::ReversedZeroToOne => {
-                                rh::directx::orthographic(-h, h, -h, h, f, n)
-                            }
-                        }
-                        .to_cols_array();
+                        let base = ortho_base(&s, clip);
                         let label = format!(
                             "ortho {clip:?} {} viewport at {origin:?} range {depth_range:?}",
                             s.label()
@@ -300,16 +303,7 @@ fn orthographic_decals_at_the_recommendation_lose_no_pixel() {
             for (ratio, p) in [(100.0, 0.3), (1e3, 0.8)] {
                 for slope in [0.0, 1.0, 3.0] {
                     let s = gl_common::setup(format, ratio, p, slope, SIZE);
-                    let h = (s.axis_depth() * s.tan_half) as f32;
-                    let (n, f) = (s.n as f32, s.f as f32);
-                    let base = match clip {
-                        ClipDepth::NegOneToOne => rh::opengl::orthographic(-h, h, -h, h, n, f),
-                        ClipDepth::ZeroToOne => rh::directx::orthographic(-h, h, -h, h, n, f),
-                        ClipDepth::ReversedZeroToOne => {
-                            rh::directx::orthographic(-h, h, -h, h, f, n)
-                        }
-                    }
-                    .to_cols_array();
+                    let base = ortho_base(&s, clip);
                     let label = format!("ortho {clip:?} {}", s.label());
                     let rec = recommend(&base, clip, &decal_of(&gl, &s))
                         .unwrap_or_else(|err| panic!("{label}: {err}"));

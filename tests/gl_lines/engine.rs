@@ -98,11 +98,7 @@ fn edges_drawn_as_engines_draw() {
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
-    let worst = RasterizerProfile {
-        snapping: gl_common::snapping_of(&gl),
-        ..RasterizerProfile::worst_case()
-    };
-    let probed = gl_common::probed(&gl);
+    let profiles = profiles(&gl);
     let meshes: [MeshMaker; 4] = [sphere, torus, terrain, chamfered_box];
     let variants = [VARIANTS[0], VARIANTS[1], VARIANTS[2]];
     let (mut scenes, mut answered, mut visible, mut hidden, mut unoffset_lost) = (0, 0, 0, 0, 0);
@@ -124,10 +120,7 @@ fn edges_drawn_as_engines_draw() {
                 let variant = variants[(turn / 7) % 3];
                 let (n, f) = (1.0f64, ratio);
                 let d0 = (n * ratio.powf(frac)).max(1.6 * n).min(0.7 * f);
-                let unit = make(0.3, 1.0);
-                let (lo, hi) = unit.depth_range();
-                let d = d0.max(1.1 * n / lo).min(0.95 * f / hi);
-                let mesh = make(0.3 * d, d);
+                let (mesh, _) = placed(make, n, f, d0, 0.3);
                 let camera = [0.6 * t, 0.3 * t + 1.7, -0.74 * t];
                 let spin = draw.unit().unwrap_or(0.37 * turn as f64);
                 let (yaw, pitch) = (0.59 + 6.3 * spin, 0.05 * (turn % 5) as f64);
@@ -181,7 +174,7 @@ fn edges_drawn_as_engines_draw() {
                     depth_range: range,
                 };
                 for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
-                    for (pname, profile) in [("worst", worst), ("probed", probed)] {
+                    for (pname, profile) in profiles {
                         let mut edges = Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
                         edges.kind = line_kind(variant.kind);
                         edges.line_width = f64::from(variant.width);

@@ -596,6 +596,23 @@ impl<'a> Scene<'a> {
         }
     }
 
+    /// Draws the faces filled with the faces' matrix: flat colour (`id` 0) or primitive IDs
+    /// (1/2, of `count` triangles).
+    fn draw_faces(&self, id: i32, count: i32) {
+        let g = self.gl.glow();
+        let view = self.view.as_ref();
+        self.r.draw(
+            g,
+            &self.tri_idx,
+            glow::TRIANGLES,
+            &self.m,
+            view,
+            FACE,
+            id,
+            count,
+        );
+    }
+
     /// Draws the edges (`GL_LINES` or the faces in `GL_LINE` mode) at the variant's width.
     pub fn draw_edges(&self, indices: &[u32], proj: &[f32; 16], id: i32, count: i32) {
         let g = self.gl.glow();
@@ -652,16 +669,7 @@ impl<'a> Scene<'a> {
                 None => g.disable(glow::POLYGON_OFFSET_FILL),
             }
         }
-        self.r.draw(
-            g,
-            &self.tri_idx,
-            glow::TRIANGLES,
-            &self.m,
-            self.view.as_ref(),
-            FACE,
-            0,
-            0,
-        );
+        self.draw_faces(0, 0);
         unsafe {
             g.disable(glow::POLYGON_OFFSET_FILL);
             g.depth_func(if reversed { glow::GEQUAL } else { glow::LEQUAL });
@@ -687,17 +695,7 @@ impl<'a> Scene<'a> {
             g.enable(glow::DEPTH_TEST);
             g.depth_func(if reversed { glow::GREATER } else { glow::LESS });
         }
-        let count = self.mesh.tris.len() as i32;
-        self.r.draw(
-            g,
-            &self.tri_idx,
-            glow::TRIANGLES,
-            &self.m,
-            self.view.as_ref(),
-            FACE,
-            1,
-            count,
-        );
+        self.draw_faces(1, self.mesh.tris.len() as i32);
         self.read()
             .iter()
             .map(|px| px[0] as usize | (px[1] as usize) << 8 | (px[2] as usize) << 16)

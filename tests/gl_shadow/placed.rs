@@ -1,0 +1,341 @@
+//! Shadow maps placed as engines place them: tiles of a shadow atlas under `glDepthRange`
+//! sub-ranges, and whole scenes far from the world's origin in f32 world positions. zshift is
+//! told the placement (`ShadowMap::pipeline`, `world_reach`); every answer must show 0 acne
+//! pixels, with both profiles, for the bound over the limit angle and for the ground listed.
+//! Without bias the same maps show acne (the checks can fail).
+
+use super::*;
+use zshift::shadow::{ShadowBias, ShadowMap};
+
+/// zshift's bias for `map`: the bound over the limit angle, or with the ground listed.
+fn ask(
+    map: &ShadowMap,
+    receivers: bool,
+    ground: &[zshift::glam::Vec3],
+) -> zshift::Result<ShadowBias> {
+    if receivers {
+        shadow_bias_for_receivers(map, &[ground])
+    } else {
+        shadow_bias(map)
+    }
+}
+
+/// One drawn case: what its lookups need.
+struct Looker<'a> {
+    gl: &'a mut Gl,
+    rig: &'a Rig,
+    camera: &'a M4,
+    light: &'a Light,
+    truth: &'a [Option<bool>],
+    /// The map drawn without bias (what `Rig::look_biased` needs beside the biased one).
+    unbiased: glow::Texture,
+}
+
+impl Looker<'_> {
+    /// The camera's count with `case`'s map drawn under `bias`'s `glPolygonOffsetClamp`.
+    fn look(&mut self, case: &Case, bias: &ShadowBias) -> Count {
+        let [f, u, c] = bias.gl_polygon_offset;
+        let caster = CasterBias {
+            offset: Some((f as f32, u as f32, c as f32)),
+            ..Default::default()
+        };
+        let px = unsafe {
+            self.rig.look_biased(
+                self.gl,
+                case,
+                self.light,
+                self.camera,
+                self.unbiased,
+                caster,
+                ReceiverBias::default(),
+            )
+        }
+        .unwrap_or_else(|e| panic!("{e}"));
+        count(&px, self.truth)
+    }
+}
+
+/// One answer, for a sweep's own figures: the case, the profile's name, the map asked, whether
+/// the ground (`ground`, in the light's view) was listed, the bias and its count.
+struct Answer<'a> {
+    case: &'a Case,
+    profile: &'a str,
+    map: &'a ShadowMap,
+    receivers: bool,
+    ground: &'a [zshift::glam::Vec3],
+    bias: &'a ShadowBias,
+    got: Count,
+}
+
+/// Draws every case, asks zshift with both profiles, by the bound and with the ground listed,
+/// for each light pipeline `views` names (`false`: from `world_reach` alone; `true`: the
+/// light's view matrix and world box), counts acne and hands each answer to `each`. Asserts
+/// 0 acne in every answer, more answers than cases and some acne without bias; returns the
+/// answers and refusals.
+fn sweep(
+    what: &str,
+    cases: &[Case],
+    views: &[bool],
+    mut each: impl FnMut(&mut Looker, &Answer),
+) -> (usize, usize) {
+    let mut gl = Gl::new(Profile::Core)
+        .unwrap_or_else(|e| panic!("no GL context for the shadow sweep ({what}): {e}"));
+    let probed = gl_common::probed(&gl);
+    let rig = unsafe { Rig::new(&gl) }.unwrap_or_else(|e| panic!("{e}"));
+    let verbose = std::env::var("ZSHIFT_SHADOW_VERBOSE").is_ok_and(|v| v == "1");
+    let (eye, camera) = camera();
+    let (mut failures, mut answered, mut refused, mut unbiased_acne) = (Vec::new(), 0, 0, 0);
+    for case in cases {
+        let light = light_of(case);
+        let truth = reference(case, &light, &camera, eye, case.kernel_reach());
+        let unbiased = unsafe { rig.map(&mut gl, case, &light, CasterBias::default()) }
+            .unwrap_or_else(|e| panic!("{e}"));
+        let plain = unsafe {
+            rig.look(
+                &mut gl,
+                case,
+                &light,
+                &camera,
+                unbiased.0,
+                ReceiverBias::default(),
+            )
+        }
+        .unwrap_or_else(|e| panic!("{e}"));
+        unbiased_acne += count(&plain, &truth).acne;
+        let ground = light.ground_quad();
+        let mut looker = Looker {
+            gl: &mut gl,
+            rig: &rig,
+            camera: &camera,
+            light: &light,
+            truth: &truth,
+            unbiased: unbiased.0,
+        };
+        for (pname, profile) in [
+            ("worst", RasterizerProfile::worst_case()),
+            ("probed", probed),
+        ] {
+            for receivers in [false, true] {
+                for &view in views {
+                    let limit = if receivers {
+                        RECEIVER_LIMIT_DEG
+                    } else {
+                        90.0 - case.elevation
+                    };
+                    let pipeline = if view {
+                        light.pipeline()
+                    } else {
+                        Default::default()
+                    };
+                    let map = case.shadow_map(&light, limit, profile, pipeline);
+                    let name = format!(
+                        "{} shift {:?} ({pname}{}{})",
+                        case.label(),
+                        case.shift,
+                        if receivers { ", receivers" } else { "" },
+                        if view { ", view" } else { "" }
+                    );
+                    let bias = match ask(&map, receivers, &ground) {
+                        Ok(b) => b,
+                        Err(e) if e.kind() == ErrorKind::Unresolvable => {
+                            refused += 1;
+                            continue;
+                        }
+                        Err(e) => {
+                            failures.push(format!("{name}: {e}"));
+                            continue;
+                        }
+                    };
+                    answered += 1;
+                    let got = looker.look(case, &bias);
+                    if verbose {
+                        println!(
+                            "{name}: acne {}/{} leak {}/{} bias {:?}",
+                            got.acne, got.lit, got.leak, got.shadowed, bias.gl_polygon_offset
+                        );
+                    }
+                    if got.acne > 0 {
+                        failures.push(format!(
+                            "{name}: {} acne pixels of {} lit at {:?}",
+                            got.acne, got.lit, bias.gl_polygon_offset
+                        ));
+                    }
+                    let answer = Answer {
+                        case,
+                        profile: pname,
+                        map: &map,
+                        receivers,
+                        ground: &ground,
+                        bias: &bias,
+                        got,
+                    };
+                    each(&mut looker, &answer);
+                }
+            }
+        }
+        unsafe {
+            gl.glow().delete_framebuffer(unbiased.1);
+            gl.glow().delete_texture(unbiased.0);
+        }
+    }
+    println!(
+        "{what}: {} scenes, {answered} answers, {refused} refusals, {unbiased_acne} acne pixels without bias",
+        cases.len()
+    );
+    assert!(
+        answered > cases.len(),
+        "{what}: too few answers: {answered}"
+    );
+    assert!(
+        unbiased_acne > 0,
+        "{what}: no acne without bias: the check cannot fail"
+    );
+    assert!(
+        failures.is_empty(),
+        "{what}: {} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+    (answered, refused)
+}
+
+/// A deterministic sample of the grid's cases (another draw under a seed): both lights, four
+/// elevations, three lookups, picked by `stride`.
+fn sample(stride: usize, offset: usize) -> Vec<Case> {
+    let mut v = Vec::new();
+    for kind in [Kind::Directional, Kind::Spot] {
+        for elevation in [5.0, 20.0, 45.0, 89.0] {
+            for pcf in [1, 0, 3] {
+                v.push(case_of(
+                    kind,
+                    elevation,
+                    pcf,
+                    (v.len() * stride + offset) % 81,
+                ));
+            }
+        }
+    }
+    drawn(v)
+}
+
+/// The atlas cases: each map a tile of a 4096² atlas (8192² for tiles over 2048) far from its
+/// origin (where the rasterizer's plane set-up extrapolates furthest), under a `glDepthRange`
+/// sub-range or the full one; the tile placed after a seed's draw, which may change its size.
+fn atlas_cases() -> Vec<Case> {
+    let ranges = [[0.0, 1.0], [0.25, 0.75], [0.5, 1.0], [0.0, 0.5]];
+    sample(29, 5)
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut case)| {
+            let res = case.resolution;
+            let size = if res > 2048 { 8192 } else { 4096 };
+            let origins = [
+                [size - res, size - res],
+                [size - res, 0],
+                [res / 2, size - res],
+            ];
+            case.atlas = Some(Atlas {
+                size,
+                origin: origins[i % 3],
+                depth_range: ranges[i % 4],
+            });
+            case
+        })
+        .collect()
+}
+
+/// A shadow atlas: every map a tile far from the atlas's origin, some under a `glDepthRange`
+/// sub-range, the lookup reading the tile and comparing against `near + (far − near)·w`;
+/// zshift told the tile's origin and the depth range. Printed: the tile's cost, the units
+/// against the same map as a texture of its own (in unit window depth).
+#[test]
+fn atlas_tiles_are_acne_free() {
+    let mut cost = Vec::new();
+    sweep("shadow atlas", &atlas_cases(), &[true], |_, a| {
+        let own_map = ShadowMap {
+            pipeline: zshift::model::Pipeline {
+                viewport_origin: [0, 0],
+                depth_range: [0.0, 1.0],
+                ..a.map.pipeline
+            },
+            ..*a.map
+        };
+        if let Ok(own) = ask(&own_map, a.receivers, a.ground) {
+            let span = a.map.pipeline.span();
+            cost.push(a.bias.gl_polygon_offset[1] / (own.gl_polygon_offset[1] * span));
+        }
+    });
+    cost.sort_by(f64::total_cmp);
+    println!(
+        "the tile's units ÷ the map's own (unit window depth): median {:.3}, max {:.3}",
+        cost.get(cost.len() / 2).copied().unwrap_or(f64::NAN),
+        cost.last().copied().unwrap_or(f64::NAN)
+    );
+}
+
+/// The scene far from the world's origin: the ground, the box, the light and the camera moved by
+/// 10², 10³, 10⁴ or 10⁵ units (f32 world positions, the light's and the camera's f32 matrices of
+/// the moved scene, as an engine with a large world holds them); zshift told the light's
+/// position and the scene's origin (`world_reach`), and with the view variants the light's f32
+/// view matrix and the moved world box. Printed: what the distance costs in leaked shadow,
+/// beside the same scenes at the origin.
+#[test]
+fn far_from_the_origin_is_acne_free() {
+    let cases: Vec<Case> = sample(31, 11)
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut case)| {
+            let t = [1e2, 1e3, 1e4, 1e5][i % 4];
+            case.shift =
+                [[0.8, 0.0, -0.6], [0.0, 1.0, 0.0], [-0.6, 0.1, 0.79]][i % 3].map(|c| c * t);
+            case
+        })
+        .collect();
+    // Per distance, probed profile, the bound path, from world_reach alone and with the light's
+    // view: shadowed pixels left lit, the same at the origin, shadowed pixels.
+    let mut leaks = std::collections::BTreeMap::<u64, [[usize; 3]; 2]>::new();
+    sweep(
+        "far from the origin",
+        &cases,
+        &[false, true],
+        |looker, a| {
+            if a.receivers || a.profile != "probed" {
+                return;
+            }
+            let home = Case {
+                shift: [0.0; 3],
+                ..*a.case
+            };
+            let view = a.map.pipeline.view.is_some();
+            let pipeline = if view {
+                looker.light.pipeline()
+            } else {
+                Default::default()
+            };
+            let home_map =
+                home.shadow_map(looker.light, a.map.limit_angle_deg, a.map.profile, pipeline);
+            let at_home = shadow_bias(&home_map)
+                .ok()
+                .map(|b| looker.look(&home, &b).leak);
+            let t = a.case.shift.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let row = &mut leaks
+                .entry(10f64.powf(t.log10().round()) as u64)
+                .or_default()[usize::from(view)];
+            row[0] += a.got.leak;
+            row[1] += at_home.unwrap_or(a.got.leak);
+            row[2] += a.got.shadowed;
+        },
+    );
+    println!("shadowed pixels left lit, probed (the same scenes at the origin): world_reach alone | the light's view matrix");
+    for (t, [scalar, view]) in &leaks {
+        let pct = |r: [usize; 3], k: usize| 100.0 * r[k] as f64 / r[2].max(1) as f64;
+        println!(
+            "  {t:>7}: {:5.1} % ({:4.1} %) | {:5.1} % ({:4.1} %) of {}",
+            pct(*scalar, 0),
+            pct(*scalar, 1),
+            pct(*view, 0),
+            pct(*view, 1),
+            scalar[2]
+        );
+    }
+}
