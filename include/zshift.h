@@ -737,7 +737,8 @@ typedef struct {
   uint32_t polygon_mode;
   /*
    MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
-   sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction).
+   sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), plus 1 for
+   polygon-mode lines (a sample's distance from its pixel centre, measured).
    */
   uint32_t samples;
   /*
@@ -823,7 +824,8 @@ typedef struct {
   /*
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
    depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines, the probed reach
-   + 1/16 + (w - 1)/2 for GL_LINES with a profile, sqrt(2)*(w + 1)/2 under MSAA.
+   + 1/16 + (w - 1)/2 for GL_LINES with a profile, sqrt(2)*(w + 1)/2 under MSAA (plus 1 for
+   polygon-mode lines).
    */
   double line_reach;
   /*

@@ -52,7 +52,12 @@
 //! in a direction that is not an axis: the face's gradient along it is up to `|∇z| ≤ √2·M`, so a
 //! sample is off the face by up to `(w/2)·√2·M`, more than `(w + 1)/2·M` from `w ≥ 2.5`. Under
 //! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction), with
-//! either profile (the probe measures single-sampled lines). `M` is exactly the slope term of
+//! either profile (the probe measures single-sampled lines). Polygon-mode lines under MSAA add
+//! a sample's distance from its pixel centre (`√2/2`, times `√2`: `Δ = √2·(w + 1)/2 + 1`), as a
+//! rasterizer that takes an outline fragment's depth once per pixel needs: measured on
+//! llvmpipe (`tests/gl_lines.rs`, the `polymode 4xMSAA` variant of the full grid), a torus lost
+//! 2 samples of 21767 under (a) at `√2·(w + 1)/2` in 75 scene-asks, kept from 1.25× the offset.
+//! `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
 //! constant for the whole mesh, so it must pay `L = g·Δ` for the steepest face that matters:
@@ -425,7 +430,8 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
 /// `ZSHIFT_LINES_SEED=1`); the issue's own measurement reached 0.52.
 const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 
-/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA, else the profile's measured reach for the
+/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
+/// profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term").
 fn line_reach(edges: &Edges) -> f64 {
@@ -434,7 +440,14 @@ fn line_reach(edges: &Edges) -> f64 {
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
-        return std::f64::consts::SQRT_2 * worst;
+        let across = std::f64::consts::SQRT_2 * worst;
+        // Polygon-mode outlines under MSAA also take a sample's depth where its pixel centre's
+        // is: add the sample's distance from the centre, up to √2/2, times √2 (module docs,
+        // "MSAA"; measured on llvmpipe: a torus lost 2 samples at `across`, kept from 1.25×).
+        return match edges.kind {
+            LineKind::PolygonMode => across + 1.0,
+            LineKind::Lines => across,
+        };
     }
     let p = &edges.profile;
     let measured = p.line_reach[0];
@@ -793,7 +806,15 @@ mod tests {
         );
         e.line_width = 3.0;
         e.samples = 4;
+        assert_eq!(e.kind, LineKind::PolygonMode);
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        // Polygon-mode outlines add a sample's distance from its pixel centre, √2/2 times √2.
+        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2 + 1.0);
+        let lines = Edges {
+            kind: LineKind::Lines,
+            ..e
+        };
+        let r = recommend(&m, clip, &lines, EdgeMethod::Matrix).unwrap();
         assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2);
         // Under MSAA a sample lies up to (w/2)·√2 off the line along the face's gradient: the
         // reach covers it at every width.
