@@ -173,9 +173,13 @@ struct Case {
     /// The camera's offset from the ground's centre in world x and z: engines' cameras sit at
     /// coordinates no f32 holds exactly.
     jitter: [f64; 2],
-    /// The ground's world height (f32-exact): 0, or with `ZSHIFT_ENGINE_SCENES_SEED` as far
-    /// from the origin as the translation (a world whose ground is not at y = 0).
+    /// The ground's world height under the camera (f32-exact): 0, or with
+    /// `ZSHIFT_ENGINE_SCENES_SEED` as far from the origin as the translation (a world whose
+    /// ground is not at y = 0).
     ground_y: f64,
+    /// The ground's rise per unit of world x (0: level; a hillside otherwise): the ground is the
+    /// plane `y = ground_y + tilt·(x − camera x)`, decals lie on it.
+    tilt: f64,
     /// The vertical field of view, degrees.
     fovy_deg: f64,
     grid: bool,
@@ -206,6 +210,16 @@ impl Case {
             self.ground_y + EYE_HEIGHT,
             self.translate + self.jitter[1],
         ]
+    }
+
+    /// The ground's height at world `x`.
+    fn height(&self, x: f64) -> f64 {
+        self.ground_y + self.tilt * (x - self.camera()[0])
+    }
+
+    /// The camera's distance from the ground's plane, along its normal.
+    fn clearance(&self) -> f64 {
+        EYE_HEIGHT / (1.0 + self.tilt * self.tilt).sqrt()
     }
 
     /// The rotation world → eye: the camera turned by `yaw` about the vertical (at 0 it looks
@@ -252,9 +266,10 @@ impl Case {
         let cells = if self.grid { 64 } else { 1 };
         let step = 2.0 * GROUND / f64::from(cells);
         let at = |i: u32, j: u32| {
+            let x = x0 + step * f64::from(i);
             [
-                (x0 + step * f64::from(i)) as f32,
-                self.ground_y as f32,
+                x as f32,
+                self.height(x) as f32,
                 (z0 + step * f64::from(j)) as f32,
             ]
         };
@@ -281,19 +296,22 @@ impl Case {
         ]
     }
 
-    /// A square of half side `half` around the decal's centre at height `y`, as world corners.
-    fn square(&self, half: f64, y: f64) -> [[f64; 3]; 4] {
+    /// A square of half side `half` (in world x and z) around the decal's centre on the ground,
+    /// moved `lift` along the ground's normal, as world corners.
+    fn square(&self, half: f64, lift: f64) -> [[f64; 3]; 4] {
         let [x, z] = self.decal_centre();
+        let k = 1.0 / (1.0 + self.tilt * self.tilt).sqrt();
+        let on = |x: f64, z: f64| [x - self.tilt * k * lift, self.height(x) + k * lift, z];
         [
-            [x - half, y, z + half],
-            [x + half, y, z + half],
-            [x + half, y, z - half],
-            [x - half, y, z - half],
+            on(x - half, z + half),
+            on(x + half, z + half),
+            on(x + half, z - half),
+            on(x - half, z - half),
         ]
     }
 
     fn decal_world(&self) -> [[f32; 3]; 4] {
-        self.square(self.size / 2.0, self.ground_y)
+        self.square(self.size / 2.0, 0.0)
             .map(|p| p.map(|c| c as f32))
     }
 
@@ -349,7 +367,7 @@ impl Case {
             for j in j0..=j1 + 1 {
                 let x = self.translate - GROUND + step * i as f64;
                 let z = self.translate - GROUND + step * j as f64;
-                out.push([x, self.ground_y, z]);
+                out.push([x, self.height(x), z]);
             }
         }
         out
@@ -392,8 +410,11 @@ impl Case {
     fn world_box(&self) -> [[f64; 3]; 2] {
         let g = self.translate;
         if !self.grid {
-            let y = self.ground_y;
-            return [[g - GROUND, y, g - GROUND], [g + GROUND, y, g + GROUND]];
+            let (y0, y1) = (self.height(g - GROUND), self.height(g + GROUND));
+            return [
+                [g - GROUND, y0.min(y1), g - GROUND],
+                [g + GROUND, y0.max(y1), g + GROUND],
+            ];
         }
         let corners = self.decal_cell_corners();
         let lo = [0, 1, 2].map(|k| corners.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
@@ -412,7 +433,8 @@ impl Case {
         [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
             .iter()
             .map(|[sx, sz]| {
-                let e = self.eye([g + sx * GROUND, self.ground_y, g + sz * GROUND]);
+                let x = g + sx * GROUND;
+                let e = self.eye([x, self.height(x), g + sz * GROUND]);
                 e.iter().fold(0.0f64, |a, c| a.max(c.abs()))
             })
             .fold(0.0, f64::max)
@@ -433,6 +455,10 @@ impl Case {
             self.jitter,
             if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
                 format!(" ground y {} fovy {:.1}°", self.ground_y, self.fovy_deg)
+            } else {
+                String::new()
+            } + &if self.tilt != 0.0 {
+                format!(" hillside {}", self.tilt)
             } else {
                 String::new()
             },
@@ -539,9 +565,9 @@ impl<'a> Renderer<'a> {
         let stored = self.gl.read_depth()?;
         let c = self.case;
         let (l, r, b, t, n, f) = c.frustum().parameters();
-        // The ground plane y = 0 in eye space: normal and offset from three world points.
-        let y = c.ground_y;
-        let [o, ex, ez] = [[0.0, y, 0.0], [1.0, y, 0.0], [0.0, y, 1.0]].map(|p| c.eye(p));
+        // The ground plane in eye space: normal and offset from three world points.
+        let [o, ex, ez] =
+            [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]].map(|[x, z]| c.eye([x, c.height(x), z]));
         let (u1, u2) = (
             [0, 1, 2].map(|k| ex[k] - o[k]),
             [0, 1, 2].map(|k| ez[k] - o[k]),
@@ -604,18 +630,19 @@ impl<'a> Renderer<'a> {
     }
 
     /// Decal pixels shown over an occluder parallel to the ground whose eye depth is `gap` in
-    /// front of the ground's at every decal pixel: along a ray from the camera at height h,
-    /// `d_occluder/d_ground = (h − δh)/h`, so `δh = gap·h/d₁` suffices (`d₁` the decal's
-    /// nearest eye depth).
+    /// front of the ground's at every decal pixel: along a ray from the camera at distance h
+    /// from the ground's plane (its normal), `d_occluder/d_ground = (h − δ)/h`, so `δ = gap·h/d₁`
+    /// along the normal suffices (`d₁` the decal's nearest eye depth).
     fn bled(&mut self, decal_proj: &[f32; 16], gap: f64, d1: f64) -> Result<Option<Count>, String> {
-        let lift = gap * EYE_HEIGHT / d1 * (1.0 + 1e-6);
-        if lift >= 0.9 * EYE_HEIGHT {
+        let h = self.case.clearance();
+        let lift = gap * h / d1 * (1.0 + 1e-6);
+        if lift >= 0.9 * h {
             return Ok(None); // a gap reaching the camera: nothing to check
         }
         let occluder = quad_triangles(
             &self
                 .case
-                .square(0.75 * self.case.size, self.case.ground_y + lift)
+                .square(0.75 * self.case.size, lift)
                 .map(|p| p.map(|c| c as f32)),
         );
         let occ_mask = self.coverage(&occluder)?;
@@ -794,6 +821,8 @@ fn cases() -> Vec<Case> {
     let mut pick = Xorshift(0x2545_F491_4F6C_DD1D ^ seed.wrapping_mul(0x9E37_79B9_7F4A_7C15));
     // The roll from a stream of its own, so the other choices stay those of the unrolled sweep.
     let mut roll_pick = Xorshift(0x0D1E_2026_1126_5EED ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9));
+    // The hillside from a stream of its own too.
+    let mut tilt_pick = Xorshift(0x7117_2026_1126_0A5E ^ seed.wrapping_mul(0x94D0_49BB_1331_11EB));
     let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
@@ -827,6 +856,7 @@ fn cases() -> Vec<Case> {
                             origin: [[0, 0], [3500, 1900]][pick.index(2)],
                             depth_range: [[0.0, 1.0], [0.0, 0.5], [0.5, 1.0]][pick.index(3)],
                             ground_y: 0.0,
+                            tilt: [0.0, 0.0, 0.25, -0.6][tilt_pick.index(4)],
                             fovy_deg: FOVY_DEG,
                         };
                         out.push(if seed == 0 {
