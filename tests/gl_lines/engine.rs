@@ -6,7 +6,9 @@
 //!
 //! Each scene takes the sweep's mesh (eye space, as the sweep places it), a camera rotation and
 //! a position `T` units from the origin, and stores the world positions `R⁻¹·eye + camera` as
-//! f32 with the f32 view matrix `[R | −R·camera]`. The reference is the exact geometry drawn:
+//! f32 with the f32 view matrix `[R | −R·camera]`. Lines: 1-pixel, polygon-mode and width-3,
+//! and 1-pixel and polygon-mode lines under 4× MSAA (in a viewport at the framebuffer's origin,
+//! where the harness's multisampled target is). The reference is the exact geometry drawn:
 //! the f64 product of the f32 view matrix and the f32 world positions, projected in f64
 //! ([`project_points`]); the counting is the sweep's ([`classify`]).
 
@@ -100,7 +102,14 @@ fn edges_drawn_as_engines_draw() {
     let renderer = Renderer::new(gl.glow());
     let profiles = profiles(&gl);
     let meshes: [MeshMaker; 4] = [sphere, torus, terrain, chamfered_box];
-    let variants = [VARIANTS[0], VARIANTS[1], VARIANTS[2]];
+    // 1-pixel, polygon-mode and width-3 lines, and 1-pixel and polygon-mode lines under 4× MSAA.
+    let variants = [
+        VARIANTS[0],
+        VARIANTS[1],
+        VARIANTS[2],
+        VARIANTS[3],
+        VARIANTS[6],
+    ];
     let (mut scenes, mut answered, mut visible, mut hidden, mut unoffset_lost) = (0, 0, 0, 0, 0);
     let mut refused = 0;
     let mut failures = Vec::new();
@@ -115,9 +124,14 @@ fn edges_drawn_as_engines_draw() {
                 let ratio: f64 = [10.0, 1e3, 1e6][(turn / 4) % 3] * draw.ratio_factor();
                 let frac = [0.15, 0.5, 0.85][(turn / 12) % 3] + draw.position_shift();
                 let t = TRANSLATIONS[(turn / 2) % 4] * (1.0 + draw.unit().unwrap_or(0.0));
-                let origin = ORIGINS[turn % 3];
                 let range = RANGES[(turn / 5) % 3];
-                let variant = variants[(turn / 7) % 3];
+                let variant = variants[(turn / 7) % variants.len()];
+                // The harness's multisampled target sits at the framebuffer's origin.
+                let origin = if variant.samples > 1 {
+                    [0, 0]
+                } else {
+                    ORIGINS[turn % 3]
+                };
                 let (n, f) = (1.0f64, ratio);
                 let d0 = (n * ratio.powf(frac)).max(1.6 * n).min(0.7 * f);
                 let (mesh, _) = placed(make, n, f, d0, 0.3);
@@ -136,7 +150,7 @@ fn edges_drawn_as_engines_draw() {
                 let m = projection(&frustum, clip).unwrap();
                 let mf = projection_f64(&frustum, clip).unwrap();
                 let p = project_points(&eye, &mf);
-                let rf = reference(&mesh, &p, [0.5, 0.5]);
+
                 let b = f * n / (f - n);
                 gl.set_target(SIZE + origin[0], SIZE + origin[1], fmt)
                     .unwrap();
@@ -152,6 +166,16 @@ fn edges_drawn_as_engines_draw() {
                 })
                 .unwrap();
                 renderer.load_positions(gl.glow(), &world);
+                // A multisampled target beside this scene's own (it rebinds that one after reads).
+                let msaa = (variant.samples > 1).then(|| Msaa::new(&gl, fmt, variant.samples));
+                let rfs: Vec<Reference> = match &msaa {
+                    Some(ms) => ms
+                        .positions
+                        .iter()
+                        .map(|&o| reference(&mesh, &p, o))
+                        .collect(),
+                    None => vec![reference(&mesh, &p, [0.5, 0.5])],
+                };
                 let mut scene = Scene::new(
                     &gl,
                     &renderer,
@@ -159,7 +183,7 @@ fn edges_drawn_as_engines_draw() {
                     m,
                     conv == Conv::Reversed,
                     variant,
-                    None,
+                    msaa.as_ref(),
                 );
                 scene.view = Some(view32);
                 scene.origin = origin;
@@ -178,6 +202,7 @@ fn edges_drawn_as_engines_draw() {
                         let mut edges = Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
                         edges.kind = line_kind(variant.kind);
                         edges.line_width = f64::from(variant.width);
+                        edges.samples = variant.samples;
                         edges.profile = profile;
                         edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
                         edges.depth_test = if conv == Conv::Reversed {
@@ -205,15 +230,8 @@ fn edges_drawn_as_engines_draw() {
                             }
                         };
                         answered += 1;
-                        let c = classify(
-                            &scene,
-                            &p,
-                            std::slice::from_ref(&rf),
-                            &ids,
-                            b,
-                            rec.face_gradient,
-                            rec.hidden_gap,
-                        );
+                        let c =
+                            classify(&scene, &p, &rfs, &ids, b, rec.face_gradient, rec.hidden_gap);
                         visible += c.visible.len();
                         hidden += c.hidden.len();
                         let (lost, shown) = scene.count(&scaled(&rec, &m, clip, 1.0), &c);
@@ -232,6 +250,10 @@ fn edges_drawn_as_engines_draw() {
                             unoffset_lost += scene.count(&plain, &c).0;
                         }
                     }
+                }
+                drop(scene);
+                if let Some(ms) = msaa {
+                    ms.delete(&gl);
                 }
             }
         }
