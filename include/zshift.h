@@ -1040,11 +1040,14 @@ typedef struct {
    */
   float webgpu_clamp;
   /*
-   Receiver side: the world distance to move a receiver toward the light.
+   Receiver side: the world distance to move a receiver toward the light (INFINITY where
+   none works, e.g. where it would move the nearest receiver onto or past a spot light).
    */
   double along_light;
   /*
-   Receiver side: the world distance to move a receiver along its normal.
+   Receiver side: the world distance to move a receiver along its normal (INFINITY where
+   none works); it also shifts shadows sideways by up to this times the sine of the angle
+   to the light.
    */
   double along_normal;
   /*

@@ -376,10 +376,13 @@ pub struct ShadowBias {
     pub webgpu_slope_clamp: [f32; 2],
     /// Receiver side: the world distance to move the receiver toward the light, at the
     /// farthest receiver (+∞ where no such offset exists: a spot light whose rays can graze the
-    /// limit, or whose depth range ends within the bias behind the farthest receiver).
+    /// limit, or whose depth range ends within the bias behind the farthest receiver, or an
+    /// offset that would move the nearest receiver onto or past a spot light).
     pub along_light: f64,
     /// Receiver side: the world distance to move the receiver along its normal (+∞ where the
-    /// bias reaches past a spot light's far plane at the farthest receiver).
+    /// bias reaches past a spot light's far plane at the farthest receiver, or where it would
+    /// move the nearest receiver onto or past a spot light). The move also shifts the receiver's shadow sideways by up to this
+    /// times the sine of its angle to the light (normal-offset shadows).
     pub along_normal: f64,
     /// The most a caster within the limit angle is biased, as a distance along the light: a
     /// caster thinner than this casts no shadow (+∞ without a clamp).
@@ -486,6 +489,16 @@ fn finish(
         Some((light, normal)) => (light, normal, light),
         None => receiver_offsets(map, &terms)?,
     };
+    // A receiver moved toward a spot light by its light depth or more reaches or passes the
+    // light, where the projection flips: no such offset works. (Short of it, past the near
+    // plane, the lookup's depth leaves the map's range on the lit side; along the ray its map
+    // position stays. A directional light has no such point.)
+    let room = match map.light {
+        LightProjection::Perspective(_) => map.receiver_depths[0],
+        LightProjection::Orthographic(_) => f64::INFINITY,
+    };
+    let usable = |offset: f64| if offset < room { offset } else { f64::INFINITY };
+    let (along_light, along_normal) = (usable(along_light), usable(along_normal));
     let e = map.elevation_deg.to_radians();
     Ok(ShadowBias {
         terms,

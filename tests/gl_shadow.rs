@@ -30,7 +30,8 @@
 //! `placed::atlas_tiles_are_acne_free`: maps drawn as tiles of a shadow atlas under
 //! `glDepthRange` sub-ranges, zshift told the tile's origin and the range.
 //! `placed::far_from_the_origin_is_acne_free`: the whole scene 10²–10⁵ units from the world's
-//! origin, in f32 world positions.
+//! origin, in f32 world positions. `placed::receiver_side_offsets_are_acne_free`: zshift's
+//! `along_light` and `along_normal` applied in the lookup, the map drawn without bias.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.

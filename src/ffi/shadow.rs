@@ -142,9 +142,12 @@ pub struct ZshiftShadowBias {
     pub webgpu_slope_scale: f32,
     /// WebGPU depthBiasClamp.
     pub webgpu_clamp: f32,
-    /// Receiver side: the world distance to move a receiver toward the light.
+    /// Receiver side: the world distance to move a receiver toward the light (INFINITY where
+    /// none works, e.g. where it would move the nearest receiver onto or past a spot light).
     pub along_light: f64,
-    /// Receiver side: the world distance to move a receiver along its normal.
+    /// Receiver side: the world distance to move a receiver along its normal (INFINITY where
+    /// none works); it also shifts shadows sideways by up to this times the sine of the angle
+    /// to the light.
     pub along_normal: f64,
     /// The most a caster within the limit angle is biased along the light: thinner casters
     /// cast no shadow.

@@ -24,6 +24,7 @@ fn ask(
 struct Looker<'a> {
     gl: &'a mut Gl,
     rig: &'a Rig,
+    eye: [f64; 3],
     camera: &'a M4,
     light: &'a Light,
     truth: &'a [Option<bool>],
@@ -39,6 +40,24 @@ impl Looker<'_> {
             offset: Some((f as f32, u as f32, c as f32)),
             ..Default::default()
         };
+        self.look_with(case, caster, ReceiverBias::default())
+    }
+
+    /// [`Looker::look_judged`] against the case's own reference.
+    fn look_with(&mut self, case: &Case, caster: CasterBias, receiver: ReceiverBias) -> Count {
+        let truth = self.truth;
+        self.look_judged(case, caster, receiver, truth)
+    }
+
+    /// The camera's count with `case`'s map drawn under `caster` and looked up with `receiver`,
+    /// judged against `truth`.
+    fn look_judged(
+        &mut self,
+        case: &Case,
+        caster: CasterBias,
+        receiver: ReceiverBias,
+        truth: &[Option<bool>],
+    ) -> Count {
         let px = unsafe {
             self.rig.look_biased(
                 self.gl,
@@ -47,11 +66,11 @@ impl Looker<'_> {
                 self.camera,
                 self.unbiased,
                 caster,
-                ReceiverBias::default(),
+                receiver,
             )
         }
         .unwrap_or_else(|e| panic!("{e}"));
-        count(&px, self.truth)
+        count(&px, truth)
     }
 }
 
@@ -106,6 +125,7 @@ fn sweep(
         let mut looker = Looker {
             gl: &mut gl,
             rig: &rig,
+            eye,
             camera: &camera,
             light: &light,
             truth: &truth,
@@ -338,4 +358,81 @@ fn far_from_the_origin_is_acne_free() {
             scalar[2]
         );
     }
+}
+
+/// zshift's receiver-side alternatives, applied in the lookup as an engine applies them (the
+/// map drawn without bias): the receiver moved toward the light by `along_light` (world units),
+/// or along its normal by `along_normal`, each alone. Every finite one must show 0 acne
+/// pixels, from the bound over the limit angle and with the ground listed, both profiles,
+/// from `world_reach` alone and with the light's view. Printed: the leak each costs beside the
+/// caster-side bias's.
+#[test]
+fn receiver_side_offsets_are_acne_free() {
+    let (mut failures, mut checked, mut infinite) = (Vec::new(), 0, 0);
+    // Shadowed pixels left lit: caster-side, along the light; (unused); shadowed.
+    let mut leak = [0usize; 4];
+    sweep(
+        "receiver-side offsets",
+        &sample(13, 2),
+        &[false, true],
+        |looker, a| {
+            for (what, light, normal) in [
+                ("along the light", a.bias.along_light, 0.0),
+                ("along the normal", 0.0, a.bias.along_normal),
+            ] {
+                if !(light.is_finite() && normal.is_finite()) {
+                    infinite += 1;
+                    continue;
+                }
+                let receiver = ReceiverBias {
+                    along_light: light as f32,
+                    along_normal: normal as f32,
+                    ..Default::default()
+                };
+                // A normal offset moves the lookup off the ground, and with it the shadows
+                // (normal-offset shadows shift): judged against the lifted points' own shadow.
+                let lifted;
+                let truth = if normal > 0.0 {
+                    let (case, light) = (a.case, looker.light);
+                    let reach = case.kernel_reach();
+                    lifted =
+                        reference_lifted(case, light, looker.camera, looker.eye, reach, normal);
+                    &lifted[..]
+                } else {
+                    looker.truth
+                };
+                let got = looker.look_judged(a.case, CasterBias::default(), receiver, truth);
+                checked += 1;
+                if light > 0.0 {
+                    leak[1] += got.leak;
+                }
+                if got.acne > 0 {
+                    failures.push(format!(
+                        "{} ({}{}) {what} {}: {} acne pixels of {}",
+                        a.case.label(),
+                        a.profile,
+                        if a.receivers { ", receivers" } else { "" },
+                        light.max(normal),
+                        got.acne,
+                        got.lit
+                    ));
+                }
+            }
+            leak[0] += a.got.leak;
+            leak[3] += a.got.shadowed;
+        },
+    );
+    let pct = |k: usize| 100.0 * leak[k] as f64 / leak[3].max(1) as f64;
+    println!(
+        "receiver-side offsets: {checked} looked up, {infinite} infinite (none exists); shadowed pixels left lit: caster-side bias {:.1} %, along the light {:.1} % (a normal offset shifts shadows instead)",
+        pct(0),
+        pct(1)
+    );
+    assert!(checked > 0, "no receiver-side offset was finite");
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
 }

@@ -1077,6 +1077,20 @@ pub fn reference(
     eye: [f64; 3],
     reach: f64,
 ) -> Vec<Option<bool>> {
+    reference_lifted(case, light, camera, eye, reach, 0.0)
+}
+
+/// [`reference`] for lookups made `lift` above the ground along its normal (a receiver-side
+/// normal offset): each pixel's ground point is lifted before its shadow and its map position
+/// are taken, so a normal offset's own shift of the shadows is not counted as acne.
+pub fn reference_lifted(
+    case: &Case,
+    light: &Light,
+    camera: &M4,
+    eye: [f64; 3],
+    reach: f64,
+    lift: f64,
+) -> Vec<Option<bool>> {
     let inverse = invert(camera);
     let light_vp = mul(&light.proj, &light.view);
     let light_inv = invert(&light_vp);
@@ -1115,6 +1129,7 @@ pub fn reference(
                 out.push(None);
                 continue;
             }
+            let p = [p[0], lift, p[2]];
             let uv = to_map(p);
             if uv.iter().any(|&c| c < edge + 1.0 || c > n - edge - 1.0) {
                 out.push(None);
