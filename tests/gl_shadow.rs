@@ -32,6 +32,7 @@
 //! `placed::far_from_the_origin_is_acne_free`: the whole scene 10²–10⁵ units from the world's
 //! origin, in f32 world positions. `placed::receiver_side_offsets_are_acne_free`: zshift's
 //! `along_light` and `along_normal` applied in the lookup, the map drawn without bias.
+//! `placed::disk_kernels_are_acne_free`: `Lookup::Radius`, a disk of taps.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -96,6 +97,7 @@ fn case_of(kind: Kind, elevation: f64, pcf: u32, c: usize) -> Case {
         format: [F::D16, F::D24, F::D32F][(c / 9) % 3],
         clip: clips[(c / 27) % 3],
         pcf,
+        radius: 0.0,
         atlas: None,
         shift: [0.0; 3],
     }

@@ -29,6 +29,7 @@ const SCENE: Case = Case {
     format: DepthFormat::D16,
     clip: ClipDepth::NegOneToOne,
     pcf: 3,
+    radius: 0.0,
     atlas: None,
     shift: [0.0; 3],
 };

@@ -436,3 +436,18 @@ fn receiver_side_offsets_are_acne_free() {
         failures.join("\n")
     );
 }
+
+/// A disk kernel (`Lookup::Radius`: Poisson-style lookups, each tap reading the texel its point
+/// lies in), radius 1.5, 2.5 or 4 texels: 0 acne at zshift's bias, as for the square kernels.
+#[test]
+fn disk_kernels_are_acne_free() {
+    let cases: Vec<Case> = sample(17, 7)
+        .into_iter()
+        .enumerate()
+        .map(|(i, mut case)| {
+            case.radius = [1.5, 2.5, 4.0][i % 3];
+            case
+        })
+        .collect();
+    sweep("disk kernels", &cases, &[false, true], |_, _| {});
+}

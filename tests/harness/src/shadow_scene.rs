@@ -160,6 +160,8 @@ pub struct Case {
     pub clip: ClipDepth,
     /// The lookup: 1 nearest, 0 hardware 2×2 comparison, k ≥ 2 k×k PCF.
     pub pcf: u32,
+    /// A disk kernel of this radius in texels (`pcf` is then ignored), or 0.
+    pub radius: f64,
     /// The map as a tile of a shadow atlas, or `None`: a texture of its own.
     pub atlas: Option<Atlas>,
     /// The whole scene (ground, box, light, camera) moved this far from the world's origin: the
@@ -184,6 +186,9 @@ pub struct Atlas {
 impl Case {
     /// The lookup zshift is told about.
     pub fn lookup(&self) -> Lookup {
+        if self.radius > 0.0 {
+            return Lookup::Radius(self.radius);
+        }
         match self.pcf {
             1 => Lookup::Nearest,
             0 => Lookup::Hardware2x2,
@@ -194,6 +199,9 @@ impl Case {
     /// Texels per axis from the lookup point to the farthest texel centre the shader reads
     /// (this file's own statement of its lookups, for the reference's shadow-edge margin).
     pub fn kernel_reach(&self) -> f64 {
+        if self.radius > 0.0 {
+            return self.radius + 0.5;
+        }
         match self.pcf {
             1 => 0.5,
             0 => 1.0,
@@ -286,7 +294,9 @@ impl Case {
             self.resolution,
             self.format.name(),
             self.clip,
-            if self.pcf == 1 {
+            if self.radius > 0.0 {
+                format!("disk r={}", self.radius)
+            } else if self.pcf == 1 {
                 "nearest".into()
             } else if self.pcf == 0 {
                 "hardware 2x2".into()
@@ -523,7 +533,8 @@ uniform mat4 proj;
 uniform vec3 light_pos;
 uniform int spot;
 uniform int clip;      // 0: [-1,1], 1: [0,1], 2: reversed
-uniform int k;         // PCF size (1: nearest; 0: hardware 2x2 comparison)
+uniform int k;         // PCF size (1: nearest; 0: hardware 2x2 comparison; -1: a disk of `radius`)
+uniform float radius;  // texels, with k = -1: 17 taps, the centre and 8 at radius/2 and 8 at radius
 uniform float beta;    // window-depth bias in the lookup
 uniform float r_light; // receiver moved toward the light (world units)
 uniform float r_normal; // receiver moved along its normal (world units)
@@ -557,6 +568,23 @@ void main() {
     }
     vec2 uv = origin + (ndc.xy * 0.5 + 0.5) * tsize;
     ivec2 t = ivec2(floor(uv));
+    if (k < 0) {
+        // A disk kernel: each tap reads the texel its point lies in.
+        ivec2 first = ivec2(origin);
+        ivec2 last = ivec2(origin + tsize) - 1;
+        float zr = depth_lo + depth_span * (clip == 2 ? z + beta : z - beta);
+        int pass = 0;
+        for (int i = 0; i < 17; ++i) {
+            float ring = i == 0 ? 0.0 : (i <= 8 ? 0.5 : 1.0);
+            float a = 0.7853981633974483 * float(i) + (i > 8 ? 0.39269908169872414 : 0.0);
+            vec2 tap = uv + radius * ring * vec2(cos(a), sin(a));
+            ivec2 q = clamp(ivec2(floor(tap)), first, last);
+            float stored = texelFetch(map, q, 0).r;
+            pass += (clip == 2 ? zr >= stored : zr <= stored) ? 1 : 0;
+        }
+        colour = vec4(float(pass) / 255.0, 17.0 / 255.0, 1.0, 1.0);
+        return;
+    }
     ivec2 first = ivec2(origin);
     ivec2 last = ivec2(origin + tsize) - 1;
     float zr = depth_lo + depth_span * (clip == 2 ? z + beta : z - beta);
@@ -996,7 +1024,15 @@ impl Rig {
                 ClipDepth::ReversedZeroToOne => 2,
             },
         );
-        g.uniform_1_i32(u("k").as_ref(), case.pcf as i32);
+        g.uniform_1_i32(
+            u("k").as_ref(),
+            if case.radius > 0.0 {
+                -1
+            } else {
+                case.pcf as i32
+            },
+        );
+        g.uniform_1_f32(u("radius").as_ref(), case.radius as f32);
         g.uniform_1_f32(u("beta").as_ref(), bias.beta);
         g.uniform_1_f32(u("r_light").as_ref(), bias.along_light);
         g.uniform_1_f32(u("r_normal").as_ref(), bias.along_normal);
