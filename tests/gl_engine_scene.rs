@@ -621,8 +621,21 @@ impl<'a> Renderer<'a> {
     }
 
     fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
+        self.lost_offset(decal_proj, None)
+    }
+
+    /// [`Renderer::lost`] with the decal pass under `glPolygonOffset(offset)` too.
+    fn lost_offset(
+        &mut self,
+        decal_proj: &[f32; 16],
+        offset: Option<(f32, f32)>,
+    ) -> Result<Count, String> {
         self.clear_and_draw_ground()?;
-        let (view, state) = (self.view, self.state());
+        let view = self.view;
+        let state = DrawState {
+            polygon_offset: offset,
+            ..self.state()
+        };
         let decal = quad_triangles(&self.case.decal_world());
         self.gl
             .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
@@ -683,6 +696,9 @@ impl<'a> Renderer<'a> {
 #[derive(Debug, Default)]
 struct Outcome {
     lost: usize,
+    /// Decal pixels lost with the plain matrix and the recommendation's `glPolygonOffset`
+    /// equivalent instead (not under reversed Z, where it has none).
+    lost_polygon_offset: usize,
     bled: usize,
     refused: Option<String>,
     drawable: bool,
@@ -779,6 +795,11 @@ fn run_case(
             out.over_cut = cut.map(|c| steps(&rec.matrix) / steps(&c.matrix));
             out.steps = steps(&rec.matrix);
             out.lost = r.lost(&rec.matrix)?.hit;
+            if !case.reversed() {
+                let [factor, units] = rec.polygon_offset;
+                let pulled = Some((-factor as f32, -units as f32));
+                out.lost_polygon_offset = r.lost_offset(&plain, pulled)?.hit;
+            }
             out.bled = r.bled(&rec.matrix, rec.bleed_gap, d1)?.map_or(0, |c| c.hit);
             out.gap_over_distance = rec.bleed_gap / d1;
             out.terms = Some(rec.terms);
@@ -912,12 +933,13 @@ fn the_scene_every_engine_draws() {
             if verbose {
                 println!("{name:6} {}: {out:?}", case.label());
             }
-            if out.lost > 0 || out.bled > 0 {
+            if out.lost > 0 || out.bled > 0 || out.lost_polygon_offset > 0 {
                 failures.push(format!(
-                    "{name} {}: lost {} bled {}",
+                    "{name} {}: lost {} bled {}; with the glPolygonOffset equivalent lost {}",
                     case.label(),
                     out.lost,
-                    out.bled
+                    out.bled,
+                    out.lost_polygon_offset
                 ));
             }
             let ground = if case.grid { "grid" } else { "quad" };
