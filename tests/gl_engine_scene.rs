@@ -427,6 +427,34 @@ impl Case {
         [lo, hi]
     }
 
+    /// The ground quad cut to the frustum in f64 (`zshift::recommend::clip_to_frustum`, on its
+    /// eye-space corners) and carried back to world space as an engine stores it (f32), as
+    /// triangles of a fan; `None` for the grid.
+    fn cut_ground(&self) -> Option<Vec<[f32; 3]>> {
+        if self.grid {
+            return None;
+        }
+        let g = self.translate;
+        let eye: Vec<[f64; 3]> = [[-1.0, 1.0], [1.0, 1.0], [1.0, -1.0], [-1.0, -1.0]]
+            .iter()
+            .map(|[sx, sz]| {
+                let x = g + sx * GROUND;
+                self.eye([x, self.height(x), g + sz * GROUND])
+            })
+            .collect();
+        let cut = zshift::recommend::clip_to_frustum(&self.frustum(), &eye).ok()?;
+        let (r, c) = (self.rotation(), self.camera());
+        let world: Vec<[f32; 3]> = cut
+            .iter()
+            .map(|e| [0, 1, 2].map(|j| ((0..3).map(|i| r[i][j] * e[i]).sum::<f64>() + c[j]) as f32))
+            .collect();
+        Some(
+            (1..world.len().saturating_sub(1))
+                .flat_map(|i| [world[0], world[i], world[i + 1]])
+                .collect(),
+        )
+    }
+
     /// The largest |x|, |y| or |z| of the ground quad's eye-space corners.
     fn quad_reach(&self) -> f64 {
         let g = self.translate;
@@ -699,6 +727,11 @@ struct Outcome {
     /// Decal pixels lost with the plain matrix and the recommendation's `glPolygonOffset`
     /// equivalent instead (not under reversed Z, where it has none).
     lost_polygon_offset: usize,
+    /// Decal pixels lost over the quad cut to the frustum (`clip_to_frustum`, stored back in
+    /// world space) at the recommendation for the cut ground.
+    lost_cut: usize,
+    /// Whether the cut quad was drawn.
+    cut_drawn: bool,
     bled: usize,
     refused: Option<String>,
     drawable: bool,
@@ -791,6 +824,12 @@ fn run_case(
             out.drawable = r.smallest_working()?.is_some();
         }
         Ok((rec, d1, cut)) => {
+            if let (Some(c), Some(tris)) = (&cut, case.cut_ground()) {
+                let whole = std::mem::replace(&mut r.ground, tris);
+                out.lost_cut = r.lost(&c.matrix)?.hit;
+                out.cut_drawn = true;
+                r.ground = whole;
+            }
             let steps = |m: &[f32; 16]| f64::from(steps_between(&plain, m, case.reversed()).max(1));
             out.over_cut = cut.map(|c| steps(&rec.matrix) / steps(&c.matrix));
             out.steps = steps(&rec.matrix);
@@ -912,7 +951,7 @@ fn the_scene_every_engine_draws() {
     // Per translation from the world origin (probed profile, the ground as one quad or a grid):
     // what camera-relative rendering buys.
     let mut by_translation = std::collections::BTreeMap::<u64, Vec<(f64, f64)>>::new();
-    let (mut drawn, mut skipped) = (0, 0);
+    let (mut drawn, mut skipped, mut cut_drawn) = (0, 0, 0);
     // `ZSHIFT_ENGINE_SCENES_ONLY=<text>`: only the scenes whose label contains it.
     let only = std::env::var("ZSHIFT_ENGINE_SCENES_ONLY").ok();
     for case in cases() {
@@ -930,16 +969,18 @@ fn the_scene_every_engine_draws() {
                 continue;
             };
             drawn += 1;
+            cut_drawn += usize::from(out.cut_drawn);
             if verbose {
                 println!("{name:6} {}: {out:?}", case.label());
             }
-            if out.lost > 0 || out.bled > 0 || out.lost_polygon_offset > 0 {
+            if out.lost + out.bled + out.lost_polygon_offset + out.lost_cut > 0 {
                 failures.push(format!(
-                    "{name} {}: lost {} bled {}; with the glPolygonOffset equivalent lost {}",
+                    "{name} {}: lost {} bled {}; with the glPolygonOffset equivalent lost {}; over the cut ground lost {}",
                     case.label(),
                     out.lost,
                     out.bled,
-                    out.lost_polygon_offset
+                    out.lost_polygon_offset,
+                    out.lost_cut
                 ));
             }
             let ground = if case.grid { "grid" } else { "quad" };
@@ -953,7 +994,7 @@ fn the_scene_every_engine_draws() {
             table.entry(key).or_default().push(out);
         }
     }
-    println!("{drawn} scenes drawn, {skipped} skipped (decal under 4 pixels on screen)");
+    println!("{drawn} scenes drawn, {skipped} skipped (decal under 4 pixels on screen); {cut_drawn} also over the quad cut to the frustum, and the glPolygonOffset equivalent in every answered [-1,1] and [0,1] scene");
     println!(
         "{:30} {:>6} {:>8} {:>10} {:>10} {:>10} {:>12} {:>12} {:>12}",
         "class",
