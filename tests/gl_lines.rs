@@ -182,6 +182,29 @@ fn scaled(rec: &zshift::lines::EdgeRecommendation, m: &[f32; 16], clip: ClipDept
     }
 }
 
+/// What the sweeps tell zshift about a mesh over eye depths `depths`: the format, the variant's
+/// line kind, width and samples, the profile, the face-slope limit, the edge pass's test.
+fn edges_for(
+    fmt: DepthFormat,
+    conv: Conv,
+    variant: Variant,
+    profile: RasterizerProfile,
+    depths: [f64; 2],
+) -> Edges {
+    let mut edges = Edges::new([SIZE, SIZE], zshift_format(fmt), depths);
+    edges.kind = line_kind(variant.kind);
+    edges.line_width = f64::from(variant.width);
+    edges.samples = variant.samples;
+    edges.profile = profile;
+    edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
+    edges.depth_test = if conv == Conv::Reversed {
+        DepthTest::GreaterEqual
+    } else {
+        DepthTest::LessEqual
+    };
+    edges
+}
+
 /// The worst-case profile with this context's snapping, and the profile the probe measures in it.
 fn profiles(gl: &Gl) -> [(&'static str, RasterizerProfile); 2] {
     let worst = RasterizerProfile {
@@ -387,17 +410,7 @@ fn edges_over_faces_sweep() {
                             for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
                                 for (pname, profile) in profiles {
                                     let mut edges =
-                                        Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
-                                    edges.kind = line_kind(kind);
-                                    edges.line_width = f64::from(variant.width);
-                                    edges.samples = variant.samples;
-                                    edges.profile = profile;
-                                    edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
-                                    edges.depth_test = if conv == Conv::Reversed {
-                                        DepthTest::GreaterEqual
-                                    } else {
-                                        DepthTest::LessEqual
-                                    };
+                                        edges_for(fmt, conv, variant, profile, [dmin, dmax]);
                                     let label = format!(
                                         "{} {} {} {} {pname}",
                                         conv.name(),

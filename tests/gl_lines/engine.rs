@@ -199,18 +199,10 @@ fn edges_drawn_as_engines_draw() {
                 };
                 for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
                     for (pname, profile) in profiles {
-                        let mut edges = Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
-                        edges.kind = line_kind(variant.kind);
-                        edges.line_width = f64::from(variant.width);
-                        edges.samples = variant.samples;
-                        edges.profile = profile;
-                        edges.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
-                        edges.depth_test = if conv == Conv::Reversed {
-                            DepthTest::GreaterEqual
-                        } else {
-                            DepthTest::LessEqual
+                        let edges = Edges {
+                            pipeline,
+                            ..edges_for(fmt, conv, variant, profile, [dmin, dmax])
                         };
-                        edges.pipeline = pipeline;
                         let where_ = format!(
                             "{} {} {} {method:?} {pname} {} f/n {ratio} at {frac} T {t} viewport@{origin:?} range {range:?}",
                             conv.name(),
