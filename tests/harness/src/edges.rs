@@ -469,6 +469,15 @@ impl Msaa {
         }
     }
 
+    /// Binds the multisampled target for drawing (for other passes than an edge [`Scene`]'s;
+    /// [`Msaa::read_samples`] binds the harness's target again).
+    pub fn bind(&self, gl: &Gl) {
+        unsafe {
+            gl.glow()
+                .bind_framebuffer(glow::FRAMEBUFFER, Some(self.fbo))
+        };
+    }
+
     /// Every sample of the multisampled colour, laid end to end; the harness's target bound
     /// again.
     pub fn read_samples(&self, gl: &Gl) -> Vec<[u8; 4]> {
