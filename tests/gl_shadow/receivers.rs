@@ -581,6 +581,7 @@ fn spheres_and_terrain_receive_without_acne() {
     let (eye, camera) = camera();
     let mut failures = Vec::new();
     let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
+    let mut receiver_side = 0;
     let mut peers = Peers::default();
     let started = std::time::Instant::now();
     for world in [sphere_world(), terrain_world(), box_world()] {
@@ -653,6 +654,25 @@ fn spheres_and_terrain_receive_without_acne() {
                                 got.acne, got.lit, bias.gl_polygon_offset
                             ));
                         }
+                        // The receiver-side alternative along the light, applied in the lookup
+                        // instead (the map drawn without bias), on the same judged pixels.
+                        if listed && bias.along_light.is_finite() {
+                            let receiver = ReceiverBias {
+                                along_light: bias.along_light as f32,
+                                ..Default::default()
+                            };
+                            let got = count(
+                                &through.look(&mut gl, CasterBias::default(), receiver),
+                                truth,
+                            );
+                            receiver_side += 1;
+                            if got.acne > 0 {
+                                failures.push(format!(
+                                    "{where_} ({pname}): {} acne pixels of {} judged along the light {}",
+                                    got.acne, got.lit, bias.along_light
+                                ));
+                            }
+                        }
                         if pname == "probed, receivers" {
                             let acne_at = |gl: &mut Gl, s: f32| {
                                 let offset = Some((f as f32 * s, u as f32 * s, c as f32 * s));
@@ -695,7 +715,7 @@ fn spheres_and_terrain_receive_without_acne() {
     }
     peers.print();
     println!(
-        "shadow receivers: {asked} asked, {answered} answered, {refused} refused, {judged_pixels} judged pixels, {:.1} s",
+        "shadow receivers: {asked} asked, {answered} answered, {refused} refused, {judged_pixels} judged pixels, {receiver_side} looked up with the receiver-side offset along the light instead, {:.1} s",
         started.elapsed().as_secs_f64()
     );
     assert!(
