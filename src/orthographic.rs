@@ -463,11 +463,7 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32) - 1) * (gradient[0] + gradient[1]),
     };
     let transform = U * (k * (m10.abs() * d_max + ndc_max) + w_max + lift);
-    let quantum = if pipeline.depth_range == [0.0, 1.0] {
-        scene.decal.format.spacing_at(w_max)?
-    } else {
-        unit_quantum(scene.decal.format, pipeline, w_max)?
-    };
+    let quantum = unit_quantum(scene.decal.format, pipeline, w_max)?;
     Ok(ErrorTerms {
         decal_clip: 0.0,
         quantum,

@@ -381,8 +381,9 @@ pub struct ShadowBias {
     pub along_light: f64,
     /// Receiver side: the world distance to move the receiver along its normal (+∞ where the
     /// bias reaches past a spot light's far plane at the farthest receiver, or where it would
-    /// move the nearest receiver onto or past a spot light). The move also shifts the receiver's shadow sideways by up to this
-    /// times the sine of its angle to the light (normal-offset shadows).
+    /// move the nearest receiver onto or past a spot light). The move also shifts the
+    /// receiver's shadow sideways by up to this times the sine of its angle to the light
+    /// (normal-offset shadows).
     pub along_normal: f64,
     /// The most a caster within the limit angle is biased, as a distance along the light: a
     /// caster thinner than this casts no shadow (+∞ without a clamp).
@@ -1313,13 +1314,18 @@ mod tests {
     /// The light's pipeline: with its view matrix and the world box, the f32 view term is the
     /// exact per-coordinate one, no larger than the bound from `world_reach` (here far smaller);
     /// a zeroed pipeline is the scalar bound; a view without its box is refused by name.
-    #[test]
-    fn the_lights_view_tightens_the_vertex_term() {
+    /// A directional light's box and a spot light's frustum over the same receivers.
+    fn both_lights() -> [LightProjection; 2] {
         let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
-        for light in [
+        [
             LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
             LightProjection::Perspective(frustum),
-        ] {
+        ]
+    }
+
+    #[test]
+    fn the_lights_view_tightens_the_vertex_term() {
+        for light in both_lights() {
             let scalar = ShadowMap {
                 light,
                 world_reach: 25.0,
@@ -1351,11 +1357,7 @@ mod tests {
     /// depth, is the unit bias times 0.5. Both answered, neither refused.
     #[test]
     fn an_atlas_tile_and_a_depth_range_are_modelled() {
-        let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
-        for light in [
-            LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
-            LightProjection::Perspective(frustum),
-        ] {
+        for light in both_lights() {
             let map = ShadowMap {
                 light,
                 receiver_depths: [10.0, 30.0],

@@ -434,14 +434,7 @@ impl Case {
         if self.grid {
             return None;
         }
-        let g = self.translate;
-        let eye: Vec<[f64; 3]> = [[-1.0, 1.0], [1.0, 1.0], [1.0, -1.0], [-1.0, -1.0]]
-            .iter()
-            .map(|[sx, sz]| {
-                let x = g + sx * GROUND;
-                self.eye([x, self.height(x), g + sz * GROUND])
-            })
-            .collect();
+        let eye: Vec<[f64; 3]> = self.quad_corners().map(|p| self.eye(p)).to_vec();
         let cut = zshift::recommend::clip_to_frustum(&self.frustum(), &eye).ok()?;
         let (r, c) = (self.rotation(), self.camera());
         let world: Vec<[f32; 3]> = cut
@@ -455,16 +448,20 @@ impl Case {
         )
     }
 
+    /// The ground quad's world corners (f64), in order around it.
+    fn quad_corners(&self) -> [[f64; 3]; 4] {
+        let g = self.translate;
+        [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]].map(|[sx, sz]| {
+            let x = g + sx * GROUND;
+            [x, self.height(x), g + sz * GROUND]
+        })
+    }
+
     /// The largest |x|, |y| or |z| of the ground quad's eye-space corners.
     fn quad_reach(&self) -> f64 {
-        let g = self.translate;
-        [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
+        self.quad_corners()
             .iter()
-            .map(|[sx, sz]| {
-                let x = g + sx * GROUND;
-                let e = self.eye([x, self.height(x), g + sz * GROUND]);
-                e.iter().fold(0.0f64, |a, c| a.max(c.abs()))
-            })
+            .map(|&p| self.eye(p).iter().fold(0.0f64, |a, c| a.max(c.abs())))
             .fold(0.0, f64::max)
     }
 

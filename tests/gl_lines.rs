@@ -747,11 +747,7 @@ fn refusals_confirmed_by_bisection() {
     let full = std::env::var_os("ZSHIFT_LINES_FULL").is_some_and(|v| v != "0");
     let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
-    let worst = RasterizerProfile {
-        snapping: gl_common::snapping_of(&gl),
-        ..RasterizerProfile::worst_case()
-    };
-    let probed = gl_common::probed(&gl);
+    let profiles = profiles(&gl);
     let variant = VARIANTS[0];
     let mut failures = Vec::new();
     let mut rows: Vec<(String, [usize; 4])> = Vec::new();
@@ -778,7 +774,7 @@ fn refusals_confirmed_by_bisection() {
             let b = f * n / (f - n);
             for (pos, d) in [("mid", 31.6), ("far", 355.0)] {
                 for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
-                    for (pname, profile) in [("worst", worst), ("probed", probed)] {
+                    for (pname, profile) in profiles {
                         let label = format!(
                             "{} {} {} {pname}",
                             conv.name(),
@@ -789,35 +785,23 @@ fn refusals_confirmed_by_bisection() {
                                 "(a)"
                             }
                         );
-                        let edges_for = |mesh: &Mesh| {
+                        let edges_of = |mesh: &Mesh| {
                             let (dmin, dmax) = mesh.depth_range();
-                            let mut e = Edges::new([SIZE, SIZE], zshift_format(fmt), [dmin, dmax]);
-                            e.profile = profile;
-                            e.face_slope = FaceSlope::Angle(ANGLE_DEG.to_radians());
-                            e.depth_test = if conv == Conv::Reversed {
-                                DepthTest::GreaterEqual
-                            } else {
-                                DepthTest::LessEqual
-                            };
-                            e
+                            edges_for(fmt, conv, variant, profile, [dmin, dmax])
                         };
                         let radius = 0.25 * d;
-                        let g0 = match recommend(
-                            &m,
-                            clip,
-                            &edges_for(&sheets(radius, d, 0.0)),
-                            method,
-                        ) {
-                            Ok(r) => r.hidden_gap,
-                            Err(e) => {
-                                failures.push(format!("{label} {pos}: {e}"));
-                                continue;
-                            }
-                        };
+                        let g0 =
+                            match recommend(&m, clip, &edges_of(&sheets(radius, d, 0.0)), method) {
+                                Ok(r) => r.hidden_gap,
+                                Err(e) => {
+                                    failures.push(format!("{label} {pos}: {e}"));
+                                    continue;
+                                }
+                            };
                         for &k in ks {
                             let thick = k * g0;
                             let mesh = sheets(radius, d, thick);
-                            let mut edges = edges_for(&mesh);
+                            let mut edges = edges_of(&mesh);
                             let where_ = format!("{label} {pos} t = {k}·G = {thick:.3e}");
                             let rec = match recommend(&m, clip, &edges, method) {
                                 Ok(r) => r,
