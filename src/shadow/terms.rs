@@ -1,0 +1,211 @@
+//! The terms of (B1) for the light's pipeline: the caster's own rasterization error (the decal
+//! model of [`crate::recommend`] under a spot light, of [`crate::orthographic`] under a
+//! directional one, with the map as viewport), the storage and read-back roundings, the
+//! lookup's own rounding of the receiver's light-space depth (the f32 view and projection of
+//! the light's vertex pipeline) and the texel footprint at the limit angle or of one listed
+//! receiver's plane.
+
+use super::receivers::COPLANARITY_WIDENING;
+use super::*;
+
+/// The storage term of `K`: the stored UNORM value is within the quantum `q` of the computed
+/// depth under any rounding GL allows; where the probe identified the rasterizer's conversion
+/// (a measured profile's [`RasterizerProfile::facing_chain`], every one of its candidates rounds
+/// to the nearest integer), within `q/2` plus the f32 rounding of the product `w·(2^m − 1)`
+/// the conversion may take first (`u·w_max`, relative). The smaller of the two. D32F stores
+/// the computed depth: `quantum` is its own term there and is left as it is.
+fn storage(map: &ShadowMap, quantum: f64, w_max: f64) -> f64 {
+    match map.profile.facing_chain {
+        Some(_) if map.profile.measured && map.format.is_unorm() => {
+            quantum.min(0.5 * quantum + U * w_max)
+        }
+        _ => quantum,
+    }
+}
+
+/// The vertex pipeline of the light's caster and lookup shaders ([`crate::model::vertex`]): the
+/// map's pipeline with the larger of the two `world_reach`es (both bound the same
+/// coordinates).
+fn vertex_pipeline(map: &ShadowMap) -> crate::model::Pipeline {
+    crate::model::Pipeline {
+        world_reach: map.world_reach.max(map.pipeline.world_reach),
+        ..map.pipeline
+    }
+}
+
+/// The terms of (B1) for receivers at light depths `[d1, d2]` of eye-space slope `slope`: every
+/// plane within the limit angle (`receiver = None`), or one receiver plane with its exact
+/// window-depth plane in the map (`Some`: the decal model runs on that footprint, and `F` is
+/// `a·(|gₓ| + |g_y|)` of its gradient).
+pub(super) fn terms_of(
+    map: &ShadowMap,
+    [d1, d2]: [f64; 2],
+    slope: f64,
+    receiver: Option<&crate::footprint::Footprint>,
+) -> Result<ShadowTerms> {
+    let reach = map.lookup.reach()?;
+    let theta = map.limit_angle_deg.to_radians();
+    // The receiver's own footprint term: exact in f64 from its window plane, widened.
+    let own = receiver
+        .map(|fp| reach * (fp.gradient[0].abs() + fp.gradient[1].abs()) * COPLANARITY_WIDENING);
+    let [w_px, h_px] = map.resolution.map(f64::from);
+    let (caster, snap, lookup, quantum, footprint, w_max) = match map.light {
+        LightProjection::Perspective(frustum) => {
+            let scene = Scene {
+                frustum,
+                viewport: map.resolution,
+                format: map.format,
+                depth_range: [d1, d2],
+                slope,
+                exact_depth: false,
+                depth_test: if map.clip == ClipDepth::ReversedZeroToOne {
+                    DepthTest::Greater
+                } else {
+                    DepthTest::Less
+                },
+                base: Base::InsideFrustum,
+                profile: map.profile,
+                footprint: receiver.copied(),
+                pipeline: vertex_pipeline(map),
+            };
+            let t = crate::recommend::clip_error_terms(&scene, map.clip)?;
+            let (l, r, b, top, n, f) = frustum.parameters();
+            let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
+            let (ex, ey) = (l.abs().max(r.abs()) / n, b.abs().max(top.abs()) / n);
+            let psi_xy = sx * ex / (1.0 + ex * ex).sqrt() + sy * ey / (1.0 + ey * ey).sqrt();
+            let psi = (ex.hypot(ey)).atan();
+            let bb = f * n / (f - n);
+            let ray = theta + psi;
+            let footprint = if let Some(own) = own {
+                own
+            } else if ray >= std::f64::consts::FRAC_PI_2 {
+                f64::INFINITY
+            } else {
+                reach * bb / (n * d1) * (psi_xy + ray.tan() * sx.hypot(sy))
+            };
+            let mapping = crate::precision::DepthMapping::projection(n, f, map.clip)?;
+            let w_max = mapping.window_depth(d1)?.max(mapping.window_depth(d2)?);
+            (
+                t.plane,
+                t.snap,
+                t.transform + t.vertex,
+                t.quantum,
+                footprint,
+                w_max,
+            )
+        }
+        LightProjection::Orthographic(ortho) => {
+            let decal = crate::decal::Decal {
+                viewport: map.resolution,
+                format: map.format,
+                depth_range: [d1, d2],
+                slope,
+                exact_depth: false,
+                snapping: map.profile.snapping,
+                base: Base::InsideFrustum,
+                profile: Some(map.profile),
+                footprint: None,
+                depth_test: None,
+                // The framebuffer state (an atlas tile's origin, glDepthRange); the vertex
+                // pipeline is the light's own term, ortho_world_term.
+                pipeline: crate::model::Pipeline {
+                    viewport_origin: map.pipeline.viewport_origin,
+                    depth_range: map.pipeline.depth_range,
+                    ..crate::model::Pipeline::default()
+                },
+            };
+            let t = crate::orthographic::error_terms(
+                &crate::orthographic::Scene { ortho, decal },
+                map.clip,
+            )?;
+            let (l, r, b, top, n, f) = ortho.parameters();
+            let span = f - n;
+            let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
+            let vertex = if vertex_pipeline(map).world_space() {
+                t.vertex
+                    .max(ortho_world_term(map, &ortho, slope, receiver)?)
+            } else {
+                t.vertex
+            };
+            let footprint = own.unwrap_or(reach * theta.tan() * sx.hypot(sy) / span);
+            let w_max = ortho
+                .window_depth(map.clip, d1)?
+                .max(ortho.window_depth(map.clip, d2)?);
+            let plane = t.plane - t.vertex + vertex;
+            (
+                plane,
+                t.snap,
+                t.transform + vertex,
+                t.quantum,
+                footprint,
+                w_max,
+            )
+        }
+    };
+    // Under glDepthRange(near, far) the stored depth is near + (far − near)·w: roundings of it
+    // are relative to w + lift in unit window depth.
+    let lift = map.pipeline.depth_range[0] / map.pipeline.span();
+    let read = if map.format.is_unorm() {
+        U * (w_max + lift)
+    } else {
+        0.0
+    };
+    let quantum = storage(map, quantum, w_max + lift);
+    let snap_factor = match map.profile.snapping {
+        crate::profile::Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32)),
+        crate::profile::Snapping::Unsnapped => 0.0,
+    };
+    Ok(ShadowTerms {
+        reach,
+        quantum,
+        caster,
+        snap,
+        slope_factor: 2.0 * reach + snap_factor,
+        lookup,
+        read,
+        constant: quantum + caster + lookup + read,
+        footprint,
+    })
+}
+
+/// The f32 model-view term of an orthographic light ([`crate::model::vertex`]): the form of a
+/// plane of slope `s` has `|aₓ| ≤ |A|·s·(r − l)/2`, `|a_y| ≤ |A|·s·(t − b)/2` (`A` the NDC
+/// depth per eye unit) and `|a₀| ≤ 1 + |aₓ| + |a_y|` (the map's centre is at most one NDC unit
+/// per axis from a point inside it); `w = 1`, and a point of the box lies within
+/// `√(X² + Y² + max(|n|, |f|)²)` of the light.
+fn ortho_world_term(
+    map: &ShadowMap,
+    ortho: &Ortho,
+    slope: f64,
+    receiver: Option<&crate::footprint::Footprint>,
+) -> Result<f64> {
+    let m = crate::orthographic::ortho_f64(ortho, map.clip);
+    let (l, r, b, t, n, f) = ortho.parameters();
+    let a = m[10].abs();
+    let (ax, ay) = (
+        a * slope * (r - l).abs() / 2.0,
+        a * slope * (t - b).abs() / 2.0,
+    );
+    let form = PlaneForm {
+        a0: 1.0 + ax + ay,
+        ax,
+        ay,
+    };
+    let extent = (l.abs().max(r.abs()).powi(2)
+        + b.abs().max(t.abs()).powi(2)
+        + n.abs().max(f.abs()).powi(2))
+    .sqrt();
+    let per_ndc = if map.clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    // With a listed receiver, its exact form (the eye-first path needs it); else the bounds
+    // over every plane of the slope.
+    let (form, exact) = match receiver {
+        Some(fp) => (PlaneForm::of_footprint(fp, map.resolution, map.clip), true),
+        None => (form, false),
+    };
+    let (error, _) = vertex::world_error(&form, exact, &m, &vertex_pipeline(map), extent);
+    crate::domain::representable(per_ndc * error, "the vertex term overflows f64")
+}

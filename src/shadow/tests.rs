@@ -1,0 +1,365 @@
+//! Unit tests of the shadow-map bias: the storage term, the footprint and slope factor per
+//! kernel, reversed Z, the refusal, spot lights, the light's pipeline, atlas tiles, and listed
+//! receivers and meshes.
+
+use super::*;
+
+fn ground_map(lookup: Lookup, angle: f64) -> ShadowMap {
+    ShadowMap {
+        light: LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
+        clip: ClipDepth::NegOneToOne,
+        resolution: [1024, 1024],
+        format: DepthFormat::Unorm24,
+        lookup,
+        limit_angle_deg: angle,
+        receiver_depths: [2.0, 30.0],
+        world_reach: 0.0,
+        elevation_deg: 90.0 - angle,
+        profile: RasterizerProfile::worst_case(),
+        pipeline: crate::model::Pipeline::default(),
+    }
+}
+
+/// A measured profile whose conversion the probe identified stores D16 within half a
+/// quantum (plus the f32 product's rounding): the storage term halves; without the chain, or
+/// with the worst case, it stays a whole quantum; D32F has no conversion to halve.
+#[test]
+fn an_identified_conversion_halves_the_storage_term() {
+    let q16 = 1.0 / 65_535.0;
+    let chain = crate::depth_chain::DepthChain {
+        fused_clip: false,
+        reciprocal: true,
+        fused_viewport: false,
+        conversion: crate::depth_chain::Conversion::F32NearestEven,
+    };
+    let measured = RasterizerProfile {
+        measured: true,
+        facing_chain: Some(chain),
+        ..RasterizerProfile::worst_case()
+    };
+    let d16 = ShadowMap {
+        format: DepthFormat::Unorm16,
+        ..ground_map(Lookup::Nearest, 60.0)
+    };
+    let worst = shadow_bias(&d16).unwrap().terms.quantum;
+    assert!((worst - q16).abs() < 1e-12 * q16, "{worst}");
+    let probed = shadow_bias(&ShadowMap {
+        profile: measured,
+        ..d16
+    })
+    .unwrap()
+    .terms
+    .quantum;
+    assert!(probed >= 0.5 * q16 && probed <= 0.5 * q16 + U, "{probed}");
+    let unidentified = RasterizerProfile {
+        facing_chain: None,
+        ..measured
+    };
+    let kept = shadow_bias(&ShadowMap {
+        profile: unidentified,
+        ..d16
+    })
+    .unwrap()
+    .terms
+    .quantum;
+    assert_eq!(kept, worst);
+    // Receivers off the near plane, where D32F's polygon-offset unit does not vanish.
+    let d32f = ShadowMap {
+        format: DepthFormat::Float32,
+        receiver_depths: [3.0, 30.0],
+        ..d16
+    };
+    let float = shadow_bias(&d32f).unwrap().terms.quantum;
+    let measured_float = shadow_bias(&ShadowMap {
+        profile: measured,
+        ..d32f
+    })
+    .unwrap()
+    .terms
+    .quantum;
+    assert_eq!(measured_float, float);
+}
+
+/// The slope factor is `2a`; the footprint at the limit is `a·tan θ·σ/(f − n)` (computed
+/// here from the texel geometry, not from the code); the constant holds the quantum.
+#[test]
+fn footprint_and_factor_follow_the_kernel() {
+    for (lookup, a) in [
+        (Lookup::Nearest, 0.5),
+        (Lookup::Hardware2x2, 1.0),
+        (Lookup::Pcf(3), 1.5),
+        (Lookup::Radius(2.0), 2.5),
+    ] {
+        let map = ground_map(lookup, 60.0);
+        let bias = shadow_bias(&map).unwrap();
+        let texel = 16.0 / 1024.0;
+        let want = a * 3f64.sqrt() * texel * 2f64.sqrt() / 28.0;
+        assert!(
+            (bias.terms.footprint - want).abs() < 1e-12 * want,
+            "{lookup:?}"
+        );
+        let factor = 2.0 * a + 1.0 / 256.0; // 8 sub-pixel bits in the worst case
+        assert!(f64::from(bias.d3d.slope_scaled) >= factor);
+        assert!(f64::from(bias.d3d.slope_scaled) < factor * (1.0 + 1e-6));
+        assert!(bias.terms.constant > 1.0 / 16_777_215.0);
+        // A few tens of quanta: the caster's interpolation term counts the plane's run
+        // from the map's origin (1.4 units of window depth at 60° here).
+        assert!(
+            bias.terms.constant < 30.0 / 16_777_215.0,
+            "{:?}",
+            bias.terms
+        );
+        // The clamp is the constant plus the footprint at the limit.
+        let clamp = f64::from(bias.d3d.clamp);
+        assert!(clamp >= bias.terms.constant + bias.terms.snap + bias.terms.footprint);
+        // Receiver side: along the light, the window bias times f − n.
+        let along = (bias.terms.constant + bias.terms.snap + bias.terms.footprint) * 28.0;
+        assert!((bias.along_light - along).abs() < 1e-9 * along);
+        assert!(bias.along_normal <= bias.along_light && bias.along_normal > 0.0);
+        // D3D's integer covers the constant in units of 1/(2^24 − 1).
+        assert!(f64::from(bias.d3d.depth_bias) / 16_777_215.0 >= bias.terms.constant);
+        assert!(bias.webgpu_depth_bias >= bias.d3d.depth_bias);
+    }
+}
+
+#[test]
+fn reversed_z_flips_the_signs() {
+    let mut map = ground_map(Lookup::Nearest, 45.0);
+    map.clip = ClipDepth::ReversedZeroToOne;
+    map.format = DepthFormat::Float32;
+    // Receivers at the far plane have window depth 0, where float's unit vanishes.
+    let err = shadow_bias(&map).unwrap_err();
+    assert_eq!(
+        (err.kind(), err.input().unwrap().0),
+        (ErrorKind::Unresolvable, "receiver_near")
+    );
+    map.receiver_depths = [2.0, 28.0];
+    let bias = shadow_bias(&map).unwrap();
+    assert!(bias.gl_polygon_offset[0] < 0.0 && bias.gl_polygon_offset[1] < 0.0);
+    assert!(bias.d3d.depth_bias < 0 && bias.vulkan[2] < 0.0);
+    assert!(bias.along_light > 0.0);
+}
+
+#[test]
+fn grazing_limits_are_refused_with_the_footprint_remedy() {
+    let mut map = ground_map(Lookup::Pcf(5), 89.9);
+    map.resolution = [64, 64];
+    let err = shadow_bias(&map).unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Unresolvable);
+    assert!(err.detail().contains("resolution"), "{err}");
+    map.limit_angle_deg = 90.0;
+    assert_eq!(shadow_bias(&map).unwrap_err().kind(), ErrorKind::Domain);
+    map.limit_angle_deg = 30.0;
+    map.receiver_depths = [1.0, 30.0];
+    let err = shadow_bias(&map).unwrap_err();
+    assert_eq!(err.input().unwrap().0, "receiver_near");
+    map.receiver_depths = [2.0, 30.0];
+    map.lookup = Lookup::Pcf(0);
+    assert_eq!(shadow_bias(&map).unwrap_err().input().unwrap().0, "pcf");
+}
+
+/// A spot light: the footprint shrinks with the nearest receiver's distance, and a wide
+/// cone at a steep limit gets no clamp.
+#[test]
+fn spot_lights_take_the_ray_angle() {
+    let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+    let mut map = ShadowMap {
+        light: LightProjection::Perspective(frustum),
+        receiver_depths: [10.0, 50.0],
+        ..ground_map(Lookup::Nearest, 30.0)
+    };
+    let near = shadow_bias(&map).unwrap();
+    map.receiver_depths = [20.0, 50.0];
+    let far = shadow_bias(&map).unwrap();
+    assert!((near.terms.footprint / far.terms.footprint - 2.0).abs() < 1e-9);
+    map.limit_angle_deg = 60.0; // 60° + atan(0.707) = 95°
+    let open = shadow_bias(&map).unwrap();
+    assert!(open.terms.footprint.is_infinite());
+    assert_eq!(open.d3d.clamp, 0.0);
+    assert!(open.along_normal.is_finite() && open.along_light.is_infinite());
+}
+
+/// The light's pipeline: with its view matrix and the world box, the f32 view term is the
+/// exact per-coordinate one, no larger than the bound from `world_reach` (here far smaller);
+/// a zeroed pipeline is the scalar bound; a view without its box is refused by name.
+/// A directional light's box and a spot light's frustum over the same receivers.
+fn both_lights() -> [LightProjection; 2] {
+    let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+    [
+        LightProjection::Orthographic(Ortho::new(-8.0, 8.0, -8.0, 8.0, 2.0, 30.0).unwrap()),
+        LightProjection::Perspective(frustum),
+    ]
+}
+
+#[test]
+fn the_lights_view_tightens_the_vertex_term() {
+    for light in both_lights() {
+        let scalar = ShadowMap {
+            light,
+            world_reach: 25.0,
+            receiver_depths: [10.0, 30.0],
+            ..ground_map(Lookup::Nearest, 30.0)
+        };
+        let base = shadow_bias(&scalar).unwrap();
+        let mut viewed = scalar;
+        viewed.pipeline.view = Some([
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -25.0, 1.0,
+        ]);
+        viewed.pipeline.world_box = Some([[-8.0, -8.0, -5.0], [8.0, 8.0, 15.0]]);
+        viewed.pipeline.eye_first = true;
+        let tight = shadow_bias(&viewed).unwrap();
+        assert!(tight.terms.lookup < 0.5 * base.terms.lookup, "{light:?}");
+        assert!(tight.terms.constant < base.terms.constant);
+        let mut boxless = viewed;
+        boxless.pipeline.world_box = None;
+        assert!(shadow_bias(&boxless)
+            .unwrap_err()
+            .to_string()
+            .contains("world_box"));
+    }
+}
+
+/// A map in a shadow atlas: a tile far from the atlas's origin extrapolates the caster's
+/// plane further (the caster term grows, the quantum does not); `glDepthRange(0.5, 1)`
+/// doubles a UNORM quantum in unit window depth, and the clamp, which GL applies to stored
+/// depth, is the unit bias times 0.5. Both answered, neither refused.
+#[test]
+fn an_atlas_tile_and_a_depth_range_are_modelled() {
+    for light in both_lights() {
+        let map = ShadowMap {
+            light,
+            receiver_depths: [10.0, 30.0],
+            ..ground_map(Lookup::Nearest, 30.0)
+        };
+        let whole = shadow_bias(&map).unwrap();
+        let mut tile = map;
+        tile.pipeline.viewport_origin = [3072, 2048];
+        let tiled = shadow_bias(&tile).unwrap();
+        assert!(tiled.terms.caster > whole.terms.caster, "{light:?}");
+        assert_eq!(tiled.terms.quantum, whole.terms.quantum);
+        assert_eq!(tiled.terms.footprint, whole.terms.footprint);
+        let mut ranged = map;
+        ranged.pipeline.depth_range = [0.5, 1.0];
+        let half = shadow_bias(&ranged).unwrap();
+        assert_eq!(half.terms.quantum, 2.0 * whole.terms.quantum);
+        let needed = half.terms.constant + half.terms.snap + half.terms.footprint;
+        assert!((half.gl_polygon_offset[2] - 0.5 * needed).abs() <= 1e-6 * needed);
+        // Units of the stored r: the unit constant times 0.5, over 2⁻²⁴ (D24).
+        let units = half.terms.constant * 0.5 * 16_777_215.0;
+        assert!(
+            (half.gl_polygon_offset[1] - units.ceil()).abs() <= 1.0,
+            "{half:?}"
+        );
+    }
+}
+
+/// A spot light over grazing ground: with the ground listed, the footprint is the ground's
+/// own `a·(|gₓ| + |g_y|)` (of its window plane in the map), the clamp is
+/// set, and the constant is no larger than the conservative one.
+#[test]
+fn listed_receivers_take_their_own_plane() {
+    let frustum = Frustum::new(-0.5, 0.5, -0.5, 0.5, 1.0, 100.0).unwrap();
+    let map = ShadowMap {
+        light: LightProjection::Perspective(frustum),
+        receiver_depths: [10.0, 50.0],
+        ..ground_map(Lookup::Nearest, 80.0)
+    };
+    let conservative = shadow_bias(&map).unwrap();
+    assert!(conservative.terms.footprint.is_infinite());
+    // Ground 3 units below the light, tilted 85° from the axis: y = −3 − z·tan 5°, seen
+    // from above (+y), counter-clockwise.
+    let y = |z: f32| -3.0 - (-z) * 5f32.to_radians().tan();
+    let ground: Vec<glam::Vec3> = [(4.0, -12.0), (12.0, -45.0), (-12.0, -45.0), (-4.0, -12.0)]
+        .iter()
+        .map(|&(x, z)| glam::Vec3::new(x, y(z), z))
+        .collect();
+    let bias = shadow_bias_for_receivers(&map, &[&ground]).unwrap();
+    let shape = crate::footprint::decal_shape(&frustum, map.clip, map.resolution, &ground).unwrap();
+    let own = 0.5 * (shape.footprint.gradient[0].abs() + shape.footprint.gradient[1].abs());
+    assert!(bias.terms.footprint >= own && bias.terms.footprint < own * 1.0001);
+    assert!(bias.gl_polygon_offset[2] > 0.0 && bias.gl_polygon_offset[2] < 1.0);
+    assert!(bias.terms.constant <= conservative.terms.constant);
+    assert!(bias.along_light.is_finite() && bias.along_normal <= bias.along_light);
+    // Facing away everywhere: skipped, and with nothing left, refused.
+    let away: Vec<glam::Vec3> = ground.iter().rev().copied().collect();
+    let err = shadow_bias_for_receivers(&map, &[&away]).unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Domain);
+    let both = shadow_bias_for_receivers(&map, &[&away, &ground]).unwrap();
+    assert_eq!(both, bias);
+    // A corner outside the frustum is named.
+    let mut wide = ground.clone();
+    wide[1].x = 40.0;
+    let err = shadow_bias_for_receivers(&map, &[&ground, &wide]).unwrap_err();
+    assert!(err.to_string().contains("frustum"), "{err}");
+}
+
+/// Two faces of a mesh under an orthographic light (window depth affine in the map, its
+/// gradient computed here from three projected corners): listed together, the constant
+/// gains `factor·(m_steep − m_flat)` over the larger of the two listed alone, and the clamp
+/// covers `a·(max |gₓ| + max |g_y|)` on top of the constant; two faces of one slope change
+/// nothing.
+#[test]
+fn faces_of_a_mesh_cover_the_spread_of_their_slopes() {
+    let map = ground_map(Lookup::Pcf(5), 80.0);
+    let [l, r, b, t, n, f] = [-8.0, 8.0, -8.0, 8.0, 2.0, 30.0];
+    let texel = |x: f64, y: f64, z: f64| {
+        // glOrtho's window position (texels) and window depth of an eye point.
+        [
+            (x - l) / (r - l) * 1024.0,
+            (y - b) / (t - b) * 1024.0,
+            (-z - n) / (f - n),
+        ]
+    };
+    // A face of the plane z = z0 + sx·x + sy·y, counter-clockwise seen from the light.
+    let face = |x0: f32, sx: f32, sy: f32, z0: f32| -> (Vec<glam::Vec3>, f64) {
+        let z = |x: f32, y: f32| z0 + sx * x + sy * y;
+        let corners: Vec<glam::Vec3> = [(x0, -1.0), (x0 + 2.0, -1.0), (x0 + 2.0, 1.0), (x0, 1.0)]
+            .iter()
+            .map(|&(x, y)| glam::Vec3::new(x, y, z(x, y)))
+            .collect();
+        let p = |c: glam::Vec3| texel(c.x.into(), c.y.into(), c.z.into());
+        let (a, b, c) = (p(corners[0]), p(corners[1]), p(corners[3]));
+        let gx = (b[2] - a[2]) / (b[0] - a[0]);
+        let gy = (c[2] - a[2]) / (c[1] - a[1]);
+        (corners, gx.abs().max(gy.abs()))
+    };
+    let (flat, m_flat) = face(-2.0, 0.05, 0.0, -10.0);
+    let (steep, m_steep) = face(0.0, 1.5, 0.0, -10.0);
+    let (level, _) = face(2.0, 0.05, 0.0, -10.0);
+    let alone = [&flat, &steep].map(|f| shadow_bias_for_receivers(&map, &[f]).unwrap());
+    let both = shadow_bias_for_receivers(&map, &[&flat, &steep]).unwrap();
+    let larger = alone[0].terms.constant.max(alone[1].terms.constant);
+    let spread = both.terms.slope_factor * (m_steep - m_flat);
+    assert!(m_steep > 10.0 * m_flat, "{m_steep} {m_flat}");
+    let gained = both.terms.constant - larger;
+    assert!(
+        (gained - spread).abs() <= 1e-9 * spread,
+        "{gained} vs {spread}"
+    );
+    let run = 2.5 * m_steep;
+    assert!(
+        both.gl_polygon_offset[2] >= larger + run,
+        "{:?}",
+        both.gl_polygon_offset
+    );
+    // A steep face far from the flat one in the map (x from 5 to 7: 320 texels off, beyond
+    // the 5×5 kernel's reach): its slope does not enter the constant.
+    let (far_steep, _) = face(5.0, 1.5, 0.0, -20.0);
+    let apart = shadow_bias_for_receivers(&map, &[&flat, &far_steep]).unwrap();
+    let far_alone = shadow_bias_for_receivers(&map, &[&far_steep]).unwrap();
+    let k = alone[0].terms.constant.max(far_alone.terms.constant);
+    assert!(
+        (apart.terms.constant - k).abs() <= 1e-12 * k,
+        "{} vs {k}",
+        apart.terms.constant
+    );
+    // One slope (to the f32 rounding of the corners): the larger of the two alone.
+    let same = shadow_bias_for_receivers(&map, &[&flat, &level]).unwrap();
+    let level_alone = shadow_bias_for_receivers(&map, &[&level]).unwrap();
+    let k = alone[0].terms.constant.max(level_alone.terms.constant);
+    assert!(
+        same.terms.constant >= k && same.terms.constant <= k * 1.01,
+        "{} vs {k}",
+        same.terms.constant
+    );
+}
