@@ -12,7 +12,9 @@
  *        world_reach or view_matrix + world_box if vertices are in world space, viewport_x/y,
  *        depth_range_near/far if not 0 / 0..1; profile = NULL, or
  *        what zshift_probe measured once in your own GL context for a tighter offset). Only
- *        one element changes.
+ *        one element changes. A decal on several planes (a mesh decal over terrain, cut from
+ *        its triangles): zshift_decal_matrix_planes(proj, clip, decals, count, out), one
+ *        ZshiftDecal per plane.
  *   2. zshift_offset_matrix(proj, clip, delta, d, out)  the same, for an eye-space shift `delta`
  *        toward the camera at eye distance `d` that you choose (stacked decal layers, a known gap).
  *   3. zshift_last_error()                               when a call returns other than ZSHIFT_OK:
@@ -1215,6 +1217,40 @@ ZshiftStatus zshift_decal_matrix(const float *m,
 ZshiftStatus zshift_recommend_for_matrix(const float *m,
                                          ZshiftClip clip,
                                          const ZshiftDecal *decal,
+                                         ZshiftRecommendation *out);
+
+/*
+ Writes the projection matrix of one decal that lies on several planes (a mesh decal over a
+ terrain: the terrain's own triangles clipped to the decal, each piece on its triangle's
+ plane), drawn in one pass: `decals` holds `count` ZshiftDecal records, one per plane, each
+ filled as for `zshift_decal_matrix` (the same viewport, format, depth_func, profile and
+ pipeline; its own decal_corners, base_reach and pipeline.world_box). The matrix carries the
+ largest of the planes' offsets, which keeps every plane's pixels;
+ `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decals` or `out` is NULL; ZSHIFT_ERR_DOMAIN for a
+ `count` of 0 or above 65536; any error of `zshift_decal_matrix` for a plane, its detail
+ beginning "plane i: " (from 0). `out` is untouched on error.
+ */
+ZshiftStatus zshift_decal_matrix_planes(const float *m,
+                                        ZshiftClip clip,
+                                        const ZshiftDecal *decals,
+                                        size_t count,
+                                        float *out);
+
+/*
+ Writes the recommendation behind `zshift_decal_matrix_planes`: the plane whose offset is
+ largest (its epsilon, offsets and error terms), with `bleed_gap` the largest of every
+ plane's gap at that offset (an occluder that much in front of the base at every pixel is
+ never overdrawn) and the glPolygonOffset equivalent as the largest factor and the largest
+ units of the planes'.
+
+ Errors: as `zshift_decal_matrix_planes`. `*out` is untouched on error.
+ */
+ZshiftStatus zshift_recommend_for_planes(const float *m,
+                                         ZshiftClip clip,
+                                         const ZshiftDecal *decals,
+                                         size_t count,
                                          ZshiftRecommendation *out);
 
 /*

@@ -41,6 +41,9 @@ pub struct Error {
     input: Option<(&'static str, Value)>,
     /// The bound the input broke, by name and value (`n = 0.1`), where the check knew it.
     bound: Option<(&'static str, u64)>,
+    /// Which of several like inputs the error is about (`plane 3` of a decal over several
+    /// planes), said before the detail.
+    item: Option<(&'static str, u32)>,
 }
 
 impl Error {
@@ -50,7 +53,15 @@ impl Error {
             detail,
             input: None,
             bound: None,
+            item: None,
         }
+    }
+
+    /// The error about item `index` of several (`name index: detail`), keeping the input it
+    /// names.
+    pub(crate) const fn for_item(mut self, name: &'static str, index: u32) -> Self {
+        self.item = Some((name, index));
+        self
     }
 
     /// This error, quoting the real input `name` (as the caller spells it; empty when the
@@ -107,6 +118,9 @@ impl fmt::Display for Error {
     /// The detail, then the input and its value: `the near plane distance n must be greater
     /// than 0 (n = -1)`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some((name, index)) = self.item {
+            write!(f, "{name} {index}: ")?;
+        }
         f.write_str(self.detail)?;
         let bound = |f: &mut fmt::Formatter<'_>| match self.bound {
             Some((name, bits)) => write!(f, "; {name} = {}", f64::from_bits(bits)),

@@ -273,7 +273,10 @@ pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
         .fold(0.0, f64::max);
     if bent > PLANAR_TOLERANCE * size {
         return Err(domain(
-            "the decal's corners must be coplanar (within 2^-16 of the decal's size)",
+            "the decal's corners must be coplanar (within 2^-16 of the decal's size); a decal on \
+             several planes (a mesh decal over terrain) is asked one plane at a time, together: \
+             zshift_decal_matrix_planes with one ZshiftDecal per plane (Python \
+             decal_matrix_planes, Rust zshift::planes::recommend_planes)",
         )
         .with_value("the largest distance of a corner from their plane", bent));
     }

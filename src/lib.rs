@@ -51,6 +51,7 @@ pub mod model;
 pub mod offset;
 pub mod orthographic;
 pub mod plan;
+pub mod planes;
 pub mod polygon_offset;
 pub mod precision;
 pub mod probe;

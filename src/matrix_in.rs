@@ -525,7 +525,7 @@ fn ortho_scene(m: &[f32; 16], r: &Recognized, decal: &Decal) -> Result<crate::or
 /// the decal's depth test (the convention's strict one unless given), base, profile (the worst
 /// case with the decal's snapping unless given) and pipeline.
 #[inline(always)]
-fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
+pub(crate) fn scene(frustum: Frustum, decal: &Decal, clip: ClipDepth) -> Scene {
     use crate::recommend::DepthTest;
     Scene {
         footprint: decal.footprint,

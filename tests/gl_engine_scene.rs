@@ -159,6 +159,32 @@ const ATTACHMENTS: [Attachment; 13] = [
     },
 ];
 
+/// The ground as the engine draws it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Ground {
+    /// One quad of ±[`GROUND`] (two triangles).
+    Quad,
+    /// A grid of 64×64 cells over ±[`GROUND`].
+    Grid,
+    /// A terrain with hills: [`HILL_CELLS`]² cells of one unit around the camera, heights from
+    /// two waves ([`Case::bumps`]); the decal is a mesh decal over the terrain's triangles, each
+    /// piece on its own plane, asked for one plane at a time.
+    Hills,
+}
+
+impl Ground {
+    fn label(self) -> &'static str {
+        match self {
+            Ground::Quad => "quad",
+            Ground::Grid => "grid",
+            Ground::Hills => "hills",
+        }
+    }
+}
+
+/// Cells along each side of the hills' terrain (one unit each, centred on the camera's cell).
+const HILL_CELLS: u32 = 120;
+
 /// One scene of the sweep.
 #[derive(Debug, Clone, Copy)]
 struct Case {
@@ -182,7 +208,7 @@ struct Case {
     tilt: f64,
     /// The vertical field of view, degrees.
     fovy_deg: f64,
-    grid: bool,
+    ground: Ground,
     near: f64,
     far: f64,
     size: f64,
@@ -191,6 +217,9 @@ struct Case {
     equal_test: bool,
     origin: [u32; 2],
     depth_range: [f64; 2],
+    /// The decal as a mesh decal (an engine's decal system clips the ground's own triangles to
+    /// the decal's square, in f32, and draws the pieces) instead of one quad of its corners.
+    mesh_decal: bool,
 }
 
 impl Case {
@@ -205,16 +234,51 @@ impl Case {
     }
 
     fn camera(&self) -> [f64; 3] {
-        [
+        let (x, z) = (
             self.translate + self.jitter[0],
-            self.ground_y + EYE_HEIGHT,
             self.translate + self.jitter[1],
-        ]
+        );
+        [x, self.ground_y + EYE_HEIGHT + self.bumps(x, z), z]
     }
 
     /// The ground's height at world `x`.
     fn height(&self, x: f64) -> f64 {
         self.ground_y + self.tilt * (x - self.camera()[0])
+    }
+
+    /// Over hills: no terrain between the camera and the decal (rays from the camera to 7×7
+    /// points of the decal stay 0.05 above the smooth surface until 3 % short of it), so every
+    /// decal pixel's base is the decal's own terrain.
+    fn decal_visible(&self) -> bool {
+        let [x0, x1, z0, z1] = self.decal_square(1.0).map(f64::from);
+        let cam = self.camera();
+        (0..7).all(|i| {
+            (0..7).all(|j| {
+                let x = x0 + (x1 - x0) * f64::from(i) / 6.0;
+                let z = z0 + (z1 - z0) * f64::from(j) / 6.0;
+                let q = [x, self.surface(x, z), z];
+                (1..=194).all(|k| {
+                    let t = f64::from(k) / 200.0;
+                    let p = [0, 1, 2].map(|c| cam[c] + t * (q[c] - cam[c]));
+                    p[1] > self.surface(p[0], p[2]) + 0.05
+                })
+            })
+        })
+    }
+
+    /// The hills' relief over the plane (0 unless [`Ground::Hills`]): two waves, slopes up to
+    /// about 0.75, the same shapes wherever the scene is translated.
+    fn bumps(&self, x: f64, z: f64) -> f64 {
+        if self.ground != Ground::Hills {
+            return 0.0;
+        }
+        let (u, v) = (x - self.translate, z - self.translate);
+        (0.273 * u + 0.4).sin() * (0.191 * v - 1.1).cos() + 0.4 * (0.86 * (u + v)).sin()
+    }
+
+    /// The ground's height at world `(x, z)`.
+    fn surface(&self, x: f64, z: f64) -> f64 {
+        self.height(x) + self.bumps(x, z)
     }
 
     /// The camera's distance from the ground's plane, along its normal.
@@ -262,16 +326,16 @@ impl Case {
     }
 
     fn ground(&self) -> Vec<[f32; 3]> {
-        let (x0, z0) = (self.translate - GROUND, self.translate - GROUND);
-        let cells = if self.grid { 64 } else { 1 };
-        let step = 2.0 * GROUND / f64::from(cells);
+        let (cells, half) = match self.ground {
+            Ground::Quad => (1, GROUND),
+            Ground::Grid => (64, GROUND),
+            Ground::Hills => (HILL_CELLS, f64::from(HILL_CELLS / 2)),
+        };
+        let (x0, z0) = (self.translate - half, self.translate - half);
+        let step = 2.0 * half / f64::from(cells);
         let at = |i: u32, j: u32| {
-            let x = x0 + step * f64::from(i);
-            [
-                x as f32,
-                self.height(x) as f32,
-                (z0 + step * f64::from(j)) as f32,
-            ]
+            let (x, z) = (x0 + step * f64::from(i), z0 + step * f64::from(j));
+            [x as f32, self.surface(x, z) as f32, z as f32]
         };
         let mut t = Vec::new();
         for i in 0..cells {
@@ -301,7 +365,7 @@ impl Case {
     fn square(&self, half: f64, lift: f64) -> [[f64; 3]; 4] {
         let [x, z] = self.decal_centre();
         let k = 1.0 / (1.0 + self.tilt * self.tilt).sqrt();
-        let on = |x: f64, z: f64| [x - self.tilt * k * lift, self.height(x) + k * lift, z];
+        let on = |x: f64, z: f64| [x - self.tilt * k * lift, self.surface(x, z) + k * lift, z];
         [
             on(x - half, z + half),
             on(x + half, z + half),
@@ -313,6 +377,27 @@ impl Case {
     fn decal_world(&self) -> [[f32; 3]; 4] {
         self.square(self.size / 2.0, 0.0)
             .map(|p| p.map(|c| c as f32))
+    }
+
+    /// The decal's triangles as drawn: the quad of its corners, or the mesh decal
+    /// ([`Case::mesh_decal`]).
+    fn decal_triangles(&self) -> Vec<[f32; 3]> {
+        if self.mesh_decal || self.ground == Ground::Hills {
+            clip_to_square(&self.ground(), self.decal_square(1.0))
+                .into_iter()
+                .flat_map(|(_, piece)| piece)
+                .collect()
+        } else {
+            quad_triangles(&self.decal_world())
+        }
+    }
+
+    /// The decal's square in world x and z, scaled by `scale` about its centre, as f32 bounds
+    /// `[x0, x1, z0, z1]` (what a decal system clips the ground's triangles to).
+    fn decal_square(&self, scale: f64) -> [f32; 4] {
+        let half = scale * self.size / 2.0;
+        let [cx, cz] = self.decal_centre();
+        [cx - half, cx + half, cz - half, cz + half].map(|v| v as f32)
     }
 
     /// Every decal corner between the near and far planes (a decal partly off screen at the
@@ -378,14 +463,20 @@ impl Case {
     /// (the rasterizer clips none of them). One quad: its corners. A grid: the cells the decal
     /// touches.
     fn base_reach(&self) -> f64 {
-        if !self.grid {
+        if self.ground == Ground::Quad {
             return self.quad_reach();
         }
+        self.reach_of(&self.decal_cell_corners())
+    }
+
+    /// The `base_reach` of triangles with these world vertices: the largest |x|, |y| or |z| of
+    /// their eye coordinates if the rasterizer clips any (a vertex outside the frustum), else 0.
+    fn reach_of(&self, vertices: &[[f64; 3]]) -> f64 {
         let fr = self.frustum();
         let (l, r, b, t, n, f) = fr.parameters();
         let mut reach = 0.0f64;
         let mut clipped = false;
-        for p in self.decal_cell_corners() {
+        for &p in vertices {
             let e = self.eye(p);
             let d = -e[2];
             let inside = d > n
@@ -409,29 +500,21 @@ impl Case {
     /// ground. A grid: the cells the decal touches (no other vertex reaches the decal's pixels).
     fn world_box(&self) -> [[f64; 3]; 2] {
         let g = self.translate;
-        if !self.grid {
+        if self.ground == Ground::Quad {
             let (y0, y1) = (self.height(g - GROUND), self.height(g + GROUND));
             return [
                 [g - GROUND, y0.min(y1), g - GROUND],
                 [g + GROUND, y0.max(y1), g + GROUND],
             ];
         }
-        let corners = self.decal_cell_corners();
-        let lo = [0, 1, 2].map(|k| corners.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
-        let hi = [0, 1, 2].map(|k| {
-            corners
-                .iter()
-                .map(|p| p[k])
-                .fold(f64::NEG_INFINITY, f64::max)
-        });
-        [lo, hi]
+        bounding_box(&self.decal_cell_corners())
     }
 
     /// The ground quad cut to the frustum in f64 (`zshift::recommend::clip_to_frustum`, on its
     /// eye-space corners) and carried back to world space as an engine stores it (f32), as
     /// triangles of a fan; `None` for the grid.
     fn cut_ground(&self) -> Option<Vec<[f32; 3]>> {
-        if self.grid {
+        if self.ground != Ground::Quad {
             return None;
         }
         let eye: Vec<[f64; 3]> = self.quad_corners().map(|p| self.eye(p)).to_vec();
@@ -487,7 +570,7 @@ impl Case {
             } else {
                 String::new()
             },
-            if self.grid { "grid" } else { "quad" },
+            self.ground.label().to_string() + if self.mesh_decal { " mesh" } else { "" },
             self.near,
             self.far,
             self.size,
@@ -508,6 +591,67 @@ struct Renderer<'a> {
     plain: [f32; 16],
     ground: Vec<[f32; 3]>,
     mask: Vec<bool>,
+}
+
+/// The box `[lo, hi]` of points.
+fn bounding_box(points: &[[f64; 3]]) -> [[f64; 3]; 2] {
+    let lo = [0, 1, 2].map(|k| points.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
+    let hi = [0, 1, 2].map(|k| {
+        points
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
+    [lo, hi]
+}
+
+/// A mesh decal as an engine's decal system builds it: every triangle clipped to the square
+/// `[x0, x1, z0, z1]` in world x and z, all in f32 (Sutherland–Hodgman, each new vertex
+/// `a + t·(b − a)` on an edge of the ground's own triangle), each piece as a fan; with the index
+/// of the triangle it came from. Its vertices lie on their triangle's plane only up to those
+/// roundings, relative to the triangle's coordinates.
+fn clip_to_square(triangles: &[[f32; 3]], square: [f32; 4]) -> Vec<(usize, Vec<[f32; 3]>)> {
+    let [x0, x1, z0, z1] = square;
+    // (coordinate, bound, keep the side above the bound)
+    let planes = [(0, x0, true), (0, x1, false), (2, z0, true), (2, z1, false)];
+    let mut out = Vec::new();
+    for (index, t) in triangles.chunks_exact(3).enumerate() {
+        let outside = planes.iter().any(|&(k, bound, above)| {
+            t.iter()
+                .all(|p| if above { p[k] < bound } else { p[k] > bound })
+        });
+        if outside {
+            continue;
+        }
+        let mut poly: Vec<[f32; 3]> = t.to_vec();
+        for &(k, bound, above) in &planes {
+            let inside = |p: &[f32; 3]| if above { p[k] >= bound } else { p[k] <= bound };
+            let mut next = Vec::new();
+            for i in 0..poly.len() {
+                let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+                if inside(&a) {
+                    next.push(a);
+                }
+                if inside(&a) != inside(&b) {
+                    let t = (bound - a[k]) / (b[k] - a[k]);
+                    let mut p = [0, 1, 2].map(|j| a[j] + t * (b[j] - a[j]));
+                    p[k] = bound;
+                    next.push(p);
+                }
+            }
+            poly = next;
+            if poly.len() < 3 {
+                break;
+            }
+        }
+        let piece: Vec<[f32; 3]> = (1..poly.len().saturating_sub(1))
+            .flat_map(|i| [poly[0], poly[i], poly[i + 1]])
+            .collect();
+        if !piece.is_empty() {
+            out.push((index, piece));
+        }
+    }
+    out
 }
 
 fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {
@@ -537,7 +681,7 @@ impl<'a> Renderer<'a> {
             ground: case.ground(),
             mask: Vec::new(),
         };
-        r.mask = r.coverage(&quad_triangles(&case.decal_world()))?;
+        r.mask = r.coverage(&case.decal_triangles())?;
         Ok(r)
     }
 
@@ -661,7 +805,7 @@ impl<'a> Renderer<'a> {
             polygon_offset: offset,
             ..self.state()
         };
-        let decal = quad_triangles(&self.case.decal_world());
+        let decal = self.case.decal_triangles();
         self.gl
             .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
         Ok(Count::decal_missing(&self.read_viewport()?, &self.mask))
@@ -683,7 +827,39 @@ impl<'a> Renderer<'a> {
                 .square(0.75 * self.case.size, lift)
                 .map(|p| p.map(|c| c as f32)),
         );
-        let occ_mask = self.coverage(&occluder)?;
+        self.shown_over(&occluder, decal_proj).map(Some)
+    }
+
+    /// [`Renderer::bled`] over hills: the occluder is the terrain under a square 1.5 times the
+    /// decal's, scaled about the camera by `1 − gap/d₁`, so that at every decal pixel its eye
+    /// depth is `gap·d/d₁ ≥ gap` in front of the terrain's (`d₁` the decal's nearest eye depth).
+    fn bled_scaled(
+        &mut self,
+        decal_proj: &[f32; 16],
+        gap: f64,
+        d1: f64,
+    ) -> Result<Option<Count>, String> {
+        let s = 1.0 - gap / d1 * (1.0 + 1e-6);
+        if s < 0.1 {
+            return Ok(None); // a gap reaching the camera: nothing to check
+        }
+        let cam = self.case.camera();
+        let occluder: Vec<[f32; 3]> = clip_to_square(&self.ground, self.case.decal_square(1.5))
+            .into_iter()
+            .flat_map(|(_, piece)| piece)
+            .map(|p| [0, 1, 2].map(|k| (cam[k] + (f64::from(p[k]) - cam[k]) * s) as f32))
+            .collect();
+        self.shown_over(&occluder, decal_proj).map(Some)
+    }
+
+    /// Decal pixels drawn with `decal_proj` over `occluder` (drawn with the plain matrix after
+    /// the ground), among the pixels both cover.
+    fn shown_over(
+        &mut self,
+        occluder: &[[f32; 3]],
+        decal_proj: &[f32; 16],
+    ) -> Result<Count, String> {
+        let occ_mask = self.coverage(occluder)?;
         let both: Vec<bool> = occ_mask
             .iter()
             .zip(&self.mask)
@@ -692,11 +868,11 @@ impl<'a> Renderer<'a> {
         self.clear_and_draw_ground()?;
         let (view, plain, state) = (self.view, self.plain, self.state());
         self.gl
-            .draw_world(&occluder, &view, &plain, OCCLUDER, &state)?;
-        let decal = quad_triangles(&self.case.decal_world());
+            .draw_world(occluder, &view, &plain, OCCLUDER, &state)?;
+        let decal = self.case.decal_triangles();
         self.gl
             .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
-        Ok(Some(Count::decal_shown(&self.read_viewport()?, &both)))
+        Ok(Count::decal_shown(&self.read_viewport()?, &both))
     }
 
     /// The smallest number of f32 steps of the offset element toward the camera that loses no
@@ -741,12 +917,109 @@ struct Outcome {
     steps: f64,
 }
 
+/// What the engine gets: the recommendation (over hills, for every plane under the decal at
+/// once: `zshift::planes::recommend_planes`), the decal's nearest eye depth, and for the quad the
+/// recommendation over the ground cut to the frustum.
+struct Asked {
+    rec: zshift::recommend::ClipRecommendation,
+    d1: f64,
+    cut: Option<zshift::recommend::ClipRecommendation>,
+}
+
+/// Asks for the decal through the front door, as an engine does: the engine's own matrix, the
+/// decal's eye-space corners, `base_reach`, the view matrix and world box, `eye_first`. Over
+/// hills the decal covers several planes: one `Decal` per terrain triangle under it (its
+/// corners, its reach, its box), asked for together.
+fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<Asked, String> {
+    let text = |e: zshift::Error| e.to_string();
+    // Per plane: its world corners, the base's reach and its world box.
+    type Plane = (Vec<[f64; 3]>, f64, [[f64; 3]; 2]);
+    let planes: Vec<Plane> = if case.ground == Ground::Hills {
+        let ground = case.ground();
+        clip_to_square(&ground, case.decal_square(1.0))
+            .into_iter()
+            .map(|(i, _)| {
+                let t: Vec<[f64; 3]> = ground[3 * i..3 * i + 3]
+                    .iter()
+                    .map(|p| p.map(f64::from))
+                    .collect();
+                (t.clone(), case.reach_of(&t), bounding_box(&t))
+            })
+            .collect()
+    } else {
+        let corners = case.decal_world().map(|p| p.map(f64::from)).to_vec();
+        vec![(corners, case.base_reach(), case.world_box())]
+    };
+    let mut decals = Vec::new();
+    let mut d1 = f64::INFINITY;
+    for (world, reach, world_box) in planes {
+        let corners: Vec<glam::Vec3> = world
+            .iter()
+            .map(|&p| {
+                let e = case.eye(p);
+                glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
+            })
+            .collect();
+        let shape = decal_shape(plain, case.at.clip, viewport(), &corners).map_err(text)?;
+        d1 = d1.min(shape.depth_range[0]);
+        decals.push(Decal {
+            viewport: viewport(),
+            format: Format::from_gl_internal_format(if case.at.packed {
+                match case.at.format {
+                    DepthFormat::D24 => glow::DEPTH24_STENCIL8,
+                    _ => glow::DEPTH32F_STENCIL8,
+                }
+            } else {
+                case.at.format.gl_enum()
+            })
+            .map_err(text)?,
+            depth_range: shape.depth_range,
+            slope: shape.slope,
+            exact_depth: false,
+            snapping: Snapping::SubpixelBits(8),
+            base: match reach {
+                0.0 => Base::InsideFrustum,
+                reach => Base::Clipped { reach },
+            },
+            profile: Some(*profile),
+            footprint: Some(shape.footprint),
+            depth_test: Some(case.tests().1),
+            pipeline: Pipeline {
+                world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
+                // The shader computes proj * (view * p): the eye position first.
+                eye_first: true,
+                view: Some(case.view()),
+                world_box: Some(world_box),
+                viewport_origin: case.origin,
+                depth_range: case.depth_range,
+            },
+        });
+    }
+    if case.ground == Ground::Hills {
+        let rec = zshift::planes::recommend_planes(plain, case.at.clip, &decals).map_err(text)?;
+        return Ok(Asked { rec, d1, cut: None });
+    }
+    // The same decal over the ground cut to the frustum in f64 (nothing left to clip): what the
+    // honest description of the ground as drawn is compared with.
+    let cut = recommend(
+        plain,
+        case.at.clip,
+        &Decal {
+            base: Base::InsideFrustum,
+            ..decals[0]
+        },
+    )
+    .ok();
+    let rec = recommend(plain, case.at.clip, &decals[0]).map_err(text)?;
+    Ok(Asked { rec, d1, cut })
+}
+
 fn run_case(
     gl: &mut Gl,
     case: Case,
     profile: &RasterizerProfile,
 ) -> Result<Option<Outcome>, String> {
-    if !case.decal_in_depth() {
+    if !case.decal_in_depth() || (case.ground == Ground::Hills && !case.decal_visible()) {
         return Ok(None);
     }
     let mut r = Renderer::new(gl, case)?;
@@ -760,67 +1033,15 @@ fn run_case(
     if r.mask.iter().filter(|&&m| m).count() < 4 {
         return Ok(None);
     }
-    let corners: Vec<glam::Vec3> = case
-        .decal_world()
-        .iter()
-        .map(|p| {
-            let e = case.eye(p.map(f64::from));
-            glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
-        })
-        .collect();
     let plain = r.plain;
-    let asked = decal_shape(&plain, case.at.clip, viewport(), &corners).and_then(|shape| {
-        let decal = Decal {
-            viewport: viewport(),
-            format: Format::from_gl_internal_format(if case.at.packed {
-                match case.at.format {
-                    DepthFormat::D24 => glow::DEPTH24_STENCIL8,
-                    _ => glow::DEPTH32F_STENCIL8,
-                }
-            } else {
-                case.at.format.gl_enum()
-            })?,
-            depth_range: shape.depth_range,
-            slope: shape.slope,
-            exact_depth: false,
-            snapping: Snapping::SubpixelBits(8),
-            base: match case.base_reach() {
-                0.0 => Base::InsideFrustum,
-                reach => Base::Clipped { reach },
-            },
-            profile: Some(*profile),
-            footprint: Some(shape.footprint),
-            depth_test: Some(case.tests().1),
-            pipeline: Pipeline {
-                world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
-                // The shader computes proj * (view * p): the eye position first.
-                eye_first: true,
-                view: Some(case.view()),
-                world_box: Some(case.world_box()),
-                viewport_origin: case.origin,
-                depth_range: case.depth_range,
-            },
-        };
-        // The same decal over the ground cut to the frustum in f64 (nothing left to clip): what
-        // the honest description of the ground as drawn is compared with.
-        let cut = recommend(
-            &plain,
-            case.at.clip,
-            &Decal {
-                base: Base::InsideFrustum,
-                ..decal
-            },
-        )
-        .ok();
-        recommend(&plain, case.at.clip, &decal).map(|rec| (rec, shape.depth_range[0], cut))
-    });
+    let asked = ask(&case, &plain, profile);
     let mut out = Outcome::default();
     match asked {
         Err(e) => {
             out.refused = Some(e.to_string());
             out.drawable = r.smallest_working()?.is_some();
         }
-        Ok((rec, d1, cut)) => {
+        Ok(Asked { rec, d1, cut }) => {
             if let (Some(c), Some(tris)) = (&cut, case.cut_ground()) {
                 let whole = std::mem::replace(&mut r.ground, tris);
                 out.lost_cut = r.lost(&c.matrix)?.hit;
@@ -836,7 +1057,12 @@ fn run_case(
                 let pulled = Some((-factor as f32, -units as f32));
                 out.lost_polygon_offset = r.lost_offset(&plain, pulled)?.hit;
             }
-            out.bled = r.bled(&rec.matrix, rec.bleed_gap, d1)?.map_or(0, |c| c.hit);
+            out.bled = if case.ground == Ground::Hills {
+                r.bled_scaled(&rec.matrix, rec.bleed_gap, d1)?
+            } else {
+                r.bled(&rec.matrix, rec.bleed_gap, d1)?
+            }
+            .map_or(0, |c| c.hit);
             out.gap_over_distance = rec.bleed_gap / d1;
             out.terms = Some(rec.terms);
             let steps = steps_between(&plain, &rec.matrix, case.reversed());
@@ -880,18 +1106,23 @@ fn cases() -> Vec<Case> {
     let mut roll_pick = Xorshift(0x0D1E_2026_1126_5EED ^ seed.wrapping_mul(0xBF58_476D_1CE4_E5B9));
     // The hillside from a stream of its own too.
     let mut tilt_pick = Xorshift(0x7117_2026_1126_0A5E ^ seed.wrapping_mul(0x94D0_49BB_1331_11EB));
+    // Mesh decals (the decal built from the ground's triangles in f32) from a stream of their own.
+    let mut mesh_pick = Xorshift(0x3E5D_2026_1126_DECA ^ seed.wrapping_mul(0xD6E8_FEB8_6659_FD93));
     let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
         for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {
             for translate in [0.0, 100.0, 1e3, 1e4] {
-                for grid in [false, true] {
+                for ground in [Ground::Quad, Ground::Grid, Ground::Hills] {
                     let variations = if full { 6 } else { 1 };
                     for _ in 0..variations {
                         let distances: &[f64] = if pitch_deg >= 60.0 {
                             &[1.5, 2.0]
                         } else if pitch_deg >= 30.0 {
                             &[3.0, 4.0]
+                        } else if ground == Ground::Hills {
+                            // Within the terrain's ±60 units.
+                            &[3.0, 10.0, 30.0]
                         } else {
                             &[3.0, 10.0, 50.0, 200.0]
                         };
@@ -903,7 +1134,7 @@ fn cases() -> Vec<Case> {
                             yaw_deg: [0.0, 33.7][pick.index(2)],
                             roll_deg: [0.0, 0.0, 90.0, 17.0][roll_pick.index(4)],
                             jitter: [[0.0, 0.0], [0.3719, -0.6143]][pick.index(2)],
-                            grid,
+                            ground,
                             near,
                             far: [1000.0, f64::INFINITY][pick.index(2)],
                             size: [0.5, 2.0, 4.0][pick.index(3)],
@@ -915,6 +1146,7 @@ fn cases() -> Vec<Case> {
                             ground_y: 0.0,
                             tilt: [0.0, 0.0, 0.25, -0.6][tilt_pick.index(4)],
                             fovy_deg: FOVY_DEG,
+                            mesh_decal: mesh_pick.index(2) == 1,
                         };
                         out.push(if seed == 0 {
                             case
@@ -980,7 +1212,7 @@ fn the_scene_every_engine_draws() {
                     out.lost_cut
                 ));
             }
-            let ground = if case.grid { "grid" } else { "quad" };
+            let ground = case.ground.label();
             if name == "probed" && out.refused.is_none() {
                 by_translation
                     .entry(case.translate as u64)
@@ -1023,13 +1255,17 @@ fn the_scene_every_engine_draws() {
         let cut_max = over_cut.iter().copied().fold(f64::NAN, f64::max);
         let cut_median = median(&mut over_cut);
         let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
+        // No cut ground but for the quad.
+        let cut = if over_cut.is_empty() {
+            "-".to_string()
+        } else {
+            format!("{cut_median:.1},{cut_max:.1}")
+        };
         println!(
-            "{key:30} {:>6} {refused:>8} {drawable:>10} {:>10.1} {rmax:>10.1} {:>12.2e} {gmax:>12.2e} {:>6.1},{:<6.1}",
+            "{key:30} {:>6} {refused:>8} {drawable:>10} {:>10.1} {rmax:>10.1} {:>12.2e} {gmax:>12.2e} {cut:>13}",
             outs.len(),
             median(&mut ratios),
             median(&mut gaps),
-            cut_median,
-            cut_max
         );
     }
     if verbose {

@@ -198,3 +198,86 @@ fn the_scene_record_names_the_field_its_value_and_the_bound() {
         &["exact_depth", "slope"],
     );
 }
+
+/// A decal over several planes (`zshift_decal_matrix_planes`): the planes' largest offset,
+/// refusals said of their plane (its field named as for one decal), of `count`, of NULL, with
+/// the output untouched.
+#[test]
+fn a_decal_over_planes_names_the_plane_and_its_field() {
+    use zshift::ffi::{zshift_decal_matrix_planes, zshift_recommend_for_planes};
+    let m = projection();
+    let near = valid_decal();
+    let far = ZshiftDecal {
+        decal_near: 40.0,
+        decal_far: 45.0,
+        slope: 3.0,
+        ..valid_decal()
+    };
+    let one = |d: &ZshiftDecal| {
+        let mut out = [0.0f32; 16];
+        assert_eq!(
+            zshift_decal_matrix(m.as_ptr(), ZSHIFT_CLIP_NEG_ONE_TO_ONE, d, out.as_mut_ptr()),
+            ZSHIFT_OK
+        );
+        out
+    };
+    let (a, b) = (one(&near), one(&far));
+    // NDC depth is −m10 + m14/d: an offset toward the camera raises element 10, the larger
+    // offset is the larger element.
+    let expected = if a[10] >= b[10] { a } else { b };
+    assert_ne!(a[10], b[10]);
+    let planes = [near, far];
+    let mut out = [0.0f32; 16];
+    assert_eq!(
+        zshift_decal_matrix_planes(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            planes.as_ptr(),
+            2,
+            out.as_mut_ptr()
+        ),
+        ZSHIFT_OK
+    );
+    assert_eq!(out, expected);
+    let mut rec = std::mem::MaybeUninit::<ZshiftRecommendation>::zeroed();
+    assert_eq!(
+        zshift_recommend_for_planes(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            planes.as_ptr(),
+            2,
+            rec.as_mut_ptr()
+        ),
+        ZSHIFT_OK
+    );
+    // SAFETY: written by the call that returned ZSHIFT_OK.
+    let rec = unsafe { rec.assume_init() };
+    assert!(rec.bleed_gap > 0.0 && rec.bleed_gap < 45.0, "{rec:?}");
+
+    let refused_planes = |planes: *const ZshiftDecal, count: usize, needles: &[&str]| {
+        let mut out = [7.0f32; 16];
+        let status = zshift_decal_matrix_planes(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            planes,
+            count,
+            out.as_mut_ptr(),
+        );
+        assert_ne!(status, ZSHIFT_OK);
+        assert_eq!(out, [7.0f32; 16], "a refused call wrote its output");
+        let d = detail();
+        for needle in needles {
+            assert!(d.contains(needle), "detail {d:?} lacks {needle:?}");
+        }
+    };
+    let broken = [
+        near,
+        ZshiftDecal {
+            decal_far: 2000.0,
+            ..near
+        },
+    ];
+    refused_planes(broken.as_ptr(), 2, &["plane 1: ", "decal_far = 2000"]);
+    refused_planes(planes.as_ptr(), 0, &["count = 0"]);
+    refused_planes(std::ptr::null(), 2, &["decals"]);
+}

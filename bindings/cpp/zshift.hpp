@@ -489,6 +489,28 @@ inline Recommendation recommend_for_matrix(const float *m, Clip clip, const Deca
   return out;
 }
 
+/// The matrix of one decal on several planes, drawn in one pass (zshift_decal_matrix_planes): a
+/// mesh decal over terrain, cut from its triangles, one Decal per plane (each its own corners,
+/// base_reach and pipeline.world_box; the rest shared). The largest of the planes' offsets.
+/// Throws Error: as decal_matrix(), what() beginning "plane i: " for a plane's refusal.
+inline Matrix decal_matrix_planes(const float *m, Clip clip, const Decal *decals, std::size_t count) {
+  return detail::matrix(
+      [&](float *out) { return zshift_decal_matrix_planes(m, detail::to_c(clip), decals, count, out); });
+}
+/// decal_matrix_planes() of a Matrix and a vector of planes.
+inline Matrix decal_matrix_planes(const Matrix &m, Clip clip, const std::vector<Decal> &decals) {
+  return decal_matrix_planes(m.data(), clip, decals.data(), decals.size());
+}
+
+/// The recommendation behind decal_matrix_planes() (zshift_recommend_for_planes): the plane with
+/// the largest offset, with bleed_gap the largest of every plane's at that offset. Throws Error:
+/// as decal_matrix_planes().
+inline Recommendation recommend_for_planes(const float *m, Clip clip, const Decal *decals, std::size_t count) {
+  Recommendation out{};
+  detail::check(zshift_recommend_for_planes(m, detail::to_c(clip), decals, count, &out));
+  return out;
+}
+
 /// The engine's own projection `m` with geometry at eye distance `d` moved toward the camera by
 /// `delta` (zshift_offset_matrix): element 10 (perspective [-1, 1], [0, 1]), 14 (perspective
 /// reversed, relative; orthographic, constant), rounded outward; every other element

@@ -373,3 +373,99 @@ pub extern "C" fn zshift_recommend_for_matrix(
         |out, record| unsafe { out.write_unaligned(record) },
     )
 }
+
+/// The most planes one decal may be asked over: far above any decal system's pieces, low enough
+/// that a garbage `count` is named rather than read.
+const MOST_PLANES: usize = 1 << 16;
+
+/// The recommendation for one decal over several planes (`zshift::planes::recommend_planes`):
+/// each C record read and checked as `zshift_decal_matrix` checks its one, an error said of its
+/// plane.
+fn recommend_over_planes(
+    m: &[f32; 16],
+    clip: ZshiftClip,
+    decals: *const ZshiftDecal,
+    count: usize,
+) -> Result<crate::recommend::ClipRecommendation> {
+    let clip = clip_of(clip)?;
+    if count == 0 || count > MOST_PLANES {
+        return Err(domain(
+            "count must be at least 1 and at most 65536 (one ZshiftDecal per plane)",
+        )
+        .with_integer("count", i64::try_from(count).unwrap_or(i64::MAX)));
+    }
+    let mut planes = Vec::with_capacity(count);
+    for i in 0..count {
+        // SAFETY: the entry point refused NULL; the caller promises `count` readable records.
+        let record = read_decal(unsafe { decals.add(i) });
+        let plane =
+            with_decal(m, clip, &record, |d| Ok(*d)).map_err(|e| e.for_item("plane", i as u32))?;
+        planes.push(plane);
+    }
+    crate::planes::recommend_planes(m, clip, &planes)
+}
+
+/// Writes the projection matrix of one decal that lies on several planes (a mesh decal over a
+/// terrain: the terrain's own triangles clipped to the decal, each piece on its triangle's
+/// plane), drawn in one pass: `decals` holds `count` ZshiftDecal records, one per plane, each
+/// filled as for `zshift_decal_matrix` (the same viewport, format, depth_func, profile and
+/// pipeline; its own decal_corners, base_reach and pipeline.world_box). The matrix carries the
+/// largest of the planes' offsets, which keeps every plane's pixels;
+/// `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decals` or `out` is NULL; ZSHIFT_ERR_DOMAIN for a
+/// `count` of 0 or above 65536; any error of `zshift_decal_matrix` for a plane, its detail
+/// beginning "plane i: " (from 0). `out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_decal_matrix_planes(
+    m: *const f32,
+    clip: ZshiftClip,
+    decals: *const ZshiftDecal,
+    count: usize,
+    out: *mut f32,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    if decals.is_null() {
+        return null_pointer("decals");
+    }
+    checked_array(out, move || {
+        Ok(recommend_over_planes(&m, clip, decals, count)?.matrix)
+    })
+}
+
+/// Writes the recommendation behind `zshift_decal_matrix_planes`: the plane whose offset is
+/// largest (its epsilon, offsets and error terms), with `bleed_gap` the largest of every
+/// plane's gap at that offset (an occluder that much in front of the base at every pixel is
+/// never overdrawn) and the glPolygonOffset equivalent as the largest factor and the largest
+/// units of the planes'.
+///
+/// Errors: as `zshift_decal_matrix_planes`. `*out` is untouched on error.
+#[no_mangle]
+pub extern "C" fn zshift_recommend_for_planes(
+    m: *const f32,
+    clip: ZshiftClip,
+    decals: *const ZshiftDecal,
+    count: usize,
+    out: *mut ZshiftRecommendation,
+) -> ZshiftStatus {
+    let Some(m) = matrix_from_c(m) else {
+        return null_pointer("m");
+    };
+    if decals.is_null() {
+        return null_pointer("decals");
+    }
+    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
+    // write_unaligned needs no alignment.
+    checked(
+        out,
+        move || {
+            Ok(record_of(
+                &recommend_over_planes(&m, clip, decals, count)?,
+                clip,
+            ))
+        },
+        |out, record| unsafe { out.write_unaligned(record) },
+    )
+}

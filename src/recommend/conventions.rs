@@ -130,19 +130,7 @@ pub(crate) fn recommend_clip_building(
     check_in_range(&mapping, d1, offset_at(d1), &terms)?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
-    let mut bleed_gap = 0.0f64;
-    for d in [d1, d2] {
-        let at_d = ErrorTerms {
-            quantum: unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?,
-            ..terms
-        };
-        let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
-            Ok(g) => g.min(d),
-            // Past the eye: no occluder in front of the base is safe from the decal.
-            Err(_) => d,
-        };
-        bleed_gap = bleed_gap.max(g);
-    }
+    let bleed_gap = bleed_gap_at(scene, &mapping, &terms, offset_at)?;
     let (epsilon, polygon_offset) = if clip == ClipDepth::ReversedZeroToOne {
         (relative_epsilon, [0.0, 0.0])
     } else {
@@ -160,6 +148,57 @@ pub(crate) fn recommend_clip_building(
         bleed_gap: fits(bleed_gap)?,
         matrix,
         terms,
+    })
+}
+
+/// The bleed gap (R2) of `scene`, whose errors are `terms`, drawn with the window offset
+/// `offset_at(d)` at eye depth `d`: the eye-depth separation an occluder needs at `d₁` and at
+/// `d₂` (each with the quantum there), the larger; `d` itself where the separation would pass
+/// the eye.
+fn bleed_gap_at(
+    scene: &Scene,
+    mapping: &DepthMapping,
+    terms: &ErrorTerms,
+    offset_at: impl Fn(f64) -> f64,
+) -> Result<f64> {
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let mut bleed_gap = 0.0f64;
+    for d in scene.depth_range {
+        let at_d = ErrorTerms {
+            quantum: unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?,
+            ..*terms
+        };
+        let g = match mapping.shift_of_window_change(toward(at_d.gap_window(offset_at(d))), d) {
+            Ok(g) => g.min(d),
+            // Past the eye: no occluder in front of the base is safe from the decal.
+            Err(_) => d,
+        };
+        bleed_gap = bleed_gap.max(g);
+    }
+    Ok(bleed_gap)
+}
+
+/// The bleed gap of `scene` under `clip`, whose own errors are `terms`, when the decal is drawn
+/// with `chosen`'s offset: another plane's of the same decal, through the same matrix
+/// ([`crate::planes`]). The offset is `chosen.window_offset` at every depth, or under reversed Z
+/// `chosen.relative_epsilon·b/d`.
+///
+/// # Errors
+/// As [`recommend_clip`]'s checks of the scene.
+pub(crate) fn bleed_gap_with(
+    scene: &Scene,
+    clip: ClipDepth,
+    terms: &ErrorTerms,
+    chosen: &ClipRecommendation,
+) -> Result<f64> {
+    let mapping = mapping_of(scene, clip)?;
+    let b = scale(&scene.frustum);
+    bleed_gap_at(scene, &mapping, terms, |d| {
+        if clip == ClipDepth::ReversedZeroToOne {
+            chosen.relative_epsilon * (b / d)
+        } else {
+            chosen.window_offset
+        }
     })
 }
 

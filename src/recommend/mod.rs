@@ -181,6 +181,7 @@ mod terms;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use conventions::bleed_gap_with;
 pub use conventions::{recommend_clip, ClipRecommendation};
 pub(crate) use conventions::{recommend_clip_building, reversed_epsilon_with};
 pub(crate) use facing::chain_covers;

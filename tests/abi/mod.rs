@@ -387,6 +387,43 @@ pub const CATALOGUE: &[Entry] = &[
     writes!(zshift_offset_matrix_ndc(matrix, clip, ndc) -> [F32; 16]),
     writes!(zshift_decal_matrix(matrix, clip, decal) -> [F32; 16]),
     writes!(zshift_recommend_for_matrix(matrix, clip, decal) -> [F64; RECOMMENDATION]),
+    // One plane, the catalogue's decal: the same checks as zshift_decal_matrix's.
+    Entry {
+        name: "zshift_decal_matrix_planes",
+        kind: Kind::Writes {
+            elem: Elem::F32,
+            len: 16,
+            call: |i: &Inputs, out: *mut u8| {
+                ffi::zshift_decal_matrix_planes(
+                    i.matrix.arg(),
+                    i.clip.arg(),
+                    &i.decal,
+                    1,
+                    out.cast(),
+                )
+                .0
+            },
+            inf_ok: &[],
+        },
+    },
+    Entry {
+        name: "zshift_recommend_for_planes",
+        kind: Kind::Writes {
+            elem: Elem::F64,
+            len: RECOMMENDATION,
+            call: |i: &Inputs, out: *mut u8| {
+                ffi::zshift_recommend_for_planes(
+                    i.matrix.arg(),
+                    i.clip.arg(),
+                    &i.decal,
+                    1,
+                    out.cast(),
+                )
+                .0
+            },
+            inf_ok: &[],
+        },
+    },
     writes!(zshift_ortho(l, r, b, t, n, f, clip) -> [F32; 16]),
     writes!(zshift_offset_ortho(l, r, b, t, n, f, clip, delta) -> [F32; 16]),
     writes!(zshift_ortho_depth_step(n, f, clip, format, d) -> [F64; 1]),

@@ -315,6 +315,32 @@ static void test_edges() {
                [&] { zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix); });
 }
 
+// One decal over two planes (a mesh decal over terrain): the larger of the two offsets, the
+// plane named in a refusal.
+static void test_decal_planes() {
+  const auto m = zshift::frustum(-0.1, 0.1, -0.05625, 0.05625, 0.1, 1000.0);
+  const auto clip = zshift::Clip::neg_one_to_one;
+  const std::vector<zshift::Decal> planes = {
+      zshift::make_decal(1280, 720, zshift::Format::unorm24, 8, 10.0, 12.0, 1.0),
+      zshift::make_decal(1280, 720, zshift::Format::unorm24, 8, 40.0, 45.0, 3.0)};
+  const auto a = zshift::decal_matrix(m, clip, planes[0]), b = zshift::decal_matrix(m, clip, planes[1]);
+  const auto both = zshift::decal_matrix_planes(m, clip, planes);
+  // NDC depth is -m10 + m14/d: the larger offset toward the camera is the larger element 10.
+  CHECK(a[10] != b[10] && both == (a[10] > b[10] ? a : b), "decal_matrix_planes() is the larger offset");
+  const auto rec = zshift::recommend_for_planes(m.data(), clip, planes.data(), planes.size());
+  CHECK(rec.bleed_gap >= zshift::recommend_for_matrix(m.data(), clip, planes[1]).bleed_gap, "bleed gap");
+  auto broken = planes;
+  broken[1].decal_far = 2000.0;
+  try {
+    zshift::decal_matrix_planes(m, clip, broken);
+    CHECK(false, "a broken plane was accepted");
+  } catch (const zshift::Error &e) {
+    CHECK(std::strncmp(e.what(), "plane 1: ", 9) == 0, "the refusal names the plane: %s", e.what());
+  }
+  check_throws("decal_matrix_planes(no planes)", zshift::Status::null_pointer,
+               [&] { zshift::decal_matrix_planes(m.data(), clip, nullptr, 0); });
+}
+
 static void test_shadow_bias() {
   zshift::ShadowMap map{};
   map.light = ZSHIFT_LIGHT_ORTHOGRAPHIC;
@@ -382,6 +408,7 @@ int main() {
   test_messages();
   test_clip_to_frustum();
   test_shadow_bias();
+  test_decal_planes();
   if (failures != 0) {
     std::fprintf(stderr, "wrapper_test: %d of %d checks failed\n", failures, checks);
     return 1;

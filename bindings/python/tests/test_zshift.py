@@ -525,6 +525,35 @@ class FrontDoor(unittest.TestCase):
                                     subpixel_bits=8)
         self.assertEqual([i for i in range(16) if decal[i] != o[i]], [14])
 
+    def test_a_decal_over_planes_takes_the_largest_offset(self):
+        # A mesh decal over terrain: two triangles under it, one flat, one rising 0.7 per unit.
+        m = self.perspective(1.0, 16 / 9, 0.1, 1000.0)
+        args = (m, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24)
+
+        def triangle(ahead, rise):
+            at = lambda x, z: (x, -1.7 + rise * x, -z)
+            return [at(-1.0, ahead), at(1.0, ahead), at(0.0, ahead + 1.5)]
+
+        planes = [dict(corners=triangle(10.0, 0.0)), dict(corners=triangle(12.0, 0.7), base_reach=0.0)]
+        each = [zshift.decal_matrix(*args, None, subpixel_bits=8, corners=p["corners"]) for p in planes]
+        both = zshift.decal_matrix_planes(*args, planes, subpixel_bits=8)
+        # NDC depth is -m10 + m14/d: the larger offset toward the camera is the larger element 10.
+        self.assertEqual(list(both), list(max(each, key=lambda d: d[10])))
+        self.assertNotEqual(each[0][10], each[1][10])
+        rec = zshift.recommend_for_planes(*args, planes, subpixel_bits=8)
+        own = [zshift.recommend_for_matrix(*args, None, subpixel_bits=8, corners=p["corners"]) for p in planes]
+        self.assertGreaterEqual(rec.bleed_gap, max(r.bleed_gap for r in own))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.decal_matrix_planes(*args, [planes[0], dict(corners=triangle(10.0, 0.0), base_reach=-1.0)],
+                                       subpixel_bits=8)
+        self.assertTrue(str(caught.exception).startswith("plane 1: "), str(caught.exception))
+        self.assertIn("base_reach = -1", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError):
+            zshift.decal_matrix_planes(*args, [], subpixel_bits=8)
+        with self.assertRaises(TypeError) as caught:
+            zshift.decal_matrix_planes(*args, [dict(corner=triangle(10.0, 0.0))], subpixel_bits=8)
+        self.assertIn("'corner'", str(caught.exception))
+
     def test_corners_describe_the_decal(self):
         # A steep square (z = -20 - 2y) below the view axis: its corners give the depths (14, 18) and the
         # slope (2) this test computes itself, and its place on the screen, which can only tighten the offset.

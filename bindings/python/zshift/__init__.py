@@ -40,7 +40,8 @@ __all__ = [
     "min_epsilon_clip", "min_relative_epsilon", "bias_of_shift", "shift_of_bias", "tight_planes",
     "range_offset", "recommend_clip", "recommend_clip_matrix",
     "status_message", "version", "library_path",
-    "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "ortho", "offset_ortho",
+    "offset_matrix", "offset_matrix_ndc", "decal_matrix", "recommend_for_matrix", "decal_matrix_planes",
+    "recommend_for_planes", "ortho", "offset_ortho",
     "ortho_depth_step",
     "probe", "profile_worst_case", "Profile", "NEAR_CLIP_CLIPPED_F32", "NEAR_CLIP_PLANE_PRESERVING",
     "clip_to_frustum", "shadow_bias", "shadow_bias_receivers", "ShadowBias", "Light", "Lookup",
@@ -702,6 +703,8 @@ def _front_door():
             "zshift_offset_matrix_ndc": [matrix, i32, d, float_out],
             "zshift_decal_matrix": [matrix, i32, decal, float_out],
             "zshift_recommend_for_matrix": [matrix, i32, decal, record],
+            "zshift_decal_matrix_planes": [matrix, i32, decal, _ctypes.c_size_t, float_out],
+            "zshift_recommend_for_planes": [matrix, i32, decal, _ctypes.c_size_t, record],
             "zshift_ortho": [d] * 6 + [i32, float_out],
             "zshift_offset_ortho": [d] * 6 + [i32, d, float_out],
             "zshift_ortho_depth_step": [d, d, i32, i32, d, _ctypes.POINTER(_ctypes.c_double)],
@@ -788,6 +791,66 @@ def recommend_for_matrix(m, clip, viewport, depth_format, decal_depths=None, slo
                    corners, depth_test, viewport_origin, depth_range, world_reach, eye_first, view_matrix, world_box)
     out = _library.ZshiftRecommendation()
     _check(_front_door().zshift_recommend_for_matrix(mat, _enum(clip, Clip), _ctypes.byref(decal), _ctypes.byref(out)))
+    return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
+
+
+#: The keys a plane of :func:`decal_matrix_planes` may have: what differs between the planes.
+_PLANE_KEYS = ("corners", "decal_depths", "slope", "exact_depth", "base_reach", "world_box")
+
+
+def _planes(viewport, depth_format, planes, subpixel_bits, profile, depth_test, viewport_origin, depth_range,
+            world_reach, eye_first, view_matrix):
+    """One ``ZshiftDecal`` per plane (a list that keeps each plane's corners alive), and the
+    ctypes array of them."""
+    planes = list(planes)
+    if not planes:
+        raise ZshiftError(Status.DOMAIN, "planes must hold at least one plane (count = 0)")
+    decals = []
+    for i, plane in enumerate(planes):
+        unknown = sorted(set(plane) - set(_PLANE_KEYS))
+        if unknown:
+            raise TypeError(f"plane {i}: unknown key {unknown[0]!r} (a plane may have {', '.join(_PLANE_KEYS)})")
+        try:
+            decals.append(_decal(viewport, depth_format, plane.get("decal_depths"), plane.get("slope", 0.0),
+                                 plane.get("exact_depth", False), subpixel_bits, profile, plane.get("base_reach", 0.0),
+                                 plane.get("corners"), depth_test, viewport_origin, depth_range, world_reach, eye_first,
+                                 view_matrix, plane.get("world_box")))
+        except ZshiftError as e:
+            raise ZshiftError(e.status, f"plane {i}: {e.message}") from None
+    return decals, (_Decal * len(decals))(*decals)
+
+
+def decal_matrix_planes(m, clip, viewport, depth_format, planes, subpixel_bits=None, profile=None, depth_test=None,
+                        viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False,
+                        view_matrix=None):
+    """The matrix of one decal on several planes, drawn in one pass (``zshift_decal_matrix_planes``):
+    a mesh decal over terrain, cut from the terrain's own triangles, each piece on its triangle's
+    plane. ``planes`` is a list of dicts, one per plane, with what differs between them (the keys
+    of :func:`decal_matrix`: ``corners``, or ``decal_depths`` and ``slope``; ``exact_depth``,
+    ``base_reach``, ``world_box``); the other arguments are shared, as :func:`decal_matrix` takes
+    them. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
+    Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal;
+    ``TypeError`` for an unknown key."""
+    mat = _engine_matrix(m)
+    keep, array = _planes(viewport, depth_format, planes, subpixel_bits, profile, depth_test, viewport_origin,
+                          depth_range, world_reach, eye_first, view_matrix)
+    out = _matrix(lambda out: _front_door().zshift_decal_matrix_planes(mat, _enum(clip, Clip), array, len(keep), out))
+    del keep
+    return out
+
+
+def recommend_for_planes(m, clip, viewport, depth_format, planes, subpixel_bits=None, profile=None, depth_test=None,
+                         viewport_origin=(0, 0), depth_range=(0.0, 1.0), world_reach=0.0, eye_first=False,
+                         view_matrix=None):
+    """The :data:`Recommendation` behind :func:`decal_matrix_planes` (``zshift_recommend_for_planes``):
+    the plane with the largest offset, its ``bleed_gap`` the largest of every plane's at that offset,
+    its ``polygon_offset`` the largest factor and units of the planes'."""
+    mat = _engine_matrix(m)
+    keep, array = _planes(viewport, depth_format, planes, subpixel_bits, profile, depth_test, viewport_origin,
+                          depth_range, world_reach, eye_first, view_matrix)
+    out = _library.ZshiftRecommendation()
+    _check(_front_door().zshift_recommend_for_planes(mat, _enum(clip, Clip), array, len(keep), _ctypes.byref(out)))
+    del keep
     return Recommendation(*(getattr(out, name) for name in Recommendation._fields))
 
 

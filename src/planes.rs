@@ -1,0 +1,231 @@
+//! A decal over several planes: a mesh decal that follows a terrain (or any base of more than
+//! one plane), drawn in one pass with one matrix.
+//!
+//! An engine's decal system clips the base's own triangles to the decal's box and draws the
+//! pieces; each piece lies on its own triangle's plane, so the model's terms differ per piece
+//! (slope, footprint, the base triangle's reach and box). Every piece is asked for on its own
+//! ([`crate::matrix_in::recommend`]), and the decal is drawn with the **largest** offset: the
+//! offset moves every depth toward the camera monotonically, so the largest keeps every
+//! piece's pixels. What it costs is each piece's bleed gap at that offset, not at its own: an
+//! occluder must be in front of a piece by the offset at its depths plus that piece's own
+//! errors (`G_w = Δw + 2(E + S) + C_d (+ q)`, (R2) of [`crate::recommend`]), the largest of
+//! them over the pieces.
+//!
+//! Verified by `tests/gl_engine_scene.rs` (hills: a terrain of one-unit cells, the decal built
+//! from its triangles in f32, one plane asked per triangle under it).
+
+use crate::domain::domain;
+use crate::error::Result;
+use crate::matrix_in::{recognize, Decal, Shape};
+use crate::projection::ClipDepth;
+use crate::recommend::ClipRecommendation;
+
+/// The recommendation for one decal drawn with the engine's matrix `m` under `clip` over
+/// several planes, one [`Decal`] per plane (the same viewport, format, depth test, profile and
+/// pipeline; each its own corners or depths and slope, its own `base` and `world_box`).
+///
+/// Returns the recommendation of the plane whose offset is largest (its `matrix`,
+/// `epsilon`, `ndc_offset`, `relative_epsilon`, `window_offset`, `delta_at_far`, `terms`),
+/// with `bleed_gap` the largest of every plane's gap at that offset and `polygon_offset` the
+/// largest factor and the largest units of the planes' (a `glPolygonOffset` with both keeps
+/// every plane: each triangle's own slope enters the factor).
+///
+/// Convention: as [`crate::matrix_in::recommend`], which each plane goes through.
+///
+/// # Errors
+/// [`crate::ErrorKind::Domain`] for no plane; any error of
+/// [`crate::matrix_in::recommend`] for a plane, said of that plane ("plane 2: …", from 0).
+pub fn recommend_planes(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    decals: &[Decal],
+) -> Result<ClipRecommendation> {
+    if decals.is_empty() {
+        return Err(
+            domain("a decal over several planes needs at least one plane")
+                .with_integer("planes", 0),
+        );
+    }
+    let mut asked = Vec::with_capacity(decals.len());
+    for (i, decal) in decals.iter().enumerate() {
+        asked.push(crate::matrix_in::recommend(m, clip, decal).map_err(|e| at_plane(e, i))?);
+    }
+    // One of the two is 0 in each convention: the constant NDC offset, or the relative ε.
+    let size = |r: &ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
+    let chosen = *asked
+        .iter()
+        .max_by(|a, b| size(a).total_cmp(&size(b)))
+        .expect("at least one plane");
+    let mut out = chosen;
+    for (i, (decal, own)) in decals.iter().zip(&asked).enumerate() {
+        let gap = gap_at(m, clip, decal, own, &chosen).map_err(|e| at_plane(e, i))?;
+        out.bleed_gap = out.bleed_gap.max(gap);
+        out.polygon_offset = [0, 1].map(|k| out.polygon_offset[k].max(own.polygon_offset[k]));
+    }
+    Ok(out)
+}
+
+/// Names the plane an error came from.
+fn at_plane(e: crate::Error, i: usize) -> crate::Error {
+    e.for_item("plane", u32::try_from(i).unwrap_or(u32::MAX))
+}
+
+/// The bleed gap of one plane (`decal`, recommended `own`) drawn with `chosen`'s offset.
+/// Perspective: the model's (R2) at the plane's nearest and farthest depth with the chosen
+/// window offset there. Orthographic: eye depth is linear in window depth, so the gap grows by
+/// the difference of the offsets times the depth span.
+fn gap_at(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    decal: &Decal,
+    own: &ClipRecommendation,
+    chosen: &ClipRecommendation,
+) -> Result<f64> {
+    let r = recognize(m, clip)?;
+    match r.shape {
+        Shape::Perspective { handedness, .. } => {
+            let frustum = crate::matrix_in::frustum_of(m, &r, handedness)?;
+            let scene = crate::matrix_in::scene(frustum, decal, clip);
+            crate::recommend::bleed_gap_with(&scene, clip, &own.terms, chosen)
+        }
+        _ => {
+            let span = (r.far - r.near).abs();
+            Ok(own.bleed_gap + (chosen.window_offset - own.window_offset).max(0.0) * span)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::matrix_in::{decal_shape, recommend};
+    use crate::precision::DepthFormat;
+    use crate::recommend::{Base, Snapping};
+    use glam::Vec3;
+
+    /// glFrustum's 60° by 16:9 frustum, near 0.1, far 1000 (∞ reversed), under `clip`.
+    fn matrix(clip: ClipDepth) -> [f32; 16] {
+        let t = 0.1 * (30f64).to_radians().tan();
+        let far = if clip == ClipDepth::ReversedZeroToOne {
+            f64::INFINITY
+        } else {
+            1000.0
+        };
+        let frustum =
+            crate::projection::Frustum::new(-t * 16.0 / 9.0, t * 16.0 / 9.0, -t, t, 0.1, far)
+                .expect("a frustum");
+        crate::projection::projection(&frustum, clip).expect("a matrix")
+    }
+
+    /// A triangle of terrain 1.7 below a level camera, `ahead` units away, rising `rise` per
+    /// unit of x, as a decal of its own.
+    fn plane(m: &[f32; 16], clip: ClipDepth, ahead: f32, rise: f32) -> Decal {
+        let at = |x: f32, z: f32| Vec3::new(x, -1.7 + rise * x, -z);
+        let corners = [at(-1.0, ahead), at(1.0, ahead), at(0.0, ahead + 1.5)];
+        let shape = decal_shape(m, clip, [1920, 1080], &corners).expect("a plane on screen");
+        Decal {
+            viewport: [1920, 1080],
+            format: DepthFormat::Unorm24,
+            depth_range: shape.depth_range,
+            slope: shape.slope,
+            exact_depth: false,
+            snapping: Snapping::SubpixelBits(8),
+            base: Base::InsideFrustum,
+            profile: None,
+            footprint: Some(shape.footprint),
+            depth_test: None,
+            pipeline: crate::model::Pipeline::default(),
+        }
+    }
+
+    #[test]
+    fn one_plane_is_the_plane_itself() {
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            let m = matrix(clip);
+            let d = plane(&m, clip, 10.0, 0.3);
+            let one = recommend_planes(&m, clip, &[d]).unwrap();
+            let own = recommend(&m, clip, &d).unwrap();
+            assert_eq!(one.matrix, own.matrix, "{clip:?}");
+            // The gap of the plane at its own offset, through either formula: never smaller.
+            assert!(one.bleed_gap >= own.bleed_gap, "{clip:?}: {one:?} {own:?}");
+            assert!(
+                one.bleed_gap <= 1.01 * own.bleed_gap,
+                "{clip:?}: {one:?} {own:?}"
+            );
+        }
+    }
+
+    /// Two planes: the matrix is the one with the larger offset, and every plane's gap at that
+    /// offset is covered: the window separation `G_w` it needs (R2) is reached at the reported
+    /// gap, checked on the exact window depth of the f64 frustum at the plane's nearest and
+    /// farthest depth.
+    #[test]
+    fn the_largest_offset_and_every_planes_gap_at_it() {
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            let m = matrix(clip);
+            let (flat, steep) = (plane(&m, clip, 10.0, 0.0), plane(&m, clip, 12.0, 0.7));
+            let both = recommend_planes(&m, clip, &[flat, steep]).unwrap();
+            let recs = [flat, steep].map(|d| recommend(&m, clip, &d).unwrap());
+            let size = |r: &ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
+            let largest = if size(&recs[0]) >= size(&recs[1]) {
+                &recs[0]
+            } else {
+                &recs[1]
+            };
+            assert_eq!(both.matrix, largest.matrix, "{clip:?}");
+            assert!(both.bleed_gap >= recs[0].bleed_gap.max(recs[1].bleed_gap));
+            assert_eq!(
+                both.polygon_offset,
+                [0, 1].map(|k| recs[0].polygon_offset[k].max(recs[1].polygon_offset[k]))
+            );
+            // The unit window depth of the f64 frustum (glm's near and far; aspect and fov do
+            // not enter depth).
+            let (n, f) = (0.1f64, 1000.0f64);
+            let unit = |d: f64| match clip {
+                ClipDepth::ReversedZeroToOne => n / d,
+                _ => f * (d - n) / (d * (f - n)),
+            };
+            for (decal, own) in [flat, steep].iter().zip(&recs) {
+                for d in decal.depth_range {
+                    let offset = if clip == ClipDepth::ReversedZeroToOne {
+                        largest.relative_epsilon * n / d
+                    } else {
+                        largest.window_offset
+                    };
+                    let needed = own.terms.gap_window(offset);
+                    let apart = (unit(d) - unit(d - both.bleed_gap)).abs();
+                    // The model's quantum is taken at each depth; the terms' at the far end:
+                    // allow that much.
+                    assert!(
+                        apart >= needed - own.terms.quantum,
+                        "{clip:?} d {d}: {apart} < {needed}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn refusals_name_the_plane() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(clip);
+        let e = recommend_planes(&m, clip, &[]).unwrap_err();
+        assert_eq!(e.kind(), crate::ErrorKind::Domain);
+        let good = plane(&m, clip, 10.0, 0.0);
+        let bad = Decal {
+            depth_range: [5000.0, 6000.0],
+            footprint: None,
+            ..good
+        };
+        let e = recommend_planes(&m, clip, &[good, bad]).unwrap_err();
+        assert!(e.to_string().starts_with("plane 1: "), "{e}");
+    }
+}
