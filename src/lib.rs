@@ -29,6 +29,7 @@
 //! | [`lines`] | edges over their own faces (wireframe on shaded, outlines, hidden-line drawing): polygon offset for the faces or a matrix offset for the edges, and the hidden-line gap | 004 |
 //! | [`decal`] | what an engine knows about a decal besides its matrix (the recommendation's input) | |
 //! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
+//! | [`planes`] | one decal over several planes (a mesh decal over terrain): the largest of the planes' offsets, every plane's bleed gap at it | 000, 004 |
 //! | [`orthographic`] | `glOrtho` for every clip convention, its constant offset through element 14, its (constant) depth step | |
 //! | [`shadow`] | shadow-map bias: the smallest acne-free caster bias in every API's units, receiver-side offsets, peter-panning | 004 |
 //! | [`rounding`] | how matrices reach f32: the nearest f32 of the exact element (proven fast test, exact fallback), offsets outward | |

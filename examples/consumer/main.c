@@ -6,6 +6,7 @@
 #include <zshift.h>
 
 static int ground_decal(const float proj[16], float decal_out[16]); /* below */
+static int terrain_decal(const float proj[16], float decal_out[16]); /* below */
 
 
 int main(void) {
@@ -33,6 +34,9 @@ int main(void) {
   if (decal[10] <= proj[10]) return 1;
   if (ground_decal(proj, decal) != 0) return 1;
   printf("ground decal: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
+  if (decal[10] <= proj[10]) return 1;
+  if (terrain_decal(proj, decal) != 0) return 1;
+  printf("terrain decal: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
   return decal[10] > proj[10] ? 0 : 1;
 }
 
@@ -59,3 +63,30 @@ static int ground_decal(const float proj[16], float decal_out[16]) {
   return 0;
 }
 /* [/quickstart-ground-c] */
+
+/* [quickstart-terrain-c] */
+/* A mesh decal over terrain with hills: the decal system cut it from two terrain triangles, one
+   flat and one rising 0.5 per unit; one ZshiftDecal per plane, asked for in one call. */
+static int terrain_decal(const float proj[16], float decal_out[16]) {
+  const float flat[9] = {-1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -9.0f, -1.0f, -1.7f, -11.0f};
+  const float rising[9] = {1.0f, -1.7f, -9.0f, 1.0f, -1.2f, -11.0f, -1.0f, -1.7f, -11.0f};
+  ZshiftDecal planes[2];
+  int i;
+  memset(planes, 0, sizeof planes);
+  for (i = 0; i < 2; i++) {
+    planes[i].viewport_width = 1920;
+    planes[i].viewport_height = 1080;
+    planes[i].format = ZSHIFT_FORMAT_UNORM24_STENCIL8;
+    planes[i].subpixel_bits = 8;
+    planes[i].depth_func = ZSHIFT_DEPTH_TEST_LEQUAL;
+    planes[i].decal_corners = i == 0 ? flat : rising; /* the terrain triangle's eye-space corners */
+    planes[i].decal_corner_count = 3;
+    planes[i].base_reach = 0.0; /* this triangle lies inside the frustum */
+  }
+  if (zshift_decal_matrix_planes(proj, ZSHIFT_CLIP_NEG_ONE_TO_ONE, planes, 2, decal_out) != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error()); /* "plane 1: ..." names the plane */
+    return 1;
+  }
+  return 0;
+}
+/* [/quickstart-terrain-c] */
