@@ -22,7 +22,9 @@ use crate::recommend::ClipRecommendation;
 
 /// The recommendation for one decal drawn with the engine's matrix `m` under `clip` over
 /// several planes, one [`Decal`] per plane (the same viewport, format, depth test, profile and
-/// pipeline; each its own corners or depths and slope, its own `base` and `world_box`).
+/// pipeline; each its own corners or depths and slope, its own `base` and `world_box`). Give
+/// each plane the corners of the base triangle its piece was cut from, not the piece's: a
+/// sliver's f32 corners do not pin its plane down.
 ///
 /// Returns the recommendation of the plane whose offset is largest (its `matrix`,
 /// `epsilon`, `ndc_offset`, `relative_epsilon`, `window_offset`, `delta_at_far`, `terms`),
@@ -57,8 +59,16 @@ pub fn recommend_planes(
         .max_by(|a, b| size(a).total_cmp(&size(b)))
         .expect("at least one plane");
     let mut out = chosen;
+    // Every plane passed recommend, so m is recognised and (perspective) has a frustum.
+    let r = recognize(m, clip)?;
+    let frustum = match r.shape {
+        Shape::Perspective { handedness, .. } => {
+            Some(crate::matrix_in::frustum_of(m, &r, handedness)?)
+        }
+        Shape::Orthographic => None,
+    };
     for (i, (decal, own)) in decals.iter().zip(&asked).enumerate() {
-        let gap = gap_at(m, clip, decal, own, &chosen).map_err(|e| at_plane(e, i))?;
+        let gap = gap_at(&r, frustum, clip, decal, own, &chosen).map_err(|e| at_plane(e, i))?;
         out.bleed_gap = out.bleed_gap.max(gap);
         out.polygon_offset = [0, 1].map(|k| out.polygon_offset[k].max(own.polygon_offset[k]));
     }
@@ -70,25 +80,25 @@ fn at_plane(e: crate::Error, i: usize) -> crate::Error {
     e.for_item("plane", u32::try_from(i).unwrap_or(u32::MAX))
 }
 
-/// The bleed gap of one plane (`decal`, recommended `own`) drawn with `chosen`'s offset.
+/// The bleed gap of one plane (`decal`, recommended `own`) drawn with `chosen`'s offset, under
+/// the recognised matrix `r` (its `frustum` if perspective).
 /// Perspective: the model's (R2) at the plane's nearest and farthest depth with the chosen
 /// window offset there. Orthographic: eye depth is linear in window depth, so the gap grows by
 /// the difference of the offsets times the depth span.
 fn gap_at(
-    m: &[f32; 16],
+    r: &crate::matrix_in::Recognized,
+    frustum: Option<crate::projection::Frustum>,
     clip: ClipDepth,
     decal: &Decal,
     own: &ClipRecommendation,
     chosen: &ClipRecommendation,
 ) -> Result<f64> {
-    let r = recognize(m, clip)?;
-    match r.shape {
-        Shape::Perspective { handedness, .. } => {
-            let frustum = crate::matrix_in::frustum_of(m, &r, handedness)?;
+    match frustum {
+        Some(frustum) => {
             let scene = crate::matrix_in::scene(frustum, decal, clip);
             crate::recommend::bleed_gap_with(&scene, clip, &own.terms, chosen)
         }
-        _ => {
+        None => {
             let span = (r.far - r.near).abs();
             Ok(own.bleed_gap + (chosen.window_offset - own.window_offset).max(0.0) * span)
         }
@@ -211,6 +221,43 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Under an orthographic matrix eye depth is linear in window depth: a plane's gap at the
+    /// larger offset is its own errors plus that offset, over the depth span.
+    #[test]
+    fn orthographic_planes_take_the_larger_offset_and_its_gap() {
+        let clip = ClipDepth::NegOneToOne;
+        let o = crate::orthographic::Ortho::new(-20.0, 20.0, -11.25, 11.25, 1.0, 501.0).unwrap();
+        let m = crate::orthographic::ortho(&o, clip).unwrap();
+        let decal = |d: f64, slope: f64| Decal {
+            depth_range: [d, d + 2.0],
+            slope,
+            footprint: None,
+            ..plane(&matrix(clip), clip, 10.0, 0.0)
+        };
+        let (flat, steep) = (decal(100.0, 0.0), decal(300.0, 2.0));
+        let both = recommend_planes(&m, clip, &[flat, steep]).unwrap();
+        let recs = [flat, steep].map(|d| recommend(&m, clip, &d).unwrap());
+        let (big, small) = if recs[0].window_offset >= recs[1].window_offset {
+            (&recs[0], &recs[1])
+        } else {
+            (&recs[1], &recs[0])
+        };
+        assert!(big.window_offset > small.window_offset);
+        assert_eq!(both.matrix, big.matrix);
+        // (R2) in window depth: the offset, plus the plane's own errors (its gap at its own
+        // offset less that offset); eye depth is window depth times the span 500.
+        let errors = |r: &ClipRecommendation| r.bleed_gap / 500.0 - r.window_offset;
+        let needed = [big, small].map(|r| (big.window_offset + errors(r)) * 500.0);
+        assert!(
+            both.bleed_gap >= needed[0].max(needed[1]) * (1.0 - 1e-12),
+            "{both:?}"
+        );
+        assert!(
+            both.bleed_gap <= needed[0].max(needed[1]) * (1.0 + 1e-12),
+            "{both:?}"
+        );
     }
 
     #[test]

@@ -125,18 +125,34 @@ int time_all() {
             ++failures;
     };
 
+    // A mesh decal over 8 terrain planes (slopes 0 to 1.75, the same depths), one call: the
+    // front door's cost per plane against zs_decal.
+    auto zs_planes = [&failures](float* out) {
+        ZshiftDecal d[8];
+        std::memset(d, 0, sizeof d);
+        for (int i = 0; i < 8; ++i) {
+            d[i].viewport_width = 1920, d[i].viewport_height = 1080;
+            d[i].format = ZSHIFT_FORMAT_UNORM24;
+            d[i].subpixel_bits = 8;
+            d[i].decal_near = -vpz, d[i].decal_far = -vpz, d[i].slope = 0.25 * i;
+        }
+        if (zshift_decal_matrix_planes(&engine[0][0], ZSHIFT_CLIP_NEG_ONE_TO_ONE, d, 8, out) != ZSHIFT_OK)
+            ++failures;
+    };
+
     const char* keys[] = {"glm_frustum_float",          "glm_frustum_float_seed_tweak",
                           "glm_frustum_double",         "glm_perspective_float",
                           "zshift_load_offset_matrix_c_abi", "zshift_frustum_c_abi",
                           "zshift_perspective_c_abi", "zshift_recommend_matrix_c_abi",
-                          "zshift_decal_matrix_c_abi"};
-    const int variants = 9;
+                          "zshift_decal_matrix_c_abi", "zshift_decal_matrix_planes_8_c_abi"};
+    const int variants = 10;
     std::vector<double> ns[variants];
     const int rounds = 61;
     for (int i = 0; i < rounds + 2; ++i) {
         double t[variants] = {batch(glm_plain),       batch(glm_tweak),  batch(glm_double),
                               batch(glm_perspective), batch(zs_offset),  batch(zs_frustum),
-                              batch(zs_perspective),  batch(zs_recommend), batch(zs_decal)};
+                              batch(zs_perspective),  batch(zs_recommend), batch(zs_decal),
+                              batch(zs_planes)};
         if (i < 2) continue;  // the first two rounds warm caches and clocks
         for (int k = 0; k < variants; ++k) ns[k].push_back(t[k]);
     }
@@ -153,6 +169,7 @@ int time_all() {
     for (int k = 0; k < variants; ++k) std::printf(", \"%s\": %.3f", keys[k], median(ns[k]));
     std::printf(", \"ratio_frustum_to_glm\": %.3f, \"ratio_offset_to_glm_tweak\": %.3f",
                 ratio(5, 0), ratio(4, 1));
+    std::printf(", \"ratio_planes_8_to_decal\": %.3f", ratio(9, 8));
     std::printf("}\n");
     return 0;
 }

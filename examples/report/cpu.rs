@@ -178,6 +178,11 @@ pub fn cpp_timings(json: &str) -> Vec<Timing> {
             "zshift_decal_matrix, GLM's matrix in (C ABI, called from C++; slope 1, 1920×1080)"
                 .to_string(),
         ),
+        (
+            "zshift_decal_matrix_planes_8_c_abi",
+            "zshift_decal_matrix_planes, 8 planes (C ABI, called from C++; slopes 0–1.75)"
+                .to_string(),
+        ),
     ]
     .into_iter()
     .filter_map(|(key, label)| {

@@ -409,7 +409,9 @@ fn recommend_over_planes(
 /// terrain: the terrain's own triangles clipped to the decal, each piece on its triangle's
 /// plane), drawn in one pass: `decals` holds `count` ZshiftDecal records, one per plane, each
 /// filled as for `zshift_decal_matrix` (the same viewport, format, depth_func, profile and
-/// pipeline; its own decal_corners, base_reach and pipeline.world_box). The matrix carries the
+/// pipeline; its own decal_corners, base_reach and pipeline.world_box; the corners of the base
+/// triangle the piece was cut from, not of the piece: a sliver's corners do not pin its plane
+/// down in float). The matrix carries the
 /// largest of the planes' offsets, which keeps every plane's pixels;
 /// `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
 ///

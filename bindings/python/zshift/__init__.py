@@ -828,7 +828,8 @@ def decal_matrix_planes(m, clip, viewport, depth_format, planes, subpixel_bits=N
     plane. ``planes`` is a list of dicts, one per plane, with what differs between them (the keys
     of :func:`decal_matrix`: ``corners``, or ``decal_depths`` and ``slope``; ``exact_depth``,
     ``base_reach``, ``world_box``); the other arguments are shared, as :func:`decal_matrix` takes
-    them. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
+    them. Give each plane the corners of the base triangle its piece was cut from, not the
+    piece's (a sliver's float corners do not pin its plane down). The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
     Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal;
     ``TypeError`` for an unknown key."""
     mat = _engine_matrix(m)
