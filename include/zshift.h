@@ -1237,7 +1237,7 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
 ZshiftStatus zshift_decal_matrix_planes(const float *m,
                                         ZshiftClip clip,
                                         const ZshiftDecal *decals,
-                                        size_t count,
+                                        uint32_t count,
                                         float *out);
 
 /*
@@ -1252,7 +1252,7 @@ ZshiftStatus zshift_decal_matrix_planes(const float *m,
 ZshiftStatus zshift_recommend_for_planes(const float *m,
                                          ZshiftClip clip,
                                          const ZshiftDecal *decals,
-                                         size_t count,
+                                         uint32_t count,
                                          ZshiftRecommendation *out);
 
 /*

@@ -254,7 +254,7 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
     let rec = unsafe { rec.assume_init() };
     assert!(rec.bleed_gap > 0.0 && rec.bleed_gap < 45.0, "{rec:?}");
 
-    let refused_planes = |planes: *const ZshiftDecal, count: usize, needles: &[&str]| {
+    let refused_planes = |planes: *const ZshiftDecal, count: u32, needles: &[&str]| {
         let mut out = [7.0f32; 16];
         let status = zshift_decal_matrix_planes(
             m.as_ptr(),

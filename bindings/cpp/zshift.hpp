@@ -493,19 +493,21 @@ inline Recommendation recommend_for_matrix(const float *m, Clip clip, const Deca
 /// mesh decal over terrain, cut from its triangles, one Decal per plane (each its own corners,
 /// base_reach and pipeline.world_box; the rest shared). The largest of the planes' offsets.
 /// Throws Error: as decal_matrix(), what() beginning "plane i: " for a plane's refusal.
-inline Matrix decal_matrix_planes(const float *m, Clip clip, const Decal *decals, std::size_t count) {
+inline Matrix decal_matrix_planes(const float *m, Clip clip, const Decal *decals, std::uint32_t count) {
   return detail::matrix(
       [&](float *out) { return zshift_decal_matrix_planes(m, detail::to_c(clip), decals, count, out); });
 }
 /// decal_matrix_planes() of a Matrix and a vector of planes.
+/// (More than 65536 planes are refused, as the C call refuses them.)
 inline Matrix decal_matrix_planes(const Matrix &m, Clip clip, const std::vector<Decal> &decals) {
-  return decal_matrix_planes(m.data(), clip, decals.data(), decals.size());
+  const auto count = decals.size() > 65536 ? std::uint32_t{65537} : static_cast<std::uint32_t>(decals.size());
+  return decal_matrix_planes(m.data(), clip, decals.data(), count);
 }
 
 /// The recommendation behind decal_matrix_planes() (zshift_recommend_for_planes): the plane with
 /// the largest offset, with bleed_gap the largest of every plane's at that offset. Throws Error:
 /// as decal_matrix_planes().
-inline Recommendation recommend_for_planes(const float *m, Clip clip, const Decal *decals, std::size_t count) {
+inline Recommendation recommend_for_planes(const float *m, Clip clip, const Decal *decals, std::uint32_t count) {
   Recommendation out{};
   detail::check(zshift_recommend_for_planes(m, detail::to_c(clip), decals, count, &out));
   return out;

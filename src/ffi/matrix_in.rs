@@ -376,7 +376,7 @@ pub extern "C" fn zshift_recommend_for_matrix(
 
 /// The most planes one decal may be asked over: far above any decal system's pieces, low enough
 /// that a garbage `count` is named rather than read.
-const MOST_PLANES: usize = 1 << 16;
+const MOST_PLANES: u32 = 1 << 16;
 
 /// The recommendation for one decal over several planes (`zshift::planes::recommend_planes`):
 /// each C record read and checked as `zshift_decal_matrix` checks its one, an error said of its
@@ -385,21 +385,20 @@ fn recommend_over_planes(
     m: &[f32; 16],
     clip: ZshiftClip,
     decals: *const ZshiftDecal,
-    count: usize,
+    count: u32,
 ) -> Result<crate::recommend::ClipRecommendation> {
     let clip = clip_of(clip)?;
     if count == 0 || count > MOST_PLANES {
         return Err(domain(
             "count must be at least 1 and at most 65536 (one ZshiftDecal per plane)",
         )
-        .with_integer("count", i64::try_from(count).unwrap_or(i64::MAX)));
+        .with_integer("count", i64::from(count)));
     }
-    let mut planes = Vec::with_capacity(count);
+    let mut planes = Vec::with_capacity(count as usize);
     for i in 0..count {
         // SAFETY: the entry point refused NULL; the caller promises `count` readable records.
-        let record = read_decal(unsafe { decals.add(i) });
-        let plane =
-            with_decal(m, clip, &record, |d| Ok(*d)).map_err(|e| e.for_item("plane", i as u32))?;
+        let record = read_decal(unsafe { decals.add(i as usize) });
+        let plane = with_decal(m, clip, &record, |d| Ok(*d)).map_err(|e| e.for_item("plane", i))?;
         planes.push(plane);
     }
     crate::planes::recommend_planes(m, clip, &planes)
@@ -423,7 +422,7 @@ pub extern "C" fn zshift_decal_matrix_planes(
     m: *const f32,
     clip: ZshiftClip,
     decals: *const ZshiftDecal,
-    count: usize,
+    count: u32,
     out: *mut f32,
 ) -> ZshiftStatus {
     let Some(m) = matrix_from_c(m) else {
@@ -449,7 +448,7 @@ pub extern "C" fn zshift_recommend_for_planes(
     m: *const f32,
     clip: ZshiftClip,
     decals: *const ZshiftDecal,
-    count: usize,
+    count: u32,
     out: *mut ZshiftRecommendation,
 ) -> ZshiftStatus {
     let Some(m) = matrix_from_c(m) else {

@@ -327,7 +327,7 @@ static void test_decal_planes() {
   const auto both = zshift::decal_matrix_planes(m, clip, planes);
   // NDC depth is -m10 + m14/d: the larger offset toward the camera is the larger element 10.
   CHECK(a[10] != b[10] && both == (a[10] > b[10] ? a : b), "decal_matrix_planes() is the larger offset");
-  const auto rec = zshift::recommend_for_planes(m.data(), clip, planes.data(), planes.size());
+  const auto rec = zshift::recommend_for_planes(m.data(), clip, planes.data(), 2);
   CHECK(rec.bleed_gap >= zshift::recommend_for_matrix(m.data(), clip, planes[1]).bleed_gap, "bleed gap");
   auto broken = planes;
   broken[1].decal_far = 2000.0;
