@@ -23,8 +23,10 @@ use crate::recommend::ClipRecommendation;
 /// The recommendation for one decal drawn with the engine's matrix `m` under `clip` over
 /// several planes, one [`Decal`] per plane (the same viewport, format, depth test, profile and
 /// pipeline; each its own corners or depths and slope, its own `base` and `world_box`). Give
-/// each plane the corners of the base triangle its piece was cut from, not the piece's: a
-/// sliver's f32 corners do not pin its plane down.
+/// each plane the corners of the base triangle its piece was cut from, not the piece's (a
+/// sliver's f32 corners do not pin its plane down), cut to the frustum with
+/// [`crate::recommend::clip_to_frustum`] where the triangle reaches behind the near plane or off
+/// the screen (corners must lie in the frustum); a triangle wholly outside needs no plane.
 ///
 /// Returns the recommendation of the plane whose offset is largest (its `matrix`,
 /// `epsilon`, `ndc_offset`, `relative_epsilon`, `window_offset`, `delta_at_far`, `terms`),

@@ -410,7 +410,8 @@ fn recommend_over_planes(
 /// filled as for `zshift_decal_matrix` (the same viewport, format, depth_func, profile and
 /// pipeline; its own decal_corners, base_reach and pipeline.world_box; the corners of the base
 /// triangle the piece was cut from, not of the piece: a sliver's corners do not pin its plane
-/// down in float). The matrix carries the
+/// down in float; cut to the frustum with zshift_clip_to_frustum where the triangle reaches
+/// behind the near plane or off the screen). The matrix carries the
 /// largest of the planes' offsets, which keeps every plane's pixels;
 /// `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
 ///

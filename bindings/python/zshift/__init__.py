@@ -829,7 +829,8 @@ def decal_matrix_planes(m, clip, viewport, depth_format, planes, subpixel_bits=N
     of :func:`decal_matrix`: ``corners``, or ``decal_depths`` and ``slope``; ``exact_depth``,
     ``base_reach``, ``world_box``); the other arguments are shared, as :func:`decal_matrix` takes
     them. Give each plane the corners of the base triangle its piece was cut from, not the
-    piece's (a sliver's float corners do not pin its plane down). The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
+    piece's (a sliver's float corners do not pin its plane down), cut with
+    :func:`clip_to_frustum` where the triangle reaches behind the near plane or off the screen. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
     Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal;
     ``TypeError`` for an unknown key."""
     mat = _engine_matrix(m)
