@@ -458,6 +458,13 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
             interpolation::interpolation(w_min, w_max, extrapolated, lift),
         )
     };
+    // World-space vertices through the engine's f32 view matrix: the larger of the eye
+    // rounding and the model-view term, as for perspective decals.
+    let vertex = if pipeline.world_space() {
+        vertex.max(world_term(o, clip, s, None, pipeline)?)
+    } else {
+        vertex
+    };
     let snap = match scene.decal.rasterizer().snapping {
         Snapping::Unsnapped => 0.0,
         Snapping::SubpixelBits(b) => 2f64.powi(-(b as i32) - 1) * (gradient[0] + gradient[1]),
@@ -477,6 +484,52 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         correlated: false,
         facing: 0.0,
     })
+}
+
+/// The f32 model-view term `V` of world-space vertices under an orthographic projection
+/// ([`crate::model::vertex`]), in unit window depth: the form of a plane of slope `s` has
+/// `|aₓ| ≤ |A|·s·(r − l)/2`, `|a_y| ≤ |A|·s·(t − b)/2` (`A = m10`, the NDC depth per eye unit)
+/// and `|a₀| ≤ 1 + |aₓ| + |a_y|` (the box's centre is at most one NDC unit per axis from a point
+/// inside it), or `exact_form` where the plane is known; `w = 1`, and a point of the box lies
+/// within `√(X² + Y² + max(|n|, |f|)²)` of the camera. Shared by orthographic decals and
+/// directional lights' shadow maps.
+///
+/// # Errors
+/// [`crate::ErrorKind::Overflow`] if the term overflows f64.
+pub(crate) fn world_term(
+    ortho: &Ortho,
+    clip: ClipDepth,
+    slope: f64,
+    exact_form: Option<crate::model::PlaneForm>,
+    pipeline: &crate::model::Pipeline,
+) -> Result<f64> {
+    let m = ortho_f64(ortho, clip);
+    let (l, r, b, t, n, f) = ortho.parameters();
+    let a = m[10].abs();
+    let (ax, ay) = (
+        a * slope * (r - l).abs() / 2.0,
+        a * slope * (t - b).abs() / 2.0,
+    );
+    let bound = crate::model::PlaneForm {
+        a0: 1.0 + ax + ay,
+        ax,
+        ay,
+    };
+    let extent = (l.abs().max(r.abs()).powi(2)
+        + b.abs().max(t.abs()).powi(2)
+        + n.abs().max(f.abs()).powi(2))
+    .sqrt();
+    let per_ndc = if clip == ClipDepth::NegOneToOne {
+        0.5
+    } else {
+        1.0
+    };
+    let (form, exact) = match exact_form {
+        Some(form) => (form, true),
+        None => (bound, false),
+    };
+    let (error, _) = crate::model::vertex::world_error(&form, exact, &m, pipeline, extent);
+    crate::domain::representable(per_ndc * error, "the vertex term overflows f64")
 }
 
 /// The smallest constant offset that model (R1) guarantees ends z-fighting for a decal over an
@@ -540,12 +593,6 @@ pub fn check(scene: &Scene) -> Result<()> {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
     scene.decal.pipeline.check()?;
-    if scene.decal.pipeline.world_space() {
-        return Err(domain(
-            "the orthographic decal model takes eye-space vertices: set world_reach to 0 and pass no view matrix (the viewport origin and glDepthRange are modelled)",
-        )
-        .with_value("world_reach", scene.decal.pipeline.world_reach));
-    }
     if scene.decal.depth_test.is_some_and(|t| !t.is_strict()) {
         return Err(domain(
             "the orthographic model covers the strict depth tests only (GL_LESS, GL_GREATER): pass depth_func 0 or the strict test",

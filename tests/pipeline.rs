@@ -189,3 +189,53 @@ fn bad_pipelines_are_refused_naming_the_field() {
     });
     assert!(e.contains("world_box"), "{e}");
 }
+
+/// An orthographic decal (an isometric camera) drawn from world space: the f32 view
+/// transform's term grows with the camera's distance from the world origin (`world_reach`),
+/// stays near the eye-space term with a view matrix and a box near the origin, and is
+/// answered, not refused.
+#[test]
+fn orthographic_decals_take_world_space_vertices() {
+    let m: [f32; 16] = zshift::orthographic::ortho(
+        &zshift::orthographic::Ortho::new(-6.0, 6.0, -6.0, 6.0, 1.0, 100.0).unwrap(),
+        ClipDepth::NegOneToOne,
+    )
+    .unwrap();
+    let ask = |pipeline: Pipeline| {
+        recommend(
+            &m,
+            ClipDepth::NegOneToOne,
+            &Decal {
+                viewport: [1024, 1024],
+                format: DepthFormat::Unorm24,
+                depth_range: [49.0, 51.0],
+                slope: 1.2,
+                exact_depth: false,
+                snapping: Snapping::SubpixelBits(8),
+                base: Base::InsideFrustum,
+                profile: None,
+                footprint: None,
+                depth_test: None,
+                pipeline,
+            },
+        )
+        .unwrap()
+    };
+    let eye = ask(Pipeline::default());
+    let near = ask(Pipeline {
+        world_reach: 50.0,
+        ..Pipeline::default()
+    });
+    let far = ask(Pipeline {
+        world_reach: 1e4,
+        ..Pipeline::default()
+    });
+    assert!(near.terms.vertex > eye.terms.vertex, "{near:?} {eye:?}");
+    // The part that does not shrink with distance, 4√3·W, dominates far from the origin: it
+    // grows about as W (10⁴/50 = 200 times the reach, most of it in the term).
+    let ratio = far.terms.vertex / near.terms.vertex;
+    assert!(ratio > 20.0 && ratio < 250.0, "{ratio}");
+    assert!(far.window_offset > near.window_offset);
+    // A 24-bit step is 2^-24 of the unit depth: the far offset is many of them.
+    assert!(far.window_offset * 16_777_216.0 > 10.0, "{far:?}");
+}

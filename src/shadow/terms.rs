@@ -168,44 +168,15 @@ pub(super) fn terms_of(
     })
 }
 
-/// The f32 model-view term of an orthographic light ([`crate::model::vertex`]): the form of a
-/// plane of slope `s` has `|aₓ| ≤ |A|·s·(r − l)/2`, `|a_y| ≤ |A|·s·(t − b)/2` (`A` the NDC
-/// depth per eye unit) and `|a₀| ≤ 1 + |aₓ| + |a_y|` (the map's centre is at most one NDC unit
-/// per axis from a point inside it); `w = 1`, and a point of the box lies within
-/// `√(X² + Y² + max(|n|, |f|)²)` of the light.
+/// The f32 model-view term of an orthographic light: [`crate::orthographic::world_term`], with
+/// a listed receiver's exact form (the eye-first path needs it), else the bounds over every
+/// plane of the slope.
 fn ortho_world_term(
     map: &ShadowMap,
     ortho: &Ortho,
     slope: f64,
     receiver: Option<&crate::footprint::Footprint>,
 ) -> Result<f64> {
-    let m = crate::orthographic::ortho_f64(ortho, map.clip);
-    let (l, r, b, t, n, f) = ortho.parameters();
-    let a = m[10].abs();
-    let (ax, ay) = (
-        a * slope * (r - l).abs() / 2.0,
-        a * slope * (t - b).abs() / 2.0,
-    );
-    let form = PlaneForm {
-        a0: 1.0 + ax + ay,
-        ax,
-        ay,
-    };
-    let extent = (l.abs().max(r.abs()).powi(2)
-        + b.abs().max(t.abs()).powi(2)
-        + n.abs().max(f.abs()).powi(2))
-    .sqrt();
-    let per_ndc = if map.clip == ClipDepth::NegOneToOne {
-        0.5
-    } else {
-        1.0
-    };
-    // With a listed receiver, its exact form (the eye-first path needs it); else the bounds
-    // over every plane of the slope.
-    let (form, exact) = match receiver {
-        Some(fp) => (PlaneForm::of_footprint(fp, map.resolution, map.clip), true),
-        None => (form, false),
-    };
-    let (error, _) = vertex::world_error(&form, exact, &m, &vertex_pipeline(map), extent);
-    crate::domain::representable(per_ndc * error, "the vertex term overflows f64")
+    let exact = receiver.map(|fp| PlaneForm::of_footprint(fp, map.resolution, map.clip));
+    crate::orthographic::world_term(ortho, map.clip, slope, exact, &vertex_pipeline(map))
 }

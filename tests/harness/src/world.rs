@@ -91,3 +91,52 @@ impl Gl {
         self.check("draw_world")
     }
 }
+
+/// A mesh decal as an engine's decal system builds it: every triangle clipped to the square
+/// `[x0, x1, z0, z1]` in world x and z, all in f32 (Sutherland–Hodgman, each new vertex
+/// `a + t·(b − a)` on an edge of the ground's own triangle), each piece as a fan; with the index
+/// of the triangle it came from. Its vertices lie on their triangle's plane only up to those
+/// roundings, relative to the triangle's coordinates.
+pub fn clip_to_square(triangles: &[[f32; 3]], square: [f32; 4]) -> Vec<(usize, Vec<[f32; 3]>)> {
+    let [x0, x1, z0, z1] = square;
+    // (coordinate, bound, keep the side above the bound)
+    let planes = [(0, x0, true), (0, x1, false), (2, z0, true), (2, z1, false)];
+    let mut out = Vec::new();
+    for (index, t) in triangles.chunks_exact(3).enumerate() {
+        let outside = planes.iter().any(|&(k, bound, above)| {
+            t.iter()
+                .all(|p| if above { p[k] < bound } else { p[k] > bound })
+        });
+        if outside {
+            continue;
+        }
+        let mut poly: Vec<[f32; 3]> = t.to_vec();
+        for &(k, bound, above) in &planes {
+            let inside = |p: &[f32; 3]| if above { p[k] >= bound } else { p[k] <= bound };
+            let mut next = Vec::new();
+            for i in 0..poly.len() {
+                let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+                if inside(&a) {
+                    next.push(a);
+                }
+                if inside(&a) != inside(&b) {
+                    let t = (bound - a[k]) / (b[k] - a[k]);
+                    let mut p = [0, 1, 2].map(|j| a[j] + t * (b[j] - a[j]));
+                    p[k] = bound;
+                    next.push(p);
+                }
+            }
+            poly = next;
+            if poly.len() < 3 {
+                break;
+            }
+        }
+        let piece: Vec<[f32; 3]> = (1..poly.len().saturating_sub(1))
+            .flat_map(|i| [poly[0], poly[i], poly[i + 1]])
+            .collect();
+        if !piece.is_empty() {
+            out.push((index, piece));
+        }
+    }
+    out
+}
