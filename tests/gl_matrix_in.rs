@@ -426,6 +426,9 @@ impl Isometric {
     }
 }
 
+/// One draw of a pass: triangles, projection, colour, state.
+type Pass<'a> = (&'a [[f32; 3]], &'a [f32; 16], [f32; 4], &'a DrawState);
+
 #[test]
 fn isometric_mesh_decals_over_hills_lose_no_pixel() {
     use zshift_harness::coplanar::{Count, OCCLUDER};
@@ -519,12 +522,10 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                     let rec = zshift::planes::recommend_planes(&base, clip, &planes)
                         .unwrap_or_else(|e| panic!("{label}: {e}"));
                     gl.set_target(PX, PX, format).expect("target");
-                    gl.clip_control(if reversed {
-                        GlClip::ZeroToOne
-                    } else if clip == ClipDepth::ZeroToOne {
-                        GlClip::ZeroToOne
-                    } else {
+                    gl.clip_control(if clip == ClipDepth::NegOneToOne {
                         GlClip::NegativeOneToOne
+                    } else {
+                        GlClip::ZeroToOne
                     })
                     .expect("glClipControl");
                     gl.set_window(&Window {
@@ -537,13 +538,7 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                         depth_func: glow::ALWAYS,
                         ..DrawState::default()
                     };
-                    let draw = |gl: &mut Gl,
-                                    passes: &[(
-                        &[[f32; 3]],
-                        &[f32; 16],
-                        [f32; 4],
-                        &DrawState,
-                    )]| {
+                    let draw = |gl: &mut Gl, passes: &[Pass]| {
                         gl.clear(CLEAR, clear).expect("clear");
                         for (tris, proj, color, st) in passes {
                             gl.draw_world(tris, &view, proj, *color, st).expect("draw");
