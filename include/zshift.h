@@ -475,13 +475,12 @@ typedef struct {
    reversed Z ZSHIFT_DEPTH_TEST_GREATER or ZSHIFT_DEPTH_TEST_GEQUAL; 0 (a zeroed field):
    the convention's strict test. An engine that draws every pass with GL_LEQUAL must say
    so: a tie then passes, and the bleed gap is one quantum wider than under GL_LESS.
-   Orthographic matrices: the strict tests only.
    */
   ZshiftDepthTest depth_func;
   /*
    How the engine draws besides the projection: the viewport's origin, glDepthRange,
-   world-space vertices (ZshiftPipeline; zeroed: the defaults). Perspective matrices only:
-   an orthographic one takes the zeroed record.
+   world-space vertices (ZshiftPipeline; zeroed: the defaults), for perspective and
+   orthographic matrices alike.
    */
   ZshiftPipeline pipeline;
 } ZshiftDecal;

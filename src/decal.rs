@@ -40,8 +40,8 @@ pub struct Decal {
     pub depth_test: Option<crate::recommend::DepthTest>,
     /// How the engine draws besides its matrix: world-space vertices, the viewport's origin,
     /// `glDepthRange` ([`crate::model::Pipeline`]; its `Default` is eye-space vertices, the
-    /// viewport at the framebuffer's origin, `glDepthRange(0, 1)`). The orthographic model
-    /// takes the viewport's origin and `glDepthRange`, with eye-space vertices only.
+    /// viewport at the framebuffer's origin, `glDepthRange(0, 1)`), for the perspective and
+    /// the orthographic model alike.
     pub pipeline: crate::model::Pipeline,
 }
 

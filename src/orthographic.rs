@@ -419,6 +419,16 @@ pub struct Scene {
 /// As [`check`].
 pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     check(scene)?;
+    if let Some(test) = scene.decal.depth_test {
+        if test.is_reversed() != (clip == ClipDepth::ReversedZeroToOne) {
+            return Err(domain(if clip == ClipDepth::ReversedZeroToOne {
+                "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
+            } else {
+                "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
+            })
+            .with_code("depth_func", test.gl_enum()));
+        }
+    }
     let o = &scene.ortho;
     let [d1, d2] = scene.decal.depth_range;
     let (w1, w2) = (o.window_depth(clip, d1)?, o.window_depth(clip, d2)?);
@@ -480,7 +490,9 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         snap,
         plane: transform + vertex + interpolation,
         clip: 0.0,
-        strict: true,
+        // GL_LEQUAL/GL_GEQUAL: a tie passes, so no quantum in the offset and one more in the
+        // gap (R1, R2).
+        strict: scene.decal.depth_test.is_none_or(|t| t.is_strict()),
         correlated: false,
         facing: 0.0,
     })
@@ -537,11 +549,15 @@ pub(crate) fn world_term(
 /// `Δw·(f − n)`, which moves window depth by `Δw` everywhere). `ndc_offset` is the signed NDC
 /// change (negative toward the camera, positive reversed), `epsilon` and `relative_epsilon`
 /// are 0 (no element-10 or relative form), `delta_at_far` the eye shift (the same at every
-/// distance), `bleed_gap` the eye distance of `2Δw − q`, `polygon_offset` the
-/// `glPolygonOffset(−factor, −units)` magnitudes with `r` = the quantum.
+/// distance), `bleed_gap` the eye distance of the window separation (R2) (`2Δw − q` under a
+/// strict test, `2Δw + q` under `GL_LEQUAL`/`GL_GEQUAL`, where `Δw` has no quantum and a tie
+/// passes), `polygon_offset` the `glPolygonOffset(−factor, −units)` magnitudes with `r` = the
+/// quantum. The decal's depth test may be strict or `…EQUAL`; it must match `clip`.
 ///
 /// # Errors
-/// As [`check`]; [`crate::ErrorKind::Overflow`] if the matrix leaves f32.
+/// As [`check`]; [`crate::ErrorKind::Domain`] for a depth test of the other direction
+/// (`GL_GREATER`/`GL_GEQUAL` are for reversed Z only); [`crate::ErrorKind::Overflow`] if the
+/// matrix leaves f32.
 pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
     let terms = error_terms(scene, clip)?;
     let window_offset = terms.window_offset();
@@ -570,7 +586,7 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         polygon_offset: [factor, (window_offset - 2.0 * terms.snap) / terms.quantum],
         window_offset,
         delta_at_far: delta,
-        bleed_gap: (2.0 * window_offset - terms.quantum) * span,
+        bleed_gap: terms.gap_window(window_offset) * span,
         matrix: offset_ortho(o, clip, delta)?,
         terms,
     })
@@ -593,12 +609,6 @@ pub fn check(scene: &Scene) -> Result<()> {
         return Err(domain("the viewport must have a nonzero width and height"));
     }
     scene.decal.pipeline.check()?;
-    if scene.decal.depth_test.is_some_and(|t| !t.is_strict()) {
-        return Err(domain(
-            "the orthographic model covers the strict depth tests only (GL_LESS, GL_GREATER): pass depth_func 0 or the strict test",
-        )
-        .with_code("depth_func", scene.decal.depth_test.map_or(0, |t| t.gl_enum())));
-    }
     finite(scene.decal.slope, "the plane slope is NaN or infinite")
         .map_err(|e| e.with_value("slope", scene.decal.slope))?;
     if scene.decal.slope < 0.0 {

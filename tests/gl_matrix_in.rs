@@ -452,17 +452,31 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
         }
         .to_cols_array();
         let reversed = clip == ClipDepth::ReversedZeroToOne;
-        let state = DrawState {
-            depth_func: if reversed { glow::GREATER } else { glow::LESS },
-            ..DrawState::default()
-        };
-        for format in [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F] {
+        for (format, equal) in [
+            (DepthFormat::D16, false),
+            (DepthFormat::D24, false),
+            (DepthFormat::D32F, false),
+            (DepthFormat::D16, true),
+            (DepthFormat::D24, true),
+            (DepthFormat::D32F, true),
+        ] {
+            // Every pass drawn with the strict test, or with GL_LEQUAL (GL_GEQUAL reversed).
+            let func = match (reversed, equal) {
+                (false, false) => glow::LESS,
+                (false, true) => glow::LEQUAL,
+                (true, false) => glow::GREATER,
+                (true, true) => glow::GEQUAL,
+            };
+            let state = DrawState {
+                depth_func: func,
+                ..DrawState::default()
+            };
             for translate in [0.0, 1e3, 1e4] {
                 for (centre, half) in [([0.0, 0.0], 1.25), ([2.3, -1.7], 0.5), ([-3.1, 1.4], 1.0)] {
                     let scene = Isometric::new(translate);
                     let (terrain, view) = (scene.terrain(), scene.view());
                     let label = format!(
-                        "isometric {clip:?} {format:?} T {translate} decal {centre:?} ±{half}"
+                        "isometric {clip:?} {format:?} test 0x{func:04X} T {translate} decal {centre:?} ±{half}"
                     );
                     let pieces = clip_to_square(&terrain, scene.square(centre, half));
                     let decal: Vec<[f32; 3]> =
@@ -505,7 +519,10 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                                 base: zshift::recommend::Base::InsideFrustum,
                                 profile: None,
                                 footprint: None,
-                                depth_test: None,
+                                depth_test: Some(
+                                    zshift::recommend::DepthTest::from_gl(func)
+                                        .expect("a depth test"),
+                                ),
                                 pipeline: zshift::model::Pipeline {
                                     world_reach: scene
                                         .camera

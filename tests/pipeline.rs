@@ -239,3 +239,49 @@ fn orthographic_decals_take_world_space_vertices() {
     // A 24-bit step is 2^-24 of the unit depth: the far offset is many of them.
     assert!(far.window_offset * 16_777_216.0 > 10.0, "{far:?}");
 }
+
+/// An orthographic decal under GL_LEQUAL: no quantum in the offset (a tie passes), one more in
+/// the gap; a depth test of the other direction is refused, naming it.
+#[test]
+fn orthographic_decals_take_an_equal_test_of_their_convention() {
+    let o = zshift::orthographic::Ortho::new(-6.0, 6.0, -6.0, 6.0, 1.0, 100.0).unwrap();
+    let m = zshift::orthographic::ortho(&o, ClipDepth::NegOneToOne).unwrap();
+    let ask = |test: Option<zshift::recommend::DepthTest>| {
+        recommend(
+            &m,
+            ClipDepth::NegOneToOne,
+            &Decal {
+                viewport: [1024, 1024],
+                format: DepthFormat::Unorm24,
+                depth_range: [49.0, 51.0],
+                slope: 1.2,
+                exact_depth: false,
+                snapping: Snapping::SubpixelBits(8),
+                base: Base::InsideFrustum,
+                profile: None,
+                footprint: None,
+                depth_test: test,
+                pipeline: Pipeline::default(),
+            },
+        )
+    };
+    let q = 1.0 / 16_777_215.0; // the D24 quantum in unit window depth
+    let strict = ask(None).unwrap();
+    let equal = ask(Some(zshift::recommend::DepthTest::LessEqual)).unwrap();
+    assert!(
+        (strict.window_offset - equal.window_offset - q).abs() < 1e-6 * q,
+        "{strict:?} {equal:?}"
+    );
+    // (R2) in eye units over the span 99: 2Δw − q strict, 2Δw + q with a tie passing.
+    let span = 99.0;
+    assert!(
+        (strict.bleed_gap - (2.0 * strict.window_offset - q) * span).abs()
+            < 1e-9 * strict.bleed_gap
+    );
+    assert!(
+        (equal.bleed_gap - (2.0 * equal.window_offset + q) * span).abs() < 1e-9 * equal.bleed_gap
+    );
+    let e = ask(Some(zshift::recommend::DepthTest::Greater)).unwrap_err();
+    assert!(e.to_string().contains("GL_LESS or GL_LEQUAL"), "{e}");
+    assert!(e.to_string().contains("depth_func = 0x0204"), "{e}");
+}
