@@ -86,12 +86,12 @@
 //! * **nothing but `world_reach` `W`** (the default): every eye coordinate is bounded over every
 //!   rotation, `A = √3·(4W + extent)`, `extent` the farthest point of the light's box from the
 //!   light, and each clip coordinate errs independently by `γ_W·Bᵢ`,
-//!   `Bᵢ = Σₖ |Pᵢₖ|·A + |Pᵢ₃|` (`γ_W = 14u`) — [`vertex::world_error`] with the scalar reach;
+//!   `Bᵢ = Σₖ |Pᵢₖ|·A + |Pᵢ₃|` (`γ_W = 14u`) — [`crate::model::vertex::world_error`] with the scalar reach;
 //! * **the light's view matrix and the box `[lo, hi]` of every caster and receiver position**
 //!   ([`crate::model::Pipeline::view`], [`crate::model::Pipeline::world_box`]): a term
 //!   `Vₖⱼ·pⱼ` is at most `|Vₖⱼ|·max(|loⱼ|, |hiⱼ|)` for `p` in the box, and the translation
 //!   `|Vₖ₃|`, so `Aₖ = Σⱼ |Vₖⱼ|·max(|loⱼ|, |hiⱼ|) + |Vₖ₃|` exactly per coordinate
-//!   ([`vertex::eye_magnitudes`]), whatever the light's rotation; the clip errors are
+//!   ([`crate::model::vertex::eye_magnitudes`]), whatever the light's rotation; the clip errors are
 //!   `γ_W·Bᵢ` with `Bᵢ = Σₖ |Pᵢₖ|·Aₖ + |Pᵢ₃|`;
 //! * **and the eye position computed first** (`proj * (view * p)` in both shaders,
 //!   [`crate::model::Pipeline::eye_first`]) **with a listed receiver**: the error is an
@@ -108,7 +108,7 @@
 //! by `½` under `[−1, 1]`: under an orthographic light `w = 1` and that is the term; under a
 //! perspective light a pixel at light depth `d ≥ d₁` weighs its vertices' errors by `μᵢ/d`
 //! (`Σ μᵢ = 1`), so the term is the bound over `d₁`, the nearest receiver
-//! ([`vertex::world_rounding`]). The lookup transforms a receiver position of the same box
+//! ([`crate::model::vertex::world_rounding`]). The lookup transforms a receiver position of the same box
 //! with the same `V` and `P`, so its `V` is the same bound, counted a second time in `T + V`.
 //!
 //! **Shadow atlases.** A map drawn as a tile of a larger texture passes the tile's corner as
