@@ -190,37 +190,40 @@ fn bad_pipelines_are_refused_naming_the_field() {
     assert!(e.contains("world_box"), "{e}");
 }
 
+/// A decal 49 to 51 units below an orthographic camera (glOrtho(±6, ±6, 1, 100)), slope 1.2, D24,
+/// 1024², asked with `pipeline` and the decal pass's `test`.
+fn orthographic_decal(
+    pipeline: Pipeline,
+    test: Option<zshift::recommend::DepthTest>,
+) -> zshift::Result<zshift::recommend::ClipRecommendation> {
+    let o = zshift::orthographic::Ortho::new(-6.0, 6.0, -6.0, 6.0, 1.0, 100.0)?;
+    let m = zshift::orthographic::ortho(&o, ClipDepth::NegOneToOne)?;
+    recommend(
+        &m,
+        ClipDepth::NegOneToOne,
+        &Decal {
+            viewport: [1024, 1024],
+            format: DepthFormat::Unorm24,
+            depth_range: [49.0, 51.0],
+            slope: 1.2,
+            exact_depth: false,
+            snapping: Snapping::SubpixelBits(8),
+            base: Base::InsideFrustum,
+            profile: None,
+            footprint: None,
+            depth_test: test,
+            pipeline,
+        },
+    )
+}
+
 /// An orthographic decal (an isometric camera) drawn from world space: the f32 view
 /// transform's term grows with the camera's distance from the world origin (`world_reach`),
 /// stays near the eye-space term with a view matrix and a box near the origin, and is
 /// answered, not refused.
 #[test]
 fn orthographic_decals_take_world_space_vertices() {
-    let m: [f32; 16] = zshift::orthographic::ortho(
-        &zshift::orthographic::Ortho::new(-6.0, 6.0, -6.0, 6.0, 1.0, 100.0).unwrap(),
-        ClipDepth::NegOneToOne,
-    )
-    .unwrap();
-    let ask = |pipeline: Pipeline| {
-        recommend(
-            &m,
-            ClipDepth::NegOneToOne,
-            &Decal {
-                viewport: [1024, 1024],
-                format: DepthFormat::Unorm24,
-                depth_range: [49.0, 51.0],
-                slope: 1.2,
-                exact_depth: false,
-                snapping: Snapping::SubpixelBits(8),
-                base: Base::InsideFrustum,
-                profile: None,
-                footprint: None,
-                depth_test: None,
-                pipeline,
-            },
-        )
-        .unwrap()
-    };
+    let ask = |pipeline: Pipeline| orthographic_decal(pipeline, None).unwrap();
     let eye = ask(Pipeline::default());
     let near = ask(Pipeline {
         world_reach: 50.0,
@@ -244,27 +247,7 @@ fn orthographic_decals_take_world_space_vertices() {
 /// the gap; a depth test of the other direction is refused, naming it.
 #[test]
 fn orthographic_decals_take_an_equal_test_of_their_convention() {
-    let o = zshift::orthographic::Ortho::new(-6.0, 6.0, -6.0, 6.0, 1.0, 100.0).unwrap();
-    let m = zshift::orthographic::ortho(&o, ClipDepth::NegOneToOne).unwrap();
-    let ask = |test: Option<zshift::recommend::DepthTest>| {
-        recommend(
-            &m,
-            ClipDepth::NegOneToOne,
-            &Decal {
-                viewport: [1024, 1024],
-                format: DepthFormat::Unorm24,
-                depth_range: [49.0, 51.0],
-                slope: 1.2,
-                exact_depth: false,
-                snapping: Snapping::SubpixelBits(8),
-                base: Base::InsideFrustum,
-                profile: None,
-                footprint: None,
-                depth_test: test,
-                pipeline: Pipeline::default(),
-            },
-        )
-    };
+    let ask = |test| orthographic_decal(Pipeline::default(), test);
     let q = 1.0 / 16_777_215.0; // the D24 quantum in unit window depth
     let strict = ask(None).unwrap();
     let equal = ask(Some(zshift::recommend::DepthTest::LessEqual)).unwrap();
