@@ -472,11 +472,22 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                 ..DrawState::default()
             };
             for translate in [0.0, 1e3, 1e4] {
-                for (centre, half) in [([0.0, 0.0], 1.25), ([2.3, -1.7], 0.5), ([-3.1, 1.4], 1.0)] {
+                for (k, (centre, half)) in
+                    [([0.0, 0.0], 1.25), ([2.3, -1.7], 0.5), ([-3.1, 1.4], 1.0)]
+                        .into_iter()
+                        .enumerate()
+                {
+                    // The framebuffer as engines set it: the viewport at the origin, or inside a
+                    // larger framebuffer (an editor pane), under glDepthRange(0, 1) or a sub-range.
+                    let (origin, range) = [
+                        ([0u32, 0u32], [0.0, 1.0]),
+                        ([1700, 900], [0.5, 1.0]),
+                        ([3500, 1900], [0.0, 0.5]),
+                    ][k];
                     let scene = Isometric::new(translate);
                     let (terrain, view) = (scene.terrain(), scene.view());
                     let label = format!(
-                        "isometric {clip:?} {format:?} test 0x{func:04X} T {translate} decal {centre:?} ±{half}"
+                        "isometric {clip:?} {format:?} test 0x{func:04X} T {translate} decal {centre:?} ±{half} viewport at {origin:?} range {range:?}"
                     );
                     let pieces = clip_to_square(&terrain, scene.square(centre, half));
                     let decal: Vec<[f32; 3]> =
@@ -531,14 +542,16 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                                     eye_first: true,
                                     view: Some(view),
                                     world_box: Some([lo, hi]),
-                                    ..Default::default()
+                                    viewport_origin: origin,
+                                    depth_range: range,
                                 },
                             }
                         })
                         .collect();
                     let rec = zshift::planes::recommend_planes(&base, clip, &planes)
                         .unwrap_or_else(|e| panic!("{label}: {e}"));
-                    gl.set_target(PX, PX, format).expect("target");
+                    let [x, y] = origin;
+                    gl.set_target(x + PX, y + PX, format).expect("target");
                     gl.clip_control(if clip == ClipDepth::NegOneToOne {
                         GlClip::NegativeOneToOne
                     } else {
@@ -546,8 +559,8 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                     })
                     .expect("glClipControl");
                     gl.set_window(&Window {
-                        viewport: [0, 0, PX as i32, PX as i32],
-                        depth_range: [0.0, 1.0],
+                        viewport: [x as i32, y as i32, PX as i32, PX as i32],
+                        depth_range: range,
                     })
                     .expect("viewport");
                     let clear = if reversed { 0.0 } else { 1.0 };
@@ -560,7 +573,7 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                         for (tris, proj, color, st) in passes {
                             gl.draw_world(tris, &view, proj, *color, st).expect("draw");
                         }
-                        gl.read_color_at([0, 0], PX, PX).expect("read")
+                        gl.read_color_at(origin, PX, PX).expect("read")
                     };
                     let mask =
                         draw(&mut gl, &[(&decal, &base, DECAL, &always)]).mask_of(rgba8(DECAL));
@@ -631,7 +644,7 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
     }
     gaps.sort_by(f64::total_cmp);
     println!(
-        "{scenes} isometric mesh decals over hills (world space, 0 to 10^4 from the origin): 0 pixels lost, 0 shown over an occluder at the gap; gap / 50 units median {:.2e}, max {:.2e}; {control_lost} lost without an offset",
+        "{scenes} isometric mesh decals over hills (world space, 0 to 10^4 from the origin; viewports inside larger framebuffers, glDepthRange sub-ranges): 0 pixels lost, 0 shown over an occluder at the gap; gap / 50 units median {:.2e}, max {:.2e}; {control_lost} lost without an offset",
         gaps[gaps.len() / 2],
         gaps[gaps.len() - 1]
     );
