@@ -420,14 +420,7 @@ pub struct Scene {
 pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     check(scene)?;
     if let Some(test) = scene.decal.depth_test {
-        if test.is_reversed() != (clip == ClipDepth::ReversedZeroToOne) {
-            return Err(domain(if clip == ClipDepth::ReversedZeroToOne {
-                "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
-            } else {
-                "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
-            })
-            .with_code("depth_func", test.gl_enum()));
-        }
+        test.check_convention(clip)?;
     }
     let o = &scene.ortho;
     let [d1, d2] = scene.decal.depth_range;

@@ -263,6 +263,22 @@ impl DepthTest {
     pub fn is_reversed(self) -> bool {
         matches!(self, Self::Greater | Self::GreaterEqual)
     }
+
+    /// Refuses a decal pass's test whose direction is not `clip`'s (`GL_GREATER`/`GL_GEQUAL`
+    /// under reversed Z only), naming it as `depth_func`: one rule for the perspective and the
+    /// orthographic model.
+    pub(crate) fn check_convention(self, clip: ClipDepth) -> Result<()> {
+        let reversed = clip == ClipDepth::ReversedZeroToOne;
+        if self.is_reversed() == reversed {
+            return Ok(());
+        }
+        Err(domain(if reversed {
+            "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
+        } else {
+            "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
+        })
+        .with_code("depth_func", self.gl_enum()))
+    }
 }
 
 /// What the engine knows about the base (the surface under the decal).
@@ -670,13 +686,5 @@ fn check(scene: &Scene, clip: ClipDepth) -> Result<()> {
                 .with_value("resolvable", r),
         );
     }
-    let reversed = clip == ClipDepth::ReversedZeroToOne;
-    if scene.depth_test.is_reversed() != reversed {
-        return Err(domain(if reversed {
-            "reversed Z needs the depth test GL_GREATER or GL_GEQUAL"
-        } else {
-            "this clip convention needs the depth test GL_LESS or GL_LEQUAL (GL_GREATER/GL_GEQUAL are for reversed Z)"
-        }));
-    }
-    Ok(())
+    scene.depth_test.check_convention(clip)
 }
