@@ -42,7 +42,7 @@ use zshift_harness::coplanar::{
     OCCLUDER,
 };
 use zshift_harness::draw::Xorshift;
-use zshift_harness::world::{clip_to_square, Window};
+use zshift_harness::world::{bounding_box, clip_to_square, eye_of, view_matrix, Window};
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile};
 
 /// Camera height above the ground.
@@ -285,24 +285,13 @@ impl Case {
 
     /// Eye coordinates of a world point, in f64.
     fn eye(&self, p: [f64; 3]) -> [f64; 3] {
-        let (r, c) = (self.rotation(), self.camera());
-        let d = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
-        [0, 1, 2].map(|i| r[i][0] * d[0] + r[i][1] * d[1] + r[i][2] * d[2])
+        eye_of(&self.rotation(), self.camera(), p)
     }
 
     /// The f32 view matrix (column-major), built in f64 as an engine's math library would and
     /// rounded once.
     fn view(&self) -> [f32; 16] {
-        let (r, c) = (self.rotation(), self.camera());
-        let mut m = [0.0f32; 16];
-        for i in 0..3 {
-            for j in 0..3 {
-                m[4 * j + i] = r[i][j] as f32;
-            }
-            m[12 + i] = -(r[i][0] * c[0] + r[i][1] * c[1] + r[i][2] * c[2]) as f32;
-        }
-        m[15] = 1.0;
-        m
+        view_matrix(&self.rotation(), self.camera())
     }
 
     fn ground(&self) -> Vec<[f32; 3]> {
@@ -571,18 +560,6 @@ struct Renderer<'a> {
     plain: [f32; 16],
     ground: Vec<[f32; 3]>,
     mask: Vec<bool>,
-}
-
-/// The box `[lo, hi]` of points.
-fn bounding_box(points: &[[f64; 3]]) -> [[f64; 3]; 2] {
-    let lo = [0, 1, 2].map(|k| points.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
-    let hi = [0, 1, 2].map(|k| {
-        points
-            .iter()
-            .map(|p| p[k])
-            .fold(f64::NEG_INFINITY, f64::max)
-    });
-    [lo, hi]
 }
 
 fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {

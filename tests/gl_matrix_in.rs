@@ -399,24 +399,12 @@ impl Isometric {
     }
 
     fn eye(&self, p: [f64; 3]) -> [f64; 3] {
-        let d = [0, 1, 2].map(|k| p[k] - self.camera[k]);
-        self.rotation
-            .map(|row| row[0] * d[0] + row[1] * d[1] + row[2] * d[2])
+        zshift_harness::world::eye_of(&self.rotation, self.camera, p)
     }
 
     /// The f32 view matrix (column-major), built in f64 and rounded once.
     fn view(&self) -> [f32; 16] {
-        let mut m = [0.0f32; 16];
-        for i in 0..3 {
-            for j in 0..3 {
-                m[4 * j + i] = self.rotation[i][j] as f32;
-            }
-            m[12 + i] = -(0..3)
-                .map(|j| self.rotation[i][j] * self.camera[j])
-                .sum::<f64>() as f32;
-        }
-        m[15] = 1.0;
-        m
+        zshift_harness::world::view_matrix(&self.rotation, self.camera)
     }
 
     /// The square of half side `half` around `centre` (offsets from the translation).
@@ -512,11 +500,6 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                                 a[0] * b[1] - a[1] * b[0],
                             ];
                             let depths = e.iter().map(|p| -p[2]);
-                            let lo = [0, 1, 2]
-                                .map(|k| world.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
-                            let hi = [0, 1, 2].map(|k| {
-                                world.iter().map(|p| p[k]).fold(f64::NEG_INFINITY, f64::max)
-                            });
                             Decal {
                                 viewport: [PX, PX],
                                 format: gl_common::format_of(format),
@@ -541,7 +524,7 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                                         .fold(0.0f64, |m, c| m.max(c.abs())),
                                     eye_first: true,
                                     view: Some(view),
-                                    world_box: Some([lo, hi]),
+                                    world_box: Some(zshift_harness::world::bounding_box(&world)),
                                     viewport_origin: origin,
                                     depth_range: range,
                                 },

@@ -140,3 +140,37 @@ pub fn clip_to_square(triangles: &[[f32; 3]], square: [f32; 4]) -> Vec<(usize, V
     }
     out
 }
+
+/// Eye coordinates of the world point `p` for a camera at `camera` turned by `rotation`
+/// (world → eye, rows: right, up, back), in f64.
+pub fn eye_of(rotation: &[[f64; 3]; 3], camera: [f64; 3], p: [f64; 3]) -> [f64; 3] {
+    let d = [0, 1, 2].map(|k| p[k] - camera[k]);
+    rotation.map(|row| row[0] * d[0] + row[1] * d[1] + row[2] * d[2])
+}
+
+/// The f32 view matrix (column-major) of that camera, built in f64 as an engine's math library
+/// would and rounded once.
+pub fn view_matrix(rotation: &[[f64; 3]; 3], camera: [f64; 3]) -> [f32; 16] {
+    let mut m = [0.0f32; 16];
+    for i in 0..3 {
+        for j in 0..3 {
+            m[4 * j + i] = rotation[i][j] as f32;
+        }
+        let r = rotation[i];
+        m[12 + i] = -(r[0] * camera[0] + r[1] * camera[1] + r[2] * camera[2]) as f32;
+    }
+    m[15] = 1.0;
+    m
+}
+
+/// The box `[lo, hi]` of points.
+pub fn bounding_box(points: &[[f64; 3]]) -> [[f64; 3]; 2] {
+    let lo = [0, 1, 2].map(|k| points.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
+    let hi = [0, 1, 2].map(|k| {
+        points
+            .iter()
+            .map(|p| p[k])
+            .fold(f64::NEG_INFINITY, f64::max)
+    });
+    [lo, hi]
+}
