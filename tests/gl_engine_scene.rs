@@ -220,6 +220,26 @@ struct Case {
     /// The decal as a mesh decal (an engine's decal system clips the ground's own triangles to
     /// the decal's square, in f32, and draws the pieces) instead of one quad of its corners.
     mesh_decal: bool,
+    /// The decal (one quad, not a mesh decal) drawn as engines draw a decal entity: a unit quad
+    /// in its own model space through its model matrix `M` (f32, its translation the decal's
+    /// world position), the shader's `view` uniform the model-view `V·M` multiplied on the CPU
+    /// ([`Case::decal_model_view`]): far from the origin that product cancels two large
+    /// translations.
+    model_decal: ModelView,
+}
+
+/// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
+/// zshift (the two ways `Pipeline::view` documents).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ModelView {
+    /// No model matrix: the decal's world-space vertices through the view matrix.
+    None,
+    /// In double, rounded once to f32 (`glm::dmat4`): the view matrix and the world box, as for
+    /// world-space vertices.
+    Double,
+    /// In f32 (`glm::mat4`): `world_reach`, the largest coordinate of the camera's position and
+    /// of the decal's model origin.
+    Float,
 }
 
 impl Case {
@@ -344,8 +364,104 @@ impl Case {
     }
 
     fn decal_world(&self) -> [[f32; 3]; 4] {
+        if self.drawn_through() != ModelView::None {
+            // What the engine knows of its decal entity's corners: the f32 model matrix applied
+            // to the unit quad.
+            let m = self.decal_model();
+            return MODEL_QUAD.map(|p| {
+                [0, 1, 2].map(|r| {
+                    (f64::from(m[r]) * f64::from(p[0])
+                        + f64::from(m[8 + r]) * f64::from(p[2])
+                        + f64::from(m[12 + r])) as f32
+                })
+            });
+        }
         self.square(self.size / 2.0, 0.0)
             .map(|p| p.map(|c| c as f32))
+    }
+
+    /// What the engine says of its vertex pipeline and framebuffer. The shader computes
+    /// `proj * (view * p)`, the eye position first. World-space base and decal through the view
+    /// matrix, or a decal entity whose model-view is multiplied in double: that view matrix and
+    /// the world box of the base's triangles under the decal (which holds the decal's corners
+    /// and its model origin). A model-view multiplied in f32: `world_reach`, the largest
+    /// coordinate of the camera's position and of the decal's model origin.
+    fn pipeline(&self, world_box: [[f64; 3]; 2]) -> Pipeline {
+        let camera_reach = self.camera().iter().fold(0.0f64, |a, c| a.max(c.abs()));
+        let (view, world_box, world_reach) = if self.drawn_through() == ModelView::Float {
+            let origin = &self.decal_model()[12..15];
+            let reach = origin
+                .iter()
+                .fold(camera_reach, |a, &c| a.max(f64::from(c).abs()));
+            (None, None, reach)
+        } else {
+            (Some(self.view()), Some(world_box), camera_reach)
+        };
+        Pipeline {
+            world_reach,
+            eye_first: true,
+            view,
+            world_box,
+            viewport_origin: self.origin,
+            depth_range: self.depth_range,
+        }
+    }
+
+    /// How the decal is drawn through its own model matrix ([`Case::model_decal`]; mesh decals
+    /// and the hills' decals are world-space triangles).
+    fn drawn_through(&self) -> ModelView {
+        if self.mesh_decal || self.ground == Ground::Hills {
+            ModelView::None
+        } else {
+            self.model_decal
+        }
+    }
+
+    /// The decal entity's model matrix (column-major, f32 as an engine stores it): the unit
+    /// quad [`MODEL_QUAD`] onto the decal's square, x and z along its sides, the translation its
+    /// centre on the ground.
+    fn decal_model(&self) -> [f32; 16] {
+        let q = self.square(self.size / 2.0, 0.0);
+        let x_axis = [0, 1, 2].map(|k| q[1][k] - q[0][k]);
+        let z_axis = [0, 1, 2].map(|k| q[0][k] - q[3][k]);
+        let centre = [0, 1, 2].map(|k| q.iter().map(|c| c[k]).sum::<f64>() / 4.0);
+        let mut m = [0.0f32; 16];
+        for k in 0..3 {
+            m[k] = x_axis[k] as f32;
+            m[8 + k] = z_axis[k] as f32;
+            m[12 + k] = centre[k] as f32;
+        }
+        m[5] = 1.0;
+        m[15] = 1.0;
+        m
+    }
+
+    /// The decal's model-view `V·M` of the f32 view and model matrices, multiplied in f32 as
+    /// glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right), or in
+    /// f64 and rounded once ([`ModelView`]).
+    fn decal_model_view(&self) -> [f32; 16] {
+        let (v, m) = (self.view(), self.decal_model());
+        std::array::from_fn(|i| {
+            let (col, row) = (i / 4, i % 4);
+            let term = |k: usize| (v[4 * k + row], m[4 * col + k]);
+            if self.drawn_through() == ModelView::Float {
+                (0..4).fold(0.0f32, |acc, k| acc + term(k).0 * term(k).1)
+            } else {
+                (0..4)
+                    .map(|k| f64::from(term(k).0) * f64::from(term(k).1))
+                    .sum::<f64>() as f32
+            }
+        })
+    }
+
+    /// The decal as drawn: its triangles and the matrix the shader's `view` uniform holds for
+    /// them (world-space triangles through the view, or the unit quad through `V·M`).
+    fn decal_draw(&self) -> (Vec<[f32; 3]>, [f32; 16]) {
+        if self.drawn_through() != ModelView::None {
+            (quad_triangles(&MODEL_QUAD), self.decal_model_view())
+        } else {
+            (self.decal_triangles(), self.view())
+        }
     }
 
     /// The decal's triangles as drawn: the quad of its corners, or the mesh decal
@@ -539,7 +655,16 @@ impl Case {
             } else {
                 String::new()
             },
-            self.ground.label().to_string() + if self.mesh_decal { " mesh" } else { "" },
+            self.ground.label().to_string()
+                + if self.mesh_decal {
+                    " mesh"
+                } else if self.drawn_through() == ModelView::Double {
+                    " model"
+                } else if self.drawn_through() == ModelView::Float {
+                    " model f32"
+                } else {
+                    ""
+                },
             self.near,
             self.far,
             self.size,
@@ -561,6 +686,15 @@ struct Renderer<'a> {
     ground: Vec<[f32; 3]>,
     mask: Vec<bool>,
 }
+
+/// A decal entity's unit quad in its model space (x and z across, y up), in the corner order of
+/// [`Case::square`].
+const MODEL_QUAD: [[f32; 3]; 4] = [
+    [-0.5, 0.0, 0.5],
+    [0.5, 0.0, 0.5],
+    [0.5, 0.0, -0.5],
+    [-0.5, 0.0, -0.5],
+];
 
 fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {
     vec![q[0], q[1], q[2], q[0], q[2], q[3]]
@@ -589,7 +723,8 @@ impl<'a> Renderer<'a> {
             ground: case.ground(),
             mask: Vec::new(),
         };
-        r.mask = r.coverage(&case.decal_triangles())?;
+        let (decal, decal_view) = case.decal_draw();
+        r.mask = r.coverage_through(&decal, &decal_view)?;
         if case.ground == Ground::Hills {
             let seen = r.unhidden()?;
             r.mask.iter_mut().zip(seen).for_each(|(m, s)| *m &= s);
@@ -663,14 +798,24 @@ impl<'a> Renderer<'a> {
     }
 
     fn coverage(&mut self, triangles: &[[f32; 3]]) -> Result<Vec<bool>, String> {
+        let view = self.view;
+        self.coverage_through(triangles, &view)
+    }
+
+    /// [`Renderer::coverage`] of triangles drawn through `view` (a decal's model-view).
+    fn coverage_through(
+        &mut self,
+        triangles: &[[f32; 3]],
+        view: &[f32; 16],
+    ) -> Result<Vec<bool>, String> {
         self.clear()?;
         let always = DrawState {
             depth_func: glow::ALWAYS,
             ..DrawState::default()
         };
-        let (view, plain) = (self.view, self.plain);
+        let plain = self.plain;
         self.gl
-            .draw_world(triangles, &view, &plain, DECAL, &always)?;
+            .draw_world(triangles, view, &plain, DECAL, &always)?;
         Ok(self.read_viewport()?.mask_of(zshift_harness::rgba8(DECAL)))
     }
 
@@ -759,12 +904,11 @@ impl<'a> Renderer<'a> {
         offset: Option<(f32, f32)>,
     ) -> Result<Count, String> {
         self.clear_and_draw_ground()?;
-        let view = self.view;
         let state = DrawState {
             polygon_offset: offset,
             ..self.state()
         };
-        let decal = self.case.decal_triangles();
+        let (decal, view) = self.case.decal_draw();
         self.gl
             .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
         Ok(Count::decal_missing(&self.read_viewport()?, &self.mask))
@@ -828,9 +972,9 @@ impl<'a> Renderer<'a> {
         let (view, plain, state) = (self.view, self.plain, self.state());
         self.gl
             .draw_world(occluder, &view, &plain, OCCLUDER, &state)?;
-        let decal = self.case.decal_triangles();
+        let (decal, decal_view) = self.case.decal_draw();
         self.gl
-            .draw_world(&decal, &view, decal_proj, DECAL, &state)?;
+            .draw_world(&decal, &decal_view, decal_proj, DECAL, &state)?;
         Ok(Count::decal_shown(&self.read_viewport()?, &both))
     }
 
@@ -952,15 +1096,7 @@ fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<As
             profile: Some(*profile),
             footprint: Some(shape.footprint),
             depth_test: Some(case.tests().1),
-            pipeline: Pipeline {
-                world_reach: case.camera().iter().fold(0.0f64, |a, c| a.max(c.abs())),
-                // The shader computes proj * (view * p): the eye position first.
-                eye_first: true,
-                view: Some(case.view()),
-                world_box: Some(world_box),
-                viewport_origin: case.origin,
-                depth_range: case.depth_range,
-            },
+            pipeline: case.pipeline(world_box),
         });
     }
     if case.ground == Ground::Hills {
@@ -1076,6 +1212,8 @@ fn cases() -> Vec<Case> {
     let mut tilt_pick = Xorshift(0x7117_2026_1126_0A5E ^ seed.wrapping_mul(0x94D0_49BB_1331_11EB));
     // Mesh decals (the decal built from the ground's triangles in f32) from a stream of their own.
     let mut mesh_pick = Xorshift(0x3E5D_2026_1126_DECA ^ seed.wrapping_mul(0xD6E8_FEB8_6659_FD93));
+    // Decals through their own model matrix from a stream of their own.
+    let mut model_pick = Xorshift(0x30DE_2026_1126_3A7A ^ seed.wrapping_mul(0xA076_1D64_78BD_642F));
     let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
     for at in ATTACHMENTS {
@@ -1115,6 +1253,8 @@ fn cases() -> Vec<Case> {
                             tilt: [0.0, 0.0, 0.25, -0.6][tilt_pick.index(4)],
                             fovy_deg: FOVY_DEG,
                             mesh_decal: mesh_pick.index(2) == 1,
+                            model_decal: [ModelView::None, ModelView::Double, ModelView::Float]
+                                [model_pick.index(3)],
                         };
                         out.push(if seed == 0 {
                             case
@@ -1181,7 +1321,10 @@ fn the_scene_every_engine_draws() {
                 ));
             }
             let ground = case.ground.label();
-            if name == "probed" && out.refused.is_none() {
+            // The view matrix and box given (not a model-view multiplied in f32, told by
+            // `world_reach`).
+            let view_given = case.drawn_through() != ModelView::Float;
+            if name == "probed" && out.refused.is_none() && view_given {
                 by_translation
                     .entry(case.translate as u64)
                     .or_default()
