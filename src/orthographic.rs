@@ -462,9 +462,14 @@ pub fn error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
         )
     };
     // World-space vertices through the engine's f32 view matrix: the larger of the eye
-    // rounding and the model-view term, as for perspective decals.
+    // rounding and the model-view term, as for perspective decals; with the decal's footprint
+    // (its corners, or a shadow map's listed receiver) on its plane's exact form.
     let vertex = if pipeline.world_space() {
-        vertex.max(world_term(o, clip, s, None, pipeline)?)
+        let exact = scene
+            .decal
+            .footprint
+            .map(|fp| crate::model::PlaneForm::of_footprint(&fp, scene.decal.viewport, clip));
+        vertex.max(world_term(o, clip, s, exact, pipeline)?)
     } else {
         vertex
     };

@@ -208,7 +208,6 @@
 
 use crate::domain::{domain, finite};
 use crate::error::{Error, ErrorKind, Result};
-use crate::model::PlaneForm;
 use crate::orthographic::Ortho;
 use crate::polygon_offset::{resolvable_difference, BiasApi};
 use crate::precision::DepthFormat;

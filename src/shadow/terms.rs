@@ -104,15 +104,12 @@ pub(super) fn terms_of(
                 snapping: map.profile.snapping,
                 base: Base::InsideFrustum,
                 profile: Some(map.profile),
-                footprint: None,
+                // A listed receiver's window plane: the world term on its exact form.
+                footprint: receiver.copied(),
                 depth_test: None,
-                // The framebuffer state (an atlas tile's origin, glDepthRange); the vertex
-                // pipeline is the light's own term, ortho_world_term.
-                pipeline: crate::model::Pipeline {
-                    viewport_origin: map.pipeline.viewport_origin,
-                    depth_range: map.pipeline.depth_range,
-                    ..crate::model::Pipeline::default()
-                },
+                // The light's vertex pipeline and the framebuffer state (an atlas tile's
+                // origin, glDepthRange).
+                pipeline: vertex_pipeline(map),
             };
             let t = crate::orthographic::error_terms(
                 &crate::orthographic::Scene { ortho, decal },
@@ -121,21 +118,14 @@ pub(super) fn terms_of(
             let (l, r, b, top, n, f) = ortho.parameters();
             let span = f - n;
             let (sx, sy) = ((r - l).abs() / w_px, (top - b).abs() / h_px);
-            let vertex = if vertex_pipeline(map).world_space() {
-                t.vertex
-                    .max(ortho_world_term(map, &ortho, slope, receiver)?)
-            } else {
-                t.vertex
-            };
             let footprint = own.unwrap_or(reach * theta.tan() * sx.hypot(sy) / span);
             let w_max = ortho
                 .window_depth(map.clip, d1)?
                 .max(ortho.window_depth(map.clip, d2)?);
-            let plane = t.plane - t.vertex + vertex;
             (
-                plane,
+                t.plane,
                 t.snap,
-                t.transform + vertex,
+                t.transform + t.vertex,
                 t.quantum,
                 footprint,
                 w_max,
@@ -166,17 +156,4 @@ pub(super) fn terms_of(
         constant: quantum + caster + lookup + read,
         footprint,
     })
-}
-
-/// The f32 model-view term of an orthographic light: [`crate::orthographic::world_term`], with
-/// a listed receiver's exact form (the eye-first path needs it), else the bounds over every
-/// plane of the slope.
-fn ortho_world_term(
-    map: &ShadowMap,
-    ortho: &Ortho,
-    slope: f64,
-    receiver: Option<&crate::footprint::Footprint>,
-) -> Result<f64> {
-    let exact = receiver.map(|fp| PlaneForm::of_footprint(fp, map.resolution, map.clip));
-    crate::orthographic::world_term(ortho, map.clip, slope, exact, &vertex_pipeline(map))
 }
