@@ -263,7 +263,13 @@ pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
         })
         .fold(0.0, f64::max);
     if length.is_nan() || size.is_nan() || length <= 1e-12 * size * size {
-        return Err(domain("the decal's corners do not span a plane"));
+        return Err(domain(
+            "the decal's corners do not span a plane (they coincide or lie on one line: no area \
+             on screen); for a piece of a mesh decal give the corners of the base triangle it was \
+             cut from (a sliver's rounded corners do not pin its plane down), and leave out a \
+             piece with no area",
+        )
+        .with_integer("corners", i64::try_from(points.len()).unwrap_or(i64::MAX)));
     }
     let normal = normal.map(|v| v / length);
     let offset: f64 = (0..3).map(|k| normal[k] * centre[k]).sum();
@@ -375,7 +381,12 @@ mod tests {
             Vec3::new(1.0, 0.0, -3.0),
             Vec3::new(2.0, 0.0, -4.0),
         ];
-        assert!(refuse(&line).contains("span a plane"));
+        // A mesh decal's piece with no area: the message says what to give instead.
+        let said = refuse(&line);
+        assert!(
+            said.contains("span a plane") && said.contains("base triangle"),
+            "{said}"
+        );
         let mut nan = square(-5.0);
         nan[0].x = f32::NAN;
         assert!(refuse(&nan).contains("not finite"));
