@@ -226,6 +226,11 @@ struct Case {
     /// ([`Case::decal_model_view`]): far from the origin that product cancels two large
     /// translations.
     model_decal: ModelView,
+    /// The 64×64 grid drawn as terrain engines draw it: in chunks of 8×8 cells, each in its own
+    /// local coordinates (centred on the chunk) through its model matrix, the shader's `view`
+    /// the chunk's model-view `V·M` multiplied on the CPU ([`ModelView`]; the quad and the hills
+    /// are drawn in world space).
+    ground_chunks: ModelView,
 }
 
 /// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
@@ -387,13 +392,32 @@ impl Case {
     /// and its model origin). A model-view multiplied in f32: `world_reach`, the largest
     /// coordinate of the camera's position and of the decal's model origin.
     fn pipeline(&self, world_box: [[f64; 3]; 2]) -> Pipeline {
-        let camera_reach = self.camera().iter().fold(0.0f64, |a, c| a.max(c.abs()));
-        let (view, world_box, world_reach) = if self.drawn_through() == ModelView::Float {
-            let origin = &self.decal_model()[12..15];
-            let reach = origin
-                .iter()
-                .fold(camera_reach, |a, &c| a.max(f64::from(c).abs()));
+        let largest = |a: f64, p: &[f64]| p.iter().fold(a, |a, c| a.max(c.abs()));
+        let camera_reach = largest(0.0, &self.camera());
+        let floats = self.drawn_through() == ModelView::Float || self.chunked() == ModelView::Float;
+        let (view, world_box, world_reach) = if floats {
+            // Every model's origin: the decal entity's, the chunks' under the decal.
+            let mut reach = camera_reach;
+            if self.drawn_through() == ModelView::Float {
+                let m = self.decal_model();
+                reach = largest(reach, &[m[12], m[13], m[14]].map(f64::from));
+            }
+            if self.chunked() == ModelView::Float {
+                for (ci, cj) in self.chunks_under_decal() {
+                    reach = largest(
+                        reach,
+                        &self.chunk_centre(ci, cj).map(|c| f64::from(c as f32)),
+                    );
+                }
+            }
             (None, None, reach)
+        } else if self.chunked() == ModelView::Double {
+            // The chunks' whole extents: centred on their origins, their world corners.
+            let mut points: Vec<[f64; 3]> = world_box.to_vec();
+            for (ci, cj) in self.chunks_under_decal() {
+                points.extend(self.chunk_corners(ci, cj));
+            }
+            (Some(self.view()), Some(bounding_box(&points)), camera_reach)
         } else {
             (Some(self.view()), Some(world_box), camera_reach)
         };
@@ -440,18 +464,104 @@ impl Case {
     /// glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right), or in
     /// f64 and rounded once ([`ModelView`]).
     fn decal_model_view(&self) -> [f32; 16] {
-        let (v, m) = (self.view(), self.decal_model());
-        std::array::from_fn(|i| {
-            let (col, row) = (i / 4, i % 4);
-            let term = |k: usize| (v[4 * k + row], m[4 * col + k]);
-            if self.drawn_through() == ModelView::Float {
-                (0..4).fold(0.0f32, |acc, k| acc + term(k).0 * term(k).1)
-            } else {
-                (0..4)
-                    .map(|k| f64::from(term(k).0) * f64::from(term(k).1))
-                    .sum::<f64>() as f32
+        model_view(&self.view(), &self.decal_model(), self.drawn_through())
+    }
+
+    /// How the scene's vertices reach the shader and what zshift is told: world space through
+    /// the view (the view and box); a model-view multiplied in double (the view and a box of
+    /// the models' extents); in f32 (`world_reach`).
+    fn told(&self) -> &'static str {
+        let kinds = [self.drawn_through(), self.chunked()];
+        if kinds.contains(&ModelView::Float) {
+            "model-view f32, world_reach"
+        } else if kinds.contains(&ModelView::Double) {
+            "model-view double, view + box"
+        } else {
+            "world space, view + box"
+        }
+    }
+
+    /// How the ground is drawn through model matrices of its own ([`Case::ground_chunks`]).
+    fn chunked(&self) -> ModelView {
+        if self.ground == Ground::Grid {
+            self.ground_chunks
+        } else {
+            ModelView::None
+        }
+    }
+
+    /// A chunk's centre in world space (its model matrix's translation, before f32): chunk
+    /// `(ci, cj)` holds the grid's cells `8ci..8ci + 8` in x and `8cj..8cj + 8` in z.
+    fn chunk_centre(&self, ci: i64, cj: i64) -> [f64; 3] {
+        let side = 2.0 * GROUND / 64.0 * f64::from(CHUNK_CELLS);
+        let x = self.translate - GROUND + side * (ci as f64 + 0.5);
+        let z = self.translate - GROUND + side * (cj as f64 + 0.5);
+        [x, self.height(x), z]
+    }
+
+    /// The chunks that hold the cells the decal touches.
+    fn chunks_under_decal(&self) -> Vec<(i64, i64)> {
+        let step = 2.0 * GROUND / 64.0;
+        let [cx, cz] = self.decal_centre();
+        let half = self.size / 2.0;
+        let chunk = |v: f64| {
+            (((v - (self.translate - GROUND)) / step).floor() as i64 / i64::from(CHUNK_CELLS))
+                .clamp(0, 64 / i64::from(CHUNK_CELLS) - 1)
+        };
+        let mut out = Vec::new();
+        for ci in chunk(cx - half)..=chunk(cx + half) {
+            for cj in chunk(cz - half)..=chunk(cz + half) {
+                out.push((ci, cj));
             }
-        })
+        }
+        out
+    }
+
+    /// The world corners of chunk `(ci, cj)` (on the ground's plane).
+    fn chunk_corners(&self, ci: i64, cj: i64) -> Vec<[f64; 3]> {
+        let half = GROUND / 64.0 * f64::from(CHUNK_CELLS);
+        let [x, _, z] = self.chunk_centre(ci, cj);
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .iter()
+            .map(|&(a, b)| [x + a * half, self.height(x + a * half), z + b * half])
+            .collect()
+    }
+
+    /// The ground as drawn in chunks ([`Case::ground_chunks`]): per chunk, its triangles in its
+    /// local coordinates (f32 of the exact offsets from its centre) and its model-view.
+    fn ground_parts(&self) -> Option<Vec<Chunk>> {
+        let kind = self.chunked();
+        if kind == ModelView::None {
+            return None;
+        }
+        let step = 2.0 * GROUND / 64.0;
+        let n = 64 / i64::from(CHUNK_CELLS);
+        let view = self.view();
+        let mut parts = Vec::new();
+        for ci in 0..n {
+            for cj in 0..n {
+                let c = self.chunk_centre(ci, cj);
+                let at = |i: i64, j: i64| {
+                    let x = self.translate - GROUND + step * i as f64;
+                    let z = self.translate - GROUND + step * j as f64;
+                    [x - c[0], self.height(x) - c[1], z - c[2]].map(|v| v as f32)
+                };
+                let mut t = Vec::new();
+                let cells = i64::from(CHUNK_CELLS);
+                for i in ci * cells..(ci + 1) * cells {
+                    for j in cj * cells..(cj + 1) * cells {
+                        let (a, b, cc, d) =
+                            (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                        t.extend([a, b, cc, a, cc, d]);
+                    }
+                }
+                let mut model = [0.0f32; 16];
+                (model[0], model[5], model[10], model[15]) = (1.0, 1.0, 1.0, 1.0);
+                model[12..15].copy_from_slice(&c.map(|v| v as f32));
+                parts.push((t, model_view(&view, &model, kind)));
+            }
+        }
+        Some(parts)
     }
 
     /// The decal as drawn: its triangles and the matrix the shader's `view` uniform holds for
@@ -664,6 +774,11 @@ impl Case {
                     " model f32"
                 } else {
                     ""
+                }
+                + match self.chunked() {
+                    ModelView::None => "",
+                    ModelView::Double => " chunks",
+                    ModelView::Float => " chunks f32",
                 },
             self.near,
             self.far,
@@ -684,7 +799,32 @@ struct Renderer<'a> {
     view: [f32; 16],
     plain: [f32; 16],
     ground: Vec<[f32; 3]>,
+    /// The ground in chunks, each with its model-view ([`Case::ground_parts`]).
+    chunks: Option<Vec<Chunk>>,
     mask: Vec<bool>,
+}
+
+/// A chunk of the ground as drawn: its triangles in its local coordinates and its model-view.
+type Chunk = (Vec<[f32; 3]>, [f32; 16]);
+
+/// Cells per side of a chunk of the grid ([`Case::ground_chunks`]).
+const CHUNK_CELLS: u32 = 8;
+
+/// The model-view `V·M` of the f32 view and model matrices (column-major), multiplied in f32 as
+/// glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right) for
+/// [`ModelView::Float`], else in f64 and rounded once.
+fn model_view(v: &[f32; 16], m: &[f32; 16], kind: ModelView) -> [f32; 16] {
+    std::array::from_fn(|i| {
+        let (col, row) = (i / 4, i % 4);
+        let term = |k: usize| (v[4 * k + row], m[4 * col + k]);
+        if kind == ModelView::Float {
+            (0..4).fold(0.0f32, |acc, k| acc + term(k).0 * term(k).1)
+        } else {
+            (0..4)
+                .map(|k| f64::from(term(k).0) * f64::from(term(k).1))
+                .sum::<f64>() as f32
+        }
+    })
 }
 
 /// A decal entity's unit quad in its model space (x and z across, y up), in the corner order of
@@ -721,6 +861,7 @@ impl<'a> Renderer<'a> {
             view: case.view(),
             plain,
             ground: case.ground(),
+            chunks: case.ground_parts(),
             mask: Vec::new(),
         };
         let (decal, decal_view) = case.decal_draw();
@@ -823,6 +964,13 @@ impl<'a> Renderer<'a> {
     fn clear_and_draw_ground(&mut self) -> Result<(), String> {
         self.clear()?;
         let (view, plain, state) = (self.view, self.plain, self.state());
+        if let Some(chunks) = &self.chunks {
+            for (triangles, model_view) in chunks {
+                self.gl
+                    .draw_world(triangles, model_view, &plain, BASE, &state)?;
+            }
+            return Ok(());
+        }
         let ground = std::mem::take(&mut self.ground);
         let drawn = self.gl.draw_world(&ground, &view, &plain, BASE, &state);
         self.ground = ground;
@@ -1213,6 +1361,8 @@ fn cases() -> Vec<Case> {
     // Mesh decals (the decal built from the ground's triangles in f32) from a stream of their own.
     let mut mesh_pick = Xorshift(0x3E5D_2026_1126_DECA ^ seed.wrapping_mul(0xD6E8_FEB8_6659_FD93));
     // Decals through their own model matrix from a stream of their own.
+    // Chunked grids from a stream of their own.
+    let mut chunk_pick = Xorshift(0xC4C4_2026_1126_0C4C ^ seed.wrapping_mul(0xE703_7ED1_A0B4_28DB));
     let mut model_pick = Xorshift(0x30DE_2026_1126_3A7A ^ seed.wrapping_mul(0xA076_1D64_78BD_642F));
     let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
     let mut out = Vec::new();
@@ -1255,6 +1405,8 @@ fn cases() -> Vec<Case> {
                             mesh_decal: mesh_pick.index(2) == 1,
                             model_decal: [ModelView::None, ModelView::Double, ModelView::Float]
                                 [model_pick.index(3)],
+                            ground_chunks: [ModelView::None, ModelView::Double, ModelView::Float]
+                                [chunk_pick.index(3)],
                         };
                         out.push(if seed == 0 {
                             case
@@ -1267,6 +1419,20 @@ fn cases() -> Vec<Case> {
         }
     }
     out
+}
+
+/// One row of a summary: its label, scenes, the median and largest gap ÷ distance, the median
+/// offset in f32 steps.
+fn print_row(label: &str, rows: &[(f64, f64)]) {
+    let mut gaps: Vec<f64> = rows.iter().map(|r| r.0).collect();
+    let mut steps: Vec<f64> = rows.iter().map(|r| r.1).collect();
+    let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
+    println!(
+        "{label:>8} {:>6} {:>12.2e} {gmax:>12.2e} {:>14.0}",
+        rows.len(),
+        median(&mut gaps),
+        median(&mut steps)
+    );
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -1288,6 +1454,9 @@ fn the_scene_every_engine_draws() {
     // Per translation from the world origin (probed profile, the ground as one quad or a grid):
     // what camera-relative rendering buys.
     let mut by_translation = std::collections::BTreeMap::<u64, Vec<(f64, f64)>>::new();
+    // Per way the vertices reach the shader and are told to zshift (the quad and the grid):
+    // what multiplying a model-view in double buys.
+    let mut by_pipeline = std::collections::BTreeMap::<(&str, u64), Vec<(f64, f64)>>::new();
     let (mut drawn, mut skipped, mut cut_drawn) = (0, 0, 0);
     // `ZSHIFT_ENGINE_SCENES_ONLY=<text>`: only the scenes whose label contains it.
     let only = std::env::var("ZSHIFT_ENGINE_SCENES_ONLY").ok();
@@ -1323,10 +1492,17 @@ fn the_scene_every_engine_draws() {
             let ground = case.ground.label();
             // The view matrix and box given (not a model-view multiplied in f32, told by
             // `world_reach`).
-            let view_given = case.drawn_through() != ModelView::Float;
+            let view_given =
+                case.drawn_through() != ModelView::Float && case.chunked() != ModelView::Float;
             if name == "probed" && out.refused.is_none() && view_given {
                 by_translation
                     .entry(case.translate as u64)
+                    .or_default()
+                    .push((out.gap_over_distance, out.steps));
+            }
+            if name == "probed" && out.refused.is_none() && case.ground != Ground::Hills {
+                by_pipeline
+                    .entry((case.told(), case.translate as u64))
                     .or_default()
                     .push((out.gap_over_distance, out.steps));
             }
@@ -1393,15 +1569,11 @@ fn the_scene_every_engine_draws() {
         "T", "scenes", "gap/d med", "gap/d max", "steps median"
     );
     for (t, rows) in &by_translation {
-        let mut gaps: Vec<f64> = rows.iter().map(|r| r.0).collect();
-        let mut steps: Vec<f64> = rows.iter().map(|r| r.1).collect();
-        let gmax = gaps.iter().copied().fold(f64::NAN, f64::max);
-        println!(
-            "{t:>8} {:>6} {:>12.2e} {gmax:>12.2e} {:>14.0}",
-            rows.len(),
-            median(&mut gaps),
-            median(&mut steps)
-        );
+        print_row(&t.to_string(), rows);
+    }
+    println!("probed profile, quad and grid, by how the vertices reach the shader and the camera's distance from the origin:");
+    for ((told, t), rows) in &by_pipeline {
+        print_row(&format!("{told} T {t}"), rows);
     }
     assert!(drawn > 100, "too few scenes drawn: {drawn}");
     assert!(
