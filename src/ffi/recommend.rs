@@ -54,11 +54,12 @@ pub struct ZshiftPipeline {
     /// world_box it tells the model each eye coordinate's rounding exactly, instead of the
     /// bound from world_reach over every rotation: far tighter for a ground under a level
     /// camera, and far from the world origin (README, "The scene every engine draws"). Base and
-    /// decal must both be drawn through it. A decal entity with a model matrix M of its own,
-    /// drawn through the model-view V·M: pass the camera's view V and a world_box that holds
-    /// the decal's world corners, when V·M is multiplied in double and rounded once to float
-    /// (glm::dmat4); multiplied in float (glm::mat4), pass world_reach (the largest coordinate
-    /// of the camera's position and of the decal's model origin) and view_matrix = NULL.
+    /// decal must both be drawn through it. A model with a matrix M of its own (a decal
+    /// entity, a terrain chunk), drawn through the model-view V·M: pass the camera's view V and
+    /// a world_box reaching |origin| + extent on each axis (for a model centred on its origin,
+    /// a box that holds its world corners), when V·M is multiplied in double and rounded once
+    /// to float (glm::dmat4); multiplied in float (glm::mat4), pass world_reach (the largest
+    /// coordinate of the camera's position and of the models' origins) and view_matrix = NULL.
     pub view_matrix: *const f32,
     /// With view_matrix: the box of the base and decal positions the shader receives (their
     /// world-space bounding box: min x, min y, min z, max x, max y, max z). Only the base's

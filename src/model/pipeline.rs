@@ -46,12 +46,14 @@ pub struct Pipeline {
     /// coordinates (the view, or model-view, matrix; column-major), with
     /// [`Pipeline::world_box`]: the model then knows each eye coordinate's rounding exactly
     /// instead of bounding it from `world_reach` over every rotation. Base and decal must both
-    /// be drawn through it. A decal entity with a model matrix `M` of its own, drawn through
-    /// the model-view `V·M`: pass the camera's view `V` and a [`Pipeline::world_box`] that holds
-    /// the decal's world corners, when `V·M` is multiplied in double and rounded once to f32
-    /// (`glm::dmat4`; [`crate::model::vertex`] shows why that is covered); multiplied in f32
-    /// (`glm::mat4`), pass `world_reach` instead, whose bound covers that product
-    /// (`tests/gl_engine_scene.rs` draws both). `None`: not given.
+    /// be drawn through it. A model with a matrix `M` of its own (a decal entity, a terrain
+    /// chunk), drawn through the model-view `V·M`: pass the camera's view `V` and a
+    /// [`Pipeline::world_box`] that reaches `|origin| + extent` on each axis (for a model
+    /// centred on its origin: a box that holds its world corners), when `V·M` is multiplied in
+    /// double and rounded once to f32 (`glm::dmat4`; [`crate::model::vertex`] shows why that is
+    /// covered); multiplied in f32 (`glm::mat4`), pass `world_reach` instead, whose bound covers
+    /// that product (`tests/gl_engine_scene.rs` draws both, for decals and terrain chunks).
+    /// `None`: not given.
     pub view: Option<[f32; 16]>,
     /// The box `[lo, hi]` of the base and decal positions the shader receives (in the space
     /// `view` maps from), with [`Pipeline::view`]. Only the base's triangles under the decal

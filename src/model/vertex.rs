@@ -56,13 +56,15 @@
 //! the ground and far the camera from the origin: the error off the ground stays small where
 //! the scalar bound must assume the worst rotation.
 //!
-//! **A decal entity through its own model matrix.** Engines draw a decal as a unit quad `q`
-//! (coordinates up to ½) through its f32 model matrix `M`, the shader's matrix the model-view
-//! `V·M` multiplied on the CPU. Multiplied in double and rounded once, each element of `V·M`
+//! **A model through its own model matrix** (a decal entity, a terrain chunk). Engines draw a
+//! decal as a unit quad `q` (coordinates up to ½), and a terrain chunk in local coordinates,
+//! through an f32 model matrix `M`, the shader's matrix the model-view `V·M` multiplied on the
+//! CPU. Multiplied in double and rounded once, each element of `V·M`
 //! errs by `u` of itself (the `1` of "elements stored"), and the shader's product `(V·M)·q`
 //! sums magnitudes `|(V·M)ₖ₃| + Σᵢ |(V·M)ₖᵢ|·|qᵢ| ≤ Σⱼ |Vₖⱼ|·(|tⱼ| + eⱼ) + |Vₖ₃|`, `t` the
-//! model origin and `e` the decal's half-extent in world axes: at most `Aₖ` of a box that holds
-//! the decal's world corners. `M`'s own rounding moves the decal as rounding `p` does (the `1`
+//! model origin and `e` the model's extent in world axes: at most `Aₖ` of a box that reaches
+//! `|tⱼ| + eⱼ` on each axis (for a model centred on its origin, a box that holds its world
+//! corners). `M`'s own rounding moves the decal as rounding `p` does (the `1`
 //! of "`p` stored"). So `γ_E = 6u` with the camera's `V` and such a box holds. Multiplied in
 //! f32 (`glm::mat4`), the product adds its own four roundings of magnitudes `|V|·|M|`, which
 //! only the scalar bound's larger magnitudes (`4W`, through a model matrix) cover: pass

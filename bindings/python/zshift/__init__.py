@@ -305,10 +305,10 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     shader's view matrix, 16 floats column-major, and the world-space box
     ``((min x, min y, min z), (max x, max y, max z))`` of the base and decal: for a
     tessellated ground, of the cells the decal touches, the only base triangles under it; base
-    and decal both drawn through that matrix. A decal entity with a model matrix of its own:
-    the camera's view and a box holding the decal's world corners when its model-view is
-    multiplied in double and rounded once to float32; multiplied in float32, pass
-    ``world_reach`` instead)."""
+    and decal both drawn through that matrix. A model with a matrix of its own (a decal entity,
+    a terrain chunk): the camera's view and a box holding its world corners (for a model
+    centred on its origin) when its model-view is multiplied in double and rounded once to
+    float32; multiplied in float32, pass ``world_reach`` instead)."""
     record.depth_func = 0 if depth_test is None else _enum(depth_test, DepthTest, "depth_test") & 0xFFFFFFFF
     _attach_framebuffer(record.pipeline, viewport_origin, depth_range)
     record.pipeline.world_reach = world_reach
