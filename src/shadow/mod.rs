@@ -186,19 +186,20 @@
 //! times the largest cosine above (a point moved `δ_N` along the normal lies `δ_N/cos θ`
 //! from its surface along the ray).
 //!
-//! **Meshes.** A kernel tap that lands on a neighbouring receiver reads that receiver's caster
-//! depth, biased by *its* slope term `factor·m_j`, while the lookup point sits on a receiver `i`
-//! whose depth runs up to `a·(|gₓ| + |g_y|)` of the steepest faces the path crosses: where the
-//! neighbour is flatter (a facet nearer a sphere's lit pole, a terrain's valley floor beside its
-//! slope) its slope term falls short. Measured: a UV sphere and a terrain with hills under 5×5
-//! PCF showed acne (up to 18 pixels of 5376) with the receivers' own planes alone. So the
-//! constant gains `factor·(m_i − m_j)` at its largest over receivers a kernel reads across
-//! (extents within `a + 1` texels of each other in the map: the flatter one's caster bias then
-//! reaches the steeper one's slope term) and the clamp at least
-//! `K + S + a·(max |gₓ| + max |g_y|)` (the largest run a tap can read across them); one planar
-//! receiver, or several of one slope, are unchanged. [`shadow_bias`] promises planar receivers
-//! only (planar across the kernel: every tap on the receiver's own plane); for curved or creased
-//! ones list their faces (`tests/gl_shadow/receivers.rs`: 0 acne on both, every lookup).
+//! **Meshes.** A kernel tap that lands on a neighbouring receiver `j` reads that receiver's
+//! caster depth, biased by *its* slope term `factor·m_j` (of which `2a·m_j` is for the run of
+//! depth, the rest its own snapping), while the lookup point lies up to `a` texels away along a
+//! path across receivers near `j`, where the depth runs up to `a·(Gₓ + G_y)` (`G` the largest
+//! `|gₓ|` and `|g_y|` of the receivers near `j`): where the neighbour is flatter (a facet nearer
+//! a sphere's lit pole, a terrain's valley floor beside its slope) its slope term falls short.
+//! Measured: a UV sphere and a terrain with hills under 5×5 PCF showed acne (up to 18 pixels of
+//! 5376) with the receivers' own planes alone. So the constant gains `a·(Gₓ + G_y − 2·m_j)` at
+//! its largest over the receivers (near: extents within `a + 1` texels of each other in the
+//! map), and the clamp at least `K + S + a·(Gₓ + G_y)` at its largest (the run a tap can read
+//! across them); one planar receiver, or several of one slope, are unchanged. [`shadow_bias`]
+//! promises planar receivers only (planar across the kernel: every tap on the receiver's own
+//! plane); for curved or creased ones list their faces (`tests/gl_shadow/receivers.rs`: 0 acne
+//! on both, every lookup).
 //!
 //! **Refusal.** When `K + S + F(θ_max)` reaches the map's whole depth range (1), the bias would lift
 //! every caster past the far plane: no bias both ends acne at that angle and still shadows

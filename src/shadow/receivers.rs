@@ -150,8 +150,9 @@ pub fn shadow_bias_for_receivers(
     // reaches the largest run a tap can read across them (`a` texels of the largest |gₓ| and of
     // the largest |g_y|) on top of the constant and snapping terms, and a tap that reads a
     // flatter neighbour gets, in the constant, what its smaller slope term lacks.
-    needed = needed.max(terms.constant + slopes.snap + terms.reach * slopes.run());
-    terms.constant += terms.slope_factor * slopes.spread(terms.reach);
+    let (shortfall, run) = slopes.reads_across(terms.reach);
+    needed = needed.max(terms.constant + slopes.snap + terms.reach * run);
+    terms.constant += shortfall;
     let map = ShadowMap {
         receiver_depths: depths,
         ..*map
@@ -166,54 +167,66 @@ pub(super) const COPLANARITY_WIDENING: f64 = 1.0 + 1.0 / 65_536.0;
 /// The slopes of the listed receivers, for a kernel that reads across from one to another.
 #[derive(Default)]
 struct SlopeSpread {
-    /// Each receiver's `m = max(|gₓ|, |g_y|)` and its extent in the map, `[x₀, x₁, y₀, y₁]`
-    /// (texels).
-    faces: Vec<(f64, [f64; 4])>,
-    /// The largest `|gₓ|` and `|g_y|`, each over every receiver.
-    g: [f64; 2],
+    /// Each receiver's `|gₓ|`, `|g_y|` and its extent in the map, `[x₀, x₁, y₀, y₁]` (texels).
+    faces: Vec<([f64; 2], [f64; 4])>,
     /// The largest snapping term.
     snap: f64,
 }
 
 impl SlopeSpread {
     fn add(&mut self, gradient: [f64; 2], snap: f64, extent: [f64; 4]) {
-        let [gx, gy] = gradient.map(f64::abs);
-        self.faces.push((gx.max(gy), extent));
-        self.g = [self.g[0].max(gx), self.g[1].max(gy)];
+        let g = gradient.map(f64::abs);
+        self.faces.push((g, extent));
         self.snap = self.snap.max(snap);
     }
 
-    /// The largest `m_i − m_j` over receivers a kernel of `reach` texels reads across: a tap on
-    /// `j` reads a caster biased by `j`'s slope term while the lookup on `i` runs at `i`'s, so
-    /// the constant adds the difference. A tap lands at most `reach` texels from the lookup
-    /// point and takes the texel whose centre its face covers, half a texel further: only
-    /// receivers whose extents come within `reach + 1` texels of each other count (a sweep
-    /// over the extents sorted by `x₀`). Separate meshes listed together then do not pay for
-    /// each other's slopes; on one smooth mesh (a sphere towards its terminator) neighbours'
-    /// slopes differ almost as much as the mesh's extremes, and little changes.
-    fn spread(&self, reach: f64) -> f64 {
+    /// Per receiver, its `|gₓ|, |g_y|` and the largest `|gₓ|` and `|g_y|` of the receivers a
+    /// kernel of `reach` texels can read across from it, itself included: those whose extents
+    /// come within `reach + 1` texels of its own (a tap lands at most `reach` texels from the
+    /// lookup point and takes the texel whose centre its face covers, half a texel further).
+    /// Separate meshes listed together then do not pay for each other's slopes. A sweep over
+    /// the extents sorted by `x₀`.
+    fn near_maxima(&self, reach: f64) -> Vec<([f64; 2], [f64; 2])> {
         let near = reach + 1.0;
-        let mut order: Vec<&(f64, [f64; 4])> = self.faces.iter().collect();
+        let mut order: Vec<&([f64; 2], [f64; 4])> = self.faces.iter().collect();
         order.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]));
-        let mut spread = 0.0f64;
-        for (i, (m_i, e_i)) in order.iter().enumerate() {
-            for (m_j, e_j) in order[i + 1..]
-                .iter()
-                .take_while(|(_, e)| e[0] <= e_i[1] + near)
-            {
+        let mut out: Vec<([f64; 2], [f64; 2])> = order.iter().map(|(g, _)| (*g, *g)).collect();
+        for i in 0..order.len() {
+            let (g_i, e_i) = order[i];
+            for j in i + 1..order.len() {
+                let (g_j, e_j) = order[j];
+                if e_j[0] > e_i[1] + near {
+                    break;
+                }
                 if e_j[2] <= e_i[3] + near && e_i[2] <= e_j[3] + near {
-                    spread = spread.max((m_i - m_j).abs());
+                    out[i].1 = [0, 1].map(|k| out[i].1[k].max(g_j[k]));
+                    out[j].1 = [0, 1].map(|k| out[j].1[k].max(g_i[k]));
                 }
             }
         }
-        spread
+        out
     }
 
-    /// `(max |gₓ| + max |g_y|)·(1 + 2⁻¹⁶)`: the largest depth run per texel of reach along a
-    /// path that crosses receivers (each texel step inside one of them), widened as each
-    /// receiver's own footprint term is.
-    fn run(&self) -> f64 {
-        (self.g[0] + self.g[1]) * COPLANARITY_WIDENING
+    /// The kernel's reads across receivers (module docs, "Meshes"), for a kernel of `reach`
+    /// texels: `(shortfall, run)`. A tap on receiver `j` reads `j`'s caster while the lookup
+    /// point lies at most `reach` texels away along a path that crosses receivers near `j`,
+    /// where the depth runs up to `reach·(Gₓ + G_y)` (`G` the largest `|g|` near `j`, widened as
+    /// each receiver's own footprint term is). `j`'s slope term `factor·m_j` holds
+    /// `2·reach·m_j` of that beside its own snapping, so the constant adds the shortfall
+    /// `reach·(Gₓ + G_y) − 2·reach·m_j` at its largest over `j`; and a clamp that binds at `j`
+    /// must reach the whole run, `Gₓ + G_y` at its largest over `j` (per texel of reach).
+    /// Before, the constant charged `factor·(m_i − m_j)` for every pair within reach and the
+    /// clamp the largest `|gₓ|` and `|g_y|` over every receiver, near or not.
+    fn reads_across(&self, reach: f64) -> (f64, f64) {
+        self.near_maxima(reach)
+            .iter()
+            .fold((0.0f64, 0.0f64), |(short, run), (g, near_g)| {
+                let across = (near_g[0] + near_g[1]) * COPLANARITY_WIDENING;
+                (
+                    short.max(reach * (across - 2.0 * g[0].max(g[1]))),
+                    run.max(across),
+                )
+            })
     }
 }
 

@@ -294,10 +294,11 @@ fn listed_receivers_take_their_own_plane() {
 }
 
 /// Two faces of a mesh under an orthographic light (window depth affine in the map, its
-/// gradient computed here from three projected corners): listed together, the constant
-/// gains `factor·(m_steep − m_flat)` over the larger of the two listed alone, and the clamp
-/// covers `a·(max |gₓ| + max |g_y|)` on top of the constant; two faces of one slope change
-/// nothing.
+/// gradient computed here from three projected corners, both along x): listed together, the
+/// constant gains what the flat face's slope term lacks for a run across the steep one,
+/// `a·(m_steep·(1 + 2⁻¹⁶) − 2·m_flat)`, over the larger of the two listed alone, and the clamp
+/// covers `a·(|gₓ| + |g_y|)` of the steep face on top of the constant; two faces of one slope,
+/// or a steep face beyond the kernel's reach, change nothing.
 #[test]
 fn faces_of_a_mesh_cover_the_spread_of_their_slopes() {
     let map = ground_map(Lookup::Pcf(5), 80.0);
@@ -329,7 +330,8 @@ fn faces_of_a_mesh_cover_the_spread_of_their_slopes() {
     let alone = [&flat, &steep].map(|f| shadow_bias_for_receivers(&map, &[f]).unwrap());
     let both = shadow_bias_for_receivers(&map, &[&flat, &steep]).unwrap();
     let larger = alone[0].terms.constant.max(alone[1].terms.constant);
-    let spread = both.terms.slope_factor * (m_steep - m_flat);
+    let a = both.terms.reach;
+    let spread = a * (m_steep * (1.0 + 1.0 / 65_536.0) - 2.0 * m_flat);
     assert!(m_steep > 10.0 * m_flat, "{m_steep} {m_flat}");
     let gained = both.terms.constant - larger;
     assert!(
