@@ -461,9 +461,18 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
             };
             for translate in [0.0, 1e3, 1e4] {
                 for (k, (centre, half)) in
-                    [([0.0, 0.0], 1.25), ([2.3, -1.7], 0.5), ([-3.1, 1.4], 1.0)]
-                        .into_iter()
-                        .enumerate()
+                    // Three inside the view, two across its right and left edges (±6 units
+                    // along the camera's right, (1, 0, −1)/√2 in world x and z): their terrain
+                    // triangles cross the box's side planes and the rasterizer clips them.
+                    [
+                        ([0.0, 0.0], 1.25),
+                        ([2.3, -1.7], 0.5),
+                        ([-3.1, 1.4], 1.0),
+                        ([4.1, -4.1], 1.0),
+                        ([-4.2, 4.2], 0.6),
+                    ]
+                    .into_iter()
+                    .enumerate()
                 {
                     // The framebuffer as engines set it: the viewport at the origin, or inside a
                     // larger framebuffer (an editor pane), under glDepthRange(0, 1) or a sub-range.
@@ -471,7 +480,7 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                         ([0u32, 0u32], [0.0, 1.0]),
                         ([1700, 900], [0.5, 1.0]),
                         ([3500, 1900], [0.0, 0.5]),
-                    ][k];
+                    ][k % 3];
                     let scene = Isometric::new(translate);
                     let (terrain, view) = (scene.terrain(), scene.view());
                     let label = format!(
