@@ -57,18 +57,18 @@
 //! the scalar bound must assume the worst rotation.
 //!
 //! **A model through its own model matrix** (a decal entity, a terrain chunk). Engines draw a
-//! decal as a unit quad `q` (coordinates up to ½), and a terrain chunk in local coordinates,
-//! through an f32 model matrix `M`, the shader's matrix the model-view `V·M` multiplied on the
-//! CPU. Multiplied in double and rounded once, each element of `V·M`
-//! errs by `u` of itself (the `1` of "elements stored"), and the shader's product `(V·M)·q`
-//! sums magnitudes `|(V·M)ₖ₃| + Σᵢ |(V·M)ₖᵢ|·|qᵢ| ≤ Σⱼ |Vₖⱼ|·(|tⱼ| + eⱼ) + |Vₖ₃|`, `t` the
-//! model origin and `e` the model's extent in world axes: at most `Aₖ` of a box that reaches
-//! `|tⱼ| + eⱼ` on each axis (for a model centred on its origin, a box that holds its world
-//! corners). `M`'s own rounding moves the decal as rounding `p` does (the `1`
-//! of "`p` stored"). So `γ_E = 6u` with the camera's `V` and such a box holds. Multiplied in
-//! f32 (`glm::mat4`), the product adds its own four roundings of magnitudes `|V|·|M|`, which
-//! only the scalar bound's larger magnitudes (`4W`, through a model matrix) cover: pass
-//! `world_reach` there (`tests/gl_engine_scene.rs` draws both ways).
+//! decal as a unit quad and a terrain chunk in local coordinates `q`, through an f32 model
+//! matrix `M` (origin `t`), the shader's matrix the model-view `V·M` multiplied on the CPU.
+//! Multiplied in double and rounded once, each element of `V·M` errs by `u` of itself (the `1`
+//! of "elements stored"), and the shader's product `(V·M)·q` sums magnitudes
+//! `|(V·M)ₖ₃| + Σᵢ |(V·M)ₖᵢ|·|qᵢ| ≤ Σⱼ |Vₖⱼ|·(|tⱼ| + eⱼ) + |Vₖ₃|`, `eⱼ = Σᵢ |Mⱼᵢ|·|qᵢ|` the
+//! model's extent along world axis `j`: at most `Aₖ` of a box that reaches `|tⱼ| + eⱼ` on each
+//! axis (for a model centred on its origin, a box that holds its world corners). `M`'s own
+//! rounding moves the model as rounding `p` does (the `1` of "`p` stored"). So `γ_E = 6u` with
+//! the camera's `V` and such a box holds. Multiplied in f32 (`glm::mat4`), the product adds its
+//! own four roundings of magnitudes `|V|·|M|`, which only the scalar bound's larger magnitudes
+//! (`4W`, through a model matrix) cover: pass `world_reach` there (`tests/gl_engine_scene.rs`
+//! draws both ways, for decal entities and terrain chunks).
 //!
 //! `A` splits into a part that does not shrink with distance, `4√3·W`, and one proportional to
 //! `w`, `√3·ρ·w`. Through the form, the first gives at most `L(γ_W·B(4√3·W))/d₁` at a pixel of
