@@ -7,6 +7,7 @@
 
 static int ground_decal(const float proj[16], float decal_out[16]); /* below */
 static int terrain_decal(const float proj[16], float decal_out[16]); /* below */
+static int decal_entity(const float proj[16], float decal_out[16]);  /* below */
 
 
 int main(void) {
@@ -37,6 +38,9 @@ int main(void) {
   if (decal[10] <= proj[10]) return 1;
   if (terrain_decal(proj, decal) != 0) return 1;
   printf("terrain decal: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
+  if (decal[10] <= proj[10]) return 1;
+  if (decal_entity(proj, decal) != 0) return 1;
+  printf("decal entity: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
   return decal[10] > proj[10] ? 0 : 1;
 }
 
@@ -90,3 +94,39 @@ static int terrain_decal(const float proj[16], float decal_out[16]) {
   return 0;
 }
 /* [/quickstart-terrain-c] */
+
+/* [quickstart-entity-c] */
+/* A decal entity 5000 units from the world's origin: a unit quad through its own model matrix,
+   laid 2x2 on the ground 10 units ahead of a level camera 1.7 units above it. The engine
+   multiplies its model-view V*M in double and rounds it once to float (glm::dmat4), so zshift
+   is told the camera's view matrix and a world box that holds the ground's cells under the
+   decal and the decal's world corners. (V*M multiplied in float: pass world_reach, no view.) */
+static int decal_entity(const float proj[16], float decal_out[16]) {
+  /* The camera at (5000, 1.7, 5000), level, looking down -z; column-major. */
+  static const float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -5000.0f, -1.7f, -5000.0f, 1};
+  /* min x, y, z, max x, y, z: the ground's 4-unit cells under the decal (it spans x 4999..5001,
+     z 4989..4991). */
+  static const double box[6] = {4996.0, 0.0, 4988.0, 5004.0, 0.0, 4992.0};
+  const float corners[12] = {-1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -9.0f, /* eye space */
+                             1.0f, -1.7f, -11.0f, -1.0f, -1.7f, -11.0f};
+  ZshiftDecal d;
+  memset(&d, 0, sizeof d);
+  d.viewport_width = 1920;
+  d.viewport_height = 1080;
+  d.format = ZSHIFT_FORMAT_UNORM24_STENCIL8;
+  d.subpixel_bits = 8;
+  d.depth_func = ZSHIFT_DEPTH_TEST_LEQUAL;
+  d.decal_corners = corners;
+  d.decal_corner_count = 4;
+  d.base_reach = 0.0;                 /* those cells lie inside the frustum */
+  d.pipeline.world_reach = 5000.0;    /* the camera's largest world coordinate */
+  d.pipeline.eye_first = 1;           /* the shader computes proj * (modelView * p) */
+  d.pipeline.view_matrix = view;      /* the camera's view, not the decal's model-view */
+  memcpy(d.pipeline.world_box, box, sizeof box);
+  if (zshift_decal_matrix(proj, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &d, decal_out) != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error());
+    return 1;
+  }
+  return 0;
+}
+/* [/quickstart-entity-c] */

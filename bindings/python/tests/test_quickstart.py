@@ -51,6 +51,27 @@ class QuickStart(unittest.TestCase):
         self.assertEqual([decal[i] for i in range(16) if i != 10],
                          [engine_projection[i] for i in range(16) if i != 10])
 
+    def test_entity_quickstart(self):
+        import zshift
+        engine_projection = zshift.frustum(-0.1778, 0.1778, -0.1, 0.1, 0.1, 1000.0)
+        # [quickstart-entity-python]
+        # A decal entity 5000 from the world's origin: a unit quad through its own model matrix,
+        # its model-view V*M multiplied in double and rounded once to float32. Tell zshift the
+        # camera's view matrix and a box holding the ground's cells under the decal and its
+        # corners (V*M multiplied in float32: world_reach alone, no view_matrix).
+        camera_view = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -5000, -1.7, -5000, 1]  # column-major
+        decal = zshift.decal_matrix(
+            engine_projection, zshift.Clip.NEG_ONE_TO_ONE,
+            viewport=(1920, 1080), depth_format=zshift.Format.UNORM24_STENCIL8,
+            corners=[(-1, -1.7, -9), (1, -1.7, -9), (1, -1.7, -11), (-1, -1.7, -11)],  # eye space
+            depth_test="LEQUAL", subpixel_bits=8,
+            world_reach=5000.0, eye_first=True,  # proj * (modelView * p) in the shader
+            view_matrix=camera_view, world_box=((4996, 0, 4988), (5004, 0, 4992)))
+        # [/quickstart-entity-python]
+        self.assertGreater(decal[10], engine_projection[10], "the decal moved toward the camera")
+        self.assertEqual([decal[i] for i in range(16) if i != 10],
+                         [engine_projection[i] for i in range(16) if i != 10])
+
 
 if __name__ == "__main__":
     unittest.main()
