@@ -60,6 +60,9 @@ pub struct ZshiftPipeline {
     /// a box that holds its world corners), when V·M is multiplied in double and rounded once
     /// to float (glm::dmat4); multiplied in float (glm::mat4), pass world_reach (the largest
     /// coordinate of the camera's position and of the models' origins) and view_matrix = NULL.
+    /// Base and decal drawn through one model-view (a decal on a vehicle, both in its model
+    /// space): pass that model-view and the box of the model-space positions, however it was
+    /// multiplied (both go through the same rounded matrix, which keeps them coplanar).
     pub view_matrix: *const f32,
     /// With view_matrix: the box of the base and decal positions the shader receives (their
     /// world-space bounding box: min x, min y, min z, max x, max y, max z). Only the base's

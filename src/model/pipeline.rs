@@ -53,6 +53,9 @@ pub struct Pipeline {
     /// double and rounded once to f32 (`glm::dmat4`; [`crate::model::vertex`] shows why that is
     /// covered); multiplied in f32 (`glm::mat4`), pass `world_reach` instead, whose bound covers
     /// that product (`tests/gl_engine_scene.rs` draws both, for decals and terrain chunks).
+    /// Base and decal drawn through one model-view (a decal on a vehicle, both in its model
+    /// space): pass that model-view and the box of the model-space positions, however it was
+    /// multiplied (both go through the same rounded matrix, which keeps them coplanar).
     /// `None`: not given.
     pub view: Option<[f32; 16]>,
     /// The box `[lo, hi]` of the base and decal positions the shader receives (in the space
