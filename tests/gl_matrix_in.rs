@@ -645,3 +645,246 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
         "no z-fighting without an offset: the experiment cannot fail"
     );
 }
+
+/// A decal on a vehicle far from the world's origin: the vehicle's flank (the base) and the
+/// decal both in its model space, drawn through one model-view `V·M` multiplied in f32 as glm's
+/// `mat4 * mat4` does (the camera 1.5 units to the side and 4 out, the vehicle turned 33.7°, up
+/// to 10⁵ units from the origin). The engine tells zshift that model-view and the model-space
+/// box (`Pipeline::view` documents it: however the product was multiplied, both go through the
+/// same rounded matrix). Every convention, D16/D24/D32F, strict and `…EQUAL` tests: no decal
+/// pixel lost, none shown over an occluder parallel to the flank at the reported gap.
+#[test]
+fn a_decal_on_a_vehicle_through_its_model_view_loses_no_pixel() {
+    use zshift_harness::coplanar::{Count, OCCLUDER};
+    const PX: u32 = 256;
+    let mut gl = context();
+    let snapping = gl_common::snapping_of(&gl);
+    let (mut scenes, mut control_lost) = (0, 0);
+    let mut gaps = Vec::new();
+    // The flank (z = 0.9 in model space, facing +z) and the decal on it, as triangles.
+    let quad = |x0: f32, x1: f32, y0: f32, y1: f32| {
+        let c = [[x0, y0, 0.9], [x1, y0, 0.9], [x1, y1, 0.9], [x0, y1, 0.9]];
+        vec![c[0], c[1], c[2], c[0], c[2], c[3]]
+    };
+    let flank = quad(-2.0, 2.0, -1.0, 1.0);
+    let decal = quad(-0.5, 0.7, -0.4, 0.5);
+    let frustum = zshift::projection::Frustum::new(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0).unwrap();
+    for translate in [0.0, 1e3, 1e4, 1e5] {
+        // The vehicle: turned 33.7° about y, at (T, 1, T); its model matrix in f32.
+        let (s, c) = 33.7f64.to_radians().sin_cos();
+        let origin = [translate, 1.0, translate];
+        let model: [f32; 16] = [
+            c as f32,
+            0.0,
+            -s as f32,
+            0.0,
+            0.0,
+            1.0,
+            0.0,
+            0.0,
+            s as f32,
+            0.0,
+            c as f32,
+            0.0,
+            origin[0] as f32,
+            origin[1] as f32,
+            origin[2] as f32,
+            1.0,
+        ];
+        // The camera: 1.5 to the side and 4 out from the flank (world), looking at the vehicle.
+        let out = [4.0 * s, 0.3, 4.0 * c];
+        let camera = [
+            origin[0] + out[0] + 1.5 * c,
+            origin[1] + out[1],
+            origin[2] + out[2] - 1.5 * s,
+        ];
+        let forward = {
+            let d = [0, 1, 2].map(|k| origin[k] - camera[k]);
+            let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            d.map(|v| v / n)
+        };
+        let right = {
+            let r = [-forward[2], 0.0, forward[0]];
+            let n = (r[0] * r[0] + r[2] * r[2]).sqrt();
+            r.map(|v| v / n)
+        };
+        let up = [
+            right[1] * forward[2] - right[2] * forward[1],
+            right[2] * forward[0] - right[0] * forward[2],
+            right[0] * forward[1] - right[1] * forward[0],
+        ];
+        let view = zshift_harness::world::view_matrix(&[right, up, forward.map(|v| -v)], camera);
+        // V·M in f32, each element a sum of four f32 products (glm's mat4 * mat4).
+        let model_view: [f32; 16] = std::array::from_fn(|i| {
+            let (col, row) = (i / 4, i % 4);
+            (0..4).fold(0.0f32, |a, k| a + view[4 * k + row] * model[4 * col + k])
+        });
+        let to_eye = |p: &[f32; 3]| {
+            [0, 1, 2].map(|r| {
+                (0..3)
+                    .map(|k| f64::from(model_view[4 * k + r]) * f64::from(p[k]))
+                    .sum::<f64>()
+                    + f64::from(model_view[12 + r])
+            })
+        };
+        // The camera in model space, for the occluder's lift along the flank's normal.
+        let height = {
+            let eye_origin = to_eye(&[0.0, 0.0, 0.9]);
+            let eye_normal = [0, 1, 2].map(|r| f64::from(model_view[8 + r]));
+            -(0..3).map(|k| eye_origin[k] * eye_normal[k]).sum::<f64>()
+        };
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            let base = zshift::projection::projection(&frustum, clip).unwrap();
+            let reversed = clip == ClipDepth::ReversedZeroToOne;
+            for format in [DepthFormat::D16, DepthFormat::D24, DepthFormat::D32F] {
+                for equal in [false, true] {
+                    let func = match (reversed, equal) {
+                        (false, false) => glow::LESS,
+                        (false, true) => glow::LEQUAL,
+                        (true, false) => glow::GREATER,
+                        (true, true) => glow::GEQUAL,
+                    };
+                    let state = DrawState {
+                        depth_func: func,
+                        ..DrawState::default()
+                    };
+                    let label =
+                        format!("vehicle {clip:?} {format:?} test 0x{func:04X} T {translate}");
+                    let corners: Vec<glam::Vec3> = [0, 1, 2, 5]
+                        .iter()
+                        .map(|&i| {
+                            let e = to_eye(&decal[i]);
+                            glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32)
+                        })
+                        .collect();
+                    let shape =
+                        zshift::matrix_in::decal_shape(&base, clip, [PX, PX], &corners).unwrap();
+                    let asked = Decal {
+                        viewport: [PX, PX],
+                        format: gl_common::format_of(format),
+                        depth_range: shape.depth_range,
+                        slope: shape.slope,
+                        exact_depth: false,
+                        snapping,
+                        base: zshift::recommend::Base::InsideFrustum,
+                        profile: None,
+                        footprint: Some(shape.footprint),
+                        depth_test: Some(
+                            zshift::recommend::DepthTest::from_gl(func).expect("a depth test"),
+                        ),
+                        pipeline: zshift::model::Pipeline {
+                            // The largest coordinate of the camera and the model's origin in the
+                            // space the shader receives vertices in: the vehicle's.
+                            world_reach: 5.0,
+                            eye_first: true,
+                            view: Some(model_view),
+                            world_box: Some([[-2.0, -1.0, 0.9], [2.0, 1.0, 0.9]]),
+                            ..zshift::model::Pipeline::default()
+                        },
+                    };
+                    let rec =
+                        recommend(&base, clip, &asked).unwrap_or_else(|e| panic!("{label}: {e}"));
+                    gl.set_target(PX, PX, format).expect("target");
+                    gl.clip_control(if clip == ClipDepth::NegOneToOne {
+                        GlClip::NegativeOneToOne
+                    } else {
+                        GlClip::ZeroToOne
+                    })
+                    .expect("glClipControl");
+                    gl.set_window(&zshift_harness::world::Window {
+                        viewport: [0, 0, PX as i32, PX as i32],
+                        depth_range: [0.0, 1.0],
+                    })
+                    .expect("viewport");
+                    let clear = if reversed { 0.0 } else { 1.0 };
+                    let always = DrawState {
+                        depth_func: glow::ALWAYS,
+                        ..DrawState::default()
+                    };
+                    let draw = |gl: &mut Gl, passes: &[Pass]| {
+                        gl.clear(CLEAR, clear).expect("clear");
+                        for (tris, proj, color, st) in passes {
+                            gl.draw_world(tris, &model_view, proj, *color, st)
+                                .expect("draw");
+                        }
+                        gl.read_color_at([0, 0], PX, PX).expect("read")
+                    };
+                    let mask =
+                        draw(&mut gl, &[(&decal, &base, DECAL, &always)]).mask_of(rgba8(DECAL));
+                    assert!(
+                        mask.iter().filter(|&&m| m).count() > 500,
+                        "{label}: the decal covers too few pixels"
+                    );
+                    let lost = Count::decal_missing(
+                        &draw(
+                            &mut gl,
+                            &[
+                                (&flank, &base, BASE, &state),
+                                (&decal, &rec.matrix, DECAL, &state),
+                            ],
+                        ),
+                        &mask,
+                    );
+                    assert_eq!(
+                        lost.hit, 0,
+                        "{label}: lost {} of {} decal pixels ({rec:?})",
+                        lost.hit, lost.of
+                    );
+                    control_lost += Count::decal_missing(
+                        &draw(
+                            &mut gl,
+                            &[
+                                (&flank, &base, BASE, &state),
+                                (&decal, &base, DECAL, &state),
+                            ],
+                        ),
+                        &mask,
+                    )
+                    .hit;
+                    // The occluder: the flank moved along its normal so that it is the gap (and
+                    // a hair) in front at the decal's nearest pixel, more at the others.
+                    let lift =
+                        (rec.bleed_gap * height / shape.depth_range[0] * (1.0 + 1e-6)) as f32;
+                    let occluder: Vec<[f32; 3]> =
+                        flank.iter().map(|p| [p[0], p[1], p[2] + lift]).collect();
+                    let covered = draw(&mut gl, &[(&occluder, &base, OCCLUDER, &always)])
+                        .mask_of(rgba8(OCCLUDER));
+                    let both: Vec<bool> =
+                        covered.iter().zip(&mask).map(|(a, b)| *a && *b).collect();
+                    let shown = Count::decal_shown(
+                        &draw(
+                            &mut gl,
+                            &[
+                                (&flank, &base, BASE, &state),
+                                (&occluder, &base, OCCLUDER, &state),
+                                (&decal, &rec.matrix, DECAL, &state),
+                            ],
+                        ),
+                        &both,
+                    );
+                    assert_eq!(
+                        shown.hit, 0,
+                        "{label}: {} of {} decal pixels shown over an occluder {} in front",
+                        shown.hit, shown.of, rec.bleed_gap
+                    );
+                    gaps.push(rec.bleed_gap / shape.depth_range[0]);
+                    scenes += 1;
+                }
+            }
+        }
+    }
+    gaps.sort_by(f64::total_cmp);
+    println!(
+        "{scenes} decals on a vehicle through its f32 model-view, 0 to 10^5 from the origin: 0 pixels lost, 0 shown over an occluder at the gap; gap / distance median {:.2e}, max {:.2e}; {control_lost} lost without an offset",
+        gaps[gaps.len() / 2],
+        gaps[gaps.len() - 1]
+    );
+    assert!(
+        control_lost > 0,
+        "no z-fighting without an offset: the experiment cannot fail"
+    );
+}
