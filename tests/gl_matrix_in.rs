@@ -417,10 +417,127 @@ impl Isometric {
 /// One draw of a pass: triangles, projection, colour, state.
 type Pass<'a> = (&'a [[f32; 3]], &'a [f32; 16], [f32; 4], &'a DrawState);
 
+/// Where and how a decal scene is drawn: a `px`-square viewport at `origin` of the framebuffer
+/// under `glDepthRange(range)`, the depth format and clip convention, the shader's view (or
+/// model-view) matrix, the plain projection and every pass's depth test.
+struct Drawn<'a> {
+    px: u32,
+    origin: [u32; 2],
+    range: [f64; 2],
+    format: DepthFormat,
+    clip: ClipDepth,
+    view: &'a [f32; 16],
+    base: &'a [f32; 16],
+    state: DrawState,
+}
+
+/// What a decal scene gave: the decal's pixels, those lost with its matrix and with the plain
+/// one, and those shown over the occluder (among the pixels both cover).
+struct Judged {
+    pixels: usize,
+    lost: zshift_harness::coplanar::Count,
+    control: zshift_harness::coplanar::Count,
+    shown: zshift_harness::coplanar::Count,
+}
+
+impl Drawn<'_> {
+    /// Draws the base, then the decal with `decal_proj`, and again with the occluder between
+    /// them, each read back.
+    fn judge(
+        &self,
+        gl: &mut Gl,
+        base_tris: &[[f32; 3]],
+        decal_tris: &[[f32; 3]],
+        decal_proj: &[f32; 16],
+        occluder: &[[f32; 3]],
+    ) -> Judged {
+        use zshift_harness::coplanar::{Count, OCCLUDER};
+        let [x, y] = self.origin;
+        gl.set_target(x + self.px, y + self.px, self.format)
+            .expect("target");
+        gl.clip_control(if self.clip == ClipDepth::NegOneToOne {
+            GlClip::NegativeOneToOne
+        } else {
+            GlClip::ZeroToOne
+        })
+        .expect("glClipControl");
+        let side = self.px as i32;
+        gl.set_window(&zshift_harness::world::Window {
+            viewport: [x as i32, y as i32, side, side],
+            depth_range: self.range,
+        })
+        .expect("viewport");
+        let clear = if self.clip == ClipDepth::ReversedZeroToOne {
+            0.0
+        } else {
+            1.0
+        };
+        let always = DrawState {
+            depth_func: glow::ALWAYS,
+            ..DrawState::default()
+        };
+        let (base, state) = (self.base, &self.state);
+        let mut draw = |passes: &[Pass]| {
+            gl.clear(CLEAR, clear).expect("clear");
+            for (tris, proj, color, st) in passes {
+                gl.draw_world(tris, self.view, proj, *color, st)
+                    .expect("draw");
+            }
+            gl.read_color_at(self.origin, self.px, self.px)
+                .expect("read")
+        };
+        let mask = draw(&[(decal_tris, base, DECAL, &always)]).mask_of(rgba8(DECAL));
+        let over = |proj| {
+            [
+                (base_tris, base, BASE, state),
+                (decal_tris, proj, DECAL, state),
+            ]
+        };
+        let lost = Count::decal_missing(&draw(&over(decal_proj)), &mask);
+        let control = Count::decal_missing(&draw(&over(base)), &mask);
+        let covered = draw(&[(occluder, base, OCCLUDER, &always)]).mask_of(rgba8(OCCLUDER));
+        let both: Vec<bool> = covered.iter().zip(&mask).map(|(a, b)| *a && *b).collect();
+        let shown = Count::decal_shown(
+            &draw(&[
+                (base_tris, base, BASE, state),
+                (occluder, base, OCCLUDER, state),
+                (decal_tris, decal_proj, DECAL, state),
+            ]),
+            &both,
+        );
+        Judged {
+            pixels: mask.iter().filter(|&&m| m).count(),
+            lost,
+            control,
+            shown,
+        }
+    }
+}
+
+impl Judged {
+    /// Asserts the decal covered more than `least` pixels, lost none and showed none over the
+    /// occluder at `rec`'s gap.
+    fn assert_kept(&self, label: &str, least: usize, rec: &zshift::recommend::ClipRecommendation) {
+        assert!(
+            self.pixels > least,
+            "{label}: the decal covers too few pixels"
+        );
+        assert_eq!(
+            self.lost.hit, 0,
+            "{label}: lost {} of {} decal pixels ({rec:?})",
+            self.lost.hit, self.lost.of
+        );
+        assert_eq!(
+            self.shown.hit, 0,
+            "{label}: {} of {} decal pixels shown over an occluder {} in front",
+            self.shown.hit, self.shown.of, rec.bleed_gap
+        );
+    }
+}
+
 #[test]
 fn isometric_mesh_decals_over_hills_lose_no_pixel() {
-    use zshift_harness::coplanar::{Count, OCCLUDER};
-    use zshift_harness::world::{clip_to_square, Window};
+    use zshift_harness::world::clip_to_square;
     const PX: u32 = 256;
     let mut gl = context();
     let snapping = gl_common::snapping_of(&gl);
@@ -542,63 +659,6 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                         .collect();
                     let rec = zshift::planes::recommend_planes(&base, clip, &planes)
                         .unwrap_or_else(|e| panic!("{label}: {e}"));
-                    let [x, y] = origin;
-                    gl.set_target(x + PX, y + PX, format).expect("target");
-                    gl.clip_control(if clip == ClipDepth::NegOneToOne {
-                        GlClip::NegativeOneToOne
-                    } else {
-                        GlClip::ZeroToOne
-                    })
-                    .expect("glClipControl");
-                    gl.set_window(&Window {
-                        viewport: [x as i32, y as i32, PX as i32, PX as i32],
-                        depth_range: range,
-                    })
-                    .expect("viewport");
-                    let clear = if reversed { 0.0 } else { 1.0 };
-                    let always = DrawState {
-                        depth_func: glow::ALWAYS,
-                        ..DrawState::default()
-                    };
-                    let draw = |gl: &mut Gl, passes: &[Pass]| {
-                        gl.clear(CLEAR, clear).expect("clear");
-                        for (tris, proj, color, st) in passes {
-                            gl.draw_world(tris, &view, proj, *color, st).expect("draw");
-                        }
-                        gl.read_color_at(origin, PX, PX).expect("read")
-                    };
-                    let mask =
-                        draw(&mut gl, &[(&decal, &base, DECAL, &always)]).mask_of(rgba8(DECAL));
-                    let lost = Count::decal_missing(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&terrain, &base, BASE, &state),
-                                (&decal, &rec.matrix, DECAL, &state),
-                            ],
-                        ),
-                        &mask,
-                    );
-                    assert!(
-                        mask.iter().filter(|&&m| m).count() > 50,
-                        "{label}: the decal covers too few pixels"
-                    );
-                    assert_eq!(
-                        lost.hit, 0,
-                        "{label}: lost {} of {} decal pixels ({rec:?})",
-                        lost.hit, lost.of
-                    );
-                    control_lost += Count::decal_missing(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&terrain, &base, BASE, &state),
-                                (&decal, &base, DECAL, &state),
-                            ],
-                        ),
-                        &mask,
-                    )
-                    .hit;
                     // The occluder: the terrain under a square 1.5 times the decal's, the gap
                     // (and a hair) toward the camera along the view axis.
                     let toward = scene.rotation[2].map(|c| c * rec.bleed_gap * (1.0 + 1e-6));
@@ -608,26 +668,19 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
                             .flat_map(|(_, p)| p)
                             .map(|p| [0, 1, 2].map(|k| (f64::from(p[k]) + toward[k]) as f32))
                             .collect();
-                    let covered = draw(&mut gl, &[(&occluder, &base, OCCLUDER, &always)])
-                        .mask_of(rgba8(OCCLUDER));
-                    let both: Vec<bool> =
-                        covered.iter().zip(&mask).map(|(a, b)| *a && *b).collect();
-                    let shown = Count::decal_shown(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&terrain, &base, BASE, &state),
-                                (&occluder, &base, OCCLUDER, &state),
-                                (&decal, &rec.matrix, DECAL, &state),
-                            ],
-                        ),
-                        &both,
-                    );
-                    assert_eq!(
-                        shown.hit, 0,
-                        "{label}: {} of {} decal pixels shown over an occluder {} in front",
-                        shown.hit, shown.of, rec.bleed_gap
-                    );
+                    let drawn = Drawn {
+                        px: PX,
+                        origin,
+                        range,
+                        format,
+                        clip,
+                        view: &view,
+                        base: &base,
+                        state,
+                    };
+                    let judged = drawn.judge(&mut gl, &terrain, &decal, &rec.matrix, &occluder);
+                    judged.assert_kept(&label, 50, &rec);
+                    control_lost += judged.control.hit;
                     gaps.push(rec.bleed_gap / 50.0);
                     scenes += 1;
                 }
@@ -655,7 +708,6 @@ fn isometric_mesh_decals_over_hills_lose_no_pixel() {
 /// pixel lost, none shown over an occluder parallel to the flank at the reported gap.
 #[test]
 fn a_decal_on_a_vehicle_through_its_model_view_loses_no_pixel() {
-    use zshift_harness::coplanar::{Count, OCCLUDER};
     const PX: u32 = 256;
     let mut gl = context();
     let snapping = gl_common::snapping_of(&gl);
@@ -788,89 +840,25 @@ fn a_decal_on_a_vehicle_through_its_model_view_loses_no_pixel() {
                     };
                     let rec =
                         recommend(&base, clip, &asked).unwrap_or_else(|e| panic!("{label}: {e}"));
-                    gl.set_target(PX, PX, format).expect("target");
-                    gl.clip_control(if clip == ClipDepth::NegOneToOne {
-                        GlClip::NegativeOneToOne
-                    } else {
-                        GlClip::ZeroToOne
-                    })
-                    .expect("glClipControl");
-                    gl.set_window(&zshift_harness::world::Window {
-                        viewport: [0, 0, PX as i32, PX as i32],
-                        depth_range: [0.0, 1.0],
-                    })
-                    .expect("viewport");
-                    let clear = if reversed { 0.0 } else { 1.0 };
-                    let always = DrawState {
-                        depth_func: glow::ALWAYS,
-                        ..DrawState::default()
-                    };
-                    let draw = |gl: &mut Gl, passes: &[Pass]| {
-                        gl.clear(CLEAR, clear).expect("clear");
-                        for (tris, proj, color, st) in passes {
-                            gl.draw_world(tris, &model_view, proj, *color, st)
-                                .expect("draw");
-                        }
-                        gl.read_color_at([0, 0], PX, PX).expect("read")
-                    };
-                    let mask =
-                        draw(&mut gl, &[(&decal, &base, DECAL, &always)]).mask_of(rgba8(DECAL));
-                    assert!(
-                        mask.iter().filter(|&&m| m).count() > 500,
-                        "{label}: the decal covers too few pixels"
-                    );
-                    let lost = Count::decal_missing(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&flank, &base, BASE, &state),
-                                (&decal, &rec.matrix, DECAL, &state),
-                            ],
-                        ),
-                        &mask,
-                    );
-                    assert_eq!(
-                        lost.hit, 0,
-                        "{label}: lost {} of {} decal pixels ({rec:?})",
-                        lost.hit, lost.of
-                    );
-                    control_lost += Count::decal_missing(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&flank, &base, BASE, &state),
-                                (&decal, &base, DECAL, &state),
-                            ],
-                        ),
-                        &mask,
-                    )
-                    .hit;
                     // The occluder: the flank moved along its normal so that it is the gap (and
                     // a hair) in front at the decal's nearest pixel, more at the others.
                     let lift =
                         (rec.bleed_gap * height / shape.depth_range[0] * (1.0 + 1e-6)) as f32;
                     let occluder: Vec<[f32; 3]> =
                         flank.iter().map(|p| [p[0], p[1], p[2] + lift]).collect();
-                    let covered = draw(&mut gl, &[(&occluder, &base, OCCLUDER, &always)])
-                        .mask_of(rgba8(OCCLUDER));
-                    let both: Vec<bool> =
-                        covered.iter().zip(&mask).map(|(a, b)| *a && *b).collect();
-                    let shown = Count::decal_shown(
-                        &draw(
-                            &mut gl,
-                            &[
-                                (&flank, &base, BASE, &state),
-                                (&occluder, &base, OCCLUDER, &state),
-                                (&decal, &rec.matrix, DECAL, &state),
-                            ],
-                        ),
-                        &both,
-                    );
-                    assert_eq!(
-                        shown.hit, 0,
-                        "{label}: {} of {} decal pixels shown over an occluder {} in front",
-                        shown.hit, shown.of, rec.bleed_gap
-                    );
+                    let drawn = Drawn {
+                        px: PX,
+                        origin: [0, 0],
+                        range: [0.0, 1.0],
+                        format,
+                        clip,
+                        view: &model_view,
+                        base: &base,
+                        state,
+                    };
+                    let judged = drawn.judge(&mut gl, &flank, &decal, &rec.matrix, &occluder);
+                    judged.assert_kept(&label, 500, &rec);
+                    control_lost += judged.control.hit;
                     gaps.push(rec.bleed_gap / shape.depth_range[0]);
                     scenes += 1;
                 }
