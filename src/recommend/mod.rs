@@ -572,7 +572,7 @@ pub(crate) fn check_in_range(
     } else {
         Err(crate::error::Error::new(
             crate::ErrorKind::Unresolvable,
-            "the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin): pass view_matrix and world_box (C fields; Python keywords) for the exact term, render relative to the camera, or move the near plane out",
+            "the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given, render relative to the camera, or move the near plane out",
         ))
     }
 }
