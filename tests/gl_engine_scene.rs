@@ -320,22 +320,51 @@ impl Case {
     }
 
     fn ground(&self) -> Vec<[f32; 3]> {
+        let cells = i64::from(match self.ground {
+            Ground::Quad => 1,
+            Ground::Grid => 64,
+            Ground::Hills => HILL_CELLS,
+        });
+        self.cell_triangles(0..cells, 0..cells, [0.0; 3])
+    }
+
+    /// The exact world position of the ground's lattice vertex `(i, j)`: one quad of ±1000, the
+    /// 64×64 grid over it, or the hills' one-unit cells.
+    fn lattice_vertex(&self, i: i64, j: i64) -> [f64; 3] {
         let (cells, half) = match self.ground {
             Ground::Quad => (1, GROUND),
             Ground::Grid => (64, GROUND),
             Ground::Hills => (HILL_CELLS, f64::from(HILL_CELLS / 2)),
         };
-        let (x0, z0) = (self.translate - half, self.translate - half);
         let step = 2.0 * half / f64::from(cells);
-        let at = |i: u32, j: u32| {
-            let (x, z) = (x0 + step * f64::from(i), z0 + step * f64::from(j));
-            [x as f32, self.surface(x, z) as f32, z as f32]
+        let (x, z) = (
+            self.translate - half + step * i as f64,
+            self.translate - half + step * j as f64,
+        );
+        [x, self.surface(x, z), z]
+    }
+
+    /// The ground's cells `is × js` as two triangles each, their vertices relative to `origin`
+    /// (a chunk's centre; 0 for world space) rounded to f32 as the engine stores them.
+    fn cell_triangles(
+        &self,
+        is: std::ops::Range<i64>,
+        js: std::ops::Range<i64>,
+        origin: [f64; 3],
+    ) -> Vec<[f32; 3]> {
+        let at = |i, j| {
+            let p = self.lattice_vertex(i, j);
+            [0, 1, 2].map(|k| (p[k] - origin[k]) as f32)
         };
         let mut t = Vec::new();
-        for i in 0..cells {
-            for j in 0..cells {
-                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                t.extend([a, b, c, a, c, d]);
+        for i in is {
+            for j in js.clone() {
+                t.extend(quad_triangles(&[
+                    at(i, j),
+                    at(i + 1, j),
+                    at(i + 1, j + 1),
+                    at(i, j + 1),
+                ]));
             }
         }
         t
@@ -501,16 +530,11 @@ impl Case {
 
     /// The chunks that hold the cells the decal touches.
     fn chunks_under_decal(&self) -> Vec<(i64, i64)> {
-        let step = 2.0 * GROUND / 64.0;
-        let [cx, cz] = self.decal_centre();
-        let half = self.size / 2.0;
-        let chunk = |v: f64| {
-            (((v - (self.translate - GROUND)) / step).floor() as i64 / i64::from(CHUNK_CELLS))
-                .clamp(0, 64 / i64::from(CHUNK_CELLS) - 1)
-        };
+        let chunk = |cell: i64| (cell / i64::from(CHUNK_CELLS)).clamp(0, CHUNKS - 1);
+        let [[i0, i1], [j0, j1]] = self.cells_under_decal();
         let mut out = Vec::new();
-        for ci in chunk(cx - half)..=chunk(cx + half) {
-            for cj in chunk(cz - half)..=chunk(cz + half) {
+        for ci in chunk(i0)..=chunk(i1) {
+            for cj in chunk(j0)..=chunk(j1) {
                 out.push((ci, cj));
             }
         }
@@ -534,27 +558,17 @@ impl Case {
         if kind == ModelView::None {
             return None;
         }
-        let step = 2.0 * GROUND / 64.0;
-        let n = 64 / i64::from(CHUNK_CELLS);
         let view = self.view();
+        let cells = i64::from(CHUNK_CELLS);
         let mut parts = Vec::new();
-        for ci in 0..n {
-            for cj in 0..n {
+        for ci in 0..CHUNKS {
+            for cj in 0..CHUNKS {
                 let c = self.chunk_centre(ci, cj);
-                let at = |i: i64, j: i64| {
-                    let x = self.translate - GROUND + step * i as f64;
-                    let z = self.translate - GROUND + step * j as f64;
-                    [x - c[0], self.height(x) - c[1], z - c[2]].map(|v| v as f32)
-                };
-                let mut t = Vec::new();
-                let cells = i64::from(CHUNK_CELLS);
-                for i in ci * cells..(ci + 1) * cells {
-                    for j in cj * cells..(cj + 1) * cells {
-                        let (a, b, cc, d) =
-                            (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-                        t.extend([a, b, cc, a, cc, d]);
-                    }
-                }
+                let t = self.cell_triangles(
+                    ci * cells..(ci + 1) * cells,
+                    cj * cells..(cj + 1) * cells,
+                    c,
+                );
                 let mut model = [0.0f32; 16];
                 (model[0], model[5], model[10], model[15]) = (1.0, 1.0, 1.0, 1.0);
                 model[12..15].copy_from_slice(&c.map(|v| v as f32));
@@ -636,21 +650,26 @@ impl Case {
     /// The world positions of the grid's vertices around the cells the decal touches (a decal
     /// system knows them: it projects onto them).
     fn decal_cell_corners(&self) -> Vec<[f64; 3]> {
+        let [[i0, i1], [j0, j1]] = self.cells_under_decal();
+        let mut out = Vec::new();
+        for i in i0..=i1 + 1 {
+            for j in j0..=j1 + 1 {
+                out.push(self.lattice_vertex(i, j));
+            }
+        }
+        out
+    }
+
+    /// The 64×64 grid's cells the decal touches: the first and last cell index in x and in z.
+    fn cells_under_decal(&self) -> [[i64; 2]; 2] {
         let step = 2.0 * GROUND / 64.0;
         let [cx, cz] = self.decal_centre();
         let half = self.size / 2.0;
         let cell = |v: f64| ((v - (self.translate - GROUND)) / step).floor() as i64;
-        let (i0, i1) = (cell(cx - half), cell(cx + half));
-        let (j0, j1) = (cell(cz - half), cell(cz + half));
-        let mut out = Vec::new();
-        for i in i0..=i1 + 1 {
-            for j in j0..=j1 + 1 {
-                let x = self.translate - GROUND + step * i as f64;
-                let z = self.translate - GROUND + step * j as f64;
-                out.push([x, self.height(x), z]);
-            }
-        }
-        out
+        [
+            [cell(cx - half), cell(cx + half)],
+            [cell(cz - half), cell(cz + half)],
+        ]
     }
 
     /// What the engine passes as `base_reach`: the largest |x|, |y| or |z| of the eye-space
@@ -809,6 +828,9 @@ type Chunk = (Vec<[f32; 3]>, [f32; 16]);
 
 /// Cells per side of a chunk of the grid ([`Case::ground_chunks`]).
 const CHUNK_CELLS: u32 = 8;
+
+/// Chunks per side of the grid.
+const CHUNKS: i64 = 64 / CHUNK_CELLS as i64;
 
 /// The model-view `V·M` of the f32 view and model matrices (column-major), multiplied in f32 as
 /// glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right) for
