@@ -42,7 +42,9 @@ use zshift_harness::coplanar::{
     OCCLUDER,
 };
 use zshift_harness::draw::Xorshift;
-use zshift_harness::world::{bounding_box, clip_to_square, eye_of, view_matrix, Window};
+use zshift_harness::world::{
+    bounding_box, clip_to_square, eye_of, transformed, view_matrix, Window,
+};
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, DrawState, Gl, Profile};
 
 /// Camera height above the ground.
@@ -402,13 +404,7 @@ impl Case {
             // What the engine knows of its decal entity's corners: the f32 model matrix applied
             // to the unit quad.
             let m = self.decal_model();
-            return MODEL_QUAD.map(|p| {
-                [0, 1, 2].map(|r| {
-                    (f64::from(m[r]) * f64::from(p[0])
-                        + f64::from(m[8 + r]) * f64::from(p[2])
-                        + f64::from(m[12 + r])) as f32
-                })
-            });
+            return MODEL_QUAD.map(|p| transformed(&m, p).map(|c| c as f32));
         }
         self.square(self.size / 2.0, 0.0)
             .map(|p| p.map(|c| c as f32))
@@ -832,21 +828,9 @@ const CHUNK_CELLS: u32 = 8;
 /// Chunks per side of the grid.
 const CHUNKS: i64 = 64 / CHUNK_CELLS as i64;
 
-/// The model-view `V·M` of the f32 view and model matrices (column-major), multiplied in f32 as
-/// glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right) for
-/// [`ModelView::Float`], else in f64 and rounded once.
+/// The model-view `V·M` an engine multiplies for a model drawn `kind` ([`ModelView`]).
 fn model_view(v: &[f32; 16], m: &[f32; 16], kind: ModelView) -> [f32; 16] {
-    std::array::from_fn(|i| {
-        let (col, row) = (i / 4, i % 4);
-        let term = |k: usize| (v[4 * k + row], m[4 * col + k]);
-        if kind == ModelView::Float {
-            (0..4).fold(0.0f32, |acc, k| acc + term(k).0 * term(k).1)
-        } else {
-            (0..4)
-                .map(|k| f64::from(term(k).0) * f64::from(term(k).1))
-                .sum::<f64>() as f32
-        }
-    })
+    zshift_harness::world::model_view(v, m, kind == ModelView::Float)
 }
 
 /// A decal entity's unit quad in its model space (x and z across, y up), in the corner order of

@@ -356,19 +356,11 @@ impl Isometric {
             -pitch.sin(),
             -yaw.cos() * pitch.cos(),
         ];
-        let right = [-forward[2], 0.0, forward[0]];
-        let norm = (right[0] * right[0] + right[2] * right[2]).sqrt();
-        let right = right.map(|c| c / norm);
-        let up = [
-            right[1] * forward[2] - right[2] * forward[1],
-            right[2] * forward[0] - right[0] * forward[2],
-            right[0] * forward[1] - right[1] * forward[0],
-        ];
         let target = [translate, 0.3 * translate, translate];
         let camera = [0, 1, 2].map(|k| target[k] - 50.0 * forward[k]);
         Isometric {
             translate,
-            rotation: [right, up, forward.map(|c| -c)],
+            rotation: zshift_harness::world::looking_along(forward),
             camera,
         }
     }
@@ -742,30 +734,13 @@ fn a_decal_on_a_vehicle_through_its_model_view_loses_no_pixel() {
             let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
             d.map(|v| v / n)
         };
-        let right = {
-            let r = [-forward[2], 0.0, forward[0]];
-            let n = (r[0] * r[0] + r[2] * r[2]).sqrt();
-            r.map(|v| v / n)
-        };
-        let up = [
-            right[1] * forward[2] - right[2] * forward[1],
-            right[2] * forward[0] - right[0] * forward[2],
-            right[0] * forward[1] - right[1] * forward[0],
-        ];
-        let view = zshift_harness::world::view_matrix(&[right, up, forward.map(|v| -v)], camera);
-        // V·M in f32, each element a sum of four f32 products (glm's mat4 * mat4).
-        let model_view: [f32; 16] = std::array::from_fn(|i| {
-            let (col, row) = (i / 4, i % 4);
-            (0..4).fold(0.0f32, |a, k| a + view[4 * k + row] * model[4 * col + k])
-        });
-        let to_eye = |p: &[f32; 3]| {
-            [0, 1, 2].map(|r| {
-                (0..3)
-                    .map(|k| f64::from(model_view[4 * k + r]) * f64::from(p[k]))
-                    .sum::<f64>()
-                    + f64::from(model_view[12 + r])
-            })
-        };
+        let view = zshift_harness::world::view_matrix(
+            &zshift_harness::world::looking_along(forward),
+            camera,
+        );
+        // V·M in f32, as glm's mat4 * mat4.
+        let model_view = zshift_harness::world::model_view(&view, &model, true);
+        let to_eye = |p: &[f32; 3]| zshift_harness::world::transformed(&model_view, *p);
         // The camera in model space, for the occluder's lift along the flank's normal.
         let height = {
             let eye_origin = to_eye(&[0.0, 0.0, 0.9]);

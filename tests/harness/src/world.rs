@@ -163,6 +163,46 @@ pub fn view_matrix(rotation: &[[f64; 3]; 3], camera: [f64; 3]) -> [f32; 16] {
     m
 }
 
+/// The rotation world → eye (rows: right, up, back) of a camera looking along `forward` (a unit
+/// vector, not vertical) with world y up.
+pub fn looking_along(forward: [f64; 3]) -> [[f64; 3]; 3] {
+    let n = (forward[2] * forward[2] + forward[0] * forward[0]).sqrt();
+    let right = [-forward[2] / n, 0.0, forward[0] / n];
+    let up = [
+        right[1] * forward[2] - right[2] * forward[1],
+        right[2] * forward[0] - right[0] * forward[2],
+        right[0] * forward[1] - right[1] * forward[0],
+    ];
+    [right, up, forward.map(|c| -c)]
+}
+
+/// The model-view `V·M` of f32 matrices (column-major) as an engine multiplies it on the CPU: in
+/// f32 as glm's `mat4 * mat4` does (each element a sum of four f32 products, left to right), or
+/// (`in_f32` false) in f64 and rounded once, as `glm::dmat4` then a conversion to float.
+pub fn model_view(v: &[f32; 16], m: &[f32; 16], in_f32: bool) -> [f32; 16] {
+    std::array::from_fn(|i| {
+        let (col, row) = (i / 4, i % 4);
+        let term = |k: usize| (v[4 * k + row], m[4 * col + k]);
+        if in_f32 {
+            (0..4).fold(0.0f32, |acc, k| acc + term(k).0 * term(k).1)
+        } else {
+            (0..4)
+                .map(|k| f64::from(term(k).0) * f64::from(term(k).1))
+                .sum::<f64>() as f32
+        }
+    })
+}
+
+/// The point `p` through the f32 affine matrix `m` (column-major), in f64.
+pub fn transformed(m: &[f32; 16], p: [f32; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|r| {
+        (0..3)
+            .map(|k| f64::from(m[4 * k + r]) * f64::from(p[k]))
+            .sum::<f64>()
+            + f64::from(m[12 + r])
+    })
+}
+
 /// The box `[lo, hi]` of points.
 pub fn bounding_box(points: &[[f64; 3]]) -> [[f64; 3]; 2] {
     let lo = [0, 1, 2].map(|k| points.iter().map(|p| p[k]).fold(f64::INFINITY, f64::min));
