@@ -125,7 +125,7 @@ use crate::model::Pipeline;
 use crate::polygon_offset::{resolvable_difference, BiasApi};
 use crate::precision::{DepthFormat, DepthMapping};
 use crate::projection::{ClipDepth, Frustum};
-use crate::recommend::{Base, DepthTest, ErrorTerms, RasterizerProfile, Scene};
+use crate::recommend::{Base, DepthTest, ErrorTerms, RasterizerProfile, Remedies, Scene};
 
 // `u = 2⁻²⁴`, the unit roundoff of f32 (one home: crate::model).
 use crate::model::F32_UNIT_ROUNDOFF as U;
@@ -549,6 +549,7 @@ fn unchecked_gap(
         terms,
     };
     let strict_q = |q: f64| if terms.strict { q } else { 0.0 };
+    let remedies = Remedies::of(&edges.pipeline, &edges.profile);
     let offset_at: Box<dyn Fn(f64) -> Result<f64>> = match method {
         EdgeMethod::PolygonOffset => {
             // units·r ≥ B + q_s + the bias's own roundings, r counted at the smallest window
@@ -600,16 +601,16 @@ fn unchecked_gap(
             };
             let constant = fits((line + budget + q) * (1.0 + 2.0 * U))?;
             if constant < eps * (b / d1) {
-                constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms)?;
+                constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms, remedies)?;
                 Box::new(move |_| Ok(constant))
             } else {
-                relative(&mut out, m, eps, b, d1, &mapping, &terms)?;
+                relative(&mut out, m, eps, b, d1, &mapping, &terms, remedies)?;
                 Box::new(move |d| Ok(eps * (b / d)))
             }
         }
         EdgeMethod::Matrix => {
             let dw = fits(line + budget + strict_q(terms.quantum))?;
-            constant_offset(&mut out, m, clip, dw, d1, &mapping, &terms)?;
+            constant_offset(&mut out, m, clip, dw, d1, &mapping, &terms, remedies)?;
             Box::new(move |_| Ok(dw))
         }
     };
@@ -641,8 +642,9 @@ fn constant_offset(
     d1: f64,
     mapping: &DepthMapping,
     terms: &ErrorTerms,
+    remedies: Remedies,
 ) -> Result<()> {
-    crate::recommend::check_in_range(mapping, d1, dw, terms)?;
+    crate::recommend::check_in_range(mapping, d1, dw, terms, remedies)?;
     let c = dw / mapping.window_per_ndc();
     out.ndc_offset = -c;
     // offset_ndc's c is toward the camera.
@@ -653,6 +655,7 @@ fn constant_offset(
 
 /// Reversed Z (b) with the relative `ε` of element 14: the matrix, `ε` and the window offset at
 /// the mesh's nearest depth `d₁` into `out`, checked to stay in range.
+#[allow(clippy::too_many_arguments)]
 fn relative(
     out: &mut EdgeRecommendation,
     m: &[f32; 16],
@@ -661,6 +664,7 @@ fn relative(
     d1: f64,
     mapping: &DepthMapping,
     terms: &ErrorTerms,
+    remedies: Remedies,
 ) -> Result<()> {
     out.relative_epsilon = eps;
     out.matrix = crate::matrix_in::moved(
@@ -669,7 +673,7 @@ fn relative(
         crate::double_double::DoubleDouble::product(f64::from(m[14]), eps),
     )?;
     out.window_offset = representable(eps * (b / d1), "an edge offset overflows f64")?;
-    crate::recommend::check_in_range(mapping, d1, out.window_offset, terms)
+    crate::recommend::check_in_range(mapping, d1, out.window_offset, terms, remedies)
 }
 
 /// The window depth of eye distance `d` under `clip` for the planes of `m` (a helper for

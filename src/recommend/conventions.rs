@@ -127,7 +127,8 @@ pub(crate) fn recommend_clip_building(
             window_offset
         }
     };
-    check_in_range(&mapping, d1, offset_at(d1), &terms)?;
+    let remedies = super::Remedies::of(&scene.pipeline, &scene.profile);
+    check_in_range(&mapping, d1, offset_at(d1), &terms, remedies)?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
     let delta_at_far = mapping.shift_of_window_change(toward(window_offset), d2)?;
     let bleed_gap = bleed_gap_at(scene, &mapping, &terms, offset_at)?;

@@ -464,6 +464,7 @@ pub fn recommend(scene: &Scene) -> Result<Recommendation> {
         scene.depth_range[0],
         window_offset,
         &terms,
+        Remedies::of(&scene.pipeline, &scene.profile),
     )?;
     let planes = scene.frustum.planes();
     let m10 = planes.sum_over_span();
@@ -536,16 +537,55 @@ fn snap(scene: &Scene) -> Result<f64> {
     }
 }
 
+/// What a near-plane refusal ([`check_in_range`]) may suggest besides the terms: whether a
+/// probed profile was given, and whether world-space vertices go through one combined matrix
+/// (`eye_first` false), whose independent clip-coordinate errors computing the eye position
+/// first would shrink.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Remedies {
+    pub measured: bool,
+    pub combined_world: bool,
+}
+
+impl Remedies {
+    pub(crate) fn of(pipeline: &Pipeline, profile: &RasterizerProfile) -> Self {
+        Self {
+            measured: profile.measured,
+            combined_world: pipeline.world_space() && !pipeline.eye_first,
+        }
+    }
+}
+
+/// The near-plane refusal's sentences: the cause and its remedies, then the remedies that
+/// apply ([`Remedies`]; `Error`'s detail is a static sentence, so each combination is one).
+macro_rules! near_plane {
+    ($cause:expr) => {
+        [
+            concat!($cause, ", pass a probed profile (zshift_probe), or move the near plane out"),
+            concat!($cause, ", or move the near plane out"),
+            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), pass a probed profile (zshift_probe), or move the near plane out"),
+            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), or move the near plane out"),
+        ]
+    };
+}
+
+/// [`near_plane`] for a large clipped base.
+const NEAR_PLANE_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python) and pass base_reach = 0");
+
+/// [`near_plane`] for world-space vertices.
+const NEAR_PLANE_WORLD: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given, render relative to the camera");
+
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
 /// which happens when the clipping term `C` of a large clipped base, or the vertex term of
 /// world-space vertices far from the origin, dwarfs the decal's depth. The message names the
-/// larger of the two and what to do about it.
+/// larger of the two and what to do about it (with `remedies`).
 pub(crate) fn check_in_range(
     mapping: &DepthMapping,
     d1: f64,
     offset_at_d1: f64,
     terms: &ErrorTerms,
+    remedies: Remedies,
 ) -> Result<()> {
     let moved_from = |w1: f64| {
         if mapping.is_reversed() {
@@ -563,18 +603,18 @@ pub(crate) fn check_in_range(
         moved_from(mapping.window_depth(d1)?)
     };
     if (0.0..=1.0).contains(&moved) {
-        Ok(())
-    } else if terms.clip >= terms.vertex {
-        Err(crate::error::Error::new(
-            crate::ErrorKind::Unresolvable,
-            "the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python) and pass base_reach = 0, pass a probed profile (zshift_probe), or move the near plane out",
-        ))
-    } else {
-        Err(crate::error::Error::new(
-            crate::ErrorKind::Unresolvable,
-            "the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given, render relative to the camera, or move the near plane out",
-        ))
+        return Ok(());
     }
+    let sentences = if terms.clip >= terms.vertex {
+        NEAR_PLANE_CLIPPING
+    } else {
+        NEAR_PLANE_WORLD
+    };
+    let index = usize::from(remedies.measured) + 2 * usize::from(remedies.combined_world);
+    Err(crate::error::Error::new(
+        crate::ErrorKind::Unresolvable,
+        sentences[index],
+    ))
 }
 
 /// The δ with `ε(δ, Pz) = epsilon` (eq. 4.1.7 solved for δ): `δ = −ε·Pz² / (K + ε·Pz)`,

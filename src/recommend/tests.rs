@@ -306,6 +306,30 @@ fn the_clip_term_grows_with_the_base_and_is_refused_when_unbounded() {
     );
 }
 
+/// World-space vertices so far from the origin that the offset would push the decal past the
+/// near plane are refused as unresolvable, and the message offers what applies to this engine:
+/// computing the eye position first only where the shader applies one combined matrix, a
+/// probed profile only where none was given.
+#[test]
+fn the_near_plane_refusal_offers_what_applies() {
+    let far_away = |eye_first: bool, measured: bool| {
+        let mut s = scene(DepthFormat::Unorm24, 0.5, Snapping::Unsnapped);
+        s.pipeline.world_reach = 1e9;
+        s.pipeline.eye_first = eye_first;
+        s.profile.measured = measured;
+        recommend(&s).unwrap_err()
+    };
+    for (eye_first, measured) in [(false, false), (false, true), (true, false), (true, true)] {
+        let e = far_away(eye_first, measured);
+        assert_eq!(e.kind(), ErrorKind::Unresolvable, "{e}");
+        let text = e.to_string();
+        assert!(text.contains("past the near plane"), "{text}");
+        assert_eq!(text.contains("eye_first"), !eye_first, "{text}");
+        assert_eq!(text.contains("probed profile"), !measured, "{text}");
+        assert!(text.ends_with("or move the near plane out"), "{text}");
+    }
+}
+
 /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a
 /// footprint): the part above `V` doubles with `k`, stays below the bound, and the summary
 /// `plane_error` changes nothing.

@@ -301,8 +301,10 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     :class:`DepthTest`, its name or GL enum; ``None``: the convention's strict test),
     ``viewport_x``/``viewport_y`` (``glViewport``'s origin), ``depth_range_near``/``far``
     (``glDepthRange``), ``world_reach`` (0 for eye-space vertices), ``eye_first`` (the
-    shader computes ``proj * (view * p)``), and ``view_matrix`` with ``world_box`` (the
-    shader's view matrix, 16 floats column-major, and the world-space box
+    shader computes ``proj * (view * p)``; ``False`` covers one view-projection applied to
+    world positions, bevy's ``clip_from_world``, Unity's ``UNITY_MATRIX_VP``, with the camera's
+    view and a box as for a model-view multiplied in double, at 5-12 times the bleed gap of an
+    eye-first shader, median), and ``view_matrix`` with ``world_box`` (the shader's view matrix, 16 floats column-major, and the world-space box
     ``((min x, min y, min z), (max x, max y, max z))`` of the base and decal: for a
     tessellated ground, of the cells the decal touches, the only base triangles under it; base
     and decal both drawn through that matrix. A model with a matrix of its own (a decal entity,
