@@ -33,7 +33,10 @@
 //! World-space vertices carry the f32 model-view's errors into the clipper, which interpolates
 //! them: `L` is linear, so an interpolated vertex is off the plane by the same convex
 //! combination of its ends' `L`-values, no more than at the vertices
-//! ([`crate::model::vertex`]). A measured profile's `clip_ulps` `k` replaces `6 + 5k` by `4k`
+//! ([`crate::model::vertex`]). The vertex term `V` already pays that error at every vertex the
+//! base keeps, and a pixel's depth weighs the kept and the rasterizer-made vertices with
+//! weights that sum to 1, so `C` adds only what the made ones carry beyond `V`'s share
+//! (`world_beyond_vertex_term`). A measured profile's `clip_ulps` `k` replaces `6 + 5k` by `4k`
 //! where smaller (the probe's sampled maximum, 0.86 on llvmpipe, with the margin `CLIP_MARGIN`
 //! the full `tests/gl_scenes.rs` grid asks for: it needs up to 2 where the probe finds 0.86).
 //!
@@ -149,8 +152,9 @@ pub(crate) fn clip_term(
     // counts through the form on eye coordinates; one combined matrix errs per clip coordinate.
     let (world_l, world_w) =
         vertex::world_error(form, exact_form, m, pipeline, 3f64.sqrt() * reach);
-    let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k])) + world_l;
     let w_low = d1 - gamma * reach - world_w;
+    let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k]))
+        + world_beyond_vertex_term(form, exact_form, m, pipeline, world_l, w_low, d1);
     if w_low.is_nan() || w_low <= 0.5 * d1 {
         return Err(domain(
             "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
@@ -161,6 +165,29 @@ pub(crate) fn clip_term(
         window_per_ndc * l / w_low,
         "the clipping term overflows f64",
     )
+}
+
+/// The part of the clipped vertices' world error `world_l` (their `|L|` bound, over the
+/// denominator `w_low`) that the vertex term `V` does not already pay. `V`, budgeted for the
+/// base, bounds every unclipped vertex's share `F + G·wᵢ` at `F/d₁ + G` (`F` the world error's
+/// fixed part, [`vertex::world_rounding`]). A pixel's depth is a combination of the clipped
+/// polygon's vertices with weights summing to 1: unclipped ones (share `α`) and rasterizer-made
+/// ones (share `β = 1 − α`, each at most `world_l`), so its world error is at most
+/// `(α·F + β·world_l)/w_low + G ≤ V + (world_l − F·w_low/d₁)/w_low`: the clipping term adds
+/// only `world_l − F·w_low/d₁`, not all of `world_l` again. With the view and box given, `F`
+/// is `world_l` itself (the box's magnitudes do not grow with the reach) and the clipping term
+/// keeps only the clipper's own roundings.
+fn world_beyond_vertex_term(
+    form: &PlaneForm,
+    exact_form: bool,
+    m: &[f64; 16],
+    pipeline: &Pipeline,
+    world_l: f64,
+    w_low: f64,
+    d1: f64,
+) -> f64 {
+    let (fixed, _) = vertex::world_error(form, exact_form, m, pipeline, 0.0);
+    (world_l - fixed * (w_low / d1)).max(0.0)
 }
 
 // ---------------------------------------------------------------------------------------------

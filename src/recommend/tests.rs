@@ -330,6 +330,38 @@ fn the_near_plane_refusal_offers_what_applies() {
     }
 }
 
+/// A ground the rasterizer clips, drawn through the view matrix from world space: with the view
+/// and the box given, the world rounding grows with the camera's distance from the origin in
+/// the vertex term `V`, which pays it at every vertex, and the clipping term `C` keeps only the
+/// clipper's own roundings (the rasterizer-made vertices carry no world error beyond `V`'s
+/// share): `C` grows by a few hundredths of what `V` gains (only through its smaller
+/// denominator), where it grew as much as `V` before.
+#[test]
+fn the_clipping_term_does_not_count_the_world_rounding_again() {
+    let at = |t: f32| {
+        let mut s = scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped);
+        s.base = Base::Clipped { reach: 1e3 };
+        let mut view = [0.0f32; 16];
+        (view[0], view[5], view[10], view[15]) = (1.0, 1.0, 1.0, 1.0);
+        (view[12], view[13], view[14]) = (-t, -1.7, -t);
+        let t = f64::from(t);
+        s.pipeline = Pipeline {
+            view: Some(view),
+            world_box: Some([[t - 1e3, 0.0, t - 1e3], [t + 1e3, 0.0, t + 1e3]]),
+            eye_first: true,
+            ..Pipeline::default()
+        };
+        error_terms(&s).unwrap()
+    };
+    let (near, far) = (at(0.0), at(1e5));
+    assert!(far.vertex > 100.0 * near.vertex, "{near:?} {far:?}");
+    let grown = |t: fn(&ErrorTerms) -> f64| t(&far) - t(&near);
+    assert!(
+        grown(|t| t.clip) < 0.03 * grown(|t| t.vertex),
+        "{near:?} {far:?}"
+    );
+}
+
 /// A measured `error_ulps` replaces `T + I` by `k·u·(1 + M)` (`M = w(d₂) + 2·G` without a
 /// footprint): the part above `V` doubles with `k`, stays below the bound, and the summary
 /// `plane_error` changes nothing.

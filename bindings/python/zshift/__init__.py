@@ -303,7 +303,7 @@ def _attach_pipeline(record, depth_test, viewport_origin, depth_range, world_rea
     (``glDepthRange``), ``world_reach`` (0 for eye-space vertices), ``eye_first`` (the
     shader computes ``proj * (view * p)``; ``False`` covers one view-projection applied to
     world positions, bevy's ``clip_from_world``, Unity's ``UNITY_MATRIX_VP``, with the camera's
-    view and a box as for a model-view multiplied in double, at 5-12 times the bleed gap of an
+    view and a box as for a model-view multiplied in double, at 6-12 times the bleed gap of an
     eye-first shader, median), and ``view_matrix`` with ``world_box`` (the shader's view matrix, 16 floats column-major, and the world-space box
     ``((min x, min y, min z), (max x, max y, max z))`` of the base and decal: for a
     tessellated ground, of the cells the decal touches, the only base triangles under it; base
