@@ -35,7 +35,13 @@
 //!   product `MV·p` (three products and three sums: 4 on the longest path), the product
 //!   `P·eye` (4): `10u`;
 //! * `(P·MV)·p` (one MVP uniform, or GLSL's left-to-right `proj * view * model * v`): `p` (1),
-//!   `V·M` (4), `P·MV` (4), its storage as f32 (1), the product with `p` (4): `14u`.
+//!   `V·M` (4), `P·MV` (4), its storage as f32 (1), the product with `p` (4): `14u`;
+//! * `VP·(M·q)` (one view-projection applied to the world position the shader computes, bevy's
+//!   `clip_from_world`, Unity's `UNITY_MATRIX_VP`): `q` and `M` stored (1 each), `M·q` (4),
+//!   `P·V` in f32 (2: each row of a perspective `P` has at most two nonzero elements), the
+//!   product with the world position (4): `12u`, within `γ_W`. Its magnitudes are those of the
+//!   world position, at most `Aₖ` of a box reaching each model's `|origin| + extent`
+//!   (`tests/gl_engine_scene.rs` draws it beside the eye-first shader).
 //!
 //! With the eye position computed first ([`crate::model::Pipeline::eye_first`]) the error is an
 //! eye-space vector `δp` with `|δpₖ| ≤ γ_E·A`, `γ_E = 6u`: the first way above less the
