@@ -50,7 +50,7 @@ pub struct ZshiftPipeline {
     /// left-to-right proj * view * model * p), and one view-projection applied to world
     /// positions (bevy's clip_from_world * (world_from_local * p), Unity's UNITY_MATRIX_VP):
     /// pass the camera's view and a world_box as for a model-view multiplied in double. Its
-    /// bleed gap is 6-12 times that of the same scene drawn eye first (median; up to 122).
+    /// bleed gap is 6-12 times that of the same scene drawn eye first (median).
     pub eye_first: u32,
     /// The float matrix the vertex shader applies to the positions it receives to make eye
     /// coordinates (the view or model-view matrix, 16 floats, column-major), or NULL. With

@@ -45,7 +45,7 @@ pub struct Pipeline {
     /// `clip_from_world * (world_from_local * p)`, Unity's `UNITY_MATRIX_VP`): pass the camera's
     /// view and a box as for a model-view multiplied in double ([`Pipeline::view`];
     /// `tests/gl_engine_scene.rs` draws it). Its bleed gap is 6–12 times
-    /// that of the same scene drawn eye first (median; up to 122: `docs/engine-scene.md`).
+    /// that of the same scene drawn eye first (median; `docs/engine-scene.md`).
     pub eye_first: bool,
     /// The f32 matrix the vertex shader applies to the positions it receives to make eye
     /// coordinates (the view, or model-view, matrix; column-major), with
