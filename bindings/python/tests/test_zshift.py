@@ -182,6 +182,21 @@ class Errors(unittest.TestCase):
         zshift.frustum(-1, 1, -1, 1, 1, 100)
         self.assertEqual(zshift.last_error(), "")
 
+    def test_a_near_plane_refusal_names_the_python_remedies(self):
+        # World-space vertices 10^9 from the origin through one view-projection (eye_first
+        # False): the offset would pass the near plane; the refusal says to compute the eye
+        # position first, with the keyword Python takes, and not where the shader already does.
+        ask = dict(viewport=(1920, 1080), depth_format=zshift.Format.UNORM24,
+                   corners=[(-1, -1.7, -9), (1, -1.7, -9), (1, -1.7, -11), (-1, -1.7, -11)],
+                   world_reach=1e9, subpixel_bits=8)
+        projection = zshift.frustum(-0.1778, 0.1778, -0.1, 0.1, 0.1, 1000.0)
+        for eye_first in (False, True):
+            with self.assertRaises(zshift.ZshiftError) as caught:
+                zshift.decal_matrix(projection, zshift.Clip.NEG_ONE_TO_ONE, eye_first=eye_first, **ask)
+            self.assertEqual(caught.exception.status, zshift.Status.UNRESOLVABLE)
+            self.assertIn("past the near plane", str(caught.exception))
+            self.assertEqual("eye_first=True" in str(caught.exception), not eye_first, str(caught.exception))
+
     def test_arguments_of_another_kind_are_refused(self):
         # A Format where a Clip goes (the C header makes this a compile error).
         with self.assertRaises(TypeError):
