@@ -1491,6 +1491,16 @@ fn print_row(label: &str, rows: &[(f64, f64)]) {
     );
 }
 
+/// How many outcomes were refused, and how many of those where bisection finds a working
+/// offset.
+fn refusals(outs: &[Outcome]) -> (usize, usize) {
+    let refused = outs.iter().filter(|o| o.refused.is_some());
+    (
+        refused.clone().count(),
+        refused.filter(|o| o.drawable).count(),
+    )
+}
+
 /// The grid's translation a scene's belongs to (0, 100, 10³, 10⁴): its decade, so that another
 /// draw's translations (`ZSHIFT_ENGINE_SCENES_SEED`, up to 1.9 times the grid's) share rows.
 fn decade(t: f64) -> u64 {
@@ -1573,7 +1583,11 @@ fn the_scene_every_engine_draws() {
                     .push((out.gap_over_distance, out.steps));
             }
             if case.combined {
-                let twin = case.label().replace(" viewproj", "");
+                let twin = Case {
+                    combined: false,
+                    ..case
+                }
+                .label();
                 if let (true, None, Some(g)) = (name == "probed", &out.refused, twin_gap.get(&twin))
                 {
                     over_twin
@@ -1612,11 +1626,7 @@ fn the_scene_every_engine_draws() {
     );
     let (mut refused_drawable, mut probed_refused_drawable) = (0, 0);
     for (key, outs) in &table {
-        let refused = outs.iter().filter(|o| o.refused.is_some()).count();
-        let drawable = outs
-            .iter()
-            .filter(|o| o.refused.is_some() && o.drawable)
-            .count();
+        let (refused, drawable) = refusals(outs);
         refused_drawable += drawable;
         if key.contains(" probed ") {
             probed_refused_drawable += drawable;
@@ -1671,11 +1681,7 @@ fn the_scene_every_engine_draws() {
     // its independent clip-coordinate errors are bounded far from the origin with a margin
     // the eye-first pipeline does not need (docs/engine-scene.md).
     for (name, outs) in &combined {
-        let refused = outs.iter().filter(|o| o.refused.is_some()).count();
-        let drawable = outs
-            .iter()
-            .filter(|o| o.refused.is_some() && o.drawable)
-            .count();
+        let (refused, drawable) = refusals(outs);
         println!(
             "one view-projection, {name}: {} scenes, {refused} refused, {drawable} of them where bisection finds a working offset",
             outs.len()
