@@ -1242,7 +1242,11 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
 
  Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decals` or `out` is NULL; ZSHIFT_ERR_DOMAIN for a
  `count` of 0 or above 65536; any error of `zshift_decal_matrix` for a plane, its detail
- beginning "plane i: " (from 0). `out` is untouched on error.
+ beginning "plane i: " (from 0); ZSHIFT_ERR_UNRESOLVABLE naming `largest_plane` where the
+ largest offset would move plane i past the near plane though its own fits (one plane's
+ errors dwarf the others': often a terrain triangle seen nearly edge-on): draw each piece
+ with its own matrix (`zshift_decal_matrix` for its record alone), or leave out the piece of
+ plane `largest_plane`. `out` is untouched on error.
  */
 ZshiftStatus zshift_decal_matrix_planes(const float *m,
                                         ZshiftClip clip,

@@ -572,6 +572,7 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         -1.0
     };
     let delta = window_offset * span;
+    check_near(o, scene.decal.depth_range[0], window_offset)?;
     let factor = match scene.decal.rasterizer().snapping {
         Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
         Snapping::Unsnapped => 0.0,
@@ -588,6 +589,25 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         matrix: offset_ortho(o, clip, delta)?,
         terms,
     })
+}
+
+/// Refuses an offset that moves the decal's nearest point (eye depth `d1`) past the near plane:
+/// window depth is linear in eye depth, so a window offset moves it `window_offset·(f − n)`
+/// toward the eye, and the rasterizer clips what passes `n` (under every convention).
+///
+/// # Errors
+/// [`crate::ErrorKind::Unresolvable`], with `needed` the eye distance the near plane must move
+/// back (toward the eye or behind it: `n` may be negative).
+pub(crate) fn check_near(o: &Ortho, d1: f64, window_offset: f64) -> Result<()> {
+    let moved = window_offset * (o.far - o.near);
+    if moved <= d1 - o.near {
+        return Ok(());
+    }
+    Err(crate::error::Error::new(
+        crate::ErrorKind::Unresolvable,
+        "the offset this scene needs moves the decal past the orthographic near plane: move the near plane back (toward the eye, or behind it) by at least `needed`",
+    )
+    .with_value("needed", moved - (d1 - o.near)))
 }
 
 /// The scene's rules: the decal's range inside `[n, f]` and increasing, a nonzero viewport, a

@@ -38,7 +38,13 @@ use crate::recommend::ClipRecommendation;
 ///
 /// # Errors
 /// [`crate::ErrorKind::Domain`] for no plane; any error of
-/// [`crate::matrix_in::recommend`] for a plane, said of that plane ("plane 2: …", from 0).
+/// [`crate::matrix_in::recommend`] for a plane, said of that plane ("plane 2: …", from 0);
+/// [`crate::ErrorKind::Unresolvable`] naming `largest_plane` where the largest offset moves a
+/// plane nearer the camera past the near plane though its own offset fits (one plane's errors
+/// dwarf the others': often a terrain triangle seen nearly edge-on, whose window gradient
+/// multiplies every term): draw each piece with its own plane's matrix, or leave out the
+/// piece of plane `largest_plane`. Verified by `tests/gl_engine_scene.rs`, which draws such a
+/// decal piece by piece.
 pub fn recommend_planes(
     m: &[f32; 16],
     clip: ClipDepth,
@@ -56,9 +62,10 @@ pub fn recommend_planes(
     }
     // One of the two is 0 in each convention: the constant NDC offset, or the relative ε.
     let size = |r: &ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
-    let chosen = *asked
+    let (largest, &chosen) = asked
         .iter()
-        .max_by(|a, b| size(a).total_cmp(&size(b)))
+        .enumerate()
+        .max_by(|a, b| size(a.1).total_cmp(&size(b.1)))
         .expect("at least one plane");
     let mut out = chosen;
     // Every plane passed recommend, so m is recognised and (perspective) has a frustum.
@@ -70,11 +77,26 @@ pub fn recommend_planes(
         Shape::Orthographic => None,
     };
     for (i, (decal, own)) in decals.iter().zip(&asked).enumerate() {
-        let gap = gap_at(&r, frustum, clip, decal, own, &chosen).map_err(|e| at_plane(e, i))?;
+        let gap = gap_at(&r, frustum, clip, decal, own, &chosen)
+            .map_err(|e| nearer_than_largest(e, largest))
+            .map_err(|e| at_plane(e, i))?;
         out.bleed_gap = out.bleed_gap.max(gap);
         out.polygon_offset = [0, 1].map(|k| out.polygon_offset[k].max(own.polygon_offset[k]));
     }
     Ok(out)
+}
+
+/// Why a plane whose own offset fits is refused at the largest: what an engine can do.
+const NEARER_PLANE: &str = "the offset of plane `largest_plane`, the largest, moves this plane past the near plane though its own offset fits: draw each piece with its own plane's matrix (ask for this plane alone), or leave out the piece of plane `largest_plane` (its errors set the offset: often a triangle seen nearly edge-on, whose piece covers few pixels)";
+
+/// A plane refused at the largest offset, though its own fits ([`NEARER_PLANE`]), naming the
+/// plane that set it (`largest_plane`); other errors unchanged.
+fn nearer_than_largest(e: crate::Error, largest: usize) -> crate::Error {
+    if e.kind() != crate::ErrorKind::Unresolvable {
+        return e;
+    }
+    crate::error::Error::new(crate::ErrorKind::Unresolvable, NEARER_PLANE)
+        .with_integer("largest_plane", i64::try_from(largest).unwrap_or(i64::MAX))
 }
 
 /// Names the plane an error came from.
@@ -102,6 +124,16 @@ fn gap_at(
         }
         None => {
             let span = (r.far - r.near).abs();
+            let [d1, _] = decal.depth_range;
+            // Eye depth is linear in window depth: the offset moves the plane's nearest point
+            // by `window_offset·span`, which must stay behind the near plane.
+            if chosen.window_offset * span > d1 - r.near {
+                return Err(crate::error::Error::new(
+                    crate::ErrorKind::Unresolvable,
+                    NEARER_PLANE,
+                ));
+            }
+
             Ok(own.bleed_gap + (chosen.window_offset - own.window_offset).max(0.0) * span)
         }
     }
@@ -260,6 +292,87 @@ mod tests {
             both.bleed_gap <= needed[0].max(needed[1]) * (1.0 + 1e-12),
             "{both:?}"
         );
+    }
+
+    /// The largest offset is checked at every plane's nearest depth, not only at its own plane's:
+    /// a plane just beyond the near plane cannot take the offset of a far plane whose clipped
+    /// base asks a large one (each fits alone), and the refusal names the plane that set it.
+    /// The orthographic path checks its near plane too.
+    #[test]
+    fn the_largest_offset_is_refused_where_it_moves_a_nearer_plane_past_the_near_plane() {
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            let m = matrix(clip);
+            let near = Decal {
+                depth_range: [0.125, 0.13],
+                footprint: None,
+                slope: 0.0,
+                ..plane(&m, clip, 10.0, 0.0)
+            };
+            // The window depth of eye depth d, exact (near 0.1, far 1000, ∞ reversed).
+            let unit = |d: f64| match clip {
+                ClipDepth::ReversedZeroToOne => 0.1 / d,
+                _ => 1000.0 * (d - 0.1) / (d * 999.9),
+            };
+            let mut refused = 0;
+            for reach in [1e4, 3e4, 1e5, 3e5, 1e6, 3e6, 1e7] {
+                let far = Decal {
+                    depth_range: [50.0, 51.0],
+                    footprint: None,
+                    slope: 0.5,
+                    base: Base::Clipped { reach },
+                    ..near
+                };
+                let (Ok(own_near), Ok(own_far)) =
+                    (recommend(&m, clip, &near), recommend(&m, clip, &far))
+                else {
+                    continue;
+                };
+                assert!(own_near.window_offset <= own_far.window_offset);
+                // The far plane's offset at the near plane's nearest depth.
+                let at_near = match clip {
+                    ClipDepth::ReversedZeroToOne => own_far.relative_epsilon * unit(0.125),
+                    _ => own_far.window_offset,
+                };
+                let past = match clip {
+                    ClipDepth::ReversedZeroToOne => unit(0.125) + at_near > 1.0,
+                    _ => unit(0.125) - at_near < 0.0,
+                };
+                let both = recommend_planes(&m, clip, &[near, far]);
+                if past {
+                    let e = both.expect_err("the far plane's offset clips the near one");
+                    assert_eq!(e.kind(), crate::ErrorKind::Unresolvable, "{clip:?}: {e}");
+                    assert_eq!(e.input(), Some(("largest_plane", 1.0)), "{clip:?}: {e}");
+                    assert!(e.to_string().starts_with("plane 0: "), "{e}");
+                    refused += 1;
+                } else {
+                    both.unwrap_or_else(|e| panic!("{clip:?} reach {reach}: {e}"));
+                }
+            }
+            assert!(
+                refused > 0,
+                "{clip:?}: no reach made the far plane's offset too large"
+            );
+        }
+        // Orthographic: a decal 0.001 behind the near plane of a box 500 deep takes no offset
+        // larger than 0.001/500 of window depth.
+        let clip = ClipDepth::NegOneToOne;
+        let o = crate::orthographic::Ortho::new(-20.0, 20.0, -11.25, 11.25, 1.0, 501.0).unwrap();
+        let m = crate::orthographic::ortho(&o, clip).unwrap();
+        let decal = |d: f64, slope: f64| Decal {
+            depth_range: [d, d + 0.5],
+            slope,
+            footprint: None,
+            ..plane(&matrix(clip), clip, 10.0, 0.0)
+        };
+        let (close, steep) = (decal(1.001, 0.0), decal(400.0, 40.0));
+        let own = recommend(&m, clip, &steep).unwrap();
+        assert!(own.window_offset * 500.0 > 0.001, "{own:?}");
+        let e = recommend_planes(&m, clip, &[close, steep]).unwrap_err();
+        assert_eq!(e.input(), Some(("largest_plane", 1.0)), "{e}");
     }
 
     #[test]

@@ -240,6 +240,14 @@ struct Case {
     /// the chunk's model-view `V·M` multiplied on the CPU ([`ModelView`]; the quad and the hills
     /// are drawn in world space).
     ground_chunks: ModelView,
+    /// World units per metre (1; seeded draws also take 100, an engine in centimetres, 0.3048
+    /// and 39.37): every length of the scene (ground, hills, camera height, decal, near and
+    /// far planes, translation) is multiplied by it, so a term written for one scale of the
+    /// world (an absolute epsilon, a length assumed near 1) shows.
+    scale: f64,
+    /// The camera's height above the ground under it, in metres before [`Case::scale`]
+    /// ([`EYE_HEIGHT`]; seeded draws also take a crouch, 0.5, and a strategy camera, 10).
+    eye_height: f64,
 }
 
 /// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
@@ -267,12 +275,21 @@ impl Case {
         Frustum::new(-r, r, -t, t, self.near, self.far).expect("valid frustum")
     }
 
+    /// The ground's half extent around the camera in world units.
+    fn ground_half(&self) -> f64 {
+        GROUND * self.scale
+    }
+
     fn camera(&self) -> [f64; 3] {
         let (x, z) = (
             self.translate + self.jitter[0],
             self.translate + self.jitter[1],
         );
-        [x, self.ground_y + EYE_HEIGHT + self.bumps(x, z), z]
+        [
+            x,
+            self.ground_y + self.eye_height * self.scale + self.bumps(x, z),
+            z,
+        ]
     }
 
     /// The ground's height at world `x`.
@@ -286,8 +303,9 @@ impl Case {
         if self.ground != Ground::Hills {
             return 0.0;
         }
-        let (u, v) = (x - self.translate, z - self.translate);
-        (0.273 * u + 0.4).sin() * (0.191 * v - 1.1).cos() + 0.4 * (0.86 * (u + v)).sin()
+        let s = self.scale;
+        let (u, v) = ((x - self.translate) / s, (z - self.translate) / s);
+        s * ((0.273 * u + 0.4).sin() * (0.191 * v - 1.1).cos() + 0.4 * (0.86 * (u + v)).sin())
     }
 
     /// The ground's height at world `(x, z)`.
@@ -297,7 +315,7 @@ impl Case {
 
     /// The camera's distance from the ground's plane, along its normal.
     fn clearance(&self) -> f64 {
-        EYE_HEIGHT / (1.0 + self.tilt * self.tilt).sqrt()
+        self.eye_height * self.scale / (1.0 + self.tilt * self.tilt).sqrt()
     }
 
     /// The rotation world → eye: the camera turned by `yaw` about the vertical (at 0 it looks
@@ -341,9 +359,9 @@ impl Case {
     /// 64×64 grid over it, or the hills' one-unit cells.
     fn lattice_vertex(&self, i: i64, j: i64) -> [f64; 3] {
         let (cells, half) = match self.ground {
-            Ground::Quad => (1, GROUND),
-            Ground::Grid => (64, GROUND),
-            Ground::Hills => (HILL_CELLS, f64::from(HILL_CELLS / 2)),
+            Ground::Quad => (1, self.ground_half()),
+            Ground::Grid => (64, self.ground_half()),
+            Ground::Hills => (HILL_CELLS, f64::from(HILL_CELLS / 2) * self.scale),
         };
         let step = 2.0 * half / f64::from(cells);
         let (x, z) = (
@@ -523,9 +541,9 @@ impl Case {
     /// A chunk's centre in world space (its model matrix's translation, before f32): chunk
     /// `(ci, cj)` holds the grid's cells `8ci..8ci + 8` in x and `8cj..8cj + 8` in z.
     fn chunk_centre(&self, ci: i64, cj: i64) -> [f64; 3] {
-        let side = 2.0 * GROUND / 64.0 * f64::from(CHUNK_CELLS);
-        let x = self.translate - GROUND + side * (ci as f64 + 0.5);
-        let z = self.translate - GROUND + side * (cj as f64 + 0.5);
+        let side = 2.0 * self.ground_half() / 64.0 * f64::from(CHUNK_CELLS);
+        let x = self.translate - self.ground_half() + side * (ci as f64 + 0.5);
+        let z = self.translate - self.ground_half() + side * (cj as f64 + 0.5);
         [x, self.height(x), z]
     }
 
@@ -544,7 +562,7 @@ impl Case {
 
     /// The world corners of chunk `(ci, cj)` (on the ground's plane).
     fn chunk_corners(&self, ci: i64, cj: i64) -> Vec<[f64; 3]> {
-        let half = GROUND / 64.0 * f64::from(CHUNK_CELLS);
+        let half = self.ground_half() / 64.0 * f64::from(CHUNK_CELLS);
         let [x, _, z] = self.chunk_centre(ci, cj);
         [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
             .iter()
@@ -678,10 +696,10 @@ impl Case {
 
     /// The 64×64 grid's cells the decal touches: the first and last cell index in x and in z.
     fn cells_under_decal(&self) -> [[i64; 2]; 2] {
-        let step = 2.0 * GROUND / 64.0;
+        let step = 2.0 * self.ground_half() / 64.0;
         let [cx, cz] = self.decal_centre();
         let half = self.size / 2.0;
-        let cell = |v: f64| ((v - (self.translate - GROUND)) / step).floor() as i64;
+        let cell = |v: f64| ((v - (self.translate - self.ground_half())) / step).floor() as i64;
         [
             [cell(cx - half), cell(cx + half)],
             [cell(cz - half), cell(cz + half)],
@@ -729,12 +747,12 @@ impl Case {
     /// under the decal, which holds the decal's corners too. One quad: its corners, the whole
     /// ground. A grid: the cells the decal touches (no other vertex reaches the decal's pixels).
     fn world_box(&self) -> [[f64; 3]; 2] {
-        let g = self.translate;
+        let (g, ground) = (self.translate, self.ground_half());
         if self.ground == Ground::Quad {
-            let (y0, y1) = (self.height(g - GROUND), self.height(g + GROUND));
+            let (y0, y1) = (self.height(g - ground), self.height(g + ground));
             return [
-                [g - GROUND, y0.min(y1), g - GROUND],
-                [g + GROUND, y0.max(y1), g + GROUND],
+                [g - ground, y0.min(y1), g - ground],
+                [g + ground, y0.max(y1), g + ground],
             ];
         }
         bounding_box(&self.decal_cell_corners())
@@ -763,10 +781,10 @@ impl Case {
 
     /// The ground quad's world corners (f64), in order around it.
     fn quad_corners(&self) -> [[f64; 3]; 4] {
-        let g = self.translate;
+        let (g, ground) = (self.translate, self.ground_half());
         [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]].map(|[sx, sz]| {
-            let x = g + sx * GROUND;
-            [x, self.height(x), g + sz * GROUND]
+            let x = g + sx * ground;
+            [x, self.height(x), g + sz * ground]
         })
     }
 
@@ -792,7 +810,10 @@ impl Case {
             self.translate,
             self.jitter,
             if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
-                format!(" ground y {} fovy {:.1}°", self.ground_y, self.fovy_deg)
+                format!(
+                    " ground y {} fovy {:.1}° units {} eye {}",
+                    self.ground_y, self.fovy_deg, self.scale, self.eye_height
+                )
             } else {
                 String::new()
             } + &if self.tilt != 0.0 {
@@ -870,6 +891,18 @@ const MODEL_QUAD: [[f32; 3]; 4] = [
     [0.5, 0.0, -0.5],
     [-0.5, 0.0, -0.5],
 ];
+
+/// The decal pass's projection: one matrix for the whole decal, or each piece of a decal over
+/// several planes with its own plane's matrix (the remedy `recommend_planes` names when the
+/// largest plane's offset would move a nearer plane past the near plane).
+#[derive(Clone, Copy)]
+enum DecalPass<'p> {
+    One(&'p [f32; 16]),
+    Pieces(&'p [Piece]),
+}
+
+/// A piece of a mesh decal (world-space triangles) and the matrix it is drawn with.
+type Piece = (Vec<[f32; 3]>, [f32; 16]);
 
 fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {
     vec![q[0], q[1], q[2], q[0], q[2], q[3]]
@@ -986,6 +1019,22 @@ impl<'a> Renderer<'a> {
         self.gl.draw_world(triangles, &view, &proj, color, state)
     }
 
+    /// Draws the decal as `pass` says.
+    fn draw_decal(&mut self, pass: DecalPass, state: &DrawState) -> Result<(), String> {
+        match pass {
+            DecalPass::One(proj) => {
+                let (decal, placement) = self.case.decal_draw();
+                self.draw(&decal, placement, proj, DECAL, state)
+            }
+            DecalPass::Pieces(pieces) => {
+                for (triangles, proj) in pieces {
+                    self.draw(triangles, None, proj, DECAL, state)?;
+                }
+                Ok(())
+            }
+        }
+    }
+
     fn coverage(&mut self, triangles: &[[f32; 3]]) -> Result<Vec<bool>, String> {
         self.coverage_through(triangles, None)
     }
@@ -1089,13 +1138,13 @@ impl<'a> Renderer<'a> {
     }
 
     fn lost(&mut self, decal_proj: &[f32; 16]) -> Result<Count, String> {
-        self.lost_offset(decal_proj, None)
+        self.lost_offset(DecalPass::One(decal_proj), None)
     }
 
     /// [`Renderer::lost`] with the decal pass under `glPolygonOffset(offset)` too.
     fn lost_offset(
         &mut self,
-        decal_proj: &[f32; 16],
+        pass: DecalPass,
         offset: Option<(f32, f32)>,
     ) -> Result<Count, String> {
         self.clear_and_draw_ground()?;
@@ -1103,8 +1152,7 @@ impl<'a> Renderer<'a> {
             polygon_offset: offset,
             ..self.state()
         };
-        let (decal, placement) = self.case.decal_draw();
-        self.draw(&decal, placement, decal_proj, DECAL, &state)?;
+        self.draw_decal(pass, &state)?;
         Ok(Count::decal_missing(&self.read_viewport()?, &self.mask))
     }
 
@@ -1112,7 +1160,7 @@ impl<'a> Renderer<'a> {
     /// front of the ground's at every decal pixel: along a ray from the camera at distance h
     /// from the ground's plane (its normal), `d_occluder/d_ground = (h − δ)/h`, so `δ = gap·h/d₁`
     /// along the normal suffices (`d₁` the decal's nearest eye depth).
-    fn bled(&mut self, decal_proj: &[f32; 16], gap: f64, d1: f64) -> Result<Option<Count>, String> {
+    fn bled(&mut self, pass: DecalPass, gap: f64, d1: f64) -> Result<Option<Count>, String> {
         let h = self.case.clearance();
         let lift = gap * h / d1 * (1.0 + 1e-6);
         if lift >= 0.9 * h {
@@ -1124,18 +1172,13 @@ impl<'a> Renderer<'a> {
                 .square(0.75 * self.case.size, lift)
                 .map(|p| p.map(|c| c as f32)),
         );
-        self.shown_over(&occluder, decal_proj).map(Some)
+        self.shown_over(&occluder, pass).map(Some)
     }
 
     /// [`Renderer::bled`] over hills: the occluder is the terrain under a square 1.5 times the
     /// decal's, scaled about the camera by `1 − gap/d₁`, so that at every decal pixel its eye
     /// depth is `gap·d/d₁ ≥ gap` in front of the terrain's (`d₁` the decal's nearest eye depth).
-    fn bled_scaled(
-        &mut self,
-        decal_proj: &[f32; 16],
-        gap: f64,
-        d1: f64,
-    ) -> Result<Option<Count>, String> {
+    fn bled_scaled(&mut self, pass: DecalPass, gap: f64, d1: f64) -> Result<Option<Count>, String> {
         let s = 1.0 - gap / d1 * (1.0 + 1e-6);
         if s < 0.1 {
             return Ok(None); // a gap reaching the camera: nothing to check
@@ -1146,16 +1189,12 @@ impl<'a> Renderer<'a> {
             .flat_map(|(_, piece)| piece)
             .map(|p| [0, 1, 2].map(|k| (cam[k] + (f64::from(p[k]) - cam[k]) * s) as f32))
             .collect();
-        self.shown_over(&occluder, decal_proj).map(Some)
+        self.shown_over(&occluder, pass).map(Some)
     }
 
     /// Decal pixels drawn with `decal_proj` over `occluder` (drawn with the plain matrix after
     /// the ground), among the pixels both cover.
-    fn shown_over(
-        &mut self,
-        occluder: &[[f32; 3]],
-        decal_proj: &[f32; 16],
-    ) -> Result<Count, String> {
+    fn shown_over(&mut self, occluder: &[[f32; 3]], pass: DecalPass) -> Result<Count, String> {
         let occ_mask = self.coverage(occluder)?;
         let both: Vec<bool> = occ_mask
             .iter()
@@ -1165,8 +1204,7 @@ impl<'a> Renderer<'a> {
         self.clear_and_draw_ground()?;
         let (plain, state) = (self.plain, self.state());
         self.draw(occluder, None, &plain, OCCLUDER, &state)?;
-        let (decal, placement) = self.case.decal_draw();
-        self.draw(&decal, placement, decal_proj, DECAL, &state)?;
+        self.draw_decal(pass, &state)?;
         Ok(Count::decal_shown(&self.read_viewport()?, &both))
     }
 
@@ -1210,6 +1248,9 @@ struct Outcome {
     over_cut: Option<f64>,
     /// The offset in f32 steps of the offset element.
     steps: f64,
+    /// Drawn piece by piece, each piece with its own plane's matrix (the remedy of a
+    /// `largest_plane` refusal, [`piece_by_piece`]).
+    by_pieces: bool,
 }
 
 /// What the engine gets: the recommendation (over hills, for every plane under the decal at
@@ -1219,6 +1260,44 @@ struct Asked {
     rec: zshift::recommend::ClipRecommendation,
     d1: f64,
     cut: Option<zshift::recommend::ClipRecommendation>,
+    /// Over hills, where one matrix cannot serve every plane (the largest plane's offset moves
+    /// a nearer one past the near plane) and the refusal says to draw each piece with its own
+    /// plane's matrix: the pieces so drawn (`rec` is then the largest plane's, its bleed gap
+    /// the largest of the planes' own), with each piece's own bleed gap.
+    pieces: Option<(Vec<Piece>, Vec<f64>)>,
+}
+
+/// The remedy of a refusal that names `largest_plane`: each plane asked alone, its piece drawn
+/// with its own matrix.
+fn piece_by_piece(
+    plain: &[f32; 16],
+    clip: ClipDepth,
+    decals: &[Decal],
+    pieces: Vec<Vec<[f32; 3]>>,
+    d1: f64,
+) -> Result<Asked, String> {
+    let own: Vec<_> = decals
+        .iter()
+        .map(|d| recommend(plain, clip, d).map_err(|e| e.to_string()))
+        .collect::<Result<_, _>>()?;
+    let size = |r: &zshift::recommend::ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
+    let mut rec = *own
+        .iter()
+        .max_by(|a, b| size(a).total_cmp(&size(b)))
+        .expect("a plane");
+    rec.bleed_gap = own.iter().map(|r| r.bleed_gap).fold(0.0, f64::max);
+    let gaps = own.iter().map(|r| r.bleed_gap).collect();
+    let pieces = pieces
+        .into_iter()
+        .zip(&own)
+        .map(|(p, r)| (p, r.matrix))
+        .collect();
+    Ok(Asked {
+        rec,
+        d1,
+        cut: None,
+        pieces: Some((pieces, gaps)),
+    })
 }
 
 /// Asks for the decal through the front door, as an engine does: the engine's own matrix, the
@@ -1227,27 +1306,29 @@ struct Asked {
 /// corners, its reach, its box), asked for together.
 fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<Asked, String> {
     let text = |e: zshift::Error| e.to_string();
-    // Per plane: its world corners, the base's reach and its world box.
-    type Plane = (Vec<[f64; 3]>, f64, [[f64; 3]; 2]);
+    // Per plane: its world corners, the base's reach and its world box, and over hills the
+    // decal's piece on it.
+    type Plane = (Vec<[f64; 3]>, f64, [[f64; 3]; 2], Vec<[f32; 3]>);
     let planes: Vec<Plane> = if case.ground == Ground::Hills {
         let ground = case.ground();
         clip_to_square(&ground, case.decal_square(1.0))
             .into_iter()
-            .map(|(i, _)| {
+            .map(|(i, piece)| {
                 let t: Vec<[f64; 3]> = ground[3 * i..3 * i + 3]
                     .iter()
                     .map(|p| p.map(f64::from))
                     .collect();
-                (t.clone(), case.reach_of(&t), bounding_box(&t))
+                (t.clone(), case.reach_of(&t), bounding_box(&t), piece)
             })
             .collect()
     } else {
         let corners = case.decal_world().map(|p| p.map(f64::from)).to_vec();
-        vec![(corners, case.base_reach(), case.world_box())]
+        vec![(corners, case.base_reach(), case.world_box(), Vec::new())]
     };
     let mut decals = Vec::new();
+    let mut pieces = Vec::new();
     let mut d1 = f64::INFINITY;
-    for (world, reach, world_box) in planes {
+    for (world, reach, world_box, piece) in planes {
         let eye: Vec<[f64; 3]> = world.iter().map(|&p| case.eye(p)).collect();
         // A terrain triangle may reach behind the near plane or off the screen: its plane is
         // described by the part the rasterizer draws, cut to the frustum in f64; one wholly
@@ -1260,6 +1341,7 @@ fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<As
         if eye.len() < 3 {
             continue;
         }
+        pieces.push(piece);
         let corners: Vec<glam::Vec3> = eye
             .iter()
             .map(|e| glam::Vec3::new(e[0] as f32, e[1] as f32, e[2] as f32))
@@ -1292,8 +1374,18 @@ fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<As
         });
     }
     if case.ground == Ground::Hills {
-        let rec = zshift::planes::recommend_planes(plain, case.at.clip, &decals).map_err(text)?;
-        return Ok(Asked { rec, d1, cut: None });
+        return match zshift::planes::recommend_planes(plain, case.at.clip, &decals) {
+            Ok(rec) => Ok(Asked {
+                rec,
+                d1,
+                cut: None,
+                pieces: None,
+            }),
+            Err(e) if e.input().is_some_and(|(name, _)| name == "largest_plane") => {
+                piece_by_piece(plain, case.at.clip, &decals, pieces, d1)
+            }
+            Err(e) => Err(text(e)),
+        };
     }
     // The same decal over the ground cut to the frustum in f64 (nothing left to clip): what the
     // honest description of the ground as drawn is compared with.
@@ -1307,7 +1399,12 @@ fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<As
     )
     .ok();
     let rec = recommend(plain, case.at.clip, &decals[0]).map_err(text)?;
-    Ok(Asked { rec, d1, cut })
+    Ok(Asked {
+        rec,
+        d1,
+        cut,
+        pieces: None,
+    })
 }
 
 fn run_case(
@@ -1337,7 +1434,17 @@ fn run_case(
             out.refused = Some(e.to_string());
             out.drawable = r.smallest_working()?.is_some();
         }
-        Ok(Asked { rec, d1, cut }) => {
+        Ok(Asked {
+            rec,
+            d1,
+            cut,
+            pieces,
+        }) => {
+            let pass = match &pieces {
+                Some((pieces, _)) => DecalPass::Pieces(pieces),
+                None => DecalPass::One(&rec.matrix),
+            };
+            out.by_pieces = pieces.is_some();
             if let (Some(c), Some(tris)) = (&cut, case.cut_ground()) {
                 let whole = std::mem::replace(&mut r.ground, tris);
                 out.lost_cut = r.lost(&c.matrix)?.hit;
@@ -1347,24 +1454,38 @@ fn run_case(
             let steps = |m: &[f32; 16]| f64::from(steps_between(&plain, m, case.reversed()).max(1));
             out.over_cut = cut.map(|c| steps(&rec.matrix) / steps(&c.matrix));
             out.steps = steps(&rec.matrix);
-            out.lost = r.lost(&rec.matrix)?.hit;
-            if !case.reversed() {
+            out.lost = r.lost_offset(pass, None)?.hit;
+            if !case.reversed() && pieces.is_none() {
                 let [factor, units] = rec.polygon_offset;
                 let pulled = Some((-factor as f32, -units as f32));
-                out.lost_polygon_offset = r.lost_offset(&plain, pulled)?.hit;
+                out.lost_polygon_offset = r.lost_offset(DecalPass::One(&plain), pulled)?.hit;
             }
-            out.bled = if case.ground == Ground::Hills {
-                r.bled_scaled(&rec.matrix, rec.bleed_gap, d1)?
-            } else {
-                r.bled(&rec.matrix, rec.bleed_gap, d1)?
-            }
-            .map_or(0, |c| c.hit);
+            out.bled = match &pieces {
+                // Each piece over an occluder at its own gap (a sliver's is far larger than
+                // its neighbours').
+                Some((pieces, gaps)) => {
+                    let mut bled = 0;
+                    for (piece, &gap) in pieces.iter().zip(gaps) {
+                        let one = DecalPass::Pieces(std::slice::from_ref(piece));
+                        bled += r.bled_scaled(one, gap, d1)?.map_or(0, |c| c.hit);
+                    }
+                    bled
+                }
+                None if case.ground == Ground::Hills => {
+                    r.bled_scaled(pass, rec.bleed_gap, d1)?.map_or(0, |c| c.hit)
+                }
+                None => r.bled(pass, rec.bleed_gap, d1)?.map_or(0, |c| c.hit),
+            };
             out.gap_over_distance = rec.bleed_gap / d1;
             out.terms = Some(rec.terms);
             let steps = steps_between(&plain, &rec.matrix, case.reversed());
-            out.ratio = r
-                .smallest_working()?
-                .map(|k| f64::from(steps) / f64::from(k.max(1)));
+            // Piece by piece there is no one offset to compare with the smallest working one.
+            out.ratio = match pieces {
+                Some(_) => None,
+                None => r
+                    .smallest_working()?
+                    .map(|k| f64::from(steps) / f64::from(k.max(1))),
+            };
         }
     }
     Ok(Some(out))
@@ -1391,6 +1512,27 @@ fn vary(mut case: Case, v: &mut Xorshift) -> Case {
     case
 }
 
+/// Another scale of the world and another camera height ([`Case::scale`],
+/// [`Case::eye_height`]; seeded draws, from a stream of their own so that the other picks stay
+/// those of [`vary`]): every length of the case multiplied by the scale.
+fn rescale(mut case: Case, v: &mut Xorshift) -> Case {
+    let scale = [1.0, 100.0, 0.3048, 39.37][v.index(4)];
+    case.eye_height = [EYE_HEIGHT, EYE_HEIGHT, 0.5, 10.0][v.index(4)];
+    case.scale = scale;
+    for length in [
+        &mut case.near,
+        &mut case.far,
+        &mut case.size,
+        &mut case.distance,
+        &mut case.translate,
+    ] {
+        *length *= scale;
+    }
+    case.jitter = case.jitter.map(|c| c * scale);
+    case.ground_y = f64::from((case.ground_y * scale) as f32);
+    case
+}
+
 /// The sweep: every attachment × pitch × translation × ground, each with one variation of
 /// decal, planes, depth test and window picked deterministically (all of them under
 /// `ZSHIFT_ENGINE_SCENES=full`).
@@ -1412,6 +1554,8 @@ fn cases() -> Vec<Case> {
     let mut combined_pick =
         Xorshift(0x7C0B_2026_1126_0F0A ^ seed.wrapping_mul(0x9FB2_1C65_1E98_DF25));
     let mut values = Xorshift(0x94D0_49BB_1331_11EB ^ seed);
+    // Units and camera heights (seeded draws) from a stream of their own.
+    let mut units = Xorshift(0x5CA1_2026_1126_0E7E ^ seed.wrapping_mul(0xC2B2_AE3D_27D4_EB4F));
     let mut out = Vec::new();
     for at in ATTACHMENTS {
         for pitch_deg in [0.0, 0.5, 2.0, 10.0, 30.0, 60.0] {
@@ -1455,11 +1599,13 @@ fn cases() -> Vec<Case> {
                             ground_chunks: [ModelView::None, ModelView::Double, ModelView::Float]
                                 [chunk_pick.index(3)],
                             combined: false,
+                            scale: 1.0,
+                            eye_height: EYE_HEIGHT,
                         };
                         let case = if seed == 0 {
                             case
                         } else {
-                            vary(case, &mut values)
+                            rescale(vary(case, &mut values), &mut units)
                         };
                         out.push(case);
                         // A quarter of the scenes again, drawn through one view-projection.
@@ -1533,7 +1679,7 @@ fn the_scene_every_engine_draws() {
     // Per way the vertices reach the shader and are told to zshift (the quad and the grid):
     // what multiplying a model-view in double buys.
     let mut by_pipeline = std::collections::BTreeMap::<(&str, u64), Vec<(f64, f64)>>::new();
-    let (mut drawn, mut skipped, mut cut_drawn) = (0, 0, 0);
+    let (mut drawn, mut skipped, mut cut_drawn, mut by_pieces) = (0, 0, 0, 0);
     // The scenes drawn through one view-projection ([`Case::combined`]), kept out of the
     // per-class table (which is the eye-first pipeline's): their outcomes per profile, and per
     // translation the gap over their eye-first twin's (probed, both answered).
@@ -1558,6 +1704,7 @@ fn the_scene_every_engine_draws() {
             };
             drawn += 1;
             cut_drawn += usize::from(out.cut_drawn);
+            by_pieces += usize::from(out.by_pieces);
             if verbose {
                 println!("{name:6} {}: {out:?}", case.label());
             }
@@ -1578,7 +1725,7 @@ fn the_scene_every_engine_draws() {
                 case.drawn_through() != ModelView::Float && case.chunked() != ModelView::Float;
             if name == "probed" && out.refused.is_none() && case.ground != Ground::Hills {
                 by_pipeline
-                    .entry((case.told(), decade(case.translate)))
+                    .entry((case.told(), decade(case.translate / case.scale)))
                     .or_default()
                     .push((out.gap_over_distance, out.steps));
             }
@@ -1591,7 +1738,7 @@ fn the_scene_every_engine_draws() {
                 if let (true, None, Some(g)) = (name == "probed", &out.refused, twin_gap.get(&twin))
                 {
                     over_twin
-                        .entry(decade(case.translate))
+                        .entry(decade(case.translate / case.scale))
                         .or_default()
                         .push(out.gap_over_distance / g);
                 }
@@ -1603,7 +1750,7 @@ fn the_scene_every_engine_draws() {
             }
             if name == "probed" && out.refused.is_none() && view_given {
                 by_translation
-                    .entry(decade(case.translate))
+                    .entry(decade(case.translate / case.scale))
                     .or_default()
                     .push((out.gap_over_distance, out.steps));
             }
@@ -1664,6 +1811,9 @@ fn the_scene_every_engine_draws() {
     }
     println!(
         "refused although bisection finds a working offset: {refused_drawable} ({probed_refused_drawable} with the probed profile)"
+    );
+    println!(
+        "answered piece by piece (one plane's offset would move another past the near plane; each piece drawn with its own plane's matrix): {by_pieces}"
     );
     println!("probed profile, by the camera's distance from the world origin (view matrix and box given):");
     println!(

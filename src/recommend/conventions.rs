@@ -185,7 +185,10 @@ fn bleed_gap_at(
 /// `chosen.relative_epsilon·b/d`.
 ///
 /// # Errors
-/// As [`recommend_clip`]'s checks of the scene.
+/// As [`recommend_clip`]'s checks of the scene, and [`crate::ErrorKind::Unresolvable`] where
+/// `chosen`'s offset moves this plane's nearest point past the near plane: a plane nearer the
+/// camera than the one whose offset was chosen may not take it (its own offset was checked,
+/// not this larger one).
 pub(crate) fn bleed_gap_with(
     scene: &Scene,
     clip: ClipDepth,
@@ -194,13 +197,22 @@ pub(crate) fn bleed_gap_with(
 ) -> Result<f64> {
     let mapping = mapping_of(scene, clip)?;
     let b = scale(&scene.frustum);
-    bleed_gap_at(scene, &mapping, terms, |d| {
+    let offset_at = |d: f64| {
         if clip == ClipDepth::ReversedZeroToOne {
             chosen.relative_epsilon * (b / d)
         } else {
             chosen.window_offset
         }
-    })
+    };
+    let remedies = super::Remedies::of(&scene.pipeline, &scene.profile);
+    check_in_range(
+        &mapping,
+        scene.depth_range[0],
+        offset_at(scene.depth_range[0]),
+        terms,
+        remedies,
+    )?;
+    bleed_gap_at(scene, &mapping, terms, offset_at)
 }
 
 /// Under reversed Z with the decal's footprint and a measured `error_ulps_reversed` `k`: a bound

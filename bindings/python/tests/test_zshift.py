@@ -569,6 +569,33 @@ class FrontDoor(unittest.TestCase):
             zshift.decal_matrix_planes(*args, [dict(corner=triangle(10.0, 0.0))], subpixel_bits=8)
         self.assertIn("'corner'", str(caught.exception))
 
+    def test_a_plane_nearer_than_the_largest_offset_allows_is_named(self):
+        # A piece just beyond the near plane, and a far one on a clipped base of growing reach:
+        # once the far plane's offset would move the near one past the near plane, the refusal
+        # names the plane that set it, and each plane alone is still answered (the remedy).
+        m = self.perspective(1.0, 16 / 9, 0.1, 1000.0)
+        args = (m, zshift.Clip.NEG_ONE_TO_ONE, (1280, 720), zshift.Format.UNORM24)
+        near = dict(corners=[(-0.01, -0.02, -0.125), (0.01, -0.02, -0.125), (0.0, -0.02, -0.13)])
+        far = [(-1.0, -1.7, -50.0), (1.0, -1.7, -50.0), (0.0, -1.7, -51.5)]
+        named = 0
+        for reach in (1e4, 1e5, 1e6, 1e7):
+            planes = [near, dict(corners=far, base_reach=reach)]
+            try:
+                alone = [zshift.decal_matrix(*args, None, subpixel_bits=8, corners=p["corners"],
+                                             base_reach=p.get("base_reach", 0.0)) for p in planes]
+            except zshift.ZshiftError:
+                continue
+            self.assertEqual(len(alone), 2)
+            try:
+                zshift.decal_matrix_planes(*args, planes, subpixel_bits=8)
+            except zshift.ZshiftError as e:
+                self.assertEqual(e.status, zshift.Status.UNRESOLVABLE, str(e))
+                self.assertTrue(str(e).startswith("plane 0: "), str(e))
+                self.assertIn("largest_plane = 1", str(e))
+                self.assertIn("its own plane's matrix", str(e))
+                named += 1
+        self.assertGreater(named, 0)
+
     def test_corners_describe_the_decal(self):
         # A steep square (z = -20 - 2y) below the view axis: its corners give the depths (14, 18) and the
         # slope (2) this test computes itself, and its place on the screen, which can only tighten the offset.

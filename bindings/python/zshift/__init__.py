@@ -836,8 +836,10 @@ def decal_matrix_planes(m, clip, viewport, depth_format, planes, subpixel_bits=N
     them. Give each plane the corners of the base triangle its piece was cut from, not the
     piece's (a sliver's float corners do not pin its plane down), cut with
     :func:`clip_to_frustum` where the triangle reaches behind the near plane or off the screen. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
-    Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal;
-    ``TypeError`` for an unknown key."""
+    Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal (one
+    naming ``largest_plane`` where the largest offset would move plane i past the near plane
+    though its own fits: draw each piece with its own :func:`decal_matrix`, or leave out the
+    piece of plane ``largest_plane``); ``TypeError`` for an unknown key."""
     mat = _engine_matrix(m)
     keep, array = _planes(viewport, depth_format, planes, subpixel_bits, profile, depth_test, viewport_origin,
                           depth_range, world_reach, eye_first, view_matrix)
