@@ -248,6 +248,10 @@ struct Case {
     /// The camera's height above the ground under it, in metres before [`Case::scale`]
     /// ([`EYE_HEIGHT`]; seeded draws also take a crouch, 0.5, and a strategy camera, 10).
     eye_height: f64,
+    /// The frustum moved off centre, as fractions of its half width and half height (0, 0;
+    /// seeded draws also take an engine's temporal anti-aliasing jitter, under half a pixel,
+    /// and a VR eye's asymmetric frustum): the projection's elements 8 and 9 nonzero.
+    skew: [f64; 2],
 }
 
 /// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
@@ -272,7 +276,8 @@ impl Case {
     fn frustum(&self) -> Frustum {
         let t = self.near * (self.fovy_deg.to_radians() / 2.0).tan();
         let r = t * f64::from(viewport()[0]) / f64::from(viewport()[1]);
-        Frustum::new(-r, r, -t, t, self.near, self.far).expect("valid frustum")
+        let (x, y) = (self.skew[0] * r, self.skew[1] * t);
+        Frustum::new(-r + x, r + x, -t + y, t + y, self.near, self.far).expect("valid frustum")
     }
 
     /// The ground's half extent around the camera in world units.
@@ -811,8 +816,8 @@ impl Case {
             self.jitter,
             if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
                 format!(
-                    " ground y {} fovy {:.1}° units {} eye {}",
-                    self.ground_y, self.fovy_deg, self.scale, self.eye_height
+                    " ground y {} fovy {:.1}° units {} eye {} skew {:?}",
+                    self.ground_y, self.fovy_deg, self.scale, self.eye_height, self.skew
                 )
             } else {
                 String::new()
@@ -1512,9 +1517,10 @@ fn vary(mut case: Case, v: &mut Xorshift) -> Case {
     case
 }
 
-/// Another scale of the world and another camera height ([`Case::scale`],
-/// [`Case::eye_height`]; seeded draws, from a stream of their own so that the other picks stay
-/// those of [`vary`]): every length of the case multiplied by the scale.
+/// Another scale of the world, another camera height and an off-centre frustum
+/// ([`Case::scale`], [`Case::eye_height`], [`Case::skew`]; seeded draws, from a stream of their
+/// own so that the other picks stay those of [`vary`]): every length of the case multiplied by
+/// the scale.
 fn rescale(mut case: Case, v: &mut Xorshift) -> Case {
     let scale = [1.0, 100.0, 0.3048, 39.37][v.index(4)];
     case.eye_height = [EYE_HEIGHT, EYE_HEIGHT, 0.5, 10.0][v.index(4)];
@@ -1530,6 +1536,15 @@ fn rescale(mut case: Case, v: &mut Xorshift) -> Case {
     }
     case.jitter = case.jitter.map(|c| c * scale);
     case.ground_y = f64::from((case.ground_y * scale) as f32);
+    // Half a pixel of jitter is 1/width of the half width.
+    let [w, h] = viewport().map(f64::from);
+    let jitter = [v.unit() - 0.5, v.unit() - 0.5];
+    case.skew = [
+        [0.0, 0.0],
+        [0.0, 0.0],
+        [jitter[0] / w, jitter[1] / h],
+        [0.17 * jitter[0].signum(), 0.04 * jitter[1]],
+    ][v.index(4)];
     case
 }
 
@@ -1601,6 +1616,7 @@ fn cases() -> Vec<Case> {
                             combined: false,
                             scale: 1.0,
                             eye_height: EYE_HEIGHT,
+                            skew: [0.0, 0.0],
                         };
                         let case = if seed == 0 {
                             case

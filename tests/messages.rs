@@ -280,4 +280,50 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
     refused_planes(broken.as_ptr(), 2, &["plane 1: ", "decal_far = 2000"]);
     refused_planes(planes.as_ptr(), 0, &["count = 0"]);
     refused_planes(std::ptr::null(), 2, &["decals"]);
+
+    // A plane just beyond the near plane, and one whose clipped base asks an offset that
+    // would move it past: each is answered alone, together the refusal names the plane that
+    // set the offset and the remedy.
+    let close = ZshiftDecal {
+        decal_near: 0.125,
+        decal_far: 0.13,
+        slope: 0.0,
+        ..near
+    };
+    let mut named = 0;
+    for reach in [1e4, 1e5, 1e6, 1e7] {
+        let clipped = ZshiftDecal {
+            decal_near: 50.0,
+            decal_far: 51.0,
+            base_reach: reach,
+            ..far
+        };
+        let mut out = [0.0f32; 16];
+        let alone = zshift_decal_matrix(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            &clipped,
+            out.as_mut_ptr(),
+        );
+        let pair = [close, clipped];
+        let together = zshift_decal_matrix_planes(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            pair.as_ptr(),
+            2,
+            out.as_mut_ptr(),
+        );
+        if alone == ZSHIFT_OK && together != ZSHIFT_OK {
+            refused_planes(
+                pair.as_ptr(),
+                2,
+                &["plane 0: ", "largest_plane = 1", "its own plane's matrix"],
+            );
+            named += 1;
+        }
+    }
+    assert!(
+        named > 0,
+        "no base reach made the far plane's offset too large"
+    );
 }
