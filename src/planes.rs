@@ -257,20 +257,30 @@ mod tests {
         }
     }
 
+    /// `glOrtho(−20, 20, −11.25, 11.25, 1, 501)` under `[−1, 1]`: eye depth `n = 1` to 501.
+    fn ortho_matrix() -> [f32; 16] {
+        let o = crate::orthographic::Ortho::new(-20.0, 20.0, -11.25, 11.25, 1.0, 501.0).unwrap();
+        crate::orthographic::ortho(&o, ClipDepth::NegOneToOne).unwrap()
+    }
+
+    /// A decal of slope `slope` from eye depth `d` to `d + depth`, by its range (no corners).
+    fn ranged(d: f64, depth: f64, slope: f64) -> Decal {
+        let clip = ClipDepth::NegOneToOne;
+        Decal {
+            depth_range: [d, d + depth],
+            slope,
+            footprint: None,
+            ..plane(&matrix(clip), clip, 10.0, 0.0)
+        }
+    }
+
     /// Under an orthographic matrix eye depth is linear in window depth: a plane's gap at the
     /// larger offset is its own errors plus that offset, over the depth span.
     #[test]
     fn orthographic_planes_take_the_larger_offset_and_its_gap() {
         let clip = ClipDepth::NegOneToOne;
-        let o = crate::orthographic::Ortho::new(-20.0, 20.0, -11.25, 11.25, 1.0, 501.0).unwrap();
-        let m = crate::orthographic::ortho(&o, clip).unwrap();
-        let decal = |d: f64, slope: f64| Decal {
-            depth_range: [d, d + 2.0],
-            slope,
-            footprint: None,
-            ..plane(&matrix(clip), clip, 10.0, 0.0)
-        };
-        let (flat, steep) = (decal(100.0, 0.0), decal(300.0, 2.0));
+        let m = ortho_matrix();
+        let (flat, steep) = (ranged(100.0, 2.0, 0.0), ranged(300.0, 2.0, 2.0));
         let both = recommend_planes(&m, clip, &[flat, steep]).unwrap();
         let recs = [flat, steep].map(|d| recommend(&m, clip, &d).unwrap());
         let (big, small) = if recs[0].window_offset >= recs[1].window_offset {
@@ -360,15 +370,8 @@ mod tests {
         // Orthographic: a decal 0.001 behind the near plane of a box 500 deep takes no offset
         // larger than 0.001/500 of window depth.
         let clip = ClipDepth::NegOneToOne;
-        let o = crate::orthographic::Ortho::new(-20.0, 20.0, -11.25, 11.25, 1.0, 501.0).unwrap();
-        let m = crate::orthographic::ortho(&o, clip).unwrap();
-        let decal = |d: f64, slope: f64| Decal {
-            depth_range: [d, d + 0.5],
-            slope,
-            footprint: None,
-            ..plane(&matrix(clip), clip, 10.0, 0.0)
-        };
-        let (close, steep) = (decal(1.001, 0.0), decal(400.0, 40.0));
+        let m = ortho_matrix();
+        let (close, steep) = (ranged(1.001, 0.5, 0.0), ranged(400.0, 0.5, 40.0));
         let own = recommend(&m, clip, &steep).unwrap();
         assert!(own.window_offset * 500.0 > 0.001, "{own:?}");
         let e = recommend_planes(&m, clip, &[close, steep]).unwrap_err();

@@ -816,7 +816,7 @@ impl Case {
             self.jitter,
             if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
                 format!(
-                    " ground y {} fovy {:.1}° units {} eye {} skew {:?}",
+                    " ground y {} fovy {}° units {} eye {} skew {:?}",
                     self.ground_y, self.fovy_deg, self.scale, self.eye_height, self.skew
                 )
             } else {
@@ -1177,7 +1177,7 @@ impl<'a> Renderer<'a> {
                 .square(0.75 * self.case.size, lift)
                 .map(|p| p.map(|c| c as f32)),
         );
-        self.shown_over(&occluder, pass).map(Some)
+        self.shown_over(&occluder, pass, false).map(Some)
     }
 
     /// [`Renderer::bled`] over hills: the occluder is the terrain under a square 1.5 times the
@@ -1194,20 +1194,38 @@ impl<'a> Renderer<'a> {
             .flat_map(|(_, piece)| piece)
             .map(|p| [0, 1, 2].map(|k| (cam[k] + (f64::from(p[k]) - cam[k]) * s) as f32))
             .collect();
-        self.shown_over(&occluder, pass).map(Some)
+        self.shown_over(&occluder, pass, true).map(Some)
     }
 
-    /// Decal pixels drawn with `decal_proj` over `occluder` (drawn with the plain matrix after
-    /// the ground), among the pixels both cover.
-    fn shown_over(&mut self, occluder: &[[f32; 3]], pass: DecalPass) -> Result<Count, String> {
+    /// Decal pixels drawn as `pass` says over `occluder` (drawn with the plain matrix after the
+    /// ground), among the decal's pixels where the occluder covers the pixel and the decal drawn
+    /// with the plain matrix does not show over it. Over hills the occluder (the terrain scaled
+    /// toward the camera) is in front of the decal's own plane only where that plane is the
+    /// terrain the pixel shows: at a crest's silhouette a mesh decal's piece, cut in f32, can
+    /// cover a pixel centre its terrain triangle does not (a seeded draw with a jittered frustum
+    /// showed one such pixel with the plain matrix over an occluder 4 times the gap in front),
+    /// and there no occluder is in front of its plane. With the plain matrix the decal is within
+    /// its errors of its plane, less than the gap, so the filter drops only such pixels.
+    /// (`silhouettes`: over hills; a flat ground has none.)
+    fn shown_over(
+        &mut self,
+        occluder: &[[f32; 3]],
+        pass: DecalPass,
+        silhouettes: bool,
+    ) -> Result<Count, String> {
         let occ_mask = self.coverage(occluder)?;
-        let both: Vec<bool> = occ_mask
-            .iter()
-            .zip(&self.mask)
-            .map(|(a, b)| *a && *b)
+        let (plain, state) = (self.plain, self.state());
+        let mut overhang = vec![false; occ_mask.len()];
+        if silhouettes {
+            self.clear_and_draw_ground()?;
+            self.draw(occluder, None, &plain, OCCLUDER, &state)?;
+            self.draw_decal(DecalPass::One(&plain), &state)?;
+            overhang = self.read_viewport()?.mask_of(zshift_harness::rgba8(DECAL));
+        }
+        let both: Vec<bool> = (0..occ_mask.len())
+            .map(|i| occ_mask[i] && self.mask[i] && !overhang[i])
             .collect();
         self.clear_and_draw_ground()?;
-        let (plain, state) = (self.plain, self.state());
         self.draw(occluder, None, &plain, OCCLUDER, &state)?;
         self.draw_decal(pass, &state)?;
         Ok(Count::decal_shown(&self.read_viewport()?, &both))
@@ -1876,4 +1894,55 @@ fn the_scene_every_engine_draws() {
         probed_refused_drawable, 0,
         "the probed profile refused scenes where bisection finds a working offset"
     );
+}
+
+/// A mesh decal over hills whose pieces one matrix cannot serve (found by a seeded draw in
+/// inches, a crouching camera 6.9·10⁵ units from the origin): one terrain triangle under the
+/// decal passes close to the eye, its window gradient a thousand times its neighbours', and its
+/// offset would move the nearer pieces past the near plane (before `recommend_planes` checked
+/// every plane at the largest offset, 9648 decal pixels were lost). The call refuses naming
+/// `largest_plane`; drawn piece by piece as the refusal says, each with its own plane's matrix,
+/// no decal pixel is lost and none bleeds over an occluder at its piece's gap.
+#[test]
+fn a_decal_one_matrix_cannot_serve_is_drawn_piece_by_piece() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    let probed = gl_common::probed(&gl);
+    let scale = 39.37;
+    let case = Case {
+        at: *ATTACHMENTS
+            .iter()
+            .find(|a| a.label == "reversed D24")
+            .expect("reversed D24"),
+        pitch_deg: 61.39199523925781,
+        translate: 687491.43866539,
+        yaw_deg: 354.2929458618164,
+        roll_deg: 0.0,
+        jitter: [14.641703, -24.184990999999997],
+        ground_y: -687123.0625,
+        tilt: -0.6,
+        fovy_deg: 83.9,
+        ground: Ground::Hills,
+        near: 0.01 * scale,
+        far: 1000.0 * scale,
+        size: 69.34943934726715,
+        distance: 53.687067114830015,
+        side: 0.0,
+        equal_test: false,
+        origin: [0, 0],
+        depth_range: [0.0, 0.5],
+        mesh_decal: true,
+        model_decal: ModelView::None,
+        combined: false,
+        ground_chunks: ModelView::None,
+        scale,
+        eye_height: 0.5,
+        skew: [0.0, 0.0],
+    };
+    for profile in [RasterizerProfile::worst_case(), probed] {
+        let out = run_case(&mut gl, case, &profile)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .expect("the decal is on screen");
+        assert!(out.by_pieces, "{out:?}");
+        assert_eq!((out.lost, out.bled), (0, 0), "{out:?}");
+    }
 }
