@@ -133,7 +133,6 @@ fn gap_at(
                     NEARER_PLANE,
                 ));
             }
-
             Ok(own.bleed_gap + (chosen.window_offset - own.window_offset).max(0.0) * span)
         }
     }
@@ -376,6 +375,23 @@ mod tests {
         assert!(own.window_offset * 500.0 > 0.001, "{own:?}");
         let e = recommend_planes(&m, clip, &[close, steep]).unwrap_err();
         assert_eq!(e.input(), Some(("largest_plane", 1.0)), "{e}");
+        // And one decal alone: the steep plane's own offset at the near plane's distance.
+        let e = recommend(
+            &m,
+            clip,
+            &Decal {
+                depth_range: [1.001, 1.5],
+                ..steep
+            },
+        )
+        .unwrap_err();
+        assert_eq!(e.kind(), crate::ErrorKind::Unresolvable, "{e}");
+        let needed = e
+            .input()
+            .filter(|(name, _)| *name == "needed")
+            .expect("needed")
+            .1;
+        assert!(needed > 0.0 && needed < 0.5, "{e}");
     }
 
     #[test]
