@@ -87,7 +87,7 @@ pub fn recommend_planes(
 }
 
 /// Why a plane whose own offset fits is refused at the largest: what an engine can do.
-const NEARER_PLANE: &str = "the offset of plane `largest_plane`, the largest, moves this plane past the near plane though its own offset fits: draw each piece with its own plane's matrix (ask for this plane alone), or leave out the piece of plane `largest_plane` (its errors set the offset: often a triangle seen nearly edge-on, whose piece covers few pixels)";
+const NEARER_PLANE: &str = "the offset of plane `largest_plane`, the largest, moves this plane past the near plane though its own offset fits: draw each piece with its own plane's matrix (ask for each plane alone: zshift_decal_matrix with its record in C, zshift.decal_matrix with its corners in Python, matrix_in::recommend in Rust), or leave out the piece of plane `largest_plane` (its errors set the offset: often a triangle seen nearly edge-on, whose piece covers few pixels)";
 
 /// A plane refused at the largest offset, though its own fits ([`NEARER_PLANE`]), naming the
 /// plane that set it (`largest_plane`); other errors unchanged.
