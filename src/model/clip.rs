@@ -156,10 +156,14 @@ pub(crate) fn clip_term(
     let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k]))
         + world_beyond_vertex_term(form, exact_form, m, pipeline, world_l, w_low, d1);
     if w_low.is_nan() || w_low <= 0.5 * d1 {
-        return Err(domain(
-            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
-        )
-        .with_value("base_reach", reach));
+        // Name the larger cause: the clipper's own rounding of a far-reaching base, or the
+        // world-space rounding of its vertices near the eye.
+        let detail = if world_w > gamma * reach {
+            "the world-space vertices' f32 rounding is too large near the eye to bound the clipped base: render relative to the camera, or multiply the model-view in double and pass view_matrix and world_box (C fields; Python keywords), or cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0"
+        } else {
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0"
+        };
+        return Err(domain(detail).with_value("base_reach", reach));
     }
     representable(
         window_per_ndc * l / w_low,

@@ -573,7 +573,7 @@ macro_rules! near_plane {
 const NEAR_PLANE_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python) and pass base_reach = 0");
 
 /// [`near_plane`] for world-space vertices.
-const NEAR_PLANE_WORLD: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given, render relative to the camera");
+const NEAR_PLANE_WORLD: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given (a model-view multiplied in float: multiply it in double first), render relative to the camera");
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,

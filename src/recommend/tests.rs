@@ -625,3 +625,32 @@ fn bad_scenes_are_refused_with_their_kind() {
         ErrorKind::Domain
     );
 }
+
+/// A clipped base whose depth cannot be bounded is refused naming the larger cause: the
+/// clipper's rounding of a base that reaches too far (cut it), or the world-space rounding of
+/// its vertices near the eye (render relative to the camera, or tell the exact term).
+#[test]
+fn an_unbounded_clipped_base_names_its_cause() {
+    let refused = |reach: f64, world_reach: f64| {
+        let mut s = scene(DepthFormat::Float32, 0.5, Snapping::Unsnapped);
+        s.base = Base::Clipped { reach };
+        s.pipeline = Pipeline {
+            world_reach,
+            ..Pipeline::default()
+        };
+        let e = error_terms(&s).unwrap_err();
+        assert_eq!(e.kind(), crate::ErrorKind::Domain, "{e}");
+        e.to_string()
+    };
+    let far_base = refused(1e9, 0.0);
+    assert!(far_base.contains("the base reaches so far"), "{far_base}");
+    let far_world = refused(10.0, 1e11);
+    assert!(
+        far_world.contains("world-space vertices' f32 rounding"),
+        "{far_world}"
+    );
+    assert!(
+        far_world.contains("render relative to the camera"),
+        "{far_world}"
+    );
+}
