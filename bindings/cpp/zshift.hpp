@@ -492,7 +492,10 @@ inline Recommendation recommend_for_matrix(const float *m, Clip clip, const Deca
 /// The matrix of one decal on several planes, drawn in one pass (zshift_decal_matrix_planes): a
 /// mesh decal over terrain, cut from its triangles, one Decal per plane (each its own corners,
 /// base_reach and pipeline.world_box; the rest shared). The largest of the planes' offsets.
-/// Throws Error: as decal_matrix(), what() beginning "plane i: " for a plane's refusal.
+/// Throws Error: as decal_matrix(), what() beginning "plane i: " for a plane's refusal;
+/// Status::unresolvable naming largest_plane where the largest offset would move plane i past the
+/// near plane though its own fits: draw each piece with its own decal_matrix(), or leave out the
+/// piece of plane largest_plane.
 inline Matrix decal_matrix_planes(const float *m, Clip clip, const Decal *decals, std::uint32_t count) {
   return detail::matrix(
       [&](float *out) { return zshift_decal_matrix_planes(m, detail::to_c(clip), decals, count, out); });

@@ -339,6 +339,29 @@ static void test_decal_planes() {
   }
   check_throws("decal_matrix_planes(no planes)", zshift::Status::null_pointer,
                [&] { zshift::decal_matrix_planes(m.data(), clip, nullptr, 0); });
+  // A plane just beyond the near plane, and one whose clipped base asks an offset that would
+  // move it past: each answered alone, refused together naming largest_plane.
+  auto close = zshift::make_decal(1280, 720, zshift::Format::unorm24, 8, 0.125, 0.13, 0.0);
+  int named = 0;
+  for (const double reach : {1e4, 1e5, 1e6, 1e7}) {
+    auto clipped = zshift::make_decal(1280, 720, zshift::Format::unorm24, 8, 50.0, 51.0, 3.0);
+    clipped.base_reach = reach;
+    try {
+      (void)zshift::decal_matrix(m, clip, close);
+      (void)zshift::decal_matrix(m, clip, clipped);
+    } catch (const zshift::Error &) {
+      continue;
+    }
+    try {
+      (void)zshift::decal_matrix_planes(m, clip, std::vector<zshift::Decal>{close, clipped});
+    } catch (const zshift::Error &e) {
+      CHECK(e.status() == zshift::Status::unresolvable, "largest_plane refusal status: %s", e.what());
+      CHECK(std::strstr(e.what(), "plane 0: ") == e.what(), "names the plane: %s", e.what());
+      CHECK(std::strstr(e.what(), "largest_plane = 1") != nullptr, "names largest_plane: %s", e.what());
+      ++named;
+    }
+  }
+  CHECK(named > 0, "no base reach made the far plane's offset too large");
 }
 
 static void test_shadow_bias() {
