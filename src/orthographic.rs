@@ -572,7 +572,7 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
         -1.0
     };
     let delta = window_offset * span;
-    check_near(o, scene.decal.depth_range[0], window_offset)?;
+    check_near(o.near, o.far, scene.decal.depth_range[0], window_offset)?;
     let factor = match scene.decal.rasterizer().snapping {
         Snapping::SubpixelBits(b) => 2f64.powi(1 - b as i32),
         Snapping::Unsnapped => 0.0,
@@ -591,23 +591,24 @@ pub fn recommend(scene: &Scene, clip: ClipDepth) -> Result<ClipRecommendation> {
     })
 }
 
-/// Refuses an offset that moves the decal's nearest point (eye depth `d1`) past the near plane:
-/// window depth is linear in eye depth, so a window offset moves it `window_offset·(f − n)`
-/// toward the eye, and the rasterizer clips what passes `n` (under every convention).
+/// Refuses an offset that moves the decal's nearest point (eye depth `d1`) past the near plane
+/// `n` of a box to `f`: window depth is linear in eye depth, so a window offset moves it
+/// `window_offset·(f − n)` toward the eye, and the rasterizer clips what passes `n` (under every
+/// convention). Also [`crate::planes`]' check of each plane at the largest offset.
 ///
 /// # Errors
 /// [`crate::ErrorKind::Unresolvable`], with `needed` the eye distance the near plane must move
 /// back (toward the eye or behind it: `n` may be negative).
-pub(crate) fn check_near(o: &Ortho, d1: f64, window_offset: f64) -> Result<()> {
-    let moved = window_offset * (o.far - o.near);
-    if moved <= d1 - o.near {
+pub(crate) fn check_near(n: f64, f: f64, d1: f64, window_offset: f64) -> Result<()> {
+    let moved = window_offset * (f - n);
+    if moved <= d1 - n {
         return Ok(());
     }
     Err(crate::error::Error::new(
         crate::ErrorKind::Unresolvable,
         "the offset this scene needs moves the decal past the orthographic near plane: move the near plane back (toward the eye, or behind it) by at least `needed`",
     )
-    .with_value("needed", moved - (d1 - o.near)))
+    .with_value("needed", moved - (d1 - n)))
 }
 
 /// The scene's rules: the decal's range inside `[n, f]` and increasing, a nonzero viewport, a

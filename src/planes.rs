@@ -124,15 +124,12 @@ fn gap_at(
         }
         None => {
             let span = (r.far - r.near).abs();
-            let [d1, _] = decal.depth_range;
-            // Eye depth is linear in window depth: the offset moves the plane's nearest point
-            // by `window_offset·span`, which must stay behind the near plane.
-            if chosen.window_offset * span > d1 - r.near {
-                return Err(crate::error::Error::new(
-                    crate::ErrorKind::Unresolvable,
-                    NEARER_PLANE,
-                ));
-            }
+            crate::orthographic::check_near(
+                r.near,
+                r.far,
+                decal.depth_range[0],
+                chosen.window_offset,
+            )?;
             Ok(own.bleed_gap + (chosen.window_offset - own.window_offset).max(0.0) * span)
         }
     }

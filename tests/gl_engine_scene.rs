@@ -1291,11 +1291,12 @@ struct Asked {
 }
 
 /// The remedy of a refusal that names `largest_plane`: each plane asked alone, its piece drawn
-/// with its own matrix.
+/// with its own matrix (`rec` the named plane's, the bleed gap the largest of the planes').
 fn piece_by_piece(
     plain: &[f32; 16],
     clip: ClipDepth,
     decals: &[Decal],
+    largest: usize,
     pieces: Vec<Vec<[f32; 3]>>,
     d1: f64,
 ) -> Result<Asked, String> {
@@ -1303,11 +1304,7 @@ fn piece_by_piece(
         .iter()
         .map(|d| recommend(plain, clip, d).map_err(|e| e.to_string()))
         .collect::<Result<_, _>>()?;
-    let size = |r: &zshift::recommend::ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
-    let mut rec = *own
-        .iter()
-        .max_by(|a, b| size(a).total_cmp(&size(b)))
-        .expect("a plane");
+    let mut rec = own[largest];
     rec.bleed_gap = own.iter().map(|r| r.bleed_gap).fold(0.0, f64::max);
     let gaps = own.iter().map(|r| r.bleed_gap).collect();
     let pieces = pieces
@@ -1404,10 +1401,12 @@ fn ask(case: &Case, plain: &[f32; 16], profile: &RasterizerProfile) -> Result<As
                 cut: None,
                 pieces: None,
             }),
-            Err(e) if e.input().is_some_and(|(name, _)| name == "largest_plane") => {
-                piece_by_piece(plain, case.at.clip, &decals, pieces, d1)
-            }
-            Err(e) => Err(text(e)),
+            Err(e) => match e.input() {
+                Some(("largest_plane", k)) => {
+                    piece_by_piece(plain, case.at.clip, &decals, k as usize, pieces, d1)
+                }
+                _ => Err(text(e)),
+            },
         };
     }
     // The same decal over the ground cut to the frustum in f64 (nothing left to clip): what the

@@ -92,6 +92,7 @@ pub(crate) fn recommend_clip_building(
     let terms = clip_error_terms(scene, clip)?;
     let [d1, d2] = scene.depth_range;
     let fits = |x: f64| representable(x, "a recommended value overflows f64");
+    let b = scale(&scene.frustum);
     let (ndc_offset, relative_epsilon, window_offset, matrix) = if clip == ClipDepth::ZeroToOne {
         // Window depth = NDC depth: the constant offset is (R1) itself.
         let dw = fits(terms.window_offset())?;
@@ -111,7 +112,6 @@ pub(crate) fn recommend_clip_building(
             Some(eps) => eps,
             None => reversed_epsilon(scene, &mapping, &terms)?,
         };
-        let b = scale(&scene.frustum);
         let matrix = if build {
             crate::clip_offset::relative_offset_projection(frustum, clip, eps)?
         } else {
@@ -119,14 +119,7 @@ pub(crate) fn recommend_clip_building(
         };
         (0.0, eps, fits(eps * (b / d2))?, matrix)
     };
-    // The window offset at d: constant, or ε·b/d under reversed Z.
-    let offset_at = |d: f64| {
-        if clip == ClipDepth::ReversedZeroToOne {
-            relative_epsilon * (scale(&scene.frustum) / d)
-        } else {
-            window_offset
-        }
-    };
+    let offset_at = |d: f64| offset_at_depth(clip, relative_epsilon, window_offset, b, d);
     let remedies = super::Remedies::of(&scene.pipeline, &scene.profile);
     check_in_range(&mapping, d1, offset_at(d1), &terms, remedies)?;
     let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
@@ -150,6 +143,22 @@ pub(crate) fn recommend_clip_building(
         matrix,
         terms,
     })
+}
+
+/// The window offset at eye depth `d` of a recommendation under `clip`: `window_offset` at every
+/// depth, or under reversed Z `relative_epsilon·b/d` (`b` the frustum's [`scale`]).
+fn offset_at_depth(
+    clip: ClipDepth,
+    relative_epsilon: f64,
+    window_offset: f64,
+    b: f64,
+    d: f64,
+) -> f64 {
+    if clip == ClipDepth::ReversedZeroToOne {
+        relative_epsilon * (b / d)
+    } else {
+        window_offset
+    }
 }
 
 /// The bleed gap (R2) of `scene`, whose errors are `terms`, drawn with the window offset
@@ -197,13 +206,8 @@ pub(crate) fn bleed_gap_with(
 ) -> Result<f64> {
     let mapping = mapping_of(scene, clip)?;
     let b = scale(&scene.frustum);
-    let offset_at = |d: f64| {
-        if clip == ClipDepth::ReversedZeroToOne {
-            chosen.relative_epsilon * (b / d)
-        } else {
-            chosen.window_offset
-        }
-    };
+    let offset_at =
+        |d: f64| offset_at_depth(clip, chosen.relative_epsilon, chosen.window_offset, b, d);
     let remedies = super::Remedies::of(&scene.pipeline, &scene.profile);
     check_in_range(
         &mapping,
