@@ -28,7 +28,7 @@
 //! row by row; `ZSHIFT_ENGINE_SCENES_VIEWPORT=1920x1080` (or `3840x2160`) draws at an engine's
 //! own size instead of 320×180; `ZSHIFT_ENGINE_SCENES_SEED=<n>` another draw, with values between
 //! the grid's, the ground at a world height as far from the origin as the translation and a field
-//! of view of 40° to 100°.
+//! of view of 40° to 100°; `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>` one `n`th of the grid.
 
 mod gl_common;
 
@@ -1698,6 +1698,22 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
+/// `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>`: only the cases whose index is `i` modulo `n`, so that
+/// `n` processes (each with its own context) share a grid on a machine with cores to spare
+/// (`scripts/gpu-checks`); `(0, 1)` without it.
+fn shard() -> (usize, usize) {
+    let Ok(text) = std::env::var("ZSHIFT_ENGINE_SCENES_SHARD") else {
+        return (0, 1);
+    };
+    let parsed = text
+        .split_once('/')
+        .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
+    match parsed {
+        Some((i, n)) if i < n => (i, n),
+        _ => panic!("ZSHIFT_ENGINE_SCENES_SHARD={text}: expected <i>/<n> with i < n, e.g. 0/8"),
+    }
+}
+
 #[test]
 fn the_scene_every_engine_draws() {
     let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
@@ -1721,10 +1737,12 @@ fn the_scene_every_engine_draws() {
     let mut over_twin = std::collections::BTreeMap::<u64, Vec<f64>>::new();
     // `ZSHIFT_ENGINE_SCENES_ONLY=<text>`: only the scenes whose label contains it.
     let only = std::env::var("ZSHIFT_ENGINE_SCENES_ONLY").ok();
-    for case in cases() {
-        if only
-            .as_ref()
-            .is_some_and(|o| !case.label().contains(o.as_str()))
+    let (shard, shards) = shard();
+    for (index, case) in cases().into_iter().enumerate() {
+        if index % shards != shard
+            || only
+                .as_ref()
+                .is_some_and(|o| !case.label().contains(o.as_str()))
         {
             continue;
         }
