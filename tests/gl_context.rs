@@ -72,3 +72,44 @@ fn depth_stencil_targets_have_eight_stencil_bits() {
     gl.set_target(8, 8, DepthFormat::D24).expect("plain target");
     assert_eq!(gl.stencil_bits().expect("stencil bits"), 0);
 }
+
+/// A 4× multisampled target (packed depth-stencil, as engines attach) reads back each sample
+/// on its own: a quad whose edges cross pixels between sample positions covers some samples of
+/// those pixels and not others, its inside every sample, the corner none.
+#[test]
+fn a_multisampled_target_reads_back_every_sample() {
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    gl.set_target_samples(16, 16, DepthFormat::D24, true, 4)
+        .expect("4x target");
+    gl.clear([0.0, 0.0, 0.0, 1.0], 1.0).expect("clear");
+    let proj = [
+        1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -2.0, -1.0, 0.0, 0.0, -3.0, 0.0,
+    ];
+    // At z = -2, x and y in [-0.55, 0.55] project to window 5.8..10.2: edges inside pixels.
+    let quad = zshift_harness::Quad::rect(-0.55, 0.55, -0.55, 0.55, -2.0);
+    let red = zshift_harness::rgba8([1.0, 0.0, 0.0, 1.0]);
+    gl.draw_quad(&quad, &proj, [1.0, 0.0, 0.0, 1.0], &Default::default())
+        .expect("draw");
+    let image = gl.read_color().expect("colour");
+    assert_eq!(
+        (image.width, image.height),
+        (16, 64),
+        "four 16x16 sample images"
+    );
+    let red_at = |s: usize, x: usize, y: usize| image.at(x, 16 * s + y)[..3] == red[..3];
+    assert!((0..4).all(|s| red_at(s, 8, 8)), "inside: every sample");
+    assert!((0..4).all(|s| !red_at(s, 0, 0)), "the corner: none");
+    let partial = (0..16 * 16)
+        .filter(|i| {
+            let covered = (0..4).filter(|&s| red_at(s, i % 16, i / 16)).count();
+            covered > 0 && covered < 4
+        })
+        .count();
+    assert!(
+        partial > 0,
+        "no pixel with some samples covered: not multisampled"
+    );
+    // About 4.4 x 4.4 pixels of area: 77 samples of 4 per pixel.
+    let samples = image.count(red, None);
+    assert!((60..=96).contains(&samples), "{samples} samples covered");
+}

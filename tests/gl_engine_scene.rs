@@ -28,7 +28,8 @@
 //! row by row; `ZSHIFT_ENGINE_SCENES_VIEWPORT=1920x1080` (or `3840x2160`) draws at an engine's
 //! own size instead of 320×180; `ZSHIFT_ENGINE_SCENES_SEED=<n>` another draw, with values between
 //! the grid's, the ground at a world height as far from the origin as the translation and a field
-//! of view of 40° to 100°; `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>` one `n`th of the grid.
+//! of view of 40° to 100°; `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>` one `n`th of the grid;
+//! `ZSHIFT_ENGINE_SCENES_MSAA=4` every scene on a 4× multisampled target, each sample judged.
 
 mod gl_common;
 
@@ -252,6 +253,9 @@ struct Case {
     /// seeded draws also take an engine's temporal anti-aliasing jitter, under half a pixel,
     /// and a VR eye's asymmetric frustum): the projection's elements 8 and 9 nonzero.
     skew: [f64; 2],
+    /// Samples per pixel of the target (1; `ZSHIFT_ENGINE_SCENES_MSAA`, and
+    /// [`every_sample_holds_under_msaa`]): each read back and judged on its own.
+    samples: u32,
 }
 
 /// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
@@ -850,7 +854,11 @@ impl Case {
             if self.equal_test { "EQUAL" } else { "strict" },
             self.origin,
             self.depth_range
-        )
+        ) + &if self.samples > 1 {
+            format!(" {}xMSAA", self.samples)
+        } else {
+            String::new()
+        }
     }
 }
 
@@ -916,11 +924,7 @@ fn quad_triangles(q: &[[f32; 3]; 4]) -> Vec<[f32; 3]> {
 impl<'a> Renderer<'a> {
     fn new(gl: &'a mut Gl, case: Case) -> Result<Self, String> {
         let [w, h] = case.framebuffer();
-        if case.at.packed {
-            gl.set_target_with_stencil(w, h, case.at.format)?;
-        } else {
-            gl.set_target(w, h, case.at.format)?;
-        }
+        gl.set_target_samples(w, h, case.at.format, case.at.packed, case.samples)?;
         gl.clip_control(if case.at.clip == ClipDepth::NegOneToOne {
             GlClip::NegativeOneToOne
         } else {
@@ -979,10 +983,11 @@ impl<'a> Renderer<'a> {
         // And whose four neighbours are: the terrain outside the square is cut in pieces that
         // meet at T-junctions, where a pixel can fall through (one did, a decal pixel behind its
         // own terrain's crest counted as lost).
+        // (Under MSAA the samples' images lie one above the other: y within its own.)
         let [w, h] = viewport().map(|v| v as usize);
-        Ok((0..w * h)
+        Ok((0..seen.len())
             .map(|i| {
-                let (x, y) = (i % w, i / w);
+                let (x, y) = (i % w, (i / w) % h);
                 seen[i]
                     && (x == 0 || seen[i - 1])
                     && (x + 1 == w || seen[i + 1])
@@ -1634,6 +1639,7 @@ fn cases() -> Vec<Case> {
                             scale: 1.0,
                             eye_height: EYE_HEIGHT,
                             skew: [0.0, 0.0],
+                            samples: samples(),
                         };
                         let case = if seed == 0 {
                             case
@@ -1698,6 +1704,18 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
+/// Samples per pixel of the target: 1, or `ZSHIFT_ENGINE_SCENES_MSAA=<n>` (every sample read back
+/// and judged on its own: [`zshift_harness::msaa`]).
+fn samples() -> u32 {
+    static SAMPLES: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
+    *SAMPLES.get_or_init(|| {
+        std::env::var("ZSHIFT_ENGINE_SCENES_MSAA").map_or(1, |v| {
+            v.parse()
+                .unwrap_or_else(|_| panic!("ZSHIFT_ENGINE_SCENES_MSAA={v}: expected 2, 4 or 8"))
+        })
+    })
+}
+
 /// `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>`: only the cases whose index is `i` modulo `n`, so that
 /// `n` processes (each with its own context) share a grid on a machine with cores to spare
 /// (`scripts/gpu-checks`); `(0, 1)` without it.
@@ -1716,6 +1734,32 @@ fn shard() -> (usize, usize) {
 
 #[test]
 fn the_scene_every_engine_draws() {
+    let (shard, shards) = shard();
+    let picked = cases()
+        .into_iter()
+        .enumerate()
+        .filter(|(index, _)| index % shards == shard)
+        .map(|(_, case)| case);
+    sweep(picked.collect(), 100);
+}
+
+/// The same scenes on a 4× multisampled target, as engines draw them (a sample of the grid:
+/// every 32nd case; `ZSHIFT_ENGINE_SCENES_MSAA=4` draws the whole grid so): every sample is
+/// tested against its own interpolated depth and judged on its own, lost, bled and refused as
+/// above.
+#[test]
+fn every_sample_holds_under_msaa() {
+    let picked = cases()
+        .into_iter()
+        .step_by(32)
+        .map(|case| Case { samples: 4, ..case });
+    sweep(picked.collect(), 20);
+}
+
+/// Draws `cases` (those whose label holds `ZSHIFT_ENGINE_SCENES_ONLY` where set) with both
+/// profiles, prints the per-class table, and asserts: at least `at_least` drawn, none lost or
+/// bled, none refused with the probed profile where bisection finds a working offset.
+fn sweep(cases: Vec<Case>, at_least: usize) {
     let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
     let probed = gl_common::probed(&gl);
     let worst = RasterizerProfile::worst_case();
@@ -1737,12 +1781,10 @@ fn the_scene_every_engine_draws() {
     let mut over_twin = std::collections::BTreeMap::<u64, Vec<f64>>::new();
     // `ZSHIFT_ENGINE_SCENES_ONLY=<text>`: only the scenes whose label contains it.
     let only = std::env::var("ZSHIFT_ENGINE_SCENES_ONLY").ok();
-    let (shard, shards) = shard();
-    for (index, case) in cases().into_iter().enumerate() {
-        if index % shards != shard
-            || only
-                .as_ref()
-                .is_some_and(|o| !case.label().contains(o.as_str()))
+    for case in cases {
+        if only
+            .as_ref()
+            .is_some_and(|o| !case.label().contains(o.as_str()))
         {
             continue;
         }
@@ -1897,7 +1939,7 @@ fn the_scene_every_engine_draws() {
             median(ratios)
         );
     }
-    assert!(drawn > 100, "too few scenes drawn: {drawn}");
+    assert!(drawn > at_least, "too few scenes drawn: {drawn}");
     // Safety first: a lost or bled pixel is the failure that matters most.
     assert!(
         failures.is_empty(),
@@ -1954,6 +1996,7 @@ fn a_decal_one_matrix_cannot_serve_is_drawn_piece_by_piece() {
         scale,
         eye_height: 0.5,
         skew: [0.0, 0.0],
+        samples: 1,
     };
     for profile in [RasterizerProfile::worst_case(), probed] {
         let out = run_case(&mut gl, case, &profile)

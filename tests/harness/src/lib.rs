@@ -47,6 +47,7 @@ pub mod coplanar;
 mod display;
 pub mod draw;
 pub mod edges;
+pub mod msaa;
 pub mod shadow_scene;
 pub mod world;
 
@@ -244,6 +245,9 @@ struct Target {
     width: i32,
     height: i32,
     format: DepthFormat,
+    /// A multisampled target's colour and the objects that read it sample by sample
+    /// ([`msaa::Samples`]); `None` single-sampled (`color` is then the colour).
+    samples: Option<msaa::Samples>,
 }
 
 /// Fixed-function entry points glow does not wrap (compatibility profile), and glClipControl.
@@ -399,6 +403,7 @@ impl Gl {
             format,
             format.gl_enum(),
             glow::DEPTH_ATTACHMENT,
+            1,
         )?;
         self.check("set_target")
     }
@@ -412,6 +417,7 @@ impl Gl {
         format: DepthFormat,
         internal: u32,
         attachment: u32,
+        samples: u32,
     ) -> Result<(), String> {
         if width == 0 || height == 0 {
             return Err("the render target needs a nonzero width and height".into());
@@ -422,18 +428,36 @@ impl Gl {
         unsafe {
             let fbo = gl.create_framebuffer()?;
             gl.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            // Single-sampled: this renderbuffer is the colour. Multisampled: the colour is a
+            // multisampled texture (a shader reads its samples one by one) and this renderbuffer
+            // the single-sampled copy a sample is read from.
             let color = gl.create_renderbuffer()?;
             gl.bind_renderbuffer(glow::RENDERBUFFER, Some(color));
             gl.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, w, h);
-            gl.framebuffer_renderbuffer(
-                glow::FRAMEBUFFER,
-                glow::COLOR_ATTACHMENT0,
-                glow::RENDERBUFFER,
-                Some(color),
-            );
+            let ms = if samples > 1 {
+                Some(msaa::Samples::new(gl, fbo, color, w, h, samples)?)
+            } else {
+                gl.framebuffer_renderbuffer(
+                    glow::FRAMEBUFFER,
+                    glow::COLOR_ATTACHMENT0,
+                    glow::RENDERBUFFER,
+                    Some(color),
+                );
+                None
+            };
             let depth = gl.create_renderbuffer()?;
             gl.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
-            gl.renderbuffer_storage(glow::RENDERBUFFER, internal, w, h);
+            if samples > 1 {
+                gl.renderbuffer_storage_multisample(
+                    glow::RENDERBUFFER,
+                    samples as i32,
+                    internal,
+                    w,
+                    h,
+                );
+            } else {
+                gl.renderbuffer_storage(glow::RENDERBUFFER, internal, w, h);
+            }
             gl.framebuffer_renderbuffer(
                 glow::FRAMEBUFFER,
                 attachment,
@@ -447,6 +471,7 @@ impl Gl {
                 width: w,
                 height: h,
                 format,
+                samples: ms,
             });
             let status = gl.check_framebuffer_status(glow::FRAMEBUFFER);
             if status != glow::FRAMEBUFFER_COMPLETE {
@@ -659,7 +684,17 @@ impl Gl {
         width: u32,
         height: u32,
     ) -> Result<Image, String> {
-        self.require_target()?;
+        if let Some(ms) = self.require_target()?.samples.as_ref() {
+            // SAFETY: this context is current on this thread (Gl's invariant); the target's
+            // objects are alive while it is set.
+            let pixels = unsafe { ms.read_at(&self.gl, origin, width, height) };
+            self.check("glReadPixels(GL_RGBA) of each sample")?;
+            return Ok(Image {
+                width: width as usize,
+                height: height as usize * ms.count(),
+                pixels,
+            });
+        }
         // SAFETY: this context is current on this thread (Gl's invariant).
         let pixels = unsafe {
             read_rgba8_at(
@@ -685,6 +720,9 @@ impl Gl {
     pub fn read_depth(&mut self) -> Result<Vec<f32>, String> {
         let (w, h) = {
             let t = self.require_target()?;
+            if t.samples.is_some() {
+                return Err("read_depth: the target is multisampled".into());
+            }
             (t.width, t.height)
         };
         let mut bytes = vec![0u8; (w * h * 4) as usize];
@@ -751,6 +789,9 @@ impl Gl {
                 self.gl.delete_framebuffer(t.fbo);
                 self.gl.delete_renderbuffer(t.color);
                 self.gl.delete_renderbuffer(t.depth);
+                if let Some(ms) = t.samples {
+                    ms.delete(&self.gl);
+                }
             }
         }
     }
@@ -998,8 +1039,36 @@ impl Gl {
             format,
             internal,
             glow::DEPTH_STENCIL_ATTACHMENT,
+            1,
         )?;
         self.check("set_target_with_stencil")
+    }
+
+    /// As [`Gl::set_target`] (or [`Gl::set_target_with_stencil`] where `packed`), with
+    /// `samples` samples per pixel (1: single-sampled). [`Gl::read_color_at`] then returns every
+    /// sample, unaveraged: the image is `samples` times as tall, sample `s`'s rows after those
+    /// of samples `0..s` ([`msaa`]).
+    ///
+    /// # Errors
+    /// As those two; and a target GL does not make with that many samples.
+    pub fn set_target_samples(
+        &mut self,
+        width: u32,
+        height: u32,
+        format: DepthFormat,
+        packed: bool,
+        samples: u32,
+    ) -> Result<(), String> {
+        let (internal, attachment) = match (packed, format) {
+            (false, _) => (format.gl_enum(), glow::DEPTH_ATTACHMENT),
+            (true, DepthFormat::D24) => (glow::DEPTH24_STENCIL8, glow::DEPTH_STENCIL_ATTACHMENT),
+            (true, DepthFormat::D32F) => (glow::DEPTH32F_STENCIL8, glow::DEPTH_STENCIL_ATTACHMENT),
+            (true, DepthFormat::D16) => {
+                return Err("no packed depth-stencil format with D16".into())
+            }
+        };
+        self.make_target(width, height, format, internal, attachment, samples.max(1))?;
+        self.check("set_target_samples")
     }
 
     /// The stencil bits GL reports for the target (8 after [`Gl::set_target_with_stencil`],
