@@ -358,21 +358,6 @@ pub struct Msaa {
     pub positions: Vec<[f64; 2]>,
 }
 
-/// A full-screen triangle.
-const RESOLVE_VS: &str = "#version 330 core
-void main() {
-    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
-    gl_Position = vec4(p, 0.0, 1.0);
-}
-";
-/// One sample of the multisampled colour, unaveraged.
-const RESOLVE_FS: &str = "#version 330 core
-uniform sampler2DMS tex;
-uniform int s;
-out vec4 frag;
-void main() { frag = texelFetch(tex, ivec2(gl_FragCoord.xy), s); }
-";
-
 impl Msaa {
     /// A `samples`× target of `fmt` beside `gl`'s own, which stays bound.
     pub fn new(gl: &Gl, fmt: DepthFormat, samples: u32) -> Msaa {
@@ -451,7 +436,8 @@ impl Msaa {
                 glow::FRAMEBUFFER_COMPLETE
             );
             let program =
-                crate::link_program(g, RESOLVE_VS, RESOLVE_FS).unwrap_or_else(|e| panic!("{e}"));
+                crate::link_program(g, crate::msaa::VERTEX_SHADER, crate::msaa::FRAGMENT_SHADER)
+                    .unwrap_or_else(|e| panic!("{e}"));
             let vao = g.create_vertex_array().unwrap();
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(target));
             gl.check("MSAA target").unwrap();

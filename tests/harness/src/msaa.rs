@@ -9,8 +9,8 @@
 
 use glow::HasContext;
 
-/// A full-screen triangle.
-const VERTEX_SHADER: &str = "#version 330 core
+/// A full-screen triangle (also [`crate::edges::Msaa`]'s).
+pub(crate) const VERTEX_SHADER: &str = "#version 330 core
 void main() {
     vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
     gl_Position = vec4(p, 0.0, 1.0);
@@ -18,7 +18,7 @@ void main() {
 ";
 
 /// Sample `s` of the multisampled colour at this fragment's pixel.
-const FRAGMENT_SHADER: &str = "#version 330 core
+pub(crate) const FRAGMENT_SHADER: &str = "#version 330 core
 uniform sampler2DMS tex;
 uniform int s;
 out vec4 frag;
