@@ -101,30 +101,23 @@ pub struct DecalShape {
 /// any decal that is really bent.
 const PLANAR_TOLERANCE: f64 = 1.0 / 65_536.0;
 
+/// How far inside the near plane, in NDC depth, a decal that reaches behind it is cut
+/// ([`decal_shape_for_matrix`]): far above f64 rounding, far below a depth any pixel needs.
+const NEAR_CUT_MARGIN: f64 = 1.0 / 65_536.0;
+
 /// The depth range, slope and [`Footprint`] of a planar decal from its eye-space corners
 /// (right-handed, looking down −z: the positions the decal's vertices have after the
 /// model-view transform), seen through `frustum` under `clip` in a `viewport` of `[W, H]` pixels.
 /// [`decal_shape_for_matrix`] does the same for any projection matrix.
 ///
 /// # Errors
-/// As [`decal_shape_for_matrix`], and [`crate::ErrorKind::Domain`] for a corner outside the
-/// depth range `[n, f]` (the corner is named).
+/// As [`decal_shape_for_matrix`].
 pub fn decal_shape(
     frustum: &Frustum,
     clip: ClipDepth,
     viewport: [u32; 2],
     corners: &[Vec3],
 ) -> Result<DecalShape> {
-    let (.., n, f) = frustum.parameters();
-    for (i, c) in corners.iter().enumerate() {
-        let d = -f64::from(c.z);
-        if d < n || d > f {
-            return Err(domain(
-                "every decal corner's eye depth -z must lie within the frustum's [n, f]",
-            )
-            .with_integer("decal corner", i as i64));
-        }
-    }
     decal_shape_for_matrix(&projection_f64(frustum, clip)?, clip, viewport, corners)
 }
 
@@ -140,10 +133,16 @@ pub fn decal_shape(
 /// a corner is its clip `w` (`−z` right-handed, `z` left-handed); the slope is
 /// `(|n_x| + |n_y|)/|n_z|` of the eye-space plane.
 ///
+/// A decal that reaches behind the near plane (under the camera) is cut to the view volume in
+/// f64 first: the depth range and the footprint are those of the part the rasterizer draws,
+/// and [`Footprint::clipped_reach`] the reach of every corner (the rasterizer clips the decal
+/// as drawn).
+///
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate; [`crate::ErrorKind::Domain`]
-/// for fewer than 3 corners, a zero viewport, a corner at or behind the eye (named), corners that
-/// do not span a plane or are not coplanar, or a plane through the eye (edge-on in the image).
+/// for fewer than 3 corners, a zero viewport, corners that do not span a plane or are not
+/// coplanar, a decal wholly outside the view, or a plane through the eye (edge-on in the
+/// image).
 pub fn decal_shape_for_matrix(
     m: &[f64; 16],
     clip: ClipDepth,
@@ -184,8 +183,42 @@ pub fn decal_shape_for_matrix(
     } else {
         0.0
     };
-    let mut outside = false;
-    for (i, p) in eye.iter().enumerate() {
+    // A decal reaching behind the near plane (a pool under the player's feet) is cut to the
+    // view frustum in f64 (its near plane 2⁻¹⁶ of NDC inside, so the cut corners stay in front
+    // after rounding): its pixels are those of the visible part, whose corners lie on the same
+    // plane and whose nearest eye depth is where the screen's edge meets it (a ground decal's
+    // cut at the near plane is below the screen). The rasterizer clips the drawn decal, so its
+    // clipping term counts (`outside`, with the reach of every corner drawn, the cut ones too).
+    let near_side = |p: &[f64; 3]| {
+        let inside = match clip {
+            ClipDepth::NegOneToOne => row(2, p) + row(3, p),
+            ClipDepth::ZeroToOne => row(2, p),
+            ClipDepth::ReversedZeroToOne => row(3, p) - row(2, p),
+        };
+        inside - NEAR_CUT_MARGIN * row(3, p)
+    };
+    let beyond_far = |p: &[f64; 3]| match clip {
+        ClipDepth::ReversedZeroToOne => row(2, p) < 0.0,
+        _ => row(2, p) > row(3, p),
+    };
+    if eye.iter().all(beyond_far) {
+        return Err(domain(
+            "the decal lies wholly beyond the far plane: nothing of it is drawn",
+        ));
+    }
+    let crosses_near = eye.iter().any(|p| near_side(p) <= 0.0); // corners are finite
+    let visible = if crosses_near {
+        cut_to_view(&eye, &near_side, clip, &row)
+    } else {
+        eye.clone()
+    };
+    if visible.len() < 3 {
+        return Err(domain(
+            "the decal lies wholly outside the view (behind the near plane or off screen): nothing of it is drawn",
+        ));
+    }
+    let mut outside = crosses_near;
+    for (i, p) in visible.iter().enumerate() {
         let cw = row(3, p);
         if cw.is_nan() || cw <= 0.0 {
             return Err(
@@ -214,7 +247,7 @@ pub fn decal_shape_for_matrix(
     }
     let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
     let gradient = [-plane[0] / plane[2], -plane[1] / plane[2]];
-    let depths = eye.iter().map(|p| row(3, p));
+    let depths = visible.iter().map(|p| row(3, p));
     let magnitude_depth = window.iter().zip(depths).fold(0.0f64, |a, (p, d)| {
         let magnitude = origin_depth.abs() + gradient[0].abs() * p[0] + gradient[1].abs() * p[1];
         a.max(magnitude * d)
@@ -237,6 +270,39 @@ pub fn decal_shape_for_matrix(
         slope,
         footprint,
     })
+}
+
+/// A signed distance to a plane of the view volume, positive inside.
+type Side<'a> = &'a dyn Fn(&[f64; 3]) -> f64;
+
+/// `polygon` (eye space) cut to the view volume of the projection whose clip-coordinate rows
+/// `row` gives: by `near_side` (positive in front of the near plane), the four sides
+/// `|x_c|, |y_c| ≤ w_c` and the far plane (`z_c ≤ w_c`, reversed `z_c ≥ 0`), in f64.
+fn cut_to_view(
+    polygon: &[[f64; 3]],
+    near_side: Side,
+    clip: ClipDepth,
+    row: &dyn Fn(usize, &[f64; 3]) -> f64,
+) -> Vec<[f64; 3]> {
+    let far_side = |p: &[f64; 3]| match clip {
+        ClipDepth::ReversedZeroToOne => row(2, p),
+        _ => row(3, p) - row(2, p),
+    };
+    let sides: [Side; 5] = [
+        &|p| row(3, p) - row(0, p),
+        &|p| row(3, p) + row(0, p),
+        &|p| row(3, p) - row(1, p),
+        &|p| row(3, p) + row(1, p),
+        &far_side,
+    ];
+    let mut poly = crate::model::clip::cut(polygon, near_side);
+    for side in sides {
+        if poly.len() < 3 {
+            break;
+        }
+        poly = crate::model::clip::cut(&poly, side);
+    }
+    poly
 }
 
 /// The plane `N·p = h₀` through `points` (Newell's normal, the centroid), checked for flatness.
@@ -360,6 +426,31 @@ mod tests {
         );
     }
 
+    /// A decal under the camera, reaching behind it: described by the part on screen (its
+    /// nearest eye depth where the screen's lower edge meets the ground, not the near plane),
+    /// with the clipping reach of all its corners.
+    #[test]
+    fn a_decal_reaching_behind_the_camera_is_its_visible_part() {
+        // Ground 1.7 below the eye, the decal from 2 behind to 6 ahead; the lower edge of
+        // glFrustum(−0.8, 1.2, −0.5, 0.7, 1, 50) is the ray y = −0.5·d: it meets the ground
+        // at d = 3.4.
+        let corners = [(-1.0, 2.0), (1.0, 2.0), (1.0, -6.0), (-1.0, -6.0)]
+            .map(|(x, z)| Vec3::new(x, -1.7, z));
+        let shape = decal_shape(&frustum(), ClipDepth::NegOneToOne, [200, 120], &corners).unwrap();
+        let [near, far] = shape.depth_range;
+        // (−1.7 in f32: 3.4 within 1e-7.)
+        assert!((near - 3.4).abs() < 1e-6, "{near}");
+        assert!((far - 6.0).abs() < 1e-9, "{far}");
+        assert_eq!(shape.slope, f64::INFINITY);
+        assert_eq!(shape.footprint.clipped_reach, 6.0);
+        // The window plane is the ground's: at the lower edge (y = 0) its window depth is
+        // that of d = 3.4.
+        let fp = shape.footprint;
+        let at_edge = fp.origin_depth + fp.gradient[0] * 100.0;
+        let expected = 0.5 * ((51.0 / 49.0) - 100.0 / (49.0 * near)) + 0.5;
+        assert!((at_edge - expected).abs() < 1e-9, "{at_edge} {expected}");
+    }
+
     #[test]
     fn bad_decals_are_refused_with_the_reason() {
         let f = frustum();
@@ -371,7 +462,8 @@ mod tests {
                 .unwrap_err()
                 .to_string()
         };
-        assert!(refuse(&square(-0.5)).contains("[n, f]"));
+        assert!(refuse(&square(-0.5)).contains("wholly outside the view"));
+        assert!(refuse(&square(-60.0)).contains("wholly beyond the far plane"));
         assert!(refuse(&square(-5.0)[..2]).contains("at least 3"));
         let mut bent = square(-5.0);
         bent[2].z = -5.5;

@@ -266,7 +266,7 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
 type Side = Box<dyn Fn(&[f64; 3]) -> f64>;
 
 /// One Sutherland–Hodgman step: the part of `poly` where `side ≥ 0`.
-fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
+pub(crate) fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f64; 3]> {
     let mut out = Vec::with_capacity(poly.len() + 1);
     for (i, a) in poly.iter().enumerate() {
         let b = &poly[(i + 1) % poly.len()];

@@ -1003,7 +1003,7 @@ static void test_decal_corners(void) {
   expect_detail("NULL corners with a count", "decal_corner_count");
   decal.decal_corners = mirrored; /* +z: behind a right-handed eye */
   CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
-  expect_detail("corners behind the eye", "decal corner");
+  expect_detail("corners behind the eye", "wholly outside the view");
   CHECK(untouched(out, sizeof out), "a refused call with corners wrote its output");
 }
 

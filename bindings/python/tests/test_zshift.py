@@ -620,7 +620,17 @@ class FrontDoor(unittest.TestCase):
         self.assertIn("decal_corner_count", str(caught.exception))
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.decal_matrix(*args, subpixel_bits=8, corners=[(x, y, -z) for x, y, z in corners])
-        self.assertIn("decal corner", str(caught.exception))
+        self.assertIn("wholly outside the view", str(caught.exception))
+
+    def test_a_decal_reaching_behind_the_camera_is_answered(self):
+        # A 2x8 decal on the ground under a level camera 1.7 above it, from 2 behind to 6 ahead:
+        # described by the part on screen, the rasterizer's clipping of the rest counted.
+        engine = zshift.perspective(60.0, 16 / 9, 0.1, 1000.0)
+        under = [(-1, -1.7, 2), (1, -1.7, 2), (1, -1.7, -6), (-1, -1.7, -6)]
+        decal = zshift.decal_matrix(engine, zshift.Clip.NEG_ONE_TO_ONE, viewport=(1920, 1080),
+                                    depth_format=zshift.Format.UNORM24, corners=under, subpixel_bits=8)
+        self.assertEqual([i for i in range(16) if decal[i] != engine[i]], [10])
+        self.assertGreater(decal[10], engine[10])  # toward the camera
 
     def test_mismatch_and_bad_matrices_are_refused_with_a_reason(self):
         reversed_m = self.perspective(1.0, 1.5, 0.1, 1000.0, True, True)
