@@ -131,6 +131,56 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         &with(&|d| d.decal_corner_count = 4),
         &["decal_corner_count = 4", "NULL"],
     );
+    // A decal whose nearest point lies within its own offset of the near plane (D16, eye-space
+    // vertices, nothing clipped): the message blames neither a clipped base nor world-space
+    // rounding, and says to pull the near plane in, not out.
+    let at_near = with(&|d| {
+        d.format.value = 0x81A5;
+        d.decal_near = 0.100_000_1;
+        d.decal_far = 0.2;
+    });
+    refused(
+        &at_near,
+        &[
+            "nearest point lies within that offset",
+            "pull the near plane in",
+        ],
+    );
+    let m = projection();
+    let mut out = [0.0f32; 16];
+    zshift_decal_matrix(
+        m.as_ptr(),
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        &at_near,
+        out.as_mut_ptr(),
+    );
+    let said = detail();
+    assert!(
+        !said.contains("world-space") && !said.contains("move the near plane out"),
+        "{said}"
+    );
+    // A decal under the camera, reaching behind it, is answered from the part on screen.
+    let under: [f32; 12] = [
+        -1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 1.0, -1.7, -6.0, -1.0, -1.7, -6.0,
+    ];
+    let behind = with(&|d| {
+        d.decal_near = 0.0;
+        d.decal_far = 0.0;
+        d.slope = 0.0;
+        d.decal_corners = under.as_ptr();
+        d.decal_corner_count = 4;
+    });
+    assert_eq!(
+        zshift_decal_matrix(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            &behind,
+            out.as_mut_ptr()
+        ),
+        ZSHIFT_OK,
+        "{}",
+        detail()
+    );
 }
 
 #[test]

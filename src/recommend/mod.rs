@@ -545,6 +545,8 @@ fn snap(scene: &Scene) -> Result<f64> {
 pub(crate) struct Remedies {
     pub measured: bool,
     pub combined_world: bool,
+    /// World-space vertices (through an f32 view matrix): their rounding may be the cause.
+    pub world: bool,
 }
 
 impl Remedies {
@@ -552,6 +554,7 @@ impl Remedies {
         Self {
             measured: profile.measured,
             combined_world: pipeline.world_space() && !pipeline.eye_first,
+            world: pipeline.world_space(),
         }
     }
 }
@@ -560,11 +563,14 @@ impl Remedies {
 /// apply ([`Remedies`]; `Error`'s detail is a static sentence, so each combination is one).
 macro_rules! near_plane {
     ($cause:expr) => {
+        near_plane!($cause, "move the near plane out")
+    };
+    ($cause:expr, $last:expr) => {
         [
-            concat!($cause, ", pass a probed profile (zshift_probe), or move the near plane out"),
-            concat!($cause, ", or move the near plane out"),
-            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), pass a probed profile (zshift_probe), or move the near plane out"),
-            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), or move the near plane out"),
+            concat!($cause, ", pass a probed profile (zshift_probe), or ", $last),
+            concat!($cause, ", or ", $last),
+            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), pass a probed profile (zshift_probe), or ", $last),
+            concat!($cause, ", compute the eye position first in the vertex shader (proj * (view * p)) and say so (eye_first; Python keyword eye_first=True), or ", $last),
         ]
     };
 }
@@ -574,6 +580,16 @@ const NEAR_PLANE_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs 
 
 /// [`near_plane`] for world-space vertices.
 const NEAR_PLANE_WORLD: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given (a model-view multiplied in float: multiply it in double first), render relative to the camera");
+
+/// [`near_plane`] for a decal whose nearest point lies within its own offset of the near plane,
+/// neither a clipped base nor world-space rounding to blame.
+const NEAR_PLANE_DECAL: [&str; 4] = near_plane!(
+    "the offset this scene needs moves the decal past the near plane (the decal's nearest point lies within that offset of it): leave the part of the decal nearest the camera out of the decal pass",
+    "pull the near plane in (a smaller n)"
+);
+
+/// [`near_plane`] for a decal that the rasterizer clips (off screen, or behind the camera).
+const NEAR_PLANE_DECAL_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a decal that reaches off screen or behind the camera): cut the decal to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python), draw the cut polygon and pass its corners");
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
@@ -605,10 +621,16 @@ pub(crate) fn check_in_range(
     if (0.0..=1.0).contains(&moved) {
         return Ok(());
     }
-    let sentences = if terms.clip >= terms.vertex {
+    // The larger of the two large terms names the cause; with neither (no clipped base, eye-space
+    // vertices), the decal itself lies too near the near plane.
+    let sentences = if terms.clip > 0.0 && terms.clip >= terms.vertex.max(terms.decal_clip) {
         NEAR_PLANE_CLIPPING
-    } else {
+    } else if terms.decal_clip > 0.0 && terms.decal_clip >= terms.vertex {
+        NEAR_PLANE_DECAL_CLIPPING
+    } else if remedies.world {
         NEAR_PLANE_WORLD
+    } else {
+        NEAR_PLANE_DECAL
     };
     let index = usize::from(remedies.measured) + 2 * usize::from(remedies.combined_world);
     Err(crate::error::Error::new(
