@@ -1786,8 +1786,9 @@ fn decals_reaching_behind_the_camera() {
         .filter(|case| case.pitch_deg >= 10.0)
         .enumerate()
         .map(|(i, case)| Case {
-            size: 4.0,
-            distance: [1.2, 0.4][i % 2],
+            // In the case's units (seeded draws scale every length).
+            size: 4.0 * case.scale,
+            distance: [1.2, 0.4][i % 2] * case.scale,
             behind: true,
             ..case
         })
