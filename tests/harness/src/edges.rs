@@ -341,17 +341,15 @@ impl Variant {
 }
 
 /// A 4× multisampled target (colour texture, depth renderbuffer of the sweep's format), read
-/// back one sample at a time: a full-screen pass copies sample `s` (`texelFetch` of a
-/// `sampler2DMS`, no averaging) into a single-sampled FBO, so every sample is counted on its
-/// own against the reference at its own position (`GL_SAMPLE_POSITION`).
+/// back one sample at a time ([`crate::msaa`]: a full-screen pass copies sample `s`, a
+/// `texelFetch` of a `sampler2DMS`, no averaging, into a single-sampled FBO), so every sample is
+/// counted on its own against the reference at its own position (`GL_SAMPLE_POSITION`).
 pub struct Msaa {
     fbo: glow::Framebuffer,
-    color: glow::Texture,
     depth: glow::Renderbuffer,
-    resolve_fbo: glow::Framebuffer,
-    resolve_color: glow::Renderbuffer,
-    program: glow::Program,
-    vao: glow::VertexArray,
+    /// The single-sampled colour a sample is copied into.
+    copy_color: glow::Renderbuffer,
+    samples: crate::msaa::Samples,
     /// The harness's target, bound again after each read.
     target: glow::Framebuffer,
     /// Each sample's position within its pixel.
@@ -367,16 +365,13 @@ impl Msaa {
             let target = g
                 .get_parameter_framebuffer(glow::DRAW_FRAMEBUFFER_BINDING)
                 .expect("the harness's target is bound");
-            let color = g.create_texture().unwrap();
-            g.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(color));
-            g.tex_image_2d_multisample(
-                glow::TEXTURE_2D_MULTISAMPLE,
-                samples as i32,
-                glow::RGBA8 as i32,
-                n,
-                n,
-                true,
-            );
+            let copy_color = g.create_renderbuffer().unwrap();
+            g.bind_renderbuffer(glow::RENDERBUFFER, Some(copy_color));
+            g.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, n, n);
+            let fbo = g.create_framebuffer().unwrap();
+            g.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
+            let colour = crate::msaa::Samples::new(g, fbo, copy_color, n, n, samples)
+                .unwrap_or_else(|e| panic!("{e}"));
             let depth = g.create_renderbuffer().unwrap();
             g.bind_renderbuffer(glow::RENDERBUFFER, Some(depth));
             g.renderbuffer_storage_multisample(
@@ -385,15 +380,6 @@ impl Msaa {
                 fmt.gl_enum(),
                 n,
                 n,
-            );
-            let fbo = g.create_framebuffer().unwrap();
-            g.bind_framebuffer(glow::FRAMEBUFFER, Some(fbo));
-            g.framebuffer_texture_2d(
-                glow::FRAMEBUFFER,
-                glow::COLOR_ATTACHMENT0,
-                glow::TEXTURE_2D_MULTISAMPLE,
-                Some(color),
-                0,
             );
             g.framebuffer_renderbuffer(
                 glow::FRAMEBUFFER,
@@ -420,35 +406,13 @@ impl Msaa {
                     [f64::from(v[0]), f64::from(v[1])]
                 })
                 .collect();
-            let resolve_color = g.create_renderbuffer().unwrap();
-            g.bind_renderbuffer(glow::RENDERBUFFER, Some(resolve_color));
-            g.renderbuffer_storage(glow::RENDERBUFFER, glow::RGBA8, n, n);
-            let resolve_fbo = g.create_framebuffer().unwrap();
-            g.bind_framebuffer(glow::FRAMEBUFFER, Some(resolve_fbo));
-            g.framebuffer_renderbuffer(
-                glow::FRAMEBUFFER,
-                glow::COLOR_ATTACHMENT0,
-                glow::RENDERBUFFER,
-                Some(resolve_color),
-            );
-            assert_eq!(
-                g.check_framebuffer_status(glow::FRAMEBUFFER),
-                glow::FRAMEBUFFER_COMPLETE
-            );
-            let program =
-                crate::link_program(g, crate::msaa::VERTEX_SHADER, crate::msaa::FRAGMENT_SHADER)
-                    .unwrap_or_else(|e| panic!("{e}"));
-            let vao = g.create_vertex_array().unwrap();
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(target));
             gl.check("MSAA target").unwrap();
             Msaa {
                 fbo,
-                color,
                 depth,
-                resolve_fbo,
-                resolve_color,
-                program,
-                vao,
+                copy_color,
+                samples: colour,
                 target,
                 positions,
             }
@@ -468,29 +432,12 @@ impl Msaa {
     /// again.
     pub fn read_samples(&self, gl: &Gl) -> Vec<[u8; 4]> {
         let g = gl.glow();
-        let mut out = Vec::new();
-        for s in 0..self.positions.len() {
-            unsafe {
-                g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.resolve_fbo));
-                g.disable(glow::DEPTH_TEST);
-                g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
-                g.use_program(Some(self.program));
-                g.active_texture(glow::TEXTURE0);
-                g.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(self.color));
-                let t = g.get_uniform_location(self.program, "tex");
-                g.uniform_1_i32(t.as_ref(), 0);
-                let u = g.get_uniform_location(self.program, "s");
-                g.uniform_1_i32(u.as_ref(), s as i32);
-                g.bind_vertex_array(Some(self.vao));
-                g.draw_arrays(glow::TRIANGLES, 0, 3);
-            }
-            out.extend(read(gl));
-        }
+        // SAFETY: this context is current (Gl's invariant) and owns these objects.
         unsafe {
+            let out = self.samples.read_at(g, [0, 0], SIZE as u32, SIZE as u32);
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.target));
-            g.enable(glow::DEPTH_TEST);
+            out
         }
-        out
     }
 
     /// Deletes the target's objects; `gl`'s own target bound.
@@ -499,13 +446,10 @@ impl Msaa {
         unsafe {
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.target));
             g.delete_framebuffer(self.fbo);
-            g.delete_framebuffer(self.resolve_fbo);
-            g.delete_texture(self.color);
             g.delete_renderbuffer(self.depth);
-            g.delete_renderbuffer(self.resolve_color);
-            g.delete_program(self.program);
-            g.delete_vertex_array(self.vao);
+            g.delete_renderbuffer(self.copy_color);
         }
+        self.samples.delete(g);
     }
 }
 

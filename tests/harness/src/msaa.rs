@@ -125,6 +125,8 @@ impl Samples {
         gl.disable(glow::SCISSOR_TEST);
         gl.disable(glow::DEPTH_TEST);
         gl.color_mask(true, true, true, true);
+        // The copy fills its triangle whatever mode the last draw left (edges draw lines).
+        gl.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
         gl.use_program(Some(self.program));
         gl.active_texture(glow::TEXTURE0);
         gl.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(self.texture));
