@@ -434,7 +434,7 @@ impl Msaa {
         let g = gl.glow();
         // SAFETY: this context is current (Gl's invariant) and owns these objects.
         unsafe {
-            let out = self.samples.read_at(g, [0, 0], SIZE as u32, SIZE as u32);
+            let out = self.samples.read_at(g, [0, 0], SIZE, SIZE);
             g.bind_framebuffer(glow::FRAMEBUFFER, Some(self.target));
             out
         }
