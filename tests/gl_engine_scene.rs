@@ -1060,11 +1060,7 @@ impl<'a> Renderer<'a> {
         }
     }
 
-    fn coverage(&mut self, triangles: &[[f32; 3]]) -> Result<Vec<bool>, String> {
-        self.coverage_through(triangles, None)
-    }
-
-    /// [`Renderer::coverage`] of triangles placed as `placement` (a decal entity's model).
+    /// The pixels `triangles` placed as `placement` (a decal entity's model) cover, drawn alone.
     fn coverage_through(
         &mut self,
         triangles: &[[f32; 3]],
@@ -1218,8 +1214,8 @@ impl<'a> Renderer<'a> {
     }
 
     /// Decal pixels drawn as `pass` says over `occluder` (drawn with the plain matrix after the
-    /// ground), among the decal's pixels where the occluder covers the pixel and the decal drawn
-    /// with the plain matrix does not show over it. Over hills the occluder (the terrain scaled
+    /// ground), among the decal's pixels where the occluder shows over the ground and the decal
+    /// drawn with the plain matrix does not show over it. Over hills the occluder (the terrain scaled
     /// toward the camera) is in front of the decal's own plane only where that plane is the
     /// terrain the pixel shows: at a crest's silhouette a mesh decal's piece, cut in f32, can
     /// cover a pixel centre its terrain triangle does not (a seeded draw with a jittered frustum
@@ -1233,8 +1229,18 @@ impl<'a> Renderer<'a> {
         pass: DecalPass,
         silhouettes: bool,
     ) -> Result<Count, String> {
-        let occ_mask = self.coverage(occluder)?;
         let (plain, state) = (self.plain, self.state());
+        // Where the occluder stands in front of the base as drawn: over the ground with the
+        // plain matrix and the scene's test. Its coverage alone is not enough: at a silhouette
+        // (the terrain folding over itself, seen along it) a sample the base's own triangle
+        // covers can fall, by the rounding of the scaled occluder's edges, under the scaled
+        // terrain beyond the fold, behind the base; a decal shown there is over its base with
+        // no occluder in front (one such sample under 4x MSAA was counted as bled).
+        self.clear_and_draw_ground()?;
+        self.draw(occluder, None, &plain, OCCLUDER, &state)?;
+        let occ_mask = self
+            .read_viewport()?
+            .mask_of(zshift_harness::rgba8(OCCLUDER));
         let mut overhang = vec![false; occ_mask.len()];
         if silhouettes {
             self.clear_and_draw_ground()?;
