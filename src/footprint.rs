@@ -197,18 +197,19 @@ pub fn decal_shape_for_matrix(
         };
         inside - NEAR_CUT_MARGIN * row(3, p)
     };
-    let beyond_far = |p: &[f64; 3]| match clip {
-        ClipDepth::ReversedZeroToOne => row(2, p) < 0.0,
-        _ => row(2, p) > row(3, p),
+    // Positive in front of the far plane: z_c ≤ w_c, reversed z_c ≥ 0.
+    let far_side = |p: &[f64; 3]| match clip {
+        ClipDepth::ReversedZeroToOne => row(2, p),
+        _ => row(3, p) - row(2, p),
     };
-    if eye.iter().all(beyond_far) {
+    if eye.iter().all(|p| far_side(p) < 0.0) {
         return Err(domain(
             "the decal lies wholly beyond the far plane: nothing of it is drawn",
         ));
     }
     let crosses_near = eye.iter().any(|p| near_side(p) <= 0.0); // corners are finite
     let visible = if crosses_near {
-        cut_to_view(&eye, &near_side, clip, &row)
+        cut_to_view(&eye, &near_side, &far_side, &row)
     } else {
         eye.clone()
     };
@@ -277,23 +278,19 @@ type Side<'a> = &'a dyn Fn(&[f64; 3]) -> f64;
 
 /// `polygon` (eye space) cut to the view volume of the projection whose clip-coordinate rows
 /// `row` gives: by `near_side` (positive in front of the near plane), the four sides
-/// `|x_c|, |y_c| ≤ w_c` and the far plane (`z_c ≤ w_c`, reversed `z_c ≥ 0`), in f64.
+/// `|x_c|, |y_c| ≤ w_c` and `far_side` (positive in front of the far plane), in f64.
 fn cut_to_view(
     polygon: &[[f64; 3]],
     near_side: Side,
-    clip: ClipDepth,
+    far_side: Side,
     row: &dyn Fn(usize, &[f64; 3]) -> f64,
 ) -> Vec<[f64; 3]> {
-    let far_side = |p: &[f64; 3]| match clip {
-        ClipDepth::ReversedZeroToOne => row(2, p),
-        _ => row(3, p) - row(2, p),
-    };
     let sides: [Side; 5] = [
         &|p| row(3, p) - row(0, p),
         &|p| row(3, p) + row(0, p),
         &|p| row(3, p) - row(1, p),
         &|p| row(3, p) + row(1, p),
-        &far_side,
+        far_side,
     ];
     let mut poly = crate::model::clip::cut(polygon, near_side);
     for side in sides {

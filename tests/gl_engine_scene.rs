@@ -668,13 +668,19 @@ impl Case {
             }
     }
 
-    /// Whether the decal reaches behind the near plane (some of it in front).
+    /// Whether the decal reaches behind the near plane (some of it in front): drawn only when
+    /// [`Case::behind`] allows it.
     fn crosses_near(&self) -> bool {
-        let (.., n, f) = self.frustum().parameters();
-        let depths = self.decal_world().map(|p| -self.eye(p.map(f64::from))[2]);
-        depths.iter().all(|&d| d < f * 0.99)
-            && depths.iter().any(|&d| d > n * 1.01)
-            && depths.iter().any(|&d| d <= n * 1.01)
+        Case {
+            behind: true,
+            ..*self
+        }
+        .decal_in_depth()
+            && !Case {
+                behind: false,
+                ..*self
+            }
+            .decal_in_depth()
     }
 
     fn framebuffer(&self) -> [u32; 2] {

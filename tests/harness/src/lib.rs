@@ -397,15 +397,7 @@ impl Gl {
         height: u32,
         format: DepthFormat,
     ) -> Result<(), String> {
-        self.make_target(
-            width,
-            height,
-            format,
-            format.gl_enum(),
-            glow::DEPTH_ATTACHMENT,
-            1,
-        )?;
-        self.check("set_target")
+        self.set_target_samples(width, height, format, false, 1)
     }
 
     /// The FBO behind [`Gl::set_target`] and [`Gl::set_target_with_stencil`]: RGBA8 colour and
@@ -1028,20 +1020,7 @@ impl Gl {
         height: u32,
         format: DepthFormat,
     ) -> Result<(), String> {
-        let internal = match format {
-            DepthFormat::D24 => glow::DEPTH24_STENCIL8,
-            DepthFormat::D32F => glow::DEPTH32F_STENCIL8,
-            DepthFormat::D16 => return Err("no packed depth-stencil format with D16".into()),
-        };
-        self.make_target(
-            width,
-            height,
-            format,
-            internal,
-            glow::DEPTH_STENCIL_ATTACHMENT,
-            1,
-        )?;
-        self.check("set_target_with_stencil")
+        self.set_target_samples(width, height, format, true, 1)
     }
 
     /// As [`Gl::set_target`] (or [`Gl::set_target_with_stencil`] where `packed`), with
