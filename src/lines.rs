@@ -243,9 +243,13 @@ pub struct EdgeRecommendation {
     /// The largest window-depth offset between edge and face the method applies over the mesh
     /// (unit window depth; (a) at the steepest face that matters).
     pub window_offset: f64,
-    /// The line term `L = g·Δ` (unit window depth).
+    /// The line term `L = g·Δ` (unit window depth; polygon-mode lines `2·g·Δ`: the
+    /// neighbouring triangle's outline adds its own slope term).
     pub line_term: f64,
-    /// `Δ = (w + 1)/2`, pixels: how far from the pixel a line fragment's depth is taken.
+    /// `Δ`, pixels (times `max(|∂z/∂x|, |∂z/∂y|)`): how far from the pixel or sample a line
+    /// fragment's depth is taken. `(w + 1)/2` in the worst case and for polygon-mode lines;
+    /// the probed reach plus 1/16 plus `(w − 1)/2` for `GL_LINES` with a profile;
+    /// `√2·(w + 1)/2` under MSAA (plus 1 for polygon-mode lines).
     pub line_reach: f64,
     /// `g`: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,
