@@ -474,7 +474,8 @@ typedef struct {
    derived). NULL (a zeroed struct): decal_near, decal_far and slope describe the decal.
    Projected through the matrix given (any handedness or flip). Planes that contain the
    view direction (ground under a level camera) are answered from the corners, and so are
-   decals that reach behind the camera (under it): the part on screen is what counts.
+   decals that reach behind the camera (under it) or beyond the far plane: the part drawn
+   is what counts.
    */
   const float *decal_corners;
   /*

@@ -105,6 +105,12 @@ const PLANAR_TOLERANCE: f64 = 1.0 / 65_536.0;
 /// ([`decal_shape_for_matrix`]): far above f64 rounding, far below a depth any pixel needs.
 const NEAR_CUT_MARGIN: f64 = 1.0 / 65_536.0;
 
+/// How far inside the far plane, relative to clip `w`, a decal that reaches beyond it is cut
+/// ([`decal_shape_for_matrix`]): far above f64 rounding, so the cut corners' eye depths stay
+/// within the far plane the recommendation checks them against, and far below a pixel's depth
+/// step (2⁻⁴⁰ of the far plane's depth).
+const FAR_CUT_MARGIN: f64 = 1.0 / 1_099_511_627_776.0;
+
 /// The depth range, slope and [`Footprint`] of a planar decal from its eye-space corners
 /// (right-handed, looking down −z: the positions the decal's vertices have after the
 /// model-view transform), seen through `frustum` under `clip` in a `viewport` of `[W, H]` pixels.
@@ -133,10 +139,11 @@ pub fn decal_shape(
 /// a corner is its clip `w` (`−z` right-handed, `z` left-handed); the slope is
 /// `(|n_x| + |n_y|)/|n_z|` of the eye-space plane.
 ///
-/// A decal that reaches behind the near plane (under the camera) is cut to the view volume in
-/// f64 first: the depth range and the footprint are those of the part the rasterizer draws,
-/// and [`Footprint::clipped_reach`] the reach of every corner (the rasterizer clips the decal
-/// as drawn).
+/// A decal that reaches behind the near plane (under the camera) or beyond the far plane (a
+/// road marking under a short far plane) is cut to the view volume in f64 first: the depth
+/// range and the footprint are those of the part the rasterizer draws, and
+/// [`Footprint::clipped_reach`] the reach of every corner (the rasterizer clips the decal as
+/// drawn).
 ///
 /// # Errors
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate; [`crate::ErrorKind::Domain`]
@@ -207,9 +214,14 @@ pub fn decal_shape_for_matrix(
             "the decal lies wholly beyond the far plane: nothing of it is drawn",
         ));
     }
+    // A decal running on beyond the far plane (a road marking under a short far plane) is cut
+    // there too: the rasterizer draws only its part in front, and its depth range is that
+    // part's (a corner beyond the far plane would be refused as a distance past it).
     let crosses_near = eye.iter().any(|p| near_side(p) <= 0.0); // corners are finite
-    let visible = if crosses_near {
-        cut_to_view(&eye, &near_side, &far_side, &row)
+    let crosses_far = eye.iter().any(|p| far_side(p) <= 0.0);
+    let far_cut = |p: &[f64; 3]| far_side(p) - FAR_CUT_MARGIN * row(3, p);
+    let visible = if crosses_near || crosses_far {
+        cut_to_view(&eye, &near_side, &far_cut, &row)
     } else {
         eye.clone()
     };
@@ -218,7 +230,7 @@ pub fn decal_shape_for_matrix(
             "the decal lies wholly outside the view (behind the near plane or off screen): nothing of it is drawn",
         ));
     }
-    let mut outside = crosses_near;
+    let mut outside = crosses_near || crosses_far;
     for (i, p) in visible.iter().enumerate() {
         let cw = row(3, p);
         if cw.is_nan() || cw <= 0.0 {
@@ -446,6 +458,27 @@ mod tests {
         let at_edge = fp.origin_depth + fp.gradient[0] * 100.0;
         let expected = 0.5 * ((51.0 / 49.0) - 100.0 / (49.0 * near)) + 0.5;
         assert!((at_edge - expected).abs() < 1e-9, "{at_edge} {expected}");
+    }
+
+    /// A decal running on beyond the far plane (a road marking under a short far plane): its
+    /// depth range ends at the far plane, within f64 rounding, under every convention, and the
+    /// rasterizer's clipping of it counts with the reach of all its corners.
+    #[test]
+    fn a_decal_reaching_beyond_the_far_plane_is_its_part_in_front() {
+        // The ground 1.7 below the eye, the decal from 40 to 70 ahead; the far plane at 50.
+        let corners = [(-1.0, -40.0), (1.0, -40.0), (1.0, -70.0), (-1.0, -70.0)]
+            .map(|(x, z)| Vec3::new(x, -1.7, z));
+        for clip in [
+            ClipDepth::NegOneToOne,
+            ClipDepth::ZeroToOne,
+            ClipDepth::ReversedZeroToOne,
+        ] {
+            let shape = decal_shape(&frustum(), clip, [200, 120], &corners).unwrap();
+            let [near, far] = shape.depth_range;
+            assert!((near - 40.0).abs() < 1e-9, "{clip:?} {near}");
+            assert!(far < 50.0 && far > 50.0 * (1.0 - 1e-9), "{clip:?} {far}");
+            assert_eq!(shape.footprint.clipped_reach, 70.0, "{clip:?}");
+        }
     }
 
     #[test]

@@ -29,7 +29,9 @@
 //! own size instead of 320×180; `ZSHIFT_ENGINE_SCENES_SEED=<n>` another draw, with values between
 //! the grid's, the ground at a world height as far from the origin as the translation and a field
 //! of view of 40° to 100°; `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>` one `n`th of the grid;
-//! `ZSHIFT_ENGINE_SCENES_MSAA=4` every scene on a 4× multisampled target, each sample judged.
+//! `ZSHIFT_ENGINE_SCENES_MSAA=4` every scene on a 4× multisampled target, each sample judged;
+//! `ZSHIFT_ENGINE_SCENES_EVERY=<n>` one case in `n` for the tests that draw a variation of the grid
+//! (1: all of them).
 
 mod gl_common;
 
@@ -259,6 +261,9 @@ struct Case {
     /// The decal may reach behind the near plane (a decal under the camera, part of it behind;
     /// [`decals_reaching_behind_the_camera`]): drawn, not skipped.
     behind: bool,
+    /// The decal may run on beyond the far plane (a road marking under a short far plane; some
+    /// of it in front, [`decals_reaching_beyond_the_far_plane`]): drawn, not skipped.
+    beyond: bool,
 }
 
 /// How an engine multiplies a decal entity's model-view `V·M` on the CPU, and what it then tells
@@ -660,12 +665,16 @@ impl Case {
     fn decal_in_depth(&self) -> bool {
         let (.., n, f) = self.frustum().parameters();
         let depths = self.decal_world().map(|p| -self.eye(p.map(f64::from))[2]);
-        depths.iter().all(|&d| d < f * 0.99)
-            && if self.behind {
-                depths.iter().any(|&d| d > n * 1.01)
-            } else {
-                depths.iter().all(|&d| d > n * 1.01)
-            }
+        let in_front_of_far = |d: &f64| *d < f * 0.99;
+        (if self.beyond {
+            depths.iter().any(in_front_of_far) && depths.iter().any(|&d| d > f * 1.01)
+        } else {
+            depths.iter().all(in_front_of_far)
+        }) && if self.behind {
+            depths.iter().any(|&d| d > n * 1.01)
+        } else {
+            depths.iter().all(|&d| d > n * 1.01)
+        }
     }
 
     /// Whether the decal reaches behind the near plane (some of it in front): drawn only when
@@ -1174,13 +1183,35 @@ impl<'a> Renderer<'a> {
         pass: DecalPass,
         offset: Option<(f32, f32)>,
     ) -> Result<Count, String> {
-        self.clear_and_draw_ground()?;
         let state = DrawState {
             polygon_offset: offset,
             ..self.state()
         };
+        // A decal the far plane cuts: the clipper computes its far corners from their depth,
+        // so the offset moves them, and with them the edges that end there; a pixel centre on
+        // such an edge is covered at one offset and not at the next, whatever the depth test
+        // (a grid scene "lost" a pixel on the far line at every offset from 2 to 2²² steps
+        // but two, another two at the corners where the far line meets the sides). Judged: the
+        // mask's pixels the decal pass covers when drawn alone.
+        let mask = if self.case.beyond {
+            self.clear()?;
+            let always = DrawState {
+                depth_func: glow::ALWAYS,
+                ..state
+            };
+            self.draw_decal(pass, &always)?;
+            let covered = self.read_viewport()?.mask_of(zshift_harness::rgba8(DECAL));
+            self.mask
+                .iter()
+                .zip(covered)
+                .map(|(m, c)| *m && c)
+                .collect()
+        } else {
+            self.mask.clone()
+        };
+        self.clear_and_draw_ground()?;
         self.draw_decal(pass, &state)?;
-        Ok(Count::decal_missing(&self.read_viewport()?, &self.mask))
+        Ok(Count::decal_missing(&self.read_viewport()?, &mask))
     }
 
     /// Decal pixels shown over an occluder parallel to the ground whose eye depth is `gap` in
@@ -1668,6 +1699,7 @@ fn cases() -> Vec<Case> {
                             skew: [0.0, 0.0],
                             samples: samples(),
                             behind: false,
+                            beyond: false,
                         };
                         let case = if seed == 0 {
                             case
@@ -1787,7 +1819,8 @@ fn every_sample_holds_under_msaa() {
 /// Decals under the camera, part of them behind it (a pool of blood under the player, a
 /// scorch mark the camera stands on), which the sweep above skips: the grid's scenes looking
 /// 10° or more down, each decal moved under the camera (a 4-unit square from 0.8 units behind
-/// it to 3.2 ahead, or from 1.6 behind to 2.4 ahead), one in three drawn as they are (all:
+/// it to 3.2 ahead, or from 1.6 behind to 2.4 ahead), one in three drawn as they are
+/// (`ZSHIFT_ENGINE_SCENES_EVERY=1`, all:
 /// 822 scenes, 87 s, 0 lost, 0 bled, none refused). zshift is given all
 /// the corners; it cuts the decal to the view in f64 for its footprint and counts the
 /// rasterizer's clipping of it.
@@ -1805,7 +1838,42 @@ fn decals_reaching_behind_the_camera() {
             ..case
         })
         .filter(Case::crosses_near)
-        .step_by(3);
+        .step_by(every(3));
+    sweep(picked.collect(), 100);
+}
+
+/// One case in `n` for the tests that draw a variation of the grid
+/// ([`decals_reaching_behind_the_camera`], [`decals_reaching_beyond_the_far_plane`]), or one in
+/// `ZSHIFT_ENGINE_SCENES_EVERY` (1: all of them).
+fn every(n: usize) -> usize {
+    std::env::var("ZSHIFT_ENGINE_SCENES_EVERY")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&k| k > 0)
+        .unwrap_or(n)
+}
+
+/// Decals running on beyond the far plane (a road marking, a long skid mark, under the short
+/// far plane of a fogged or indoor scene), which the sweep above skips: the grid's scenes with
+/// the far plane moved to the eye depth of the decal's centre, so that the rasterizer clips the
+/// decal (and the ground) there, one in six drawn (`ZSHIFT_ENGINE_SCENES_EVERY=1`: all). zshift is given all the corners; it cuts
+/// the decal to the view in f64 for its footprint and counts the rasterizer's clipping of it
+/// (before, such a decal was refused: "the decal's eye distance lies beyond the far plane").
+#[test]
+fn decals_reaching_beyond_the_far_plane() {
+    let picked = cases()
+        .into_iter()
+        .map(|case| {
+            let [x, z] = case.decal_centre();
+            let y = case.surface(x, z);
+            Case {
+                far: -case.eye([x, y, z])[2],
+                beyond: true,
+                ..case
+            }
+        })
+        .filter(|case| case.far > 10.0 * case.near && case.decal_in_depth())
+        .step_by(every(6));
     sweep(picked.collect(), 100);
 }
 
@@ -2051,6 +2119,7 @@ fn a_decal_one_matrix_cannot_serve_is_drawn_piece_by_piece() {
         skew: [0.0, 0.0],
         samples: 1,
         behind: false,
+        beyond: false,
     };
     for profile in [RasterizerProfile::worst_case(), probed] {
         let out = run_case(&mut gl, case, &profile)

@@ -181,6 +181,44 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         "{}",
         detail()
     );
+    // So is a decal running on beyond the far plane (1000 here): the part in front counts.
+    let road: [f32; 12] = [
+        -1.0, -1.7, -990.0, 1.0, -1.7, -990.0, 1.0, -1.7, -1010.0, -1.0, -1.7, -1010.0,
+    ];
+    let beyond = with(&|d| {
+        d.decal_near = 0.0;
+        d.decal_far = 0.0;
+        d.slope = 0.0;
+        d.decal_corners = road.as_ptr();
+        d.decal_corner_count = 4;
+    });
+    assert_eq!(
+        zshift_decal_matrix(
+            m.as_ptr(),
+            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+            &beyond,
+            out.as_mut_ptr()
+        ),
+        ZSHIFT_OK,
+        "{}",
+        detail()
+    );
+    // A decal the rasterizer clips (reaching behind the camera) whose clipping cannot be
+    // bounded, world-space rounding far from the origin: the message is about the decal and
+    // its corners, not a base the caller never described.
+    let far_world = with(&|d| {
+        d.decal_near = 0.0;
+        d.decal_far = 0.0;
+        d.slope = 0.0;
+        d.decal_corners = under.as_ptr();
+        d.decal_corner_count = 4;
+        d.pipeline.world_reach = 1e7;
+    });
+    refused(
+        &far_world,
+        &["clipping of the decal", "decal_corners", "pass its corners"],
+    );
+    assert!(!detail().contains("base_reach"), "{}", detail());
 }
 
 #[test]

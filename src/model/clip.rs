@@ -143,6 +143,7 @@ pub(crate) fn clip_term(
     exact_form: bool,
     pipeline: &Pipeline,
     window_per_ndc: f64,
+    clipped: Clipped,
 ) -> Result<f64> {
     let a = clip_magnitudes(m, reach);
     // World-space vertices carry the f32 model-view's errors into the clipper, which
@@ -156,19 +157,48 @@ pub(crate) fn clip_term(
     let l = form.bound([0, 1, 2, 3].map(|k| gamma * a[k]))
         + world_beyond_vertex_term(form, exact_form, m, pipeline, world_l, w_low, d1);
     if w_low.is_nan() || w_low <= 0.5 * d1 {
-        // Name the larger cause: the clipper's own rounding of a far-reaching base, or the
-        // world-space rounding of its vertices near the eye.
-        let detail = if world_w > gamma * reach {
-            "the world-space vertices' f32 rounding is too large near the eye to bound the clipped base: render relative to the camera, or multiply the model-view in double and pass view_matrix and world_box (C fields; Python keywords), or cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0"
-        } else {
-            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0"
-        };
-        return Err(domain(detail).with_value("base_reach", reach));
+        return Err(unbounded(clipped, world_w > gamma * reach, reach));
     }
     representable(
         window_per_ndc * l / w_low,
         "the clipping term overflows f64",
     )
+}
+
+/// What the rasterizer clips, for [`clip_term`]'s refusal: the base (its `base_reach`), or the
+/// decal itself where its corners reach off screen or behind the camera (their reach).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Clipped {
+    /// The base, of the caller's `base_reach`.
+    Base,
+    /// The decal, of its corners' reach ([`crate::footprint::Footprint::clipped_reach`]).
+    Decal,
+}
+
+/// The refusal of a clipping term whose denominator is not bounded away from 0, naming the
+/// larger cause (the world-space rounding of the vertices near the eye, `world`, or the
+/// clipper's own rounding of a far-reaching primitive) and the remedy for what is clipped: the
+/// base is cut and drawn with `base_reach = 0`; the decal is cut and its cut corners passed.
+fn unbounded(clipped: Clipped, world: bool, reach: f64) -> crate::error::Error {
+    let (detail, name) = match (clipped, world) {
+        (Clipped::Base, true) => (
+            "the world-space vertices' f32 rounding is too large near the eye to bound the clipped base: render relative to the camera, or multiply the model-view in double and pass view_matrix and world_box (C fields; Python keywords), or cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
+            "base_reach",
+        ),
+        (Clipped::Base, false) => (
+            "the base reaches so far that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust) and pass base_reach = 0",
+            "base_reach",
+        ),
+        (Clipped::Decal, true) => (
+            "the world-space vertices' f32 rounding is too large near the eye to bound the clipping of the decal, which reaches off screen or behind the camera: render relative to the camera, or multiply the model-view in double and pass view_matrix and world_box (C fields; Python keywords), or cut the decal to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust), draw the cut polygon and pass its corners",
+            "reach of decal_corners",
+        ),
+        (Clipped::Decal, false) => (
+            "the decal reaches so far off screen or behind the camera that f32 clipping cannot be bounded: cut it to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python, clip_to_frustum in Rust), draw the cut polygon and pass its corners",
+            "reach of decal_corners",
+        ),
+    };
+    domain(detail).with_value(name, reach)
 }
 
 /// The part of the clipped vertices' world error `world_l` (their `|L|` bound, over the

@@ -2,6 +2,7 @@
 //! one; this gathers them for the decal): `E`, `V`, `S`, `C`, the depth test and the quantum.
 
 use super::*;
+use crate::model::clip::Clipped;
 
 /// The model's terms for `scene` under `clip` (see the module docs); `NegOneToOne` gives
 /// exactly [`error_terms`].
@@ -87,7 +88,9 @@ pub fn clip_error_terms(scene: &Scene, clip: ClipDepth) -> Result<ErrorTerms> {
     let decal_reach = scene.footprint.map_or(0.0, |f| f.clipped_reach);
     let decal_clip = match scene.profile.near_clip {
         _ if decal_reach == 0.0 => 0.0,
-        NearClip::ClippedF32 => clip_term_of_reach(scene, clip, &mapping, decal_reach)?,
+        NearClip::ClippedF32 => {
+            clip_term_of_reach(scene, clip, &mapping, decal_reach, Clipped::Decal)?
+        }
         NearClip::PlanePreserving => plane + snap + pipeline.per_unit(2.0 / 16_777_215.0),
     };
     // A facing plane whose every corner has the same f32 z (base and decal) is drawn at one
@@ -184,7 +187,7 @@ fn clip_term(scene: &Scene, clip: ClipDepth, mapping: &DepthMapping) -> Result<f
     let Base::Clipped { reach } = scene.base else {
         return Ok(0.0);
     };
-    clip_term_of_reach(scene, clip, mapping, reach)
+    clip_term_of_reach(scene, clip, mapping, reach, Clipped::Base)
 }
 
 /// [`clip_term`] for a primitive of eye-space `reach` on the decal's plane (the base, or the
@@ -194,6 +197,7 @@ fn clip_term_of_reach(
     clip: ClipDepth,
     mapping: &DepthMapping,
     reach: f64,
+    clipped: Clipped,
 ) -> Result<f64> {
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
     // The bound on six clip stages of f32 rounding, or the probe's clip_ulps with its margin.
@@ -208,5 +212,6 @@ fn clip_term_of_reach(
         scene.footprint.is_some(),
         &scene.pipeline,
         mapping.window_per_ndc(),
+        clipped,
     )
 }
