@@ -255,7 +255,7 @@ pub fn decal_shape_for_matrix(
     let (plane, offset) = plane_through(&window)?;
     if plane[2] == 0.0 {
         return Err(domain(
-            "the decal's plane passes through the eye: it is edge-on in the image and covers no pixel",
+            "the decal's plane is edge-on in the image and covers no pixel: it passes through the eye (or, under an orthographic projection, contains the view direction: level ground seen by a level orthographic camera)",
         ));
     }
     let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
