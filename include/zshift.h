@@ -354,7 +354,8 @@ typedef struct {
    `glDepthRange`'s near end (Direct3D: the viewport's MinDepth). With depth_range_far:
    0 <= near < far <= 1; both 0 (a zeroed struct) means the default glDepthRange(0, 1).
    A sub-range (first-person weapons [0, 0.1], skyboxes [0.99, 1]) makes each stored step a
-   larger part of the NDC range.
+   larger part of the NDC range. An inverted range (glDepthRange(1, 0), reversed depth
+   without glClipControl) is refused, naming glClipControl and ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE.
    */
   double depth_range_near;
   /*

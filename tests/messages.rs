@@ -118,6 +118,26 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         }),
         &["depth_range_far = 0.5", "depth_range_near = 0.6"],
     );
+    // glDepthRange(1, 0), reversed depth without glClipControl: the remedy is named.
+    refused(
+        &with(&|d| {
+            d.pipeline.depth_range_near = 1.0;
+            d.pipeline.depth_range_far = 0.0;
+        }),
+        &[
+            "inverted glDepthRange",
+            "glClipControl",
+            "ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE",
+        ],
+    );
+    // A depth range end outside [0, 1] is refused as such.
+    refused(
+        &with(&|d| {
+            d.pipeline.depth_range_near = 0.0;
+            d.pipeline.depth_range_far = 1.5;
+        }),
+        &["depth_range_far = 1.5"],
+    );
     refused(
         &with(&|d| d.pipeline.world_reach = -2.0),
         &["world_reach = -2"],

@@ -120,7 +120,8 @@ impl Pipeline {
     /// # Errors
     /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite `world_reach` or depth range end;
     /// [`crate::ErrorKind::Domain`] for a negative `world_reach`, or a depth range that is not
-    /// `0 ≤ near < far ≤ 1`.
+    /// `0 ≤ near < far ≤ 1` (an inverted one, `glDepthRange(1, 0)`, with the remedy:
+    /// `glClipControl` and reversed Z).
     #[inline]
     pub fn check(&self) -> Result<()> {
         // The default pipeline, the usual case, passes at once (a box without its view is still
@@ -150,6 +151,16 @@ impl Pipeline {
         for (name, x) in [("depth_range_near", near), ("depth_range_far", far)] {
             finite(x, "a glDepthRange end is NaN or infinite")
                 .map_err(|e| e.with_value(name, x))?;
+        }
+        if (0.0..=1.0).contains(&near) && (0.0..near).contains(&far) {
+            // glDepthRange(1, 0): reversed depth without glClipControl. Not modelled (the
+            // stored depth then falls as NDC depth rises); name the remedy that also keeps the
+            // precision such a range loses (NDC depth near 1 is already rounded in f32).
+            return Err(domain(
+                "an inverted glDepthRange (far < near: reversed depth without glClipControl) is not modelled: for reversed Z use glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE), a reversed projection, glDepthRange(0, 1) and ZSHIFT_CLIP_REVERSED_ZERO_TO_ONE (Python Clip.REVERSED_ZERO_TO_ONE), which also keeps the precision an inverted range loses",
+            )
+            .with_value("depth_range_far", far)
+            .with_bound("depth_range_near", near));
         }
         if !(0.0..1.0).contains(&near) {
             return Err(domain(
