@@ -338,6 +338,24 @@ fn judged(
         let (t, i) = world.first_hit(eye, d, 0.0, f64::INFINITY, None)?;
         Some((t, i, [0, 1, 2].map(|k| eye[k] + t * d[k])))
     };
+    // Map depth (NDC z of the light) and each face's gradient of it per texel, for the
+    // continuity check below.
+    let depth = |q: [f64; 3]| {
+        let c = apply(&light_vp, q);
+        c[2] / c[3]
+    };
+    let gradients: Vec<[f64; 2]> = world
+        .tris
+        .iter()
+        .map(|t| {
+            let corners = t.v.map(|v| {
+                let uv = to_map(v);
+                [uv[0], uv[1], depth(v)]
+            });
+            let normal = cross(sub(corners[1], corners[0]), sub(corners[2], corners[0]));
+            [-normal[0] / normal[2], -normal[1] / normal[2]]
+        })
+        .collect();
     let edge = reach + 1.5;
     let pixel = 2.0 / CAMERA as f64;
     let mut out = Vec::with_capacity(CAMERA * CAMERA);
@@ -361,6 +379,7 @@ fn judged(
                 if uv.iter().any(|&c| c < edge + 1.0 || c > n - edge - 1.0) {
                     return None;
                 }
+                let mut hits = Vec::with_capacity(25);
                 for a in -2..=2 {
                     for b in -2..=2 {
                         let at = [uv[0] + edge * a as f64 / 2.0, uv[1] + edge * b as f64 / 2.0];
@@ -371,9 +390,31 @@ fn judged(
                         if planar && !coplanar(&world.tris[i], &world.tris[j]) {
                             return None;
                         }
+                        hits.push((j, q, at));
                     }
                 }
-                Some(true)
+                // The surface the lookup reads must be the one through the pixel's point, not
+                // a crest of the same object in front of it (its self-shadow edge: a seeded
+                // draw judged a lit terrain pixel whose kernel read a hill 9 texels' worth of
+                // its slope nearer the light). Within the neighbourhood the map depth may
+                // change by at most the steepest sampled face's gradient over the distance
+                // (twice, for faces between the samples).
+                let g = hits
+                    .iter()
+                    .map(|h| h.0)
+                    .chain([i])
+                    .fold([0.0f64; 2], |g, j| {
+                        [
+                            g[0].max(gradients[j][0].abs()),
+                            g[1].max(gradients[j][1].abs()),
+                        ]
+                    });
+                let zp = depth(p);
+                let continuous = hits.iter().all(|&(_, q, at)| {
+                    let run = g[0] * (at[0] - uv[0]).abs() + g[1] * (at[1] - uv[1]).abs();
+                    (depth(q) - zp).abs() <= 2.0 * run + 1e-12 * zp.abs()
+                });
+                continuous.then_some(true)
             })());
         }
     }
