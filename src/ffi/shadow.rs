@@ -243,9 +243,10 @@ impl ZshiftShadowMap {
 /// Errors: ZSHIFT_ERR_NULL_POINTER (map or out NULL), ZSHIFT_ERR_NOT_FINITE, ZSHIFT_ERR_DOMAIN
 /// (bad projection, receivers outside [n, f], an angle outside [0, 90), an unknown enum, a
 /// profile that fails its checks: zshift_last_error() names the field),
-/// ZSHIFT_ERR_UNRESOLVABLE (the bias would span the map's whole depth range at that angle; the
-/// detail names the remedy: higher resolution, smaller kernel, smaller limit angle, tighter
-/// near/far), ZSHIFT_ERR_OVERFLOW (an integer bias does not fit). `*out` untouched on error.
+/// ZSHIFT_ERR_UNRESOLVABLE (the rounding terms alone would span the map's whole depth range;
+/// the detail names the remedy: tighter near/far, a deeper format; where only the clamp would
+/// span it, none is set: gl_clamp 0, as for a spot whose rays graze), ZSHIFT_ERR_OVERFLOW (an
+/// integer bias does not fit). `*out` untouched on error.
 #[no_mangle]
 pub extern "C" fn zshift_shadow_bias(
     map: *const ZshiftShadowMap,

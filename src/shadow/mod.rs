@@ -131,7 +131,11 @@
 //! `factor = 2a` (above). The clamp (`DepthBiasClamp`, Vulkan's `depthBiasClamp`,
 //! `glPolygonOffsetClamp`) is `K + S + F(θ_max)`: the bias never exceeds what the limit angle needs,
 //! and surfaces beyond it (facing away, hidden by shading) are left to acne; 0 means "no clamp"
-//! in every API, which is what a spot light gets when its rays can graze.
+//! in every API, which is what a spot light gets when its rays can graze, and any light where
+//! the clamp would span the map's whole depth range (a grazing limit angle under a wide kernel
+//! at a low resolution): the slope factor still covers every plane's footprint, and casters
+//! that steep are pushed past the far plane and cast no shadow. Only a constant `K` that spans
+//! the range is refused.
 //!
 //! **Receiver-side alternatives** (an engine biasing in the lookup shader): along the light,
 //! the world distance whose depth change is `K + S + F(θ_max)` at the farthest receiver

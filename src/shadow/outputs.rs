@@ -1,7 +1,7 @@
 //! The outputs of the terms ("Outputs" in the module docs): the constant in each API's units
 //! against its resolvable difference at the receivers' smallest window depth, the slope factor
-//! and the clamp rounded up to f32, the refusal where the bias would span the map's depth
-//! range, the receiver-side offsets along the light and along the normal, and the cost
+//! and the clamp rounded up to f32 (none where it would span the map's depth range), the
+//! refusal where the constant would, the receiver-side offsets along the light and along the normal, and the cost
 //! (leak thickness, peter-panning).
 
 use super::*;
@@ -14,18 +14,24 @@ pub(super) fn finish(
     needed: f64,
     offsets: Option<(f64, f64)>,
 ) -> Result<ShadowBias> {
-    // An infinite footprint (a spot light whose rays can graze) sets no clamp: not a refusal.
-    if (needed.is_finite() && needed >= 1.0) || terms.constant.is_nan() || terms.constant >= 1.0 {
+    // Only rounding terms that span the map's depth range leave no bias: the constant would
+    // lift every caster past the far plane.
+    if terms.constant.is_nan() || terms.constant >= 1.0 {
         return Err(Error::new(
             ErrorKind::Unresolvable,
-            if terms.footprint > terms.constant {
-                "no shadow bias is acne-free at this limit angle: the texel footprint spans the map's depth range (raise the resolution, use a smaller kernel, or lower limit_angle_deg)"
-            } else {
-                "no shadow bias is acne-free: the rounding terms span the map's depth range (tighten the light's near/far or use a deeper format)"
-            },
+            "no shadow bias is acne-free: the rounding terms span the map's depth range (tighten the light's near/far or use a deeper format)",
         )
         .with_value("limit_angle_deg", map.limit_angle_deg));
     }
+    // A clamp that would span the whole depth range bounds nothing: set none, as where a spot
+    // light's rays can graze (infinite footprint). The slope factor still covers every plane's
+    // footprint within the limit angle; casters that steep get a bias past the far plane and
+    // cast no shadow, and no receiver-side offset along the light reaches that far.
+    let (needed, offsets) = if needed.is_finite() && needed >= 1.0 {
+        (f64::INFINITY, Some((f64::INFINITY, f64::INFINITY)))
+    } else {
+        (needed, offsets)
+    };
     let sign = if map.clip == ClipDepth::ReversedZeroToOne {
         -1.0
     } else {

@@ -140,13 +140,33 @@ fn reversed_z_flips_the_signs() {
     assert!(bias.along_light > 0.0);
 }
 
+/// A grazing limit under a wide kernel at a low resolution: the clamp would span the map's
+/// whole depth range, so none is set (as for a spot whose rays graze), the slope factor still
+/// covers the footprint, and no receiver-side offset reaches; only rounding terms that span
+/// the range are refused.
 #[test]
-fn grazing_limits_are_refused_with_the_footprint_remedy() {
+fn a_clamp_spanning_the_depth_range_is_none() {
     let mut map = ground_map(Lookup::Pcf(5), 89.9);
     map.resolution = [64, 64];
-    let err = shadow_bias(&map).unwrap_err();
-    assert_eq!(err.kind(), ErrorKind::Unresolvable);
-    assert!(err.detail().contains("resolution"), "{err}");
+    let bias = shadow_bias(&map).unwrap();
+    assert!(bias.terms.footprint >= 1.0, "{bias:?}");
+    assert_eq!(bias.gl_polygon_offset[2], 0.0);
+    assert!(bias.gl_polygon_offset[0] >= 5.0, "{bias:?}");
+    assert!(bias.gl_polygon_offset[1] >= 1.0, "{bias:?}");
+    assert_eq!((bias.d3d.clamp, bias.vulkan[2]), (0.0, 0.0));
+    assert!(bias.along_light.is_infinite() && bias.along_normal.is_infinite());
+    assert!(bias.peter_panning.is_infinite());
+    // A spot light whose rounding terms span the depth range (D16, f/n 10⁹, receivers at the
+    // far end, world coordinates up to 10¹³): refused, naming near/far and the format.
+    let mut deep = ground_map(Lookup::Nearest, 30.0);
+    deep.light =
+        LightProjection::Perspective(Frustum::new(-1e-3, 1e-3, -1e-3, 1e-3, 1e-3, 1e6).unwrap());
+    deep.format = DepthFormat::Unorm16;
+    deep.receiver_depths = [5e5, 1e6];
+    deep.world_reach = 1e13;
+    let err = shadow_bias(&deep).unwrap_err();
+    assert_eq!(err.kind(), ErrorKind::Unresolvable, "{err}");
+    assert!(err.detail().contains("near/far"), "{err}");
     map.limit_angle_deg = 90.0;
     assert_eq!(shadow_bias(&map).unwrap_err().kind(), ErrorKind::Domain);
     map.limit_angle_deg = 30.0;
