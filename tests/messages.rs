@@ -179,63 +179,38 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
         !said.contains("world-space") && !said.contains("move the near plane out"),
         "{said}"
     );
-    // A decal under the camera, reaching behind it, is answered from the part on screen.
+    // A decal under the camera, reaching behind it, is answered from the part on screen; so is
+    // one running on beyond the far plane (1000 here): the part in front counts.
     let under: [f32; 12] = [
         -1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 1.0, -1.7, -6.0, -1.0, -1.7, -6.0,
     ];
-    let behind = with(&|d| {
-        d.decal_near = 0.0;
-        d.decal_far = 0.0;
-        d.slope = 0.0;
-        d.decal_corners = under.as_ptr();
-        d.decal_corner_count = 4;
-    });
-    assert_eq!(
-        zshift_decal_matrix(
-            m.as_ptr(),
-            ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-            &behind,
-            out.as_mut_ptr()
-        ),
-        ZSHIFT_OK,
-        "{}",
-        detail()
-    );
-    // So is a decal running on beyond the far plane (1000 here): the part in front counts.
     let road: [f32; 12] = [
         -1.0, -1.7, -990.0, 1.0, -1.7, -990.0, 1.0, -1.7, -1010.0, -1.0, -1.7, -1010.0,
     ];
-    let beyond = with(&|d| {
-        d.decal_near = 0.0;
-        d.decal_far = 0.0;
-        d.slope = 0.0;
-        d.decal_corners = road.as_ptr();
-        d.decal_corner_count = 4;
-    });
-    assert_eq!(
-        zshift_decal_matrix(
+    let by_corners = |corners: &[f32; 12], world_reach: f64| {
+        with(&|d| {
+            d.decal_near = 0.0;
+            d.decal_far = 0.0;
+            d.slope = 0.0;
+            d.decal_corners = corners.as_ptr();
+            d.decal_corner_count = 4;
+            d.pipeline.world_reach = world_reach;
+        })
+    };
+    for corners in [&under, &road] {
+        let status = zshift_decal_matrix(
             m.as_ptr(),
             ZSHIFT_CLIP_NEG_ONE_TO_ONE,
-            &beyond,
-            out.as_mut_ptr()
-        ),
-        ZSHIFT_OK,
-        "{}",
-        detail()
-    );
+            &by_corners(corners, 0.0),
+            out.as_mut_ptr(),
+        );
+        assert_eq!(status, ZSHIFT_OK, "{}", detail());
+    }
     // A decal the rasterizer clips (reaching behind the camera) whose clipping cannot be
     // bounded, world-space rounding far from the origin: the message is about the decal and
     // its corners, not a base the caller never described.
-    let far_world = with(&|d| {
-        d.decal_near = 0.0;
-        d.decal_far = 0.0;
-        d.slope = 0.0;
-        d.decal_corners = under.as_ptr();
-        d.decal_corner_count = 4;
-        d.pipeline.world_reach = 1e7;
-    });
     refused(
-        &far_world,
+        &by_corners(&under, 1e7),
         &["clipping of the decal", "decal_corners", "pass its corners"],
     );
     assert!(!detail().contains("base_reach"), "{}", detail());
