@@ -460,8 +460,8 @@ inline Scene with_corners(Scene scene, const float *corners, std::uint32_t count
 }
 
 /// `decal` described by its eye-space corners, as with_corners(Scene, ...); projected through
-/// the matrix passed with it (perspective only). A decal under the camera may reach behind it:
-/// the part on screen counts.
+/// the matrix passed with it (perspective only). A decal under the camera may reach behind it,
+/// and one may run on beyond the far plane: the part drawn counts.
 inline Decal with_corners(Decal decal, const float *corners, std::uint32_t count) noexcept {
   decal.decal_near = decal.decal_far = decal.slope = 0.0;
   decal.decal_corners = corners;

@@ -384,8 +384,8 @@ def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exa
     rasterizer clips: the offset gains the clipping term). ``corners`` are the decal's eye-space
     ``(x, y, z)`` corners (3 to 64): with them pass ``decal_depths=None`` and ``slope=0``; the
     corners give the depths, the slope and where the decal lies on the screen, which makes the
-    offset far tighter on sloped planes; a decal under the camera may reach behind it (the part
-    on screen counts). The other recommendation functions take these keywords alike.
+    offset far tighter on sloped planes; a decal under the camera may reach behind it, and one
+    may run on beyond the far plane (the part drawn counts). The other recommendation functions take these keywords alike.
 
     Raises :class:`ZshiftError`: ``NOT_FINITE``; ``DOMAIN`` (bad frustum, zero viewport, unknown
     format, decal depths outside [n, f] or decreasing, negative slope, ``exact_depth`` with a
