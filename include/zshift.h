@@ -468,7 +468,8 @@ typedef struct {
   const ZshiftProfile *profile;
   /*
    The decal's eye-space corners, 3 floats each (x0, y0, z0, x1, y1, z1, ...: the
-   positions its vertices have after the model-view transform), or NULL. With corners the
+   positions its vertices have after the model-view transform), in any order (a triangle
+   strip's 0, 1, 3, 2 too: the decal is taken as their convex hull), or NULL. With corners the
    recommendation knows the decal's exact depth plane and where it lies on the screen,
    which makes it far tighter on sloped planes (README, "Scenes engines draw"); perspective matrices only; the
    corners then define the decal, and decal_near, decal_far and slope must be 0 (they are

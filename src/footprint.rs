@@ -171,7 +171,11 @@ pub fn decal_shape_for_matrix(
             finite(c, "a decal corner is not finite").map_err(|e| e.with_value("coordinate", c))?;
         }
     }
-    let (normal, _) = plane_through(&eye)?;
+    // Any order of the corners: their hull, every corner checked against its plane.
+    let hull = hull_order(&eye);
+    let (normal, offset, size) = plane_of(&hull)?;
+    check_flat(&eye, normal, offset, size)?;
+    let eye = hull;
     // +∞ for a plane containing the view direction: its window plane is still ordinary (only a
     // plane through the eye is edge-on in the image, refused below).
     let slope = if normal[2] == 0.0 {
@@ -316,6 +320,14 @@ fn cut_to_view(
 
 /// The plane `N·p = h₀` through `points` (Newell's normal, the centroid), checked for flatness.
 pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
+    let (normal, offset, size) = plane_of(points)?;
+    check_flat(points, normal, offset, size)?;
+    Ok((normal, offset))
+}
+
+/// Newell's normal and the centroid of the polygon `points` (in order around it), and its size
+/// (the largest distance of a point from the centroid), unchecked for flatness.
+fn plane_of(points: &[[f64; 3]]) -> Result<([f64; 3], f64, f64)> {
     let mut normal = [0.0f64; 3];
     let mut centre = [0.0f64; 3];
     for (i, a) in points.iter().enumerate() {
@@ -338,16 +350,32 @@ pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
         })
         .fold(0.0, f64::max);
     if length.is_nan() || size.is_nan() || length <= 1e-12 * size * size {
+        let count = i64::try_from(points.len()).unwrap_or(i64::MAX);
+        // Points that span a plane but whose polygon encloses no area cross themselves: a
+        // triangle strip's order (0, 1, 3, 2) around a quad.
+        if spanning_normal(points).is_some() {
+            return Err(domain(
+                "the corners are not in order around the polygon (they cross themselves and \
+                 enclose no area: a triangle strip's order 0, 1, 3, 2 around a quad); give them \
+                 in order around its edge",
+            )
+            .with_integer("corners", count));
+        }
         return Err(domain(
             "the decal's corners do not span a plane (they coincide or lie on one line: no area \
              on screen); for a piece of a mesh decal give the corners of the base triangle it was \
              cut from (a sliver's rounded corners do not pin its plane down), and leave out a \
              piece with no area",
         )
-        .with_integer("corners", i64::try_from(points.len()).unwrap_or(i64::MAX)));
+        .with_integer("corners", count));
     }
     let normal = normal.map(|v| v / length);
     let offset: f64 = (0..3).map(|k| normal[k] * centre[k]).sum();
+    Ok((normal, offset, size))
+}
+
+/// Refuses `points` farther than 2⁻¹⁶ of `size` from the plane `normal·p = offset`.
+fn check_flat(points: &[[f64; 3]], normal: [f64; 3], offset: f64, size: f64) -> Result<()> {
     let bent = points
         .iter()
         .map(|p| ((0..3).map(|k| normal[k] * p[k]).sum::<f64>() - offset).abs())
@@ -361,7 +389,92 @@ pub(crate) fn plane_through(points: &[[f64; 3]]) -> Result<([f64; 3], f64)> {
         )
         .with_value("the largest distance of a corner from their plane", bent));
     }
-    Ok((normal, offset))
+    Ok(())
+}
+
+/// A unit normal of the plane `points` span, from three of them far apart (the first, the one
+/// farthest from it, and the one farthest from the line through both), whatever their order;
+/// `None` when they lie on one line.
+fn spanning_normal(points: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let p0 = *points.first()?;
+    let dist2 = |p: &[f64; 3]| (0..3).map(|k| (p[k] - p0[k]).powi(2)).sum::<f64>();
+    let p1 = *points.iter().max_by(|a, b| dist2(a).total_cmp(&dist2(b)))?;
+    let u = [0, 1, 2].map(|k| p1[k] - p0[k]);
+    let cross_with = |p: &[f64; 3]| {
+        let v = [0, 1, 2].map(|k| p[k] - p0[k]);
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let norm2 = |c: [f64; 3]| c.iter().map(|x| x * x).sum::<f64>();
+    let n = points
+        .iter()
+        .map(cross_with)
+        .max_by(|a, b| norm2(*a).total_cmp(&norm2(*b)))?;
+    let length = norm2(n).sqrt();
+    // The same relative threshold as Newell's in `plane_of` (twice the area over size²).
+    (length > 1e-12 * dist2(&p1) && length.is_finite()).then(|| n.map(|x| x / length))
+}
+
+/// The corners of a decal in the order of their convex hull in their own plane, whatever order
+/// they came in (a triangle strip's 0, 1, 3, 2, a fan's, a mesh piece's vertices): the engine's
+/// triangles over them cover only the hull, so the hull's footprint and depth range hold for
+/// whatever it draws. Corners on no plane, or on one line, come back as they are (the plane
+/// check refuses them).
+fn hull_order(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let Some(n) = spanning_normal(points) else {
+        return points.to_vec();
+    };
+    // A basis of the plane: e₁ along the first coordinate axis least aligned with n.
+    let axis = (0..3)
+        .min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap_or(0);
+    let mut a = [0.0f64; 3];
+    a[axis] = 1.0;
+    let cross = |x: [f64; 3], y: [f64; 3]| {
+        [
+            x[1] * y[2] - x[2] * y[1],
+            x[2] * y[0] - x[0] * y[2],
+            x[0] * y[1] - x[1] * y[0],
+        ]
+    };
+    let e1 = cross(n, a);
+    let e2 = cross(n, e1);
+    let dot = |x: &[f64; 3], y: [f64; 3]| (0..3).map(|k| x[k] * y[k]).sum::<f64>();
+    let mut flat: Vec<(f64, f64, usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (dot(p, e1), dot(p, e2), i))
+        .collect();
+    flat.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    // Andrew's monotone chain, counter-clockwise in (e₁, e₂); collinear points dropped.
+    let turn = |o: (f64, f64, usize), a: (f64, f64, usize), b: (f64, f64, usize)| {
+        (a.0 - o.0) * (b.1 - o.1) - (a.1 - o.1) * (b.0 - o.0)
+    };
+    let mut hull: Vec<(f64, f64, usize)> = Vec::with_capacity(2 * flat.len());
+    for pass in [false, true] {
+        let start = hull.len();
+        let run: Vec<_> = if pass {
+            flat.iter().rev().copied().collect()
+        } else {
+            flat.clone()
+        };
+        for p in run {
+            while hull.len() >= start + 2
+                && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    if hull.len() < 3 {
+        return points.to_vec();
+    }
+    hull.iter().map(|&(_, _, i)| points[i]).collect()
 }
 
 #[cfg(test)]
@@ -479,6 +592,45 @@ mod tests {
             assert!(far < 50.0 && far > 50.0 * (1.0 - 1e-9), "{clip:?} {far}");
             assert_eq!(shape.footprint.clipped_reach, 70.0, "{clip:?}");
         }
+    }
+
+    /// The corners in any order (a triangle strip's 0, 1, 3, 2; a mesh piece's vertices with
+    /// one inside the others) describe the decal their hull covers: the same shape as the
+    /// corners in order around it. A polygon that crosses itself is refused where the order
+    /// matters (a shadow receiver's front), with the reason.
+    #[test]
+    fn the_corners_order_does_not_matter() {
+        let at = |x: f32, z: f32| Vec3::new(x, -1.7 + 0.3 * x, z);
+        let around = [
+            at(-1.0, -9.0),
+            at(1.0, -9.0),
+            at(1.0, -11.0),
+            at(-1.0, -11.0),
+        ];
+        let strip = [around[0], around[1], around[3], around[2]];
+        let scattered = [around[2], at(0.2, -10.0), around[0], around[3], around[1]];
+        let shape =
+            |c: &[Vec3]| decal_shape(&frustum(), ClipDepth::NegOneToOne, [200, 120], c).unwrap();
+        let expected = shape(&around);
+        for other in [&strip[..], &scattered[..]] {
+            let got = shape(other);
+            assert_eq!(got.depth_range, expected.depth_range);
+            // (Infinite here: the ground contains the view direction.)
+            let same = got.slope == expected.slope
+                || (got.slope - expected.slope).abs() <= 1e-12 * expected.slope;
+            assert!(same, "{} {}", got.slope, expected.slope);
+            let (a, b) = (got.footprint, expected.footprint);
+            assert!(
+                (a.origin_depth - b.origin_depth).abs() < 1e-12,
+                "{a:?} {b:?}"
+            );
+            for k in 0..2 {
+                assert!((a.gradient[k] - b.gradient[k]).abs() < 1e-12, "{a:?} {b:?}");
+            }
+        }
+        let eye = strip.map(|c| [f64::from(c.x), f64::from(c.y), f64::from(c.z)]);
+        let said = plane_through(&eye).unwrap_err().to_string();
+        assert!(said.contains("not in order"), "{said}");
     }
 
     #[test]

@@ -197,7 +197,11 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
             d.pipeline.world_reach = world_reach;
         })
     };
-    for corners in [&under, &road] {
+    // Corners in a triangle strip's order (0, 1, 3, 2), as engines keep a quad: the same decal.
+    let strip: [f32; 12] = [
+        -1.0, -1.7, -9.0, 1.0, -1.7, -9.0, -1.0, -1.7, -11.0, 1.0, -1.7, -11.0,
+    ];
+    for corners in [&under, &road, &strip] {
         let status = zshift_decal_matrix(
             m.as_ptr(),
             ZSHIFT_CLIP_NEG_ONE_TO_ONE,

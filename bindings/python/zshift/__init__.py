@@ -382,7 +382,7 @@ def recommend(frustum, viewport, depth_format, decal_depths=None, slope=0.0, exa
     ignored. ``base_reach`` is 0 for a base inside the frustum, else the largest ``|x|``,
     ``|y|``, ``|z|`` of its eye-space vertices (a floor running behind the camera, which the
     rasterizer clips: the offset gains the clipping term). ``corners`` are the decal's eye-space
-    ``(x, y, z)`` corners (3 to 64): with them pass ``decal_depths=None`` and ``slope=0``; the
+    ``(x, y, z)`` corners (3 to 64, in any order: the decal is taken as their convex hull): with them pass ``decal_depths=None`` and ``slope=0``; the
     corners give the depths, the slope and where the decal lies on the screen, which makes the
     offset far tighter on sloped planes; a decal under the camera may reach behind it, and one
     may run on beyond the far plane (the part drawn counts). The other recommendation functions take these keywords alike.
