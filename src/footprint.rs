@@ -230,9 +230,11 @@ pub fn decal_shape_for_matrix(
         eye.clone()
     };
     if visible.len() < 3 {
-        return Err(domain(
-            "the decal lies wholly outside the view (behind the near plane or off screen): nothing of it is drawn",
-        ));
+        return Err(domain(if eye.iter().all(|p| near_side(p) <= 0.0) {
+            "the decal lies wholly behind the near plane: nothing of it is drawn (corners are eye-space positions, after the model-view transform: in front of the eye is -z under a right-handed projection, +z under a left-handed one)"
+        } else {
+            "the decal lies wholly outside the view (off screen): nothing of it is drawn"
+        }));
     }
     let mut outside = crosses_near || crosses_far;
     for (i, p) in visible.iter().enumerate() {
@@ -644,7 +646,12 @@ mod tests {
                 .unwrap_err()
                 .to_string()
         };
-        assert!(refuse(&square(-0.5)).contains("wholly outside the view"));
+        assert!(refuse(&square(-0.5)).contains("wholly behind the near plane"));
+        assert!(refuse(&square(0.5)).contains("left-handed"));
+        // Reaching behind the camera, all of it far to the side: cut, nothing is left.
+        let aside = [(99.0, 0.5), (101.0, 0.5), (101.0, -3.0), (99.0, -3.0)]
+            .map(|(x, z)| Vec3::new(x, -1.0, z));
+        assert!(refuse(&aside).contains("wholly outside the view (off screen)"));
         assert!(refuse(&square(-60.0)).contains("wholly beyond the far plane"));
         assert!(refuse(&square(-5.0)[..2]).contains("at least 3"));
         let mut bent = square(-5.0);

@@ -620,7 +620,7 @@ class FrontDoor(unittest.TestCase):
         self.assertIn("decal_corner_count", str(caught.exception))
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.decal_matrix(*args, subpixel_bits=8, corners=[(x, y, -z) for x, y, z in corners])
-        self.assertIn("wholly outside the view", str(caught.exception))
+        self.assertIn("wholly behind the near plane", str(caught.exception))
 
     def test_a_decal_reaching_behind_the_camera_is_answered(self):
         # A 2x8 decal on the ground under a level camera 1.7 above it, from 2 behind to 6 ahead:
