@@ -391,6 +391,23 @@ fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
     }
     let [d1, d2] = edges.depth_range;
     let planes = frustum.planes();
+    // A mesh the near or far plane cuts (the camera inside a room, a terrain running past the
+    // far plane): the rasterizer clips its faces and lines in f32, which this model does not
+    // bound; say what keeps the mesh inside.
+    if d1 < planes.near() && d1.is_finite() {
+        return Err(domain(
+            "the mesh reaches in front of the near plane (depth_near < n: the camera inside or over it), where the rasterizer clips its faces and lines, which the edge model does not cover: pull the near plane in to the mesh's nearest depth, or cut the faces that cross it to the frustum (zshift_clip_to_frustum) and give the cut mesh's depth range",
+        )
+        .with_value("depth_near", d1)
+        .with_bound("near plane n", planes.near()));
+    }
+    if d2 > planes.far() && d2.is_finite() {
+        return Err(domain(
+            "the mesh reaches beyond the far plane (depth_far > f), where the rasterizer clips its faces and lines, which the edge model does not cover: push the far plane out (an infinite one costs little), or give the depth range of the part in front and cut the faces that cross it (zshift_clip_to_frustum)",
+        )
+        .with_value("depth_far", d2)
+        .with_bound("far plane f", planes.far()));
+    }
     planes
         .check_distance(d1)
         .map_err(|e| e.with_value("depth_near", d1))?;
@@ -897,5 +914,24 @@ mod tests {
                 .kind(),
             ErrorKind::Domain
         );
+        // A mesh the near or far plane cuts: the remedy is named.
+        for (range, needles) in [
+            (
+                [0.5, 50.0],
+                ["near plane", "zshift_clip_to_frustum", "depth_near"],
+            ),
+            (
+                [5.0, 500.0],
+                ["far plane", "zshift_clip_to_frustum", "depth_far"],
+            ),
+        ] {
+            e.depth_range = range;
+            let said = recommend(&m, clip, &e, EdgeMethod::Matrix)
+                .unwrap_err()
+                .to_string();
+            for needle in needles {
+                assert!(said.contains(needle), "{said}");
+            }
+        }
     }
 }
