@@ -1240,12 +1240,14 @@ ZshiftStatus zshift_recommend_for_matrix(const float *m,
  pipeline; its own decal_corners, base_reach and pipeline.world_box; the corners of the base
  triangle the piece was cut from, not of the piece: a sliver's corners do not pin its plane
  down in float; cut to the frustum with zshift_clip_to_frustum where the triangle reaches
- behind the near plane or off the screen). The matrix carries the
- largest of the planes' offsets, which keeps every plane's pixels;
+ behind the near plane or off the screen). A plane given by corners of which nothing is drawn
+ (wholly behind the near plane, beyond the far plane or off screen) is left out. The matrix
+ carries the largest of the planes' offsets, which keeps every plane's pixels;
  `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
 
  Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decals` or `out` is NULL; ZSHIFT_ERR_DOMAIN for a
- `count` of 0 or above 65536; any error of `zshift_decal_matrix` for a plane, its detail
+ `count` of 0 or above 65536, or when nothing of any plane is drawn; any error of
+ `zshift_decal_matrix` for a plane, its detail
  beginning "plane i: " (from 0); ZSHIFT_ERR_UNRESOLVABLE naming `largest_plane` where the
  largest offset would move plane i past the near plane though its own fits (one plane's
  errors dwarf the others': often a terrain triangle seen nearly edge-on): draw each piece

@@ -90,6 +90,22 @@ impl Error {
         self
     }
 
+    /// This error with the index of the item it is about, and an integer input named `name`,
+    /// renumbered by `index` (a plane of a list the caller gave, from the list it was asked
+    /// of with some left out).
+    pub(crate) fn renumbered(mut self, name: &'static str, index: impl Fn(u32) -> u32) -> Self {
+        if let Some((item, i)) = self.item {
+            self.item = Some((item, index(i)));
+        }
+        if let Some((input, Value::Integer(i))) = self.input {
+            if input == name {
+                let renumbered = u32::try_from(i).map_or(i, |i| i64::from(index(i)));
+                self.input = Some((input, Value::Integer(renumbered)));
+            }
+        }
+        self
+    }
+
     /// The class of failure.
     pub const fn kind(&self) -> ErrorKind {
         self.kind

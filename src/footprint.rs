@@ -111,6 +111,19 @@ const NEAR_CUT_MARGIN: f64 = 1.0 / 65_536.0;
 /// step (2⁻⁴⁰ of the far plane's depth).
 const FAR_CUT_MARGIN: f64 = 1.0 / 1_099_511_627_776.0;
 
+/// The refusals of a decal of which nothing is drawn.
+const WHOLLY_BEYOND: &str = "the decal lies wholly beyond the far plane: nothing of it is drawn";
+const WHOLLY_BEHIND: &str = "the decal lies wholly behind the near plane: nothing of it is drawn (corners are eye-space positions, after the model-view transform: in front of the eye is -z under a right-handed projection, +z under a left-handed one)";
+const WHOLLY_OFF_SCREEN: &str =
+    "the decal lies wholly outside the view (off screen): nothing of it is drawn";
+
+/// Whether `e` is [`decal_shape_for_matrix`]'s refusal of a decal of which nothing is drawn
+/// (wholly behind the near plane, beyond the far plane, or off screen): a piece of a mesh
+/// decal that can be left out.
+pub(crate) fn draws_nothing(e: &crate::Error) -> bool {
+    [WHOLLY_BEYOND, WHOLLY_BEHIND, WHOLLY_OFF_SCREEN].contains(&e.detail())
+}
+
 /// The depth range, slope and [`Footprint`] of a planar decal from its eye-space corners
 /// (right-handed, looking down −z: the positions the decal's vertices have after the
 /// model-view transform), seen through `frustum` under `clip` in a `viewport` of `[W, H]` pixels.
@@ -214,9 +227,7 @@ pub fn decal_shape_for_matrix(
         _ => row(3, p) - row(2, p),
     };
     if eye.iter().all(|p| far_side(p) < 0.0) {
-        return Err(domain(
-            "the decal lies wholly beyond the far plane: nothing of it is drawn",
-        ));
+        return Err(domain(WHOLLY_BEYOND));
     }
     // A decal running on beyond the far plane (a road marking under a short far plane) is cut
     // there too: the rasterizer draws only its part in front, and its depth range is that
@@ -231,9 +242,9 @@ pub fn decal_shape_for_matrix(
     };
     if visible.len() < 3 {
         return Err(domain(if eye.iter().all(|p| near_side(p) <= 0.0) {
-            "the decal lies wholly behind the near plane: nothing of it is drawn (corners are eye-space positions, after the model-view transform: in front of the eye is -z under a right-handed projection, +z under a left-handed one)"
+            WHOLLY_BEHIND
         } else {
-            "the decal lies wholly outside the view (off screen): nothing of it is drawn"
+            WHOLLY_OFF_SCREEN
         }));
     }
     let mut outside = crosses_near || crosses_far;

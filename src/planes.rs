@@ -26,7 +26,10 @@ use crate::recommend::ClipRecommendation;
 /// each plane the corners of the base triangle its piece was cut from, not the piece's (a
 /// sliver's f32 corners do not pin its plane down), cut to the frustum with
 /// [`crate::recommend::clip_to_frustum`] where the triangle reaches behind the near plane or off
-/// the screen (corners must lie in the frustum); a triangle wholly outside needs no plane.
+/// the screen (corners must lie in the frustum); a triangle wholly outside needs no plane
+/// (leave it out: [`crate::matrix_in::decal_shape`] refuses it as drawing nothing; the C entry
+/// points `zshift_decal_matrix_planes` and `zshift_recommend_for_planes` leave such a plane out
+/// themselves).
 ///
 /// Returns the recommendation of the plane whose offset is largest (its `matrix`,
 /// `epsilon`, `ndc_offset`, `relative_epsilon`, `window_offset`, `delta_at_far`, `terms`),

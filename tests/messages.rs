@@ -406,11 +406,55 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
                 2,
                 &["plane 0: ", "largest_plane = 1", "its own plane's matrix"],
             );
+            // A piece of which nothing is drawn (a terrain triangle behind the camera, given
+            // raw) is left out, and the planes keep the caller's numbers.
+            let behind: [f32; 9] = [-1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 0.0, -1.7, 0.5];
+            let nothing = ZshiftDecal {
+                decal_near: 0.0,
+                decal_far: 0.0,
+                slope: 0.0,
+                decal_corners: behind.as_ptr(),
+                decal_corner_count: 3,
+                ..near
+            };
+            let with_nothing = [close, nothing, clipped];
+            refused_planes(
+                with_nothing.as_ptr(),
+                3,
+                &["plane 0: ", "largest_plane = 2"],
+            );
             named += 1;
         }
     }
     assert!(
         named > 0,
         "no base reach made the far plane's offset too large"
+    );
+
+    // Left out, a piece changes nothing; with nothing drawn at all, the call says so.
+    let behind: [f32; 9] = [-1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 0.0, -1.7, 0.5];
+    let nothing = ZshiftDecal {
+        decal_near: 0.0,
+        decal_far: 0.0,
+        slope: 0.0,
+        decal_corners: behind.as_ptr(),
+        decal_corner_count: 3,
+        ..near
+    };
+    let mut out = [0.0f32; 16];
+    let three = [near, nothing, far];
+    let status = zshift_decal_matrix_planes(
+        m.as_ptr(),
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        three.as_ptr(),
+        3,
+        out.as_mut_ptr(),
+    );
+    assert_eq!(status, ZSHIFT_OK, "{}", detail());
+    assert_eq!(out, expected);
+    refused_planes(
+        [nothing, nothing].as_ptr(),
+        2,
+        &["nothing of the decal is drawn"],
     );
 }

@@ -397,13 +397,33 @@ fn recommend_over_planes(
         .with_integer("count", i64::from(count)));
     }
     let mut planes = Vec::with_capacity(count as usize);
+    // The caller's index of each plane kept: a piece of which nothing is drawn (wholly behind
+    // the near plane, beyond the far plane or off screen, as raw triangles under a decal near
+    // the camera are) is left out, and errors name the caller's planes.
+    let mut index = Vec::with_capacity(count as usize);
     for i in 0..count {
         // SAFETY: the entry point refused NULL; the caller promises `count` readable records.
         let record = read_decal(unsafe { decals.add(i as usize) });
-        let plane = with_decal(m, clip, &record, |d| Ok(*d)).map_err(|e| e.for_item("plane", i))?;
-        planes.push(plane);
+        match with_decal(m, clip, &record, |d| Ok(*d)) {
+            Ok(plane) => {
+                planes.push(plane);
+                index.push(i);
+            }
+            Err(e) if crate::footprint::draws_nothing(&e) => {}
+            Err(e) => return Err(e.for_item("plane", i)),
+        }
     }
-    crate::planes::recommend_planes(m, clip, &planes)
+    if planes.is_empty() {
+        return Err(domain(
+            "nothing of the decal is drawn: every plane lies wholly behind the near plane, beyond the far plane or off screen",
+        )
+        .with_integer("count", i64::from(count)));
+    }
+    crate::planes::recommend_planes(m, clip, &planes).map_err(|e| {
+        e.renumbered("largest_plane", |k| {
+            index.get(k as usize).copied().unwrap_or(k)
+        })
+    })
 }
 
 /// Writes the projection matrix of one decal that lies on several planes (a mesh decal over a
@@ -413,12 +433,14 @@ fn recommend_over_planes(
 /// pipeline; its own decal_corners, base_reach and pipeline.world_box; the corners of the base
 /// triangle the piece was cut from, not of the piece: a sliver's corners do not pin its plane
 /// down in float; cut to the frustum with zshift_clip_to_frustum where the triangle reaches
-/// behind the near plane or off the screen). The matrix carries the
-/// largest of the planes' offsets, which keeps every plane's pixels;
+/// behind the near plane or off the screen). A plane given by corners of which nothing is drawn
+/// (wholly behind the near plane, beyond the far plane or off screen) is left out. The matrix
+/// carries the largest of the planes' offsets, which keeps every plane's pixels;
 /// `zshift_recommend_for_planes` gives the bleed gap at that offset over every plane.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `m`, `decals` or `out` is NULL; ZSHIFT_ERR_DOMAIN for a
-/// `count` of 0 or above 65536; any error of `zshift_decal_matrix` for a plane, its detail
+/// `count` of 0 or above 65536, or when nothing of any plane is drawn; any error of
+/// `zshift_decal_matrix` for a plane, its detail
 /// beginning "plane i: " (from 0); ZSHIFT_ERR_UNRESOLVABLE naming `largest_plane` where the
 /// largest offset would move plane i past the near plane though its own fits (one plane's
 /// errors dwarf the others': often a terrain triangle seen nearly edge-on): draw each piece

@@ -565,6 +565,10 @@ class FrontDoor(unittest.TestCase):
         self.assertIn("base_reach = -1", str(caught.exception))
         with self.assertRaises(zshift.ZshiftError):
             zshift.decal_matrix_planes(*args, [], subpixel_bits=8)
+        # A terrain triangle under the decal but behind the camera, given raw: left out.
+        behind = dict(corners=[(-1.0, -1.7, 2.0), (1.0, -1.7, 2.0), (0.0, -1.7, 0.5)])
+        self.assertEqual(list(zshift.decal_matrix_planes(*args, [planes[0], behind, planes[1]], subpixel_bits=8)),
+                         list(both))
         with self.assertRaises(TypeError) as caught:
             zshift.decal_matrix_planes(*args, [dict(corner=triangle(10.0, 0.0))], subpixel_bits=8)
         self.assertIn("'corner'", str(caught.exception))

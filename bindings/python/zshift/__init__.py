@@ -835,7 +835,7 @@ def decal_matrix_planes(m, clip, viewport, depth_format, planes, subpixel_bits=N
     ``base_reach``, ``world_box``); the other arguments are shared, as :func:`decal_matrix` takes
     them. Give each plane the corners of the base triangle its piece was cut from, not the
     piece's (a sliver's float corners do not pin its plane down), cut with
-    :func:`clip_to_frustum` where the triangle reaches behind the near plane or off the screen. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
+    :func:`clip_to_frustum` where the triangle reaches behind the near plane or off the screen; a plane of which nothing is drawn (wholly behind the near plane, beyond the far plane or off screen) is left out. The matrix carries the largest of the planes' offsets, which keeps every plane's pixels.
     Raises :class:`ZshiftError` whose detail begins ``plane i:`` for a plane's refusal (one
     naming ``largest_plane`` where the largest offset would move plane i past the near plane
     though its own fits: draw each piece with its own :func:`decal_matrix`, or leave out the
