@@ -377,6 +377,16 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
         slope: 0.0,
         ..near
     };
+    // A terrain triangle under the decal but behind the camera: nothing of it is drawn.
+    let behind: [f32; 9] = [-1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 0.0, -1.7, 0.5];
+    let nothing = ZshiftDecal {
+        decal_near: 0.0,
+        decal_far: 0.0,
+        slope: 0.0,
+        decal_corners: behind.as_ptr(),
+        decal_corner_count: 3,
+        ..near
+    };
     let mut named = 0;
     for reach in [1e4, 1e5, 1e6, 1e7] {
         let clipped = ZshiftDecal {
@@ -408,15 +418,6 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
             );
             // A piece of which nothing is drawn (a terrain triangle behind the camera, given
             // raw) is left out, and the planes keep the caller's numbers.
-            let behind: [f32; 9] = [-1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 0.0, -1.7, 0.5];
-            let nothing = ZshiftDecal {
-                decal_near: 0.0,
-                decal_far: 0.0,
-                slope: 0.0,
-                decal_corners: behind.as_ptr(),
-                decal_corner_count: 3,
-                ..near
-            };
             let with_nothing = [close, nothing, clipped];
             refused_planes(
                 with_nothing.as_ptr(),
@@ -432,15 +433,6 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
     );
 
     // Left out, a piece changes nothing; with nothing drawn at all, the call says so.
-    let behind: [f32; 9] = [-1.0, -1.7, 2.0, 1.0, -1.7, 2.0, 0.0, -1.7, 0.5];
-    let nothing = ZshiftDecal {
-        decal_near: 0.0,
-        decal_far: 0.0,
-        slope: 0.0,
-        decal_corners: behind.as_ptr(),
-        decal_corner_count: 3,
-        ..near
-    };
     let mut out = [0.0f32; 16];
     let three = [near, nothing, far];
     let status = zshift_decal_matrix_planes(
