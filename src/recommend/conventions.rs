@@ -221,8 +221,8 @@ pub(crate) fn bleed_gap_with(
 
 /// Under reversed Z with the decal's footprint and a measured `error_ulps_reversed` `k`: a bound
 /// on `budget·d/b` over every pixel of the decal, from each term's own largest product with the
-/// depth: `2k·u·(|m10|·d₂ + max M·d)` ([`Footprint::magnitude_depth`]), `2V·d = 2u·b·(1 + s·e)`
-/// (the vertex term is `u·(b/d)(1 + s·e)` at depth `d`), `(2S + C)·d₂`; over `b`. The budget
+/// depth: `2k·u·(|m10|·d₂ + max M·d)` ([`Footprint::magnitude_depth`]), `2·max V(d)·d`
+/// ([`super::terms::vertex_depth_product`]), `(2S + C + C_d)·d₂`; over `b`. The budget
 /// evaluated at its worst pixel and carried to the farthest one (`budget·d₂/b`) overstates it by
 /// up to `d₂/d₁`. `None` without a footprint, a measured figure, or when the errors are
 /// correlated.
@@ -232,7 +232,7 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
     if terms.correlated {
         return None;
     }
-    let [d1, d2] = scene.depth_range;
+    let d2 = scene.depth_range[1];
     let (m10, _) =
         crate::projection::depth_row(&scene.frustum.planes(), ClipDepth::ReversedZeroToOne);
     let u = F32_UNIT_ROUNDOFF;
@@ -240,8 +240,13 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
     let lift = pipeline.depth_range[0] / pipeline.span();
     let shifted = footprint.in_framebuffer(pipeline.viewport_origin, d2);
     let magnitude_depth = shifted.magnitude_depth + lift * d2;
-    let plane = k * u * (m10.abs() * d2 + magnitude_depth) + terms.vertex * d1;
-    Some((2.0 * plane + (2.0 * terms.snap + terms.clip) * d2) / b)
+    // V·d at its largest over the decal: the eye rounding from the corners is the same at
+    // every pixel, and so is the world rounding's part that grows with depth (a seeded draw lost
+    // a pixel over the ground cut to the frustum with V·d₁: a decal from 0.3 to 1.3 units, 367
+    // from the origin).
+    let vertex = super::terms::vertex_depth_product(scene, ClipDepth::ReversedZeroToOne).ok()?;
+    let plane = k * u * (m10.abs() * d2 + magnitude_depth) + vertex;
+    Some((2.0 * plane + (2.0 * terms.snap + terms.clip + terms.decal_clip) * d2) / b)
 }
 
 /// The relative ε under reversed Z: the window offset it gives at `d` is `ε·b/d`, which must

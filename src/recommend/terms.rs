@@ -174,6 +174,36 @@ fn vertex_term(scene: &Scene, clip: ClipDepth, per_ndc: f64) -> Result<f64> {
     representable(eye.max(world), "the vertex term overflows f64")
 }
 
+/// The largest product of the vertex term with the depth over the decal, `max V(d)·d` for `d`
+/// in `[d₁, d₂]` (window depth × eye depth; 0 for an exact depth), for a budget carried as
+/// `ε·b/d` under reversed Z. The eye rounding from the decal's corners, `K`, is the same at every
+/// pixel ([`crate::model::vertex`]), so `K·d₂`; the world rounding `F/d + G` (its fixed part
+/// falls with depth, the rest does not) gives `F + G·d₂`; without corners the eye bound
+/// `u·(b/d)(1 + s·e)` falls with depth, `V(d₁)·d₁`.
+pub(super) fn vertex_depth_product(scene: &Scene, clip: ClipDepth) -> Result<f64> {
+    let [d1, d2] = scene.depth_range;
+    if scene.exact_depth {
+        return Ok(0.0);
+    }
+    let per_ndc = mapping_of(scene, clip)?.window_per_ndc();
+    let m = crate::projection::projection_f64(&scene.frustum, clip)?;
+    let form = plane_form(scene, clip, &m)?;
+    let tangents = tangents_of(&scene.frustum);
+    let eye = match scene.footprint {
+        Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents) * d2,
+        None => vertex_term(scene, clip, per_ndc)? * d1,
+    };
+    if !scene.pipeline.world_space() {
+        return Ok(eye);
+    }
+    let exact = scene.footprint.is_some();
+    let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
+    let (fixed, _) = vertex::world_error(&form, exact, &m, &scene.pipeline, 0.0);
+    let (at_rho, _) = vertex::world_error(&form, exact, &m, &scene.pipeline, rho);
+    let world = per_ndc * (fixed + (at_rho - fixed) * d2);
+    representable(eye.max(world), "the vertex term overflows f64")
+}
+
 pub(crate) fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
     // A Frustum's planes are checked.
     Ok(DepthMapping::of_planes(scene.frustum.planes(), clip))
