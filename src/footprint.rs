@@ -413,14 +413,7 @@ fn spanning_normal(points: &[[f64; 3]]) -> Option<[f64; 3]> {
     let dist2 = |p: &[f64; 3]| (0..3).map(|k| (p[k] - p0[k]).powi(2)).sum::<f64>();
     let p1 = *points.iter().max_by(|a, b| dist2(a).total_cmp(&dist2(b)))?;
     let u = [0, 1, 2].map(|k| p1[k] - p0[k]);
-    let cross_with = |p: &[f64; 3]| {
-        let v = [0, 1, 2].map(|k| p[k] - p0[k]);
-        [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ]
-    };
+    let cross_with = |p: &[f64; 3]| cross(u, [0, 1, 2].map(|k| p[k] - p0[k]));
     let norm2 = |c: [f64; 3]| c.iter().map(|x| x * x).sum::<f64>();
     let n = points
         .iter()
@@ -429,6 +422,15 @@ fn spanning_normal(points: &[[f64; 3]]) -> Option<[f64; 3]> {
     let length = norm2(n).sqrt();
     // The same relative threshold as Newell's in `plane_of` (twice the area over size²).
     (length > 1e-12 * dist2(&p1) && length.is_finite()).then(|| n.map(|x| x / length))
+}
+
+/// `x × y`.
+fn cross(x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
+    [
+        x[1] * y[2] - x[2] * y[1],
+        x[2] * y[0] - x[0] * y[2],
+        x[0] * y[1] - x[1] * y[0],
+    ]
 }
 
 /// The corners of a decal in the order of their convex hull in their own plane, whatever order
@@ -446,13 +448,6 @@ fn hull_order(points: &[[f64; 3]]) -> Vec<[f64; 3]> {
         .unwrap_or(0);
     let mut a = [0.0f64; 3];
     a[axis] = 1.0;
-    let cross = |x: [f64; 3], y: [f64; 3]| {
-        [
-            x[1] * y[2] - x[2] * y[1],
-            x[2] * y[0] - x[0] * y[2],
-            x[0] * y[1] - x[1] * y[0],
-        ]
-    };
     let e1 = cross(n, a);
     let e2 = cross(n, e1);
     let dot = |x: &[f64; 3], y: [f64; 3]| (0..3).map(|k| x[k] * y[k]).sum::<f64>();

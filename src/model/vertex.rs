@@ -173,10 +173,24 @@ pub fn world_rounding(
     nearest: f64,
     tangents: [f64; 2],
 ) -> f64 {
+    let (fixed, growing) = world_parts(form, exact_form, m, pipeline, tangents);
+    fixed / nearest + growing
+}
+
+/// [`world_rounding`]'s two parts: `F`, the NDC error times depth that does not grow with the
+/// vertex's distance (at a pixel of depth `d` it gives `F/d`), and `G`, the NDC error of the
+/// growing part, the same at every depth.
+pub fn world_parts(
+    form: &PlaneForm,
+    exact_form: bool,
+    m: &[f64; 16],
+    pipeline: &Pipeline,
+    tangents: [f64; 2],
+) -> (f64, f64) {
     let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
     let (fixed, _) = world_error(form, exact_form, m, pipeline, 0.0);
     let (at_rho, _) = world_error(form, exact_form, m, pipeline, rho);
-    fixed / nearest + (at_rho - fixed)
+    (fixed, at_rho - fixed)
 }
 
 #[cfg(test)]

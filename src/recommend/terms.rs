@@ -138,40 +138,11 @@ fn plane_form(scene: &Scene, clip: ClipDepth, m: &[f64; 16]) -> Result<PlaneForm
 /// f32 model-view term.
 #[inline]
 fn vertex_term(scene: &Scene, clip: ClipDepth, per_ndc: f64) -> Result<f64> {
-    let bound = || -> Result<f64> {
-        let e = half_extent_tangent(&scene.frustum)?;
-        Ok(vertex::eye_rounding_bound(
-            scale(&scene.frustum),
-            scene.depth_range[0],
-            scene.slope,
-            e,
-        ))
-    };
-    // The common case (no corners, eye-space vertices) needs neither the f64 matrix nor the form.
-    if scene.footprint.is_none() && !scene.pipeline.world_space() {
-        return bound();
-    }
-    let m = crate::projection::projection_f64(&scene.frustum, clip)?;
-    let form = plane_form(scene, clip, &m)?;
-    let eye = match scene.footprint {
-        Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents_of(&scene.frustum)),
-        None => bound()?,
-    };
-    if !scene.pipeline.world_space() {
-        return Ok(eye);
-    }
-    // One combined matrix errs in each clip coordinate independently; the eye position computed
-    // first errs in eye space, and only its part off the plane counts (needs the exact form).
-    let world = per_ndc
-        * vertex::world_rounding(
-            &form,
-            scene.footprint.is_some(),
-            &m,
-            &scene.pipeline,
-            scene.depth_range[0],
-            tangents_of(&scene.frustum),
-        );
-    representable(eye.max(world), "the vertex term overflows f64")
+    let parts = vertex_parts(scene, clip, per_ndc)?;
+    let world = parts.world.map_or(0.0, |(fixed, growing)| {
+        fixed / scene.depth_range[0] + growing
+    });
+    representable(parts.eye.max(world), "the vertex term overflows f64")
 }
 
 /// The largest product of the vertex term with the depth over the decal, `max V(d)·d` for `d`
@@ -185,23 +156,63 @@ pub(super) fn vertex_depth_product(scene: &Scene, clip: ClipDepth) -> Result<f64
     if scene.exact_depth {
         return Ok(0.0);
     }
-    let per_ndc = mapping_of(scene, clip)?.window_per_ndc();
+    let parts = vertex_parts(scene, clip, mapping_of(scene, clip)?.window_per_ndc())?;
+    let eye = parts.eye * if parts.eye_falls { d1 } else { d2 };
+    let world = parts
+        .world
+        .map_or(0.0, |(fixed, growing)| fixed + growing * d2);
+    representable(eye.max(world), "the vertex term overflows f64")
+}
+
+/// The vertex term's parts in window depth ([`vertex_term`] takes the larger of the eye and
+/// the world rounding at `d₁`, [`vertex_depth_product`] their products with the depth).
+struct VertexParts {
+    /// The eye rounding: `K` from the decal's corners (the same at every pixel), else the
+    /// bound `u·(b/d₁)·(1 + s·e)`, which falls as `1/d` (`eye_falls`).
+    eye: f64,
+    eye_falls: bool,
+    /// With world-space vertices, the world rounding's fixed part `F` (giving `F/d` at depth
+    /// `d`) and its growing part `G` ([`vertex::world_parts`]).
+    world: Option<(f64, f64)>,
+}
+
+fn vertex_parts(scene: &Scene, clip: ClipDepth, per_ndc: f64) -> Result<VertexParts> {
+    let bound = || -> Result<f64> {
+        let e = half_extent_tangent(&scene.frustum)?;
+        Ok(vertex::eye_rounding_bound(
+            scale(&scene.frustum),
+            scene.depth_range[0],
+            scene.slope,
+            e,
+        ))
+    };
+    // The common case (no corners, eye-space vertices) needs neither the f64 matrix nor the form.
+    if scene.footprint.is_none() && !scene.pipeline.world_space() {
+        return Ok(VertexParts {
+            eye: bound()?,
+            eye_falls: true,
+            world: None,
+        });
+    }
     let m = crate::projection::projection_f64(&scene.frustum, clip)?;
     let form = plane_form(scene, clip, &m)?;
     let tangents = tangents_of(&scene.frustum);
-    let eye = match scene.footprint {
-        Some(_) => per_ndc * vertex::eye_rounding(&form, &m, tangents) * d2,
-        None => vertex_term(scene, clip, per_ndc)? * d1,
+    let (eye, eye_falls) = match scene.footprint {
+        Some(_) => (per_ndc * vertex::eye_rounding(&form, &m, tangents), false),
+        None => (bound()?, true),
     };
-    if !scene.pipeline.world_space() {
-        return Ok(eye);
-    }
-    let exact = scene.footprint.is_some();
-    let rho = (1.0 + tangents[0].powi(2) + tangents[1].powi(2)).sqrt();
-    let (fixed, _) = vertex::world_error(&form, exact, &m, &scene.pipeline, 0.0);
-    let (at_rho, _) = vertex::world_error(&form, exact, &m, &scene.pipeline, rho);
-    let world = per_ndc * (fixed + (at_rho - fixed) * d2);
-    representable(eye.max(world), "the vertex term overflows f64")
+    // One combined matrix errs in each clip coordinate independently; the eye position computed
+    // first errs in eye space, and only its part off the plane counts (needs the exact form).
+    let world = scene.pipeline.world_space().then(|| {
+        let exact = scene.footprint.is_some();
+        let (fixed, growing) = vertex::world_parts(&form, exact, &m, &scene.pipeline, tangents);
+        (per_ndc * fixed, per_ndc * growing)
+    });
+    Ok(VertexParts {
+        eye,
+        eye_falls,
+        world,
+    })
 }
 
 pub(crate) fn mapping_of(scene: &Scene, clip: ClipDepth) -> Result<DepthMapping> {
