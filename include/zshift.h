@@ -1360,7 +1360,9 @@ ZshiftStatus zshift_recommend_clip_matrix(const ZshiftScene *scene, ZshiftClip c
  A base the rasterizer clips in float (a ground plane running behind the camera) carries the
  large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
  (x, y, z, in order around the polygon); `out` receives up to `capacity` vertices (count + 6
- always suffices) and `*out_count` how many were written (0 when nothing is inside).
+ always suffices) and `*out_count` how many were written (0 when nothing is inside). The
+ margin is for a result drawn in eye space (or camera-relative); one stored in world space
+ far from the origin: zshift_clip_to_frustum_stored.
 
  Errors: ZSHIFT_ERR_NULL_POINTER if `polygon` (with count > 0), `out` or `out_count` is NULL;
  ZSHIFT_ERR_NOT_FINITE for a NaN or infinite coordinate or frustum parameter (except
@@ -1378,6 +1380,38 @@ ZshiftStatus zshift_clip_to_frustum(double l,
                                     double *out,
                                     uint32_t capacity,
                                     uint32_t *out_count);
+
+/*
+ zshift_clip_to_frustum for a polygon the engine stores as `pipeline` says, in world space
+ through a float view matrix (its world_reach, eye_first, and view_matrix with world_box, as
+ the decal's ZshiftScene.pipeline; the viewport and depth range are not used): every plane
+ is moved inward further by the largest error that storage and the float transform can give
+ a cut vertex (6u or 14u times the world coordinates' magnitudes, u = 2^-24), so that the
+ rasterizer still clips nothing of it. That error is absolute, not relative to the vertex's
+ distance from the camera: cut by zshift_clip_to_frustum, a vertex close to the camera can
+ land outside once stored in world space far from the origin, and a rasterizer that clips
+ at the sides (Mesa's llvmpipe) then cuts a sliver off its triangle, with a pixel off the
+ plane by up to half a pixel of its depth gradient (docs/rasterizer.md, "Slivers"). The
+ price: near the camera the cut lies visibly inside the screen's edges; camera-relative
+ rendering needs none of it (use zshift_clip_to_frustum). Draw the result as a fan and pass
+ base_reach = 0.
+
+ Errors: as zshift_clip_to_frustum; ZSHIFT_ERR_NULL_POINTER also if `pipeline` is NULL
+ (eye-space vertices: zshift_clip_to_frustum); ZSHIFT_ERR_DOMAIN also for a `pipeline` field
+ out of range (a negative world_reach, a view_matrix without its world_box).
+ */
+ZshiftStatus zshift_clip_to_frustum_stored(double l,
+                                           double r,
+                                           double b,
+                                           double t,
+                                           double n,
+                                           double f,
+                                           const ZshiftPipeline *pipeline,
+                                           const double *polygon,
+                                           uint32_t count,
+                                           double *out,
+                                           uint32_t capacity,
+                                           uint32_t *out_count);
 
 /*
  Writes the depth-offset projection matrix: the drop-in for the seed's `LoadOffsetMatrix`,

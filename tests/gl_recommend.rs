@@ -439,6 +439,74 @@ fn c_scene_fields_reach_the_model() {
         &mut kept,
     );
     assert_eq!((status, kept, keep), (ZSHIFT_ERR_DOMAIN, 99, [7.0; 6]));
+    // zshift_clip_to_frustum_stored: the Rust stored cut, vertex for vertex (world space 10⁴
+    // from the origin, the view given: inside the plain cut); NULL pipeline and a view without
+    // its box refused, the outputs untouched.
+    let view: [f32; 16] = [
+        1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, -1e4, 0.0, -1e4, 1.0,
+    ];
+    let stored = ZshiftPipeline {
+        eye_first: 1,
+        view_matrix: view.as_ptr(),
+        world_box: [9e3, -1e3, 9e3, 11e3, 1e3, 11e3],
+        ..ZshiftPipeline::default()
+    };
+    let pipeline = zshift::model::Pipeline {
+        eye_first: true,
+        view: Some(view),
+        world_box: Some([[9e3, -1e3, 9e3], [11e3, 1e3, 11e3]]),
+        ..zshift::model::Pipeline::default()
+    };
+    let want_stored =
+        zshift::recommend::clip_to_frustum_stored(&frustum, &quad, &pipeline).unwrap();
+    assert_ne!(
+        want_stored, want,
+        "stored 10⁴ from the origin, the cut moves inward"
+    );
+    let status = zshift_clip_to_frustum_stored(
+        l,
+        r,
+        b,
+        t,
+        n,
+        f,
+        &stored,
+        flat.as_ptr(),
+        4,
+        out.as_mut_ptr(),
+        10,
+        &mut count,
+    );
+    assert_eq!(status, ZSHIFT_OK);
+    let got: Vec<[f64; 3]> = out[..3 * count as usize]
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    assert_eq!(got, want_stored);
+    let no_box = ZshiftPipeline {
+        world_box: [0.0; 6],
+        ..stored
+    };
+    for (p, status) in [
+        (std::ptr::null(), ZSHIFT_ERR_NULL_POINTER),
+        (&no_box as *const ZshiftPipeline, ZSHIFT_ERR_DOMAIN),
+    ] {
+        let got = zshift_clip_to_frustum_stored(
+            l,
+            r,
+            b,
+            t,
+            n,
+            f,
+            p,
+            flat.as_ptr(),
+            4,
+            keep.as_mut_ptr(),
+            10,
+            &mut kept,
+        );
+        assert_eq!((got, kept, keep), (status, 99, [7.0; 6]));
+    }
 }
 
 /// Under 4× MSAA every sample is tested against its own interpolated depth: the decal drawn at

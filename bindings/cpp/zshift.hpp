@@ -567,6 +567,23 @@ inline const char *version() noexcept { return zshift_version(); }
 /// An eye-space vertex (x, y, z), for clip_to_frustum().
 using Vertex = std::array<double, 3>;
 
+namespace detail {
+/// The checks and buffers both cuts share: `call` is the C cut of `polygon` into a buffer of
+/// capacity count + 6 (the header: always enough).
+template <typename Call>
+std::vector<Vertex> cut(const std::vector<Vertex> &polygon, Call call) {
+  static_assert(sizeof(Vertex) == 3 * sizeof(double), "Vertex is three packed doubles");
+  if (polygon.size() > 65536) throw Error(ZSHIFT_ERR_DOMAIN, "the polygon must have at most 65536 vertices");
+  const std::uint32_t count = static_cast<std::uint32_t>(polygon.size());
+  const std::uint32_t capacity = count + 6;
+  std::vector<Vertex> out(capacity);
+  std::uint32_t written = 0;
+  check(call(polygon.empty() ? nullptr : polygon.data()->data(), count, out.data()->data(), capacity, &written));
+  out.resize(written);
+  return out;
+}
+}  // namespace detail
+
 /// Cuts a convex base polygon (eye-space vertices in order around it) to the view frustum of
 /// glFrustum(l, r, b, t, n, f), in double and slightly inside, so that the rasterizer clips
 /// nothing of it (zshift_clip_to_frustum): draw the result as a triangle fan and pass
@@ -574,16 +591,26 @@ using Vertex = std::array<double, 3>;
 /// Status::domain (a bad frustum, more than 65536 vertices).
 inline std::vector<Vertex> clip_to_frustum(double l, double r, double b, double t, double n, double f,
                                            const std::vector<Vertex> &polygon) {
-  static_assert(sizeof(Vertex) == 3 * sizeof(double), "Vertex is three packed doubles");
-  const std::uint32_t count = static_cast<std::uint32_t>(polygon.size());
-  if (polygon.size() > 65536) throw Error(ZSHIFT_ERR_DOMAIN, "the polygon must have at most 65536 vertices");
-  const std::uint32_t capacity = count + 6;  // the header: count + 6 always suffices
-  std::vector<Vertex> out(capacity);
-  std::uint32_t written = 0;
-  detail::check(zshift_clip_to_frustum(l, r, b, t, n, f, polygon.empty() ? nullptr : polygon.data()->data(),
-                                       count, out.data()->data(), capacity, &written));
-  out.resize(written);
-  return out;
+  return detail::cut(polygon, [&](const double *in, std::uint32_t count, double *out, std::uint32_t capacity,
+                                  std::uint32_t *written) {
+    return zshift_clip_to_frustum(l, r, b, t, n, f, in, count, out, capacity, written);
+  });
+}
+
+/// clip_to_frustum() for a polygon the engine stores as `stored` says (world space through a
+/// float view matrix: its world_reach, eye_first, and view_matrix with world_box, as a
+/// ZshiftScene's pipeline; zshift_clip_to_frustum_stored): the cut lies further inside by the
+/// largest error that storage and the float transform can give a vertex, which is relative to
+/// the world coordinates, not to the vertex's distance from the camera (cut only 2^-16 inside, a
+/// vertex close to the camera can land outside, and a rasterizer that clips at the sides cuts a
+/// sliver off its triangle). Camera-relative rendering needs none of it. Throws Error as
+/// clip_to_frustum(), and Status::domain for a pipeline field out of range.
+inline std::vector<Vertex> clip_to_frustum(double l, double r, double b, double t, double n, double f,
+                                           const std::vector<Vertex> &polygon, const ZshiftPipeline &stored) {
+  return detail::cut(polygon, [&](const double *in, std::uint32_t count, double *out, std::uint32_t capacity,
+                                  std::uint32_t *written) {
+    return zshift_clip_to_frustum_stored(l, r, b, t, n, f, &stored, in, count, out, capacity, written);
+  });
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -289,6 +289,13 @@ impl ZshiftRecommendation {
 /// alignment needed). Called inside the entry point's checked closure, so the record is built
 /// where it is used: read outside and moved in, its ~240 bytes were block-copied, stalling on
 /// the field stores that had just written them.
+fn read_pipeline(pipeline: *const ZshiftPipeline) -> ZshiftPipeline {
+    debug_assert!(!pipeline.is_null());
+    // SAFETY: not NULL (checked by the entry point); the caller promises a readable
+    // ZshiftPipeline.
+    unsafe { super::read_record(pipeline, ZshiftPipeline::read_fields) }
+}
+
 fn read_scene(scene: *const ZshiftScene) -> ZshiftScene {
     debug_assert!(!scene.is_null());
     // SAFETY: not NULL (checked by the entry point); the caller promises a readable ZshiftScene.
@@ -666,7 +673,9 @@ pub extern "C" fn zshift_recommend_clip_matrix(
 /// A base the rasterizer clips in float (a ground plane running behind the camera) carries the
 /// large term C; cut this way it carries none. `polygon` holds `count` eye-space vertices
 /// (x, y, z, in order around the polygon); `out` receives up to `capacity` vertices (count + 6
-/// always suffices) and `*out_count` how many were written (0 when nothing is inside).
+/// always suffices) and `*out_count` how many were written (0 when nothing is inside). The
+/// margin is for a result drawn in eye space (or camera-relative); one stored in world space
+/// far from the origin: zshift_clip_to_frustum_stored.
 ///
 /// Errors: ZSHIFT_ERR_NULL_POINTER if `polygon` (with count > 0), `out` or `out_count` is NULL;
 /// ZSHIFT_ERR_NOT_FINITE for a NaN or infinite coordinate or frustum parameter (except
@@ -687,6 +696,64 @@ pub extern "C" fn zshift_clip_to_frustum(
     capacity: u32,
     out_count: *mut u32,
 ) -> ZshiftStatus {
+    let frustum = [l, r, b, t, n, f];
+    cut_entry(frustum, None, (polygon, count), (out, capacity, out_count))
+}
+
+/// zshift_clip_to_frustum for a polygon the engine stores as `pipeline` says, in world space
+/// through a float view matrix (its world_reach, eye_first, and view_matrix with world_box, as
+/// the decal's ZshiftScene.pipeline; the viewport and depth range are not used): every plane
+/// is moved inward further by the largest error that storage and the float transform can give
+/// a cut vertex (6u or 14u times the world coordinates' magnitudes, u = 2^-24), so that the
+/// rasterizer still clips nothing of it. That error is absolute, not relative to the vertex's
+/// distance from the camera: cut by zshift_clip_to_frustum, a vertex close to the camera can
+/// land outside once stored in world space far from the origin, and a rasterizer that clips
+/// at the sides (Mesa's llvmpipe) then cuts a sliver off its triangle, with a pixel off the
+/// plane by up to half a pixel of its depth gradient (docs/rasterizer.md, "Slivers"). The
+/// price: near the camera the cut lies visibly inside the screen's edges; camera-relative
+/// rendering needs none of it (use zshift_clip_to_frustum). Draw the result as a fan and pass
+/// base_reach = 0.
+///
+/// Errors: as zshift_clip_to_frustum; ZSHIFT_ERR_NULL_POINTER also if `pipeline` is NULL
+/// (eye-space vertices: zshift_clip_to_frustum); ZSHIFT_ERR_DOMAIN also for a `pipeline` field
+/// out of range (a negative world_reach, a view_matrix without its world_box).
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn zshift_clip_to_frustum_stored(
+    l: f64,
+    r: f64,
+    b: f64,
+    t: f64,
+    n: f64,
+    f: f64,
+    pipeline: *const ZshiftPipeline,
+    polygon: *const f64,
+    count: u32,
+    out: *mut f64,
+    capacity: u32,
+    out_count: *mut u32,
+) -> ZshiftStatus {
+    if pipeline.is_null() {
+        return null_pointer("pipeline");
+    }
+    let stored = read_pipeline(pipeline);
+    let frustum = [l, r, b, t, n, f];
+    cut_entry(
+        frustum,
+        Some(stored),
+        (polygon, count),
+        (out, capacity, out_count),
+    )
+}
+
+/// The checked body of both cuts: `stored` the pipeline the cut polygon is stored through
+/// (`None`: eye space).
+fn cut_entry(
+    [l, r, b, t, n, f]: [f64; 6],
+    stored: Option<ZshiftPipeline>,
+    (polygon, count): (*const f64, u32),
+    (out, capacity, out_count): (*mut f64, u32, *mut u32),
+) -> ZshiftStatus {
     if polygon.is_null() && count > 0 {
         return null_pointer("polygon");
     }
@@ -702,7 +769,13 @@ pub extern "C" fn zshift_clip_to_frustum(
         out_count,
         move || {
             let frustum = Frustum::new(l, r, b, t, n, f)?;
-            let cut = crate::recommend::clip_to_frustum(&frustum, &input)?;
+            let cut = match stored {
+                None => crate::recommend::clip_to_frustum(&frustum, &input)?,
+                Some(p) => {
+                    let pipeline = pipeline_from_c(&p)?;
+                    crate::recommend::clip_to_frustum_stored(&frustum, &input, &pipeline)?
+                }
+            };
             if cut.len() > capacity as usize {
                 return Err(crate::domain::domain(
                     "the cut polygon has more vertices than capacity (count + 6 always suffices)",

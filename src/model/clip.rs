@@ -238,8 +238,11 @@ fn world_beyond_vertex_term(
 /// convention: there, prefer an infinite far plane), in f64: drawn in f32, the result needs no
 /// clipping by the rasterizer, and the recommendation holds for it with
 /// [`crate::recommend::Base::InsideFrustum`] (the f32 clipper's error, term `C`, is what makes a
-/// base crossing the near plane lose decal pixels). The margin is far above f32 rounding and below
-/// a quarter pixel on viewports up to 16384 pixels, so no pixel centre is lost at the edges.
+/// base crossing the near plane lose decal pixels). The margin is far above the f32 rounding of
+/// eye-space vertices and below a quarter pixel on viewports up to 16384 pixels, so no pixel
+/// centre is lost at the edges. A result stored in world space far from the origin errs by its
+/// world coordinates' rounding, which close to the camera can carry a vertex across the margin:
+/// cut it with [`clip_to_frustum_stored`].
 ///
 /// Returns the cut polygon (empty when nothing of the polygon is inside). Sutherland–Hodgman,
 /// one plane at a time; a convex polygon stays convex (draw it as a fan). New vertices are
@@ -251,6 +254,92 @@ fn world_beyond_vertex_term(
 /// [`crate::ErrorKind::NotFinite`] for a NaN or infinite coordinate;
 /// [`crate::ErrorKind::Overflow`] if a cut vertex overflows f64 (coordinates near `f64::MAX`).
 pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+    cut_inside(frustum, polygon, StoredError::NONE)
+}
+
+/// [`clip_to_frustum`] for a polygon the engine stores as `pipeline` says (world space through
+/// an f32 view matrix, [`Pipeline::world_reach`] or [`Pipeline::view`] with
+/// [`Pipeline::world_box`]): every plane is moved inward further by the largest error the f32
+/// storage and transform can give a cut vertex ([`crate::model::vertex`]: `γ·Aₖ` per eye
+/// coordinate, `γ` = 6u eye first, 14u otherwise), so that the rasterizer still clips nothing
+/// of it. That error is absolute, relative to the world coordinates and not to the vertex's
+/// distance from the camera: a vertex cut 2⁻¹⁶ inside a side plane close to the camera lands
+/// outside once stored in world space far from the origin, and Mesa's llvmpipe, which clips at
+/// the sides, then cuts a sliver off the triangle, whose depth plane it sets up from an area
+/// that cancels to a few ulps: a pixel the sliver covers can be off by half a pixel of the
+/// plane's depth gradient, a thousand times the model's terms (`docs/rasterizer.md`,
+/// "Slivers"). The price: near the camera the cut lies visibly inside the screen's edges (by
+/// `γ·A/d` of the depth `d`: 0.3 pixel at 0.5 units with the camera 367 units from the
+/// origin); camera-relative rendering (vertices sent relative to the camera) needs none of it,
+/// and the plain [`clip_to_frustum`] is right for it. The eye-space default pipeline cuts as
+/// [`clip_to_frustum`].
+///
+/// # Errors
+/// As [`clip_to_frustum`].
+pub fn clip_to_frustum_stored(
+    frustum: &Frustum,
+    polygon: &[[f64; 3]],
+    pipeline: &Pipeline,
+) -> Result<Vec<[f64; 3]>> {
+    cut_inside(frustum, polygon, StoredError::of(pipeline, frustum))
+}
+
+/// The error of a stored vertex's eye coordinates, per coordinate: `fixed[k] + growing·w` at
+/// eye depth `w`.
+#[derive(Debug, Clone, Copy)]
+struct StoredError {
+    fixed: [f64; 3],
+    growing: [f64; 3],
+}
+
+impl StoredError {
+    const NONE: Self = Self {
+        fixed: [0.0; 3],
+        growing: [0.0; 3],
+    };
+
+    /// The bound of [`crate::model::vertex::eye_magnitudes`] times `γ`: with the view and box,
+    /// exact whatever the vertex's distance; from `world_reach`, `√3·(4W + ρ·w)` for a vertex
+    /// inside the frustum (`ρ = √(1 + eₓ² + e_y²)`). One combined matrix errs in clip space by
+    /// `γ_W·Bₖ` (`B = |P|·A + |P₃|`), the same as an eye error of `γ_W·Aₖ` but for `|m14|`,
+    /// which 2⁻¹⁶ of the near and far planes' depths far exceeds (`γ_W·|m14| ≤ 28u·n`).
+    fn of(pipeline: &Pipeline, frustum: &Frustum) -> Self {
+        if !pipeline.world_space() {
+            return Self::NONE;
+        }
+        let gamma = F32_UNIT_ROUNDOFF
+            * if pipeline.eye_first {
+                vertex::EYE_FIRST_ROUNDINGS
+            } else {
+                vertex::WORLD_ROUNDINGS
+            };
+        let (l, r, b, t, n, _) = frustum.parameters();
+        let rho =
+            (1.0 + (l.abs().max(r.abs()) / n).powi(2) + (b.abs().max(t.abs()) / n).powi(2)).sqrt();
+        let (at_eye, at_rho) = (
+            vertex::eye_magnitudes(pipeline, 0.0),
+            vertex::eye_magnitudes(pipeline, rho),
+        );
+        Self {
+            fixed: at_eye.map(|a| gamma * a),
+            growing: [0, 1, 2].map(|k| gamma * (at_rho[k] - at_eye[k])),
+        }
+    }
+
+    /// The bound at eye depth `w`, coordinate `k`.
+    fn at(&self, k: usize, w: f64) -> f64 {
+        self.fixed[k] + self.growing[k] * w
+    }
+}
+
+/// [`clip_to_frustum`]'s planes, each moved inward further by what `error` can move a stored
+/// vertex across it: `eₖ(w)` through the plane's coefficients (`|m0|·eₓ + (|m8| + 1)·e_z` for
+/// `x_c ≤ w`, `e_z` for the near and far planes), linear in `w`, so each is still a plane.
+fn cut_inside(
+    frustum: &Frustum,
+    polygon: &[[f64; 3]],
+    error: StoredError,
+) -> Result<Vec<[f64; 3]>> {
     for v in polygon {
         for &c in v {
             finite(c, "a polygon vertex coordinate is NaN or infinite")?;
@@ -264,17 +353,20 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
     let keep = 1.0 - 2.0 * FRUSTUM_MARGIN;
     let x_c = move |p: &[f64; 3]| m[0] * p[0] + m[8] * p[2];
     let y_c = move |p: &[f64; 3]| m[5] * p[1] + m[9] * p[2];
+    let e = move |k: usize, p: &[f64; 3]| error.at(k, -p[2]);
+    let x_err = move |p: &[f64; 3]| m[0].abs() * e(0, p) + (m[8].abs() + 1.0) * e(2, p);
+    let y_err = move |p: &[f64; 3]| m[5].abs() * e(1, p) + (m[9].abs() + 1.0) * e(2, p);
     // Each plane as a signed distance, positive inside.
     let mut sides: Vec<Side> = vec![
-        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN)),
-        Box::new(move |p| x_c(p) - keep * p[2]),
-        Box::new(move |p| -keep * p[2] - x_c(p)),
-        Box::new(move |p| y_c(p) - keep * p[2]),
-        Box::new(move |p| -keep * p[2] - y_c(p)),
+        Box::new(move |p| -p[2] - n * (1.0 + FRUSTUM_MARGIN) - e(2, p)),
+        Box::new(move |p| x_c(p) - keep * p[2] - x_err(p)),
+        Box::new(move |p| -keep * p[2] - x_c(p) - x_err(p)),
+        Box::new(move |p| y_c(p) - keep * p[2] - y_err(p)),
+        Box::new(move |p| -keep * p[2] - y_c(p) - y_err(p)),
     ];
     if f.is_finite() {
         let far = far_cut(n, f);
-        sides.push(Box::new(move |p| far + p[2]));
+        sides.push(Box::new(move |p| far + p[2] - e(2, p)));
     }
     let mut poly = polygon.to_vec();
     for side in &sides {
@@ -315,7 +407,99 @@ pub(crate) fn cut(poly: &[[f64; 3]], side: &dyn Fn(&[f64; 3]) -> f64) -> Vec<[f6
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::Pipeline;
     use crate::projection::{projection, ClipDepth};
+
+    /// A ground cut for world-space storage stays inside the frustum through what an engine does
+    /// with it: stored in world space as f32 and transformed by an f32 view matrix in f32
+    /// arithmetic (`view * p`, the shader's product), for cameras up to 10⁴ units from the
+    /// origin, near the ground and looking down at it (the cut's vertices at the screen's
+    /// edges lie close to the camera). The plain cut, 2⁻¹⁶ inside, lands outside in some of the
+    /// same scenes: where llvmpipe clips a sliver off a triangle.
+    #[test]
+    fn the_stored_cut_stays_inside_through_the_f32_transform() {
+        let frustum = Frustum::new(-0.0577, 0.0577, -0.0325, 0.0325, 0.1, 1000.0).unwrap();
+        let m = projection(&frustum, ClipDepth::NegOneToOne)
+            .unwrap()
+            .map(f64::from);
+        let (mut plain_outside, mut scenes) = (0, 0);
+        for i in 0..400u32 {
+            let t = [0.0, 100.0, 1e3, 1e4][(i % 4) as usize];
+            let (yaw, pitch) = (
+                0.37 * f64::from(i),
+                0.2 + 0.6 * (f64::from(i) * 0.61).fract(),
+            );
+            let camera = [t + 0.3719, 1.7, t - 0.6143];
+            // Rows of world → eye: right, up, back, for a camera pitched down by `pitch`.
+            let (sy, cy, sp, cp) = (yaw.sin(), yaw.cos(), pitch.sin(), pitch.cos());
+            let back = [sy * cp, sp, cy * cp];
+            let right = [cy, 0.0, -sy];
+            let up = [
+                back[1] * right[2] - back[2] * right[1],
+                back[2] * right[0] - back[0] * right[2],
+                back[0] * right[1] - back[1] * right[0],
+            ];
+            let rot = [right, up, back];
+            let eye_of =
+                |p: [f64; 3]| rot.map(|r| (0..3).map(|k| r[k] * (p[k] - camera[k])).sum::<f64>());
+            let mut view = [0.0f32; 16];
+            for (k, r) in rot.iter().enumerate() {
+                for j in 0..3 {
+                    view[4 * j + k] = r[j] as f32;
+                }
+                view[12 + k] = -(0..3).map(|j| r[j] * camera[j]).sum::<f64>() as f32;
+            }
+            view[15] = 1.0;
+            let ground = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
+                .map(|[x, z]| [t + 1000.0 * x, 0.0, t + 1000.0 * z]);
+            let eye: Vec<[f64; 3]> = ground.iter().map(|&p| eye_of(p)).collect();
+            let pipeline = Pipeline {
+                eye_first: true,
+                view: Some(view),
+                world_box: Some([[t - 1000.0, 0.0, t - 1000.0], [t + 1000.0, 0.0, t + 1000.0]]),
+                world_reach: camera[0].abs().max(camera[2].abs()),
+                ..Pipeline::default()
+            };
+            // The largest excess of |x_c|, |y_c| over w, or of the near plane over −z, after the
+            // f32 storage and transform; positive: outside.
+            let outside = |cut: &[[f64; 3]]| {
+                cut.iter()
+                    .map(|e| {
+                        let world = [0, 1, 2].map(|j| {
+                            ((0..3).map(|k| rot[k][j] * e[k]).sum::<f64>() + camera[j]) as f32
+                        });
+                        let shader = [0, 1, 2].map(|k| {
+                            let mut acc = view[12 + k];
+                            for j in 0..3 {
+                                acc += view[4 * j + k] * world[j];
+                            }
+                            f64::from(acc)
+                        });
+                        let w = -shader[2];
+                        let x_c = m[0] * shader[0] + m[8] * shader[2];
+                        let y_c = m[5] * shader[1] + m[9] * shader[2];
+                        (x_c.abs() - w).max(y_c.abs() - w).max(0.1 - w)
+                    })
+                    .fold(f64::NEG_INFINITY, f64::max)
+            };
+            let stored = clip_to_frustum_stored(&frustum, &eye, &pipeline).unwrap();
+            if stored.is_empty() {
+                continue;
+            }
+            scenes += 1;
+            assert!(
+                outside(&stored) < 0.0,
+                "scene {i} (T {t}): a stored cut vertex is outside"
+            );
+            let plain = clip_to_frustum(&frustum, &eye).unwrap();
+            plain_outside += usize::from(outside(&plain) > 0.0);
+        }
+        assert!(scenes > 300, "{scenes} scenes see the ground");
+        assert!(
+            plain_outside > 0,
+            "the plain cut never lands outside: the test shows nothing"
+        );
+    }
 
     /// The far vertices of a ground cut at large f/n stay in front of the far plane through the
     /// f32 transform an engine runs (`m10·z + m14`, the division by `w`, each rounded to f32),

@@ -191,7 +191,7 @@ pub(crate) use terms::mapping_of;
 
 /// Cuts a base polygon to the view frustum in f64, so the rasterizer clips nothing (the term
 /// `C`'s remedy, see [`crate::model::clip`]).
-pub use crate::model::clip::clip_to_frustum;
+pub use crate::model::clip::{clip_to_frustum, clip_to_frustum_stored};
 
 /// The decal's window-space geometry (see [`crate::footprint`]).
 pub use crate::footprint::{decal_shape, DecalShape, Footprint};
@@ -576,7 +576,7 @@ macro_rules! near_plane {
 }
 
 /// [`near_plane`] for a large clipped base.
-const NEAR_PLANE_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python) and pass base_reach = 0");
+const NEAR_PLANE_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a large base): cut the base to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python; stored in world space, zshift_clip_to_frustum_stored, or the Python keywords world_reach or view_matrix and world_box) and pass base_reach = 0");
 
 /// [`near_plane`] for world-space vertices.
 const NEAR_PLANE_WORLD: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float rounding of world-space vertices far from the origin, largest on a plane that passes close to the eye): pass view_matrix and world_box (C fields; Python keywords) for the exact term if not given (a model-view multiplied in float: multiply it in double first), render relative to the camera");
@@ -589,7 +589,7 @@ const NEAR_PLANE_DECAL: [&str; 4] = near_plane!(
 );
 
 /// [`near_plane`] for a decal that the rasterizer clips (off screen, or behind the camera).
-const NEAR_PLANE_DECAL_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a decal that reaches off screen or behind the camera): cut the decal to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python), draw the cut polygon and pass its corners");
+const NEAR_PLANE_DECAL_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a decal that reaches off screen or behind the camera): cut the decal to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python; stored in world space, zshift_clip_to_frustum_stored), draw the cut polygon and pass its corners");
 
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,

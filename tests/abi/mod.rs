@@ -457,6 +457,42 @@ pub const CATALOGUE: &[Entry] = &[
             inf_ok: &[],
         },
     },
+    Entry {
+        name: "zshift_clip_to_frustum_stored",
+        kind: Kind::Writes {
+            elem: Elem::F64,
+            len: 30,
+            // The same quad, stored in world space within 10⁴ of the origin.
+            call: |i: &Inputs, out: *mut u8| {
+                let quad = [
+                    -1e3, -1e3, 490.0, 1e3, -1e3, 490.0, 1e3, 1e3, -510.0, -1e3, 1e3, -510.0,
+                ];
+                let stored = ffi::ZshiftPipeline {
+                    world_reach: 1e4,
+                    eye_first: 1,
+                    ..ffi::ZshiftPipeline::default()
+                };
+                let mut count = 0u32;
+                let (p, n) = (quad.as_ptr(), 4);
+                ffi::zshift_clip_to_frustum_stored(
+                    i.l,
+                    i.r,
+                    i.b,
+                    i.t,
+                    i.n,
+                    i.f,
+                    &stored,
+                    p,
+                    n,
+                    out.cast(),
+                    10,
+                    &mut count,
+                )
+                .0
+            },
+            inf_ok: &[],
+        },
+    },
 ];
 
 /// The entry named `name`.

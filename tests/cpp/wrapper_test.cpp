@@ -264,6 +264,26 @@ static void test_clip_to_frustum() {
         "a polygon behind the camera is not cut to nothing");
   check_throws("clip_to_frustum(l == r)", zshift::Status::domain,
                [&] { zshift::clip_to_frustum(1, 1, -1, 1, 1, 10, ground); });
+  // Stored in world space 10^4 from the origin: what zshift_clip_to_frustum_stored writes, its
+  // nearest vertex further from the camera than the plain cut's.
+  ZshiftPipeline stored = {};
+  stored.world_reach = 1e4;
+  stored.eye_first = 1;
+  std::vector<zshift::Vertex> inside = zshift::clip_to_frustum(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, ground, stored);
+  CHECK(zshift_clip_to_frustum_stored(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, &stored, ground.data()->data(), 4, c, 10,
+                                      &count) == ZSHIFT_OK,
+        "C zshift_clip_to_frustum_stored failed");
+  CHECK(inside.size() == count && count >= 3 && std::memcmp(inside.data(), c, count * sizeof(zshift::Vertex)) == 0,
+        "clip_to_frustum(stored) differs from the C call (%zu vs %u vertices)", inside.size(),
+        static_cast<unsigned>(count));
+  double plain_nearest = 1e300, stored_nearest = 1e300;
+  for (const zshift::Vertex &v : cut) plain_nearest = std::min(plain_nearest, -v[2]);
+  for (const zshift::Vertex &v : inside) stored_nearest = std::min(stored_nearest, -v[2]);
+  CHECK(stored_nearest > plain_nearest, "the stored cut is not further inside (%g vs %g)", stored_nearest,
+        plain_nearest);
+  stored.world_reach = -1.0;
+  check_throws("clip_to_frustum(world_reach < 0)", zshift::Status::domain,
+               [&] { zshift::clip_to_frustum(-0.1, 0.1, -0.1, 0.1, 0.1, 1000.0, ground, stored); });
 }
 
 // recommend_clip() and recommend_clip_matrix() return exactly what the C calls write; reversed

@@ -15,7 +15,9 @@ ROOT = Path(__file__).resolve().parents[3]
 # today: zshift_status_message is zshift.status_message and zshift::status_message (C++ also
 # keeps its older spelling zshift::message); zshift_last_error is zshift.last_error and
 # zshift::last_error.
-RENAMED = {}
+# C entry points reached through another name: the stored cut is clip_to_frustum's world-space
+# keywords in Python and an overload in C++.
+RENAMED = {"zshift_clip_to_frustum_stored": ("clip_to_frustum", "clip_to_frustum")}
 
 
 def c_functions():
@@ -121,6 +123,30 @@ class Arguments(unittest.TestCase):
         self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
         with self.assertRaises(TypeError):
             zshift.clip_to_frustum(self.FRUSTUM, [(0.0, 0.0)])
+
+    def test_clip_to_frustum_stored_in_world_space(self):
+        # The same ground stored in world space 10**4 from the origin (a view matrix that
+        # translates by -10**4): the stored cut lies inside the plain one, by more near the
+        # camera than far from it (the storage's error is absolute).
+        l, r, b, t, n, f = self.FRUSTUM
+        ground = [(-100.0, -2.0, 100.0), (100.0, -2.0, 100.0), (100.0, -2.0, -500.0), (-100.0, -2.0, -500.0)]
+        view = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, -1e4, 0, -1e4, 1.0]
+        box = ((1e4 - 100.0, -2.0, 1e4 - 500.0), (1e4 + 100.0, -2.0, 1e4 + 100.0))
+        plain = zshift.clip_to_frustum(self.FRUSTUM, ground)
+        stored = zshift.clip_to_frustum(self.FRUSTUM, ground, eye_first=True, view_matrix=view, world_box=box)
+        self.assertNotEqual(stored, plain)
+        nearest = lambda cut: min(-z for _, _, z in cut)
+        self.assertGreater(nearest(stored), nearest(plain))
+        for x, y, z in stored:
+            d = -z
+            self.assertTrue(n < d <= f and l * d / n < x < r * d / n, (x, y, z))
+        by_reach = zshift.clip_to_frustum(self.FRUSTUM, ground, world_reach=1e4)
+        self.assertGreater(nearest(by_reach), nearest(plain))
+        with self.assertRaises(TypeError):
+            zshift.clip_to_frustum(self.FRUSTUM, ground, view_matrix=view)
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.clip_to_frustum(self.FRUSTUM, ground, world_reach=-1.0)
+        self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)
 
 
 if __name__ == "__main__":

@@ -639,7 +639,7 @@ def recommend_clip_matrix(frustum, viewport, depth_format, decal_depths, clip, s
     return _matrix(lambda out: _lib().zshift_recommend_clip_matrix(_ctypes.byref(scene), _enum(clip, Clip), out))
 
 
-def clip_to_frustum(frustum, polygon):
+def clip_to_frustum(frustum, polygon, world_reach=0.0, eye_first=False, view_matrix=None, world_box=None):
     """Cuts a convex base polygon to the view frustum ``(l, r, b, t, n, f)`` of ``glFrustum``
     (``zshift_clip_to_frustum``), in double and slightly inside, so that the rasterizer clips
     nothing of it: draw the result as a triangle fan and pass ``base_reach=0``. A ground that runs
@@ -649,9 +649,19 @@ def clip_to_frustum(frustum, polygon):
     ``polygon`` is a sequence of eye-space ``(x, y, z)`` vertices in order around the polygon;
     returns the cut polygon as a list of ``(x, y, z)`` tuples (empty when nothing is inside).
 
+    Stored in world space (``world_reach``, or ``view_matrix`` with ``world_box``, and
+    ``eye_first``, as for :func:`recommend`: ``zshift_clip_to_frustum_stored``), the cut lies
+    further inside by the largest error that storage and the float32 view transform can give a
+    vertex, an error relative to the world coordinates, not to the vertex's distance from the
+    camera: cut only 2**-16 inside, a vertex close to the camera can land outside, and a
+    rasterizer that clips at the screen's sides (Mesa's llvmpipe) cuts a sliver off its
+    triangle whose pixel can be off by half a pixel of depth gradient. Camera-relative
+    rendering needs none of it.
+
     Raises :class:`ZshiftError`: ``NOT_FINITE`` for a NaN or infinite coordinate or frustum
-    parameter (except ``f = math.inf``); ``DOMAIN`` for a bad frustum or more than 65536 vertices;
-    ``TypeError`` for a vertex that is not an ``(x, y, z)`` triple.
+    parameter (except ``f = math.inf``); ``DOMAIN`` for a bad frustum, more than 65536 vertices
+    or a negative ``world_reach``; ``TypeError`` for a vertex that is not an ``(x, y, z)``
+    triple, or ``view_matrix`` without ``world_box`` (or the reverse).
     """
     l, r, b, t, n, f = frustum
     vertices = [tuple(float(c) for c in vertex) for vertex in polygon]
@@ -662,15 +672,33 @@ def clip_to_frustum(frustum, polygon):
     flat = (_ctypes.c_double * max(3 * count, 1))(*[c for vertex in vertices for c in vertex])
     out = (_ctypes.c_double * (3 * capacity))()
     out_count = _ctypes.c_uint32()
-    fn = _lib().zshift_clip_to_frustum
-    fn.argtypes = [_ctypes.c_double] * 6 + [
-        _ctypes.POINTER(_ctypes.c_double), _ctypes.c_uint32, _ctypes.POINTER(_ctypes.c_double), _ctypes.c_uint32,
-        _ctypes.POINTER(_ctypes.c_uint32)]
-    fn.restype = _ctypes.c_int32
     if count > 65536:
         raise ZshiftError(Status.DOMAIN, f"the polygon must have at most 65536 vertices (count = {count})")
-    _check(fn(l, r, b, t, n, f, flat, count, out, capacity, _ctypes.byref(out_count)))
+    tail = [_ctypes.POINTER(_ctypes.c_double), _ctypes.c_uint32, _ctypes.POINTER(_ctypes.c_double),
+            _ctypes.c_uint32, _ctypes.POINTER(_ctypes.c_uint32)]
+    args = (flat, count, out, capacity, _ctypes.byref(out_count))
+    if world_reach == 0.0 and view_matrix is None and world_box is None:
+        fn = _lib().zshift_clip_to_frustum
+        fn.argtypes = [_ctypes.c_double] * 6 + tail
+        fn.restype = _ctypes.c_int32
+        _check(fn(l, r, b, t, n, f, *args))
+    else:
+        holder = _StoredPipeline()
+        holder.pipeline.world_reach = world_reach
+        holder.pipeline.eye_first = 1 if eye_first else 0
+        _attach_view(holder, view_matrix, world_box)
+        fn = _lib().zshift_clip_to_frustum_stored
+        fn.argtypes = [_ctypes.c_double] * 6 + [_ctypes.POINTER(_library.ZshiftPipeline)] + tail
+        fn.restype = _ctypes.c_int32
+        _check(fn(l, r, b, t, n, f, _ctypes.byref(holder.pipeline), *args))
     return [(out[3 * i], out[3 * i + 1], out[3 * i + 2]) for i in range(out_count.value)]
+
+
+class _StoredPipeline:
+    """A ``ZshiftPipeline`` with what keeps its view matrix alive (:func:`_attach_view`)."""
+
+    def __init__(self):
+        self.pipeline = _library.ZshiftPipeline()
 
 
 # ---- The front door: the engine's own matrix in, the decal's matrix out ----
