@@ -432,13 +432,10 @@ pub const CATALOGUE: &[Entry] = &[
         kind: Kind::Writes {
             elem: Elem::F64,
             len: 30,
-            // A ground quad z = -10 - y/2 running behind the camera, cut to at most 10 vertices.
+            // A ground quad running behind the camera, cut to at most 10 vertices.
             call: |i: &Inputs, out: *mut u8| {
-                let quad = [
-                    -1e3, -1e3, 490.0, 1e3, -1e3, 490.0, 1e3, 1e3, -510.0, -1e3, 1e3, -510.0,
-                ];
                 let mut count = 0u32;
-                let (p, n) = (quad.as_ptr(), 4);
+                let (p, n) = (GROUND_QUAD.as_ptr(), 4);
                 ffi::zshift_clip_to_frustum(
                     i.l,
                     i.r,
@@ -464,16 +461,13 @@ pub const CATALOGUE: &[Entry] = &[
             len: 30,
             // The same quad, stored in world space within 10⁴ of the origin.
             call: |i: &Inputs, out: *mut u8| {
-                let quad = [
-                    -1e3, -1e3, 490.0, 1e3, -1e3, 490.0, 1e3, 1e3, -510.0, -1e3, 1e3, -510.0,
-                ];
                 let stored = ffi::ZshiftPipeline {
                     world_reach: 1e4,
                     eye_first: 1,
                     ..ffi::ZshiftPipeline::default()
                 };
                 let mut count = 0u32;
-                let (p, n) = (quad.as_ptr(), 4);
+                let (p, n) = (GROUND_QUAD.as_ptr(), 4);
                 ffi::zshift_clip_to_frustum_stored(
                     i.l,
                     i.r,
@@ -493,6 +487,11 @@ pub const CATALOGUE: &[Entry] = &[
             inf_ok: &[],
         },
     },
+];
+
+/// A ground quad z = -10 - y/2 running behind the camera, for the cuts (eye space, x y z).
+const GROUND_QUAD: [f64; 12] = [
+    -1e3, -1e3, 490.0, 1e3, -1e3, 490.0, 1e3, 1e3, -510.0, -1e3, 1e3, -510.0,
 ];
 
 /// The entry named `name`.
