@@ -117,6 +117,15 @@ impl Error {
         self.detail
     }
 
+    /// Whether this is the refusal of a decal (or a mesh decal's piece) of which nothing is
+    /// drawn: wholly behind the near plane, beyond the far plane or off screen
+    /// ([`crate::matrix_in::decal_shape`]). Such a piece of a decal over several planes can be
+    /// left out of [`crate::planes::recommend_planes`], as the C entry points
+    /// `zshift_decal_matrix_planes` and `zshift_recommend_for_planes` leave it out themselves.
+    pub fn draws_nothing(&self) -> bool {
+        crate::footprint::draws_nothing(self)
+    }
+
     /// The name of the input at fault and its value, where the check that failed knew them.
     pub fn input(&self) -> Option<(&'static str, f64)> {
         self.input.map(|(name, value)| {

@@ -237,6 +237,10 @@ pub fn decal_shape_for_matrix(
     let far_cut = |p: &[f64; 3]| far_side(p) - FAR_CUT_MARGIN * row(3, p);
     let visible = if crosses_near || crosses_far {
         cut_to_view(&eye, &near_side, &far_cut, &row)
+    } else if cut_to_view(&eye, &near_side, &far_cut, &row).len() < 3 {
+        // Wholly off screen at the sides: the rasterizer draws nothing of it. (A decal partly
+        // off screen keeps all its corners: the model adds the clipping of its own edges.)
+        Vec::new()
     } else {
         eye.clone()
     };
@@ -507,6 +511,37 @@ mod tests {
     fn on_plane(x: f32, y: f32, (sx, sy, da): (f64, f64, f64)) -> Vec3 {
         let z = -da + sx * f64::from(x) + sy * f64::from(y);
         Vec3::new(x, y, z as f32)
+    }
+
+    /// A piece wholly behind the near plane, beyond the far plane or off screen is refused as
+    /// drawing nothing (`Error::draws_nothing`, what lets a mesh decal leave it out); a piece
+    /// that is drawn, or refused for another reason, is not.
+    #[test]
+    fn pieces_that_draw_nothing_say_so() {
+        let at = |points: [(f32, f32, f32); 3]| {
+            let corners: Vec<Vec3> = points.iter().map(|&(x, y, z)| Vec3::new(x, y, z)).collect();
+            decal_shape(&frustum(), ClipDepth::NegOneToOne, [200, 120], &corners)
+        };
+        for (what, piece) in [
+            (
+                "behind",
+                [(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (0.0, 1.0, 2.0)],
+            ),
+            (
+                "beyond",
+                [(0.0, 0.0, -60.0), (1.0, 0.0, -60.0), (0.0, 1.0, -70.0)],
+            ),
+            (
+                "off screen",
+                [(40.0, 0.0, -10.0), (41.0, 0.0, -10.0), (40.0, 1.0, -11.0)],
+            ),
+        ] {
+            let e = at(piece).expect_err(what);
+            assert!(e.draws_nothing(), "{what}: {e}");
+        }
+        assert!(at([(0.0, 0.0, -5.0), (1.0, 0.0, -5.0), (0.0, 1.0, -6.0)]).is_ok());
+        let flat = at([(0.0, 0.0, -5.0), (1.0, 0.0, -5.0), (2.0, 0.0, -5.0)]).unwrap_err();
+        assert!(!flat.draws_nothing(), "{flat}");
     }
 
     #[test]

@@ -27,9 +27,9 @@ use crate::recommend::ClipRecommendation;
 /// sliver's f32 corners do not pin its plane down), cut to the frustum with
 /// [`crate::recommend::clip_to_frustum`] where the triangle reaches behind the near plane or off
 /// the screen (corners must lie in the frustum); a triangle wholly outside needs no plane
-/// (leave it out: [`crate::matrix_in::decal_shape`] refuses it as drawing nothing; the C entry
-/// points `zshift_decal_matrix_planes` and `zshift_recommend_for_planes` leave such a plane out
-/// themselves).
+/// (leave it out: [`crate::matrix_in::decal_shape`] refuses it with an error whose
+/// [`crate::Error::draws_nothing`] is true; the C entry points `zshift_decal_matrix_planes`
+/// and `zshift_recommend_for_planes` leave such a plane out themselves).
 ///
 /// Returns the recommendation of the plane whose offset is largest (its `matrix`,
 /// `epsilon`, `ndc_offset`, `relative_epsilon`, `window_offset`, `delta_at_far`, `terms`),

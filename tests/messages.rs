@@ -444,8 +444,25 @@ fn a_decal_over_planes_names_the_plane_and_its_field() {
     );
     assert_eq!(status, ZSHIFT_OK, "{}", detail());
     assert_eq!(out, expected);
+    // So is a triangle wholly off screen at the side, within the depth range.
+    let right: [f32; 9] = [100.0, -1.7, -10.0, 101.0, -1.7, -10.0, 100.0, -1.7, -11.0];
+    let aside = ZshiftDecal {
+        decal_corners: right.as_ptr(),
+        ..nothing
+    };
+    let mut beside = [0.0f32; 16];
+    let three = [near, aside, far];
+    let status = zshift_decal_matrix_planes(
+        m.as_ptr(),
+        ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+        three.as_ptr(),
+        3,
+        beside.as_mut_ptr(),
+    );
+    assert_eq!(status, ZSHIFT_OK, "{}", detail());
+    assert_eq!(beside, expected);
     refused_planes(
-        [nothing, nothing].as_ptr(),
+        [nothing, aside].as_ptr(),
         2,
         &["nothing of the decal is drawn"],
     );
