@@ -428,8 +428,8 @@ fn spanning_normal(points: &[[f64; 3]]) -> Option<[f64; 3]> {
     (length > 1e-12 * dist2(&p1) && length.is_finite()).then(|| n.map(|x| x / length))
 }
 
-/// `x × y`.
-fn cross(x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
+/// `x × y` (the one cross product of the crate: the footprint's hull, the probe's planes).
+pub(crate) fn cross(x: [f64; 3], y: [f64; 3]) -> [f64; 3] {
     [
         x[1] * y[2] - x[2] * y[1],
         x[2] * y[0] - x[0] * y[2],

@@ -434,11 +434,7 @@ mod tests {
             let (sy, cy, sp, cp) = (yaw.sin(), yaw.cos(), pitch.sin(), pitch.cos());
             let back = [sy * cp, sp, cy * cp];
             let right = [cy, 0.0, -sy];
-            let up = [
-                back[1] * right[2] - back[2] * right[1],
-                back[2] * right[0] - back[0] * right[2],
-                back[0] * right[1] - back[1] * right[0],
-            ];
+            let up = crate::footprint::cross(back, right);
             let rot = [right, up, back];
             let eye_of =
                 |p: [f64; 3]| rot.map(|r| (0..3).map(|k| r[k] * (p[k] - camera[k])).sum::<f64>());

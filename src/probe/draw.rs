@@ -3,6 +3,7 @@
 //! plane each pixel is checked against.
 
 use super::*;
+pub(super) use crate::footprint::cross;
 
 /// A triangle's vertices as the vertex buffer holds them (eye space, `w = 1`; or clip
 /// coordinates when drawn with [`IDENTITY`]).
@@ -175,14 +176,6 @@ pub(super) struct Plane {
     pub(super) zero_to_one: bool,
     /// The largest window depth of the vertices in front of the camera.
     pub(super) largest: f64,
-}
-
-pub(super) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 impl Plane {
