@@ -275,12 +275,14 @@ pub fn clip_to_frustum(frustum: &Frustum, polygon: &[[f64; 3]]) -> Result<Vec<[f
 /// [`clip_to_frustum`].
 ///
 /// # Errors
-/// As [`clip_to_frustum`].
+/// As [`clip_to_frustum`], and as [`Pipeline::check`] for a field of `pipeline` out of range
+/// (a negative or NaN `world_reach`, a view matrix without its box or with a NaN).
 pub fn clip_to_frustum_stored(
     frustum: &Frustum,
     polygon: &[[f64; 3]],
     pipeline: &Pipeline,
 ) -> Result<Vec<[f64; 3]>> {
+    pipeline.check()?;
     cut_inside(frustum, polygon, StoredError::of(pipeline, frustum))
 }
 
@@ -495,6 +497,41 @@ mod tests {
             plain_outside > 0,
             "the plain cut never lands outside: the test shows nothing"
         );
+    }
+
+    /// The stored cut checks its pipeline: a NaN or negative reach, a view without its box.
+    #[test]
+    fn the_stored_cut_refuses_a_bad_pipeline() {
+        let frustum = Frustum::new(-0.1, 0.1, -0.1, 0.1, 0.1, 100.0).unwrap();
+        let ground = [[-5.0, -1.0, 5.0], [5.0, -1.0, 5.0], [5.0, -1.0, -50.0]];
+        let view = [
+            1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        ];
+        for bad in [
+            Pipeline {
+                world_reach: f64::NAN,
+                ..Pipeline::default()
+            },
+            Pipeline {
+                world_reach: -1.0,
+                ..Pipeline::default()
+            },
+            Pipeline {
+                view: Some(view),
+                ..Pipeline::default()
+            },
+        ] {
+            let e = clip_to_frustum_stored(&frustum, &ground, &bad).unwrap_err();
+            assert!(
+                matches!(
+                    e.kind(),
+                    crate::ErrorKind::Domain | crate::ErrorKind::NotFinite
+                ),
+                "{bad:?}: {e}"
+            );
+        }
+        let eye = clip_to_frustum_stored(&frustum, &ground, &Pipeline::default()).unwrap();
+        assert_eq!(eye, clip_to_frustum(&frustum, &ground).unwrap());
     }
 
     /// The far vertices of a ground cut at large f/n stay in front of the far plane through the
