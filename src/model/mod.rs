@@ -17,7 +17,7 @@
 //! | [`vertex`] | `V` | f32 rounding of the vertices before the projection: eye coordinates rounded once, or world coordinates through the engine's f32 model-view matrix |
 //! | [`interpolation`] | `I`, `G`, `M` | f32 rounding of the rasterizer's depth-plane set-up and evaluation, relative to the depth extrapolated from the framebuffer's origin (`G`); the magnitude `M` a measured figure scales |
 //! | [`snap`] | `S` | sub-pixel snapping of a sloped plane before depth set-up; its `glPolygonOffset` factor |
-//! | [`clip`] | `C` | the rasterizer's f32 clipping of a base that leaves the frustum, and the remedy: cutting it in f64 ([`clip::clip_to_frustum`]) |
+//! | [`clip`] | `C` | the rasterizer's f32 clipping of a base that leaves the frustum, and the remedy: cutting it in f64 ([`clip::clip_to_frustum`]; stored in world space, [`clip::clip_to_frustum_stored`]) |
 //! | [`measured`] | — | what a probed profile replaces: `T + I` by its per-pixel figure, `C` by its clipper's, the per-format index of its arrays |
 //!
 //! A plane's error `E = T + V + I` per primitive, with `S` beside it and `C` for a clipped base,
