@@ -8,6 +8,7 @@
 static int ground_decal(const float proj[16], float decal_out[16]); /* below */
 static int terrain_decal(const float proj[16], float decal_out[16]); /* below */
 static int decal_entity(const float proj[16], float decal_out[16]);  /* below */
+static int cut_ground(const float proj[16], float decal_out[16]);    /* below */
 
 
 int main(void) {
@@ -41,6 +42,9 @@ int main(void) {
   if (decal[10] <= proj[10]) return 1;
   if (decal_entity(proj, decal) != 0) return 1;
   printf("decal entity: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
+  if (decal[10] <= proj[10]) return 1;
+  if (cut_ground(proj, decal) != 0) return 1;
+  printf("cut ground: element 10 %.9g -> %.9g\n", (double)proj[10], (double)decal[10]);
   return decal[10] > proj[10] ? 0 : 1;
 }
 
@@ -130,3 +134,53 @@ static int decal_entity(const float proj[16], float decal_out[16]) {
   return 0;
 }
 /* [/quickstart-entity-c] */
+
+/* [quickstart-cut-c] */
+/* The ground of ground_decal cut to the frustum in double, so that the rasterizer clips none of
+   it, and stored in world space as the engine keeps it: the camera at (5000, 1.7, 5000), level,
+   looking down -z. zshift_clip_to_frustum_stored cuts it inside by what that storage and the
+   float view matrix can move a vertex (zshift_clip_to_frustum would leave a vertex close to the
+   camera outside the screen, where a rasterizer that clips at the sides makes a sliver). */
+static int cut_ground(const float proj[16], float decal_out[16]) {
+  static const float view[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -5000.0f, -1.7f, -5000.0f, 1};
+  static const double box[6] = {4000.0, 0.0, 4000.0, 6000.0, 0.0, 6000.0}; /* the ground's corners */
+  const double ground[12] = {-1000.0, -1.7, 1000.0, 1000.0, -1.7, 1000.0, /* eye space */
+                             1000.0, -1.7, -1000.0, -1000.0, -1.7, -1000.0};
+  const float corners[12] = {-1.0f, -1.7f, -9.0f, 1.0f, -1.7f, -9.0f, /* the decal, eye space */
+                             1.0f, -1.7f, -11.0f, -1.0f, -1.7f, -11.0f};
+  double cut[3 * 10];
+  float world[3 * 10]; /* what the engine draws as a triangle fan */
+  uint32_t count = 0, i;
+  ZshiftDecal d;
+  memset(&d, 0, sizeof d);
+  d.pipeline.world_reach = 5000.0; /* the camera's largest world coordinate */
+  d.pipeline.eye_first = 1;        /* the shader computes proj * (view * p) */
+  d.pipeline.view_matrix = view;
+  memcpy(d.pipeline.world_box, box, sizeof box);
+  /* The frustum of main's proj: glFrustum(-0.1, 0.1, -0.075, 0.075, 0.1, 1000). */
+  if (zshift_clip_to_frustum_stored(-0.1, 0.1, -0.075, 0.075, 0.1, 1000.0, &d.pipeline, ground, 4, cut, 10,
+                                    &count) != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error());
+    return 1;
+  }
+  for (i = 0; i < count; i++) { /* eye space -> world space: a level camera adds its position */
+    world[3 * i] = (float)(cut[3 * i] + 5000.0);
+    world[3 * i + 1] = (float)(cut[3 * i + 1] + 1.7);
+    world[3 * i + 2] = (float)(cut[3 * i + 2] + 5000.0);
+  }
+  (void)world; /* the engine uploads it: glBufferData(GL_ARRAY_BUFFER, 12 * count, world, ...) */
+  d.viewport_width = 1920;
+  d.viewport_height = 1080;
+  d.format = ZSHIFT_FORMAT_UNORM24_STENCIL8;
+  d.subpixel_bits = 8;
+  d.depth_func = ZSHIFT_DEPTH_TEST_LEQUAL;
+  d.decal_corners = corners;
+  d.decal_corner_count = 4;
+  d.base_reach = 0.0; /* the cut ground lies inside the frustum */
+  if (zshift_decal_matrix(proj, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &d, decal_out) != ZSHIFT_OK) {
+    fprintf(stderr, "zshift: %s\n", zshift_last_error());
+    return 1;
+  }
+  return count >= 3 ? 0 : 1;
+}
+/* [/quickstart-cut-c] */
