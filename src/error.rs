@@ -44,6 +44,8 @@ pub struct Error {
     /// Which of several like inputs the error is about (`plane 3` of a decal over several
     /// planes), said before the detail.
     item: Option<(&'static str, u32)>,
+    /// A remedy that applies where the error arose (said after the detail and its input).
+    note: Option<&'static str>,
 }
 
 impl Error {
@@ -54,6 +56,7 @@ impl Error {
             input: None,
             bound: None,
             item: None,
+            note: None,
         }
     }
 
@@ -61,6 +64,12 @@ impl Error {
     /// names.
     pub(crate) const fn for_item(mut self, name: &'static str, index: u32) -> Self {
         self.item = Some((name, index));
+        self
+    }
+
+    /// This error with a remedy that applies where it arose, said last.
+    pub(crate) const fn with_note(mut self, note: &'static str) -> Self {
+        self.note = Some(note);
         self
     }
 
@@ -152,14 +161,22 @@ impl fmt::Display for Error {
             None => Ok(()),
         };
         match self.input {
-            None => return Ok(()),
-            Some(("", Value::Real(bits))) => write!(f, " (got {}", f64::from_bits(bits))?,
-            Some((name, Value::Real(bits))) => write!(f, " ({name} = {}", f64::from_bits(bits))?,
-            Some((name, Value::Integer(i))) => write!(f, " ({name} = {i}")?,
-            Some((name, Value::Code(c))) => write!(f, " ({name} = 0x{c:04X}")?,
+            None => {}
+            Some(input) => {
+                match input {
+                    ("", Value::Real(bits)) => write!(f, " (got {}", f64::from_bits(bits))?,
+                    (name, Value::Real(bits)) => write!(f, " ({name} = {}", f64::from_bits(bits))?,
+                    (name, Value::Integer(i)) => write!(f, " ({name} = {i}")?,
+                    (name, Value::Code(c)) => write!(f, " ({name} = 0x{c:04X}")?,
+                }
+                bound(f)?;
+                f.write_str(")")?;
+            }
         }
-        bound(f)?;
-        f.write_str(")")
+        match self.note {
+            Some(note) => write!(f, "; {note}"),
+            None => Ok(()),
+        }
     }
 }
 

@@ -61,7 +61,7 @@ pub fn recommend_planes(
     }
     let mut asked = Vec::with_capacity(decals.len());
     for (i, decal) in decals.iter().enumerate() {
-        asked.push(crate::matrix_in::recommend(m, clip, decal).map_err(|e| at_plane(e, i))?);
+        asked.push(crate::matrix_in::recommend(m, clip, decal).map_err(|e| own_refusal(e, i))?);
     }
     // One of the two is 0 in each convention: the constant NDC offset, or the relative ε.
     let size = |r: &ClipRecommendation| r.ndc_offset.abs() + r.relative_epsilon;
@@ -106,6 +106,21 @@ fn nearer_than_largest(e: crate::Error, largest: usize) -> crate::Error {
 fn at_plane(e: crate::Error, i: usize) -> crate::Error {
     e.for_item("plane", u32::try_from(i).unwrap_or(u32::MAX))
 }
+
+/// [`at_plane`] for a plane's own recommendation: where its own offset moves it past the near
+/// plane, leaving its piece out is a remedy too (often a terrain triangle seen nearly edge-on,
+/// whose piece covers few pixels).
+fn own_refusal(e: crate::Error, i: usize) -> crate::Error {
+    let e = at_plane(e, i);
+    if e.kind() == crate::ErrorKind::Unresolvable && e.detail().contains("past the near plane") {
+        e.with_note(LEAVE_THE_PIECE_OUT)
+    } else {
+        e
+    }
+}
+
+/// [`own_refusal`]'s remedy for a plane whose own offset moves it past the near plane.
+const LEAVE_THE_PIECE_OUT: &str = "as one plane of several, its piece may also be left out of the decal pass (often a triangle seen nearly edge-on, whose piece covers few pixels)";
 
 /// The bleed gap of one plane (`decal`, recommended `own`) drawn with `chosen`'s offset, under
 /// the recognised matrix `r` (its `frustum` if perspective).
@@ -179,6 +194,29 @@ mod tests {
             depth_test: None,
             pipeline: crate::model::Pipeline::default(),
         }
+    }
+
+    /// A plane whose own offset moves it past the near plane (world-space vertices 10⁶ units
+    /// from the origin, 3.5 ahead) is refused with its number, and with leaving its piece out
+    /// among the remedies; the same plane asked alone is refused without that note.
+    #[test]
+    fn a_plane_refused_on_its_own_may_be_left_out() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(clip);
+        let near = Decal {
+            pipeline: crate::model::Pipeline {
+                world_reach: 1e6,
+                ..crate::model::Pipeline::default()
+            },
+            ..plane(&m, clip, 3.5, 0.0)
+        };
+        let alone = recommend(&m, clip, &near).unwrap_err();
+        assert_eq!(alone.kind(), crate::ErrorKind::Unresolvable, "{alone}");
+        assert!(!alone.to_string().contains("left out"), "{alone}");
+        let e = recommend_planes(&m, clip, &[near, near]).unwrap_err();
+        let text = e.to_string();
+        assert!(text.starts_with("plane 0: "), "{text}");
+        assert!(text.ends_with(LEAVE_THE_PIECE_OUT), "{text}");
     }
 
     #[test]
