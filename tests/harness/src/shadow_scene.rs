@@ -1145,7 +1145,28 @@ pub fn reference_lifted(
         let t = -a[1] / d[1];
         Some([a[0] + t * d[0], 0.0, a[2] + t * d[2]])
     };
-    let edge = reach + 1.5;
+    // Far from the world's origin ([`Case::shift`]) every drawn position is off its exact place
+    // by the f32 roundings of coordinates as large as the shift: the caster's `world + shift`
+    // and its light view product (about 6u of the shift's size), the camera's one combined
+    // matrix (14u), the lookup's interpolated world position and its light view product
+    // (about 10u): 32u bounds them. A shadow edge the map draws, seen through the lookup, then
+    // lies up to that far (in texels) from the exact one; a pixel within it is not counted: it
+    // cannot tell acne from the caster's own place (a seeded draw, `ZSHIFT_SHADOW_SEED=13`,
+    // counted such a pixel 10⁵ from the origin on a 3715² map, where that is 24 texels).
+    let placement = 32.0
+        * (f64::from(f32::EPSILON) / 2.0)
+        * case.shift.iter().fold(0.0f64, |a, c| a.max(c.abs()));
+    let texels_per_unit = |p: [f64; 3]| {
+        let (h, at) = (1e-3, to_map(p));
+        (0..3)
+            .map(|k| {
+                let mut q = p;
+                q[k] += h;
+                let uv = to_map(q);
+                ((uv[0] - at[0]).powi(2) + (uv[1] - at[1]).powi(2)).sqrt() / h
+            })
+            .sum::<f64>()
+    };
     let mut out = Vec::with_capacity(CAMERA * CAMERA);
     for py in 0..CAMERA {
         for px in 0..CAMERA {
@@ -1167,6 +1188,7 @@ pub fn reference_lifted(
             }
             let p = [p[0], lift, p[2]];
             let uv = to_map(p);
+            let edge = reach + 1.5 + placement * texels_per_unit(p);
             if uv.iter().any(|&c| c < edge + 1.0 || c > n - edge - 1.0) {
                 out.push(None);
                 continue;
