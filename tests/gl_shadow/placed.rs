@@ -403,17 +403,43 @@ fn receiver_side_offsets_are_acne_free() {
                 };
                 let got = looker.look_judged(a.case, CasterBias::default(), receiver, truth);
                 checked += 1;
+                // The bound covers receivers up to the limit angle it was asked for; under a
+                // spot light, ground points farther than the scene's centre see the light at a
+                // lower elevation, beyond `90° − elevation` (a seeded draw,
+                // `ZSHIFT_SHADOW_SEED=15`, counted five such pixels, 87.8°–88.1° from the
+                // normal under a limit of 87.7°, as acne of a normal offset). Acne is judged
+                // within the limit; the leak over every pixel. The listed ground is covered at
+                // every angle short of edge-on.
+                let acne = if a.receivers {
+                    got.acne
+                } else {
+                    let beyond = beyond_limit(
+                        a.case,
+                        looker.light,
+                        looker.camera,
+                        looker.eye,
+                        a.map.limit_angle_deg,
+                    );
+                    let within: Vec<Option<bool>> = truth
+                        .iter()
+                        .zip(beyond)
+                        .map(|(&t, b)| if b { None } else { t })
+                        .collect();
+                    looker
+                        .look_judged(a.case, CasterBias::default(), receiver, &within)
+                        .acne
+                };
                 if light > 0.0 {
                     leak[1] += got.leak;
                 }
-                if got.acne > 0 {
+                if acne > 0 {
                     failures.push(format!(
                         "{} ({}{}) {what} {}: {} acne pixels of {}",
                         a.case.label(),
                         a.profile,
                         if a.receivers { ", receivers" } else { "" },
                         light.max(normal),
-                        got.acne,
+                        acne,
                         got.lit
                     ));
                 }

@@ -1211,6 +1211,35 @@ pub fn reference_lifted(
     out
 }
 
+/// Per camera pixel, whether its ground point sees the light more than `limit_deg` from the
+/// ground's normal: a receiver beyond the limit angle a bias was asked for, which the bias
+/// does not promise to cover (shading hides it). Under a spot light the angle varies over the
+/// ground, so points farther from the light than the scene's centre lie beyond
+/// `90° − elevation`. Pixels that miss the ground: false.
+pub fn beyond_limit(
+    case: &Case,
+    light: &Light,
+    camera: &M4,
+    eye: [f64; 3],
+    limit_deg: f64,
+) -> Vec<bool> {
+    let inverse = invert(camera);
+    let cos_limit = limit_deg.to_radians().cos();
+    (0..CAMERA * CAMERA)
+        .map(|i| {
+            let d = pixel_ray(&inverse, eye, i % CAMERA, i / CAMERA);
+            let t = -eye[1] / d[1];
+            if !(t > 0.0) {
+                return false;
+            }
+            let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
+            let (l, _) = toward_light(case, light, p);
+            let length = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+            l[1] / length < cos_limit
+        })
+        .collect()
+}
+
 /// The inverse of `m` (Gauss-Jordan with partial pivoting, f64).
 pub fn invert(m: &M4) -> M4 {
     // Gauss-Jordan on the 4×4 (row-major view of the column-major array).
