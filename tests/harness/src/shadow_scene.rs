@@ -1229,7 +1229,7 @@ pub fn beyond_limit(
         .map(|i| {
             let d = pixel_ray(&inverse, eye, i % CAMERA, i / CAMERA);
             let t = -eye[1] / d[1];
-            if !(t > 0.0) {
+            if t.is_nan() || t <= 0.0 {
                 return false;
             }
             let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
