@@ -289,17 +289,19 @@ impl ZshiftRecommendation {
 /// alignment needed). Called inside the entry point's checked closure, so the record is built
 /// where it is used: read outside and moved in, its ~240 bytes were block-copied, stalling on
 /// the field stores that had just written them.
+fn read_scene(scene: *const ZshiftScene) -> ZshiftScene {
+    debug_assert!(!scene.is_null());
+    // SAFETY: not NULL (checked by the entry point); the caller promises a readable ZshiftScene.
+    unsafe { super::read_record(scene, ZshiftScene::read_fields) }
+}
+
+/// Reads a pipeline record the caller passed by pointer (not NULL: the entry point has refused
+/// NULL; no alignment needed), field by field as [`read_scene`] reads its scene.
 fn read_pipeline(pipeline: *const ZshiftPipeline) -> ZshiftPipeline {
     debug_assert!(!pipeline.is_null());
     // SAFETY: not NULL (checked by the entry point); the caller promises a readable
     // ZshiftPipeline.
     unsafe { super::read_record(pipeline, ZshiftPipeline::read_fields) }
-}
-
-fn read_scene(scene: *const ZshiftScene) -> ZshiftScene {
-    debug_assert!(!scene.is_null());
-    // SAFETY: not NULL (checked by the entry point); the caller promises a readable ZshiftScene.
-    unsafe { super::read_record(scene, ZshiftScene::read_fields) }
 }
 
 impl ZshiftScene {
