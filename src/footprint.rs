@@ -235,12 +235,12 @@ pub fn decal_shape_for_matrix(
     let crosses_near = eye.iter().any(|p| near_side(p) <= 0.0); // corners are finite
     let crosses_far = eye.iter().any(|p| far_side(p) <= 0.0);
     let far_cut = |p: &[f64; 3]| far_side(p) - FAR_CUT_MARGIN * row(3, p);
-    let visible = if crosses_near || crosses_far {
-        cut_to_view(&eye, &near_side, &far_cut, &row)
-    } else if cut_to_view(&eye, &near_side, &far_cut, &row).len() < 3 {
-        // Wholly off screen at the sides: the rasterizer draws nothing of it. (A decal partly
-        // off screen keeps all its corners: the model adds the clipping of its own edges.)
-        Vec::new()
+    // The part drawn: cut where a near or far plane crosses it, and nothing where it lies
+    // wholly off screen at the sides. A decal only partly off screen keeps all its corners: the
+    // model adds the clipping of its own edges.
+    let cut = cut_to_view(&eye, &near_side, &far_cut, &row);
+    let visible = if crosses_near || crosses_far || cut.len() < 3 {
+        cut
     } else {
         eye.clone()
     };
