@@ -1170,19 +1170,15 @@ pub fn reference_lifted(
     let mut out = Vec::with_capacity(CAMERA * CAMERA);
     for py in 0..CAMERA {
         for px in 0..CAMERA {
-            let d = pixel_ray(&inverse, eye, px, py);
-            let t = -eye[1] / d[1];
-            let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
+            let Some(p) = ground_point(&inverse, eye, px, py) else {
+                out.push(None);
+                continue;
+            };
             let inside_box = p[0] >= BOX[0][0] - 0.05
                 && p[0] <= BOX[1][0] + 0.05
                 && p[2] >= BOX[0][2] - 0.05
                 && p[2] <= BOX[1][2] + 0.05;
-            if t.is_nan()
-                || t <= 0.0
-                || p[0].abs() > GROUND * 0.98
-                || p[2].abs() > GROUND * 0.98
-                || inside_box
-            {
+            if p[0].abs() > GROUND * 0.98 || p[2].abs() > GROUND * 0.98 || inside_box {
                 out.push(None);
                 continue;
             }
@@ -1211,6 +1207,14 @@ pub fn reference_lifted(
     out
 }
 
+/// The ground point (world `y = 0`) camera pixel `(px, py)` shows, from the camera matrix's
+/// `inverse` and the `eye`; `None` where its ray does not meet the ground in front of the eye.
+fn ground_point(inverse: &M4, eye: [f64; 3], px: usize, py: usize) -> Option<[f64; 3]> {
+    let d = pixel_ray(inverse, eye, px, py);
+    let t = -eye[1] / d[1];
+    (t > 0.0).then(|| [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]])
+}
+
 /// Per camera pixel, whether its ground point sees the light more than `limit_deg` from the
 /// ground's normal: a receiver beyond the limit angle a bias was asked for, which the bias
 /// does not promise to cover (shading hides it). Under a spot light the angle varies over the
@@ -1227,12 +1231,9 @@ pub fn beyond_limit(
     let cos_limit = limit_deg.to_radians().cos();
     (0..CAMERA * CAMERA)
         .map(|i| {
-            let d = pixel_ray(&inverse, eye, i % CAMERA, i / CAMERA);
-            let t = -eye[1] / d[1];
-            if t.is_nan() || t <= 0.0 {
+            let Some(p) = ground_point(&inverse, eye, i % CAMERA, i / CAMERA) else {
                 return false;
-            }
-            let p = [eye[0] + t * d[0], 0.0, eye[2] + t * d[2]];
+            };
             let (l, _) = toward_light(case, light, p);
             let length = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
             l[1] / length < cos_limit
