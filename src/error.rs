@@ -156,27 +156,22 @@ impl fmt::Display for Error {
             write!(f, "{name} {index}: ")?;
         }
         f.write_str(self.detail)?;
-        let bound = |f: &mut fmt::Formatter<'_>| match self.bound {
-            Some((name, bits)) => write!(f, "; {name} = {}", f64::from_bits(bits)),
-            None => Ok(()),
-        };
-        match self.input {
-            None => {}
-            Some(input) => {
-                match input {
-                    ("", Value::Real(bits)) => write!(f, " (got {}", f64::from_bits(bits))?,
-                    (name, Value::Real(bits)) => write!(f, " ({name} = {}", f64::from_bits(bits))?,
-                    (name, Value::Integer(i)) => write!(f, " ({name} = {i}")?,
-                    (name, Value::Code(c)) => write!(f, " ({name} = 0x{c:04X}")?,
-                }
-                bound(f)?;
-                f.write_str(")")?;
+        if let Some(input) = self.input {
+            match input {
+                ("", Value::Real(bits)) => write!(f, " (got {}", f64::from_bits(bits))?,
+                (name, Value::Real(bits)) => write!(f, " ({name} = {}", f64::from_bits(bits))?,
+                (name, Value::Integer(i)) => write!(f, " ({name} = {i}")?,
+                (name, Value::Code(c)) => write!(f, " ({name} = 0x{c:04X}")?,
             }
+            if let Some((name, bits)) = self.bound {
+                write!(f, "; {name} = {}", f64::from_bits(bits))?;
+            }
+            f.write_str(")")?;
         }
-        match self.note {
-            Some(note) => write!(f, "; {note}"),
-            None => Ok(()),
+        if let Some(note) = self.note {
+            write!(f, "; {note}")?;
         }
+        Ok(())
     }
 }
 
