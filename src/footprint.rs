@@ -36,10 +36,10 @@ pub struct Footprint {
     /// The largest window `x` and `y` (pixels) of the decal, clamped to the viewport: the
     /// corner of its bounding rectangle farthest from the origin.
     pub far_corner: [f64; 2],
-    /// The largest `(|w₀| + |∂w/∂x|·x + |∂w/∂y|·y)·d` over the decal's corners (`d` a corner's
-    /// eye depth): under reversed Z, where the offset is relative and an error counts as
-    /// `error·d`, the worst pixel's `M·d` (a ratio of affine functions of the window position,
-    /// largest at a corner of the decal's convex hull; pixels off screen only lower it).
+    /// The largest `(|w₀| + |∂w/∂x|·x + |∂w/∂y|·y)·d` over the corners of the decal's part on
+    /// screen (`d` a corner's eye depth): under reversed Z, where the offset is relative and an
+    /// error counts as `error·d`, the worst pixel's `M·d` (a ratio of affine functions of the
+    /// window position, largest at a corner of the convex part on screen).
     pub magnitude_depth: f64,
     /// 0 when every corner of the decal lies inside the view frustum (the rasterizer clips
     /// nothing of it); else the largest `|x|`, `|y|`, `|z|` of its eye-space corners: a decal
@@ -86,7 +86,9 @@ impl Footprint {
 /// [`crate::recommend::Scene`] needs to know about the decal.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DecalShape {
-    /// The nearest and farthest eye depth (`−z`) of the corners.
+    /// The nearest and farthest eye depth (`−z`) of the part drawn: the corners' where the
+    /// decal lies inside the view, else those of the decal cut to the view volume (every pixel
+    /// lies between them).
     pub depth_range: [f64; 2],
     /// The plane's eye-space slope `|∂z/∂x| + |∂z/∂y|`; `+∞` for a plane that contains the
     /// view direction (level ground under a level camera), which the model answers from the
@@ -236,11 +238,12 @@ pub fn decal_shape_for_matrix(
     let crosses_far = eye.iter().any(|p| far_side(p) <= 0.0);
     let far_cut = |p: &[f64; 3]| far_side(p) - FAR_CUT_MARGIN * row(3, p);
     // The part drawn: cut where a near or far plane crosses it, and nothing where it lies
-    // wholly off screen at the sides. A decal only partly off screen keeps all its corners: the
-    // model adds the clipping of its own edges.
+    // wholly off screen at the sides. A decal only partly off screen at the sides keeps all its
+    // corners for its plane (the model adds the clipping of its own edges) and takes its
+    // ranges over the pixels from the cut (below).
     let cut = cut_to_view(&eye, &near_side, &far_cut, &row);
     let visible = if crosses_near || crosses_far || cut.len() < 3 {
-        cut
+        cut.clone()
     } else {
         eye.clone()
     };
@@ -251,6 +254,18 @@ pub fn decal_shape_for_matrix(
             WHOLLY_OFF_SCREEN
         }));
     }
+    let project = |p: &[f64; 3]| {
+        let cw = row(3, p);
+        let ndc_z = row(2, p) / cw;
+        let depth = if clip == ClipDepth::NegOneToOne {
+            0.5 * ndc_z + 0.5
+        } else {
+            ndc_z
+        };
+        let x = (0.5 * row(0, p) / cw + 0.5) * w;
+        let y = (0.5 * row(1, p) / cw + 0.5) * h;
+        [x, y, depth]
+    };
     let mut outside = crosses_near || crosses_far;
     for (i, p) in visible.iter().enumerate() {
         let cw = row(3, p);
@@ -260,18 +275,10 @@ pub fn decal_shape_for_matrix(
                     .with_integer("decal corner", i as i64),
             );
         }
-        depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
         let ndc_z = row(2, p) / cw;
         outside |=
             row(0, p).abs() > cw || row(1, p).abs() > cw || !(lowest_ndc..=1.0).contains(&ndc_z);
-        let depth = if clip == ClipDepth::NegOneToOne {
-            0.5 * ndc_z + 0.5
-        } else {
-            ndc_z
-        };
-        let x = (0.5 * row(0, p) / cw + 0.5) * w;
-        let y = (0.5 * row(1, p) / cw + 0.5) * h;
-        window.push([x, y, depth]);
+        window.push(project(p));
     }
     let (plane, offset) = plane_through(&window)?;
     if plane[2] == 0.0 {
@@ -281,15 +288,28 @@ pub fn decal_shape_for_matrix(
     }
     let origin_depth = finite(offset / plane[2], "the decal's window plane is not finite")?;
     let gradient = [-plane[0] / plane[2], -plane[1] / plane[2]];
-    let depths = visible.iter().map(|p| row(3, p));
-    let magnitude_depth = window.iter().zip(depths).fold(0.0f64, |a, (p, d)| {
-        let magnitude = origin_depth.abs() + gradient[0].abs() * p[0] + gradient[1].abs() * p[1];
-        a.max(magnitude * d)
-    });
+    // The plane is fitted through every corner kept (a sliver cut would fit it badly); the
+    // ranges over the pixels come from the part on screen. A decal only partly off screen at
+    // the sides has its pixels inside the view: a corner far off screen may lie much nearer
+    // the eye than any pixel (measured: a 4 ft decal 0.55 ft ahead, one off-screen corner 1.1
+    // times the near distance away, was refused as moved past the near plane; its part on
+    // screen begins 3.8 times as far), or much farther out along the gradient.
+    let drawn = if outside && cut.len() >= 3 {
+        &cut
+    } else {
+        &visible
+    };
+    let mut magnitude_depth = 0.0f64;
+    for p in drawn {
+        let (cw, [x, y, _]) = (row(3, p), project(p));
+        depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
+        let magnitude = origin_depth.abs() + gradient[0].abs() * x + gradient[1].abs() * y;
+        magnitude_depth = magnitude_depth.max(magnitude * cw);
+    }
     let footprint = Footprint {
         origin_depth,
         gradient,
-        far_corner: window.iter().fold([0.0f64, 0.0f64], |a, p| {
+        far_corner: drawn.iter().map(project).fold([0.0f64, 0.0f64], |a, p| {
             [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
         }),
         magnitude_depth,
@@ -614,6 +634,61 @@ mod tests {
         let at_edge = fp.origin_depth + fp.gradient[0] * 100.0;
         let expected = 0.5 * ((51.0 / 49.0) - 100.0 / (49.0 * near)) + 0.5;
         assert!((at_edge - expected).abs() < 1e-9, "{at_edge} {expected}");
+    }
+
+    /// A decal partly off screen at a side, one corner far off screen and close to the eye:
+    /// its depth range is that of its pixels, not of its corners. Reference: the ray through
+    /// every pixel centre met with the decal's plane in f64, kept where it hits the decal.
+    #[test]
+    fn a_decal_partly_off_screen_is_its_visible_part() {
+        // The ground 1.7 below the eye; the decal's near-left corner at x = −9 is 4.5 times
+        // as far left as glFrustum(−0.8, 1.2, −0.5, 0.7, 1, 50)'s left edge at its depth 2.5,
+        // and its near edge runs to (1, −6): the screen's left edge meets it at depth 4.41.
+        let corners = [(-9.0, -2.5), (1.0, -6.0), (1.0, -8.0), (-1.0, -8.0)]
+            .map(|(x, z)| Vec3::new(x, -1.7, z));
+        let [w, h] = [200u32, 120];
+        let shape = decal_shape(&frustum(), ClipDepth::NegOneToOne, [w, h], &corners).unwrap();
+        // The ground's point (x, z) is on the decal where it lies on one side of every edge.
+        let q: Vec<[f64; 2]> = corners
+            .iter()
+            .map(|c| [f64::from(c.x), f64::from(c.z)])
+            .collect();
+        let inside = |x: f64, z: f64| {
+            let sides: Vec<f64> = (0..4)
+                .map(|i| {
+                    let (a, b) = (q[i], q[(i + 1) % 4]);
+                    (b[0] - a[0]) * (z - a[1]) - (b[1] - a[1]) * (x - a[0])
+                })
+                .collect();
+            sides.iter().all(|&c| c <= 0.0) || sides.iter().all(|&c| c >= 0.0)
+        };
+        let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+        for j in 0..h {
+            for i in 0..w {
+                // The pixel centre's ray (x, y, −1)·d through glFrustum(−0.8, 1.2, −0.5, 0.7, 1, …).
+                let rx = -0.8 + 2.0 * (f64::from(i) + 0.5) / f64::from(w);
+                let ry = -0.5 + 1.2 * (f64::from(j) + 0.5) / f64::from(h);
+                if ry >= 0.0 {
+                    continue;
+                }
+                let d = f64::from(-1.7f32) / ry;
+                if inside(rx * d, -d) {
+                    (lo, hi) = (lo.min(d), hi.max(d));
+                }
+            }
+        }
+        let [near, far] = shape.depth_range;
+        assert!(
+            near <= lo && far >= hi,
+            "{near} {far} against the pixels' {lo} {hi}"
+        );
+        // Within a pixel's width of the pixels' own range (the corners' reach 2.5).
+        assert!(
+            near > 0.97 * lo && far < 1.03 * hi,
+            "{near} {far} against {lo} {hi}"
+        );
+        // The rasterizer clips it: its clipping term counts every corner.
+        assert_eq!(shape.footprint.clipped_reach, 9.0);
     }
 
     /// A decal running on beyond the far plane (a road marking under a short far plane): its
