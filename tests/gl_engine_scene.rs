@@ -204,6 +204,9 @@ struct Case {
     /// The camera's offset from the ground's centre in world x and z: engines' cameras sit at
     /// coordinates no f32 holds exactly.
     jitter: [f64; 2],
+    /// The ground's half extent over the grid's (1: ±1000 units, times `scale`), moved only to
+    /// draw one description's other realizations ([`one_description_many_realizations`]).
+    stretch: f64,
     /// The ground's world height under the camera (f32-exact): 0, or with
     /// `ZSHIFT_ENGINE_SCENES_SEED` as far from the origin as the translation (a world whose
     /// ground is not at y = 0).
@@ -294,7 +297,7 @@ impl Case {
 
     /// The ground's half extent around the camera in world units.
     fn ground_half(&self) -> f64 {
-        GROUND * self.scale
+        GROUND * self.scale * self.stretch
     }
 
     fn camera(&self) -> [f64; 3] {
@@ -893,6 +896,10 @@ impl Case {
             self.depth_range
         ) + &if self.samples > 1 {
             format!(" {}xMSAA", self.samples)
+        } else {
+            String::new()
+        } + &if self.stretch != 1.0 {
+            format!(" ground ×{}", self.stretch)
         } else {
             String::new()
         }
@@ -1725,6 +1732,7 @@ fn cases() -> Vec<Case> {
                             samples: samples(),
                             behind: false,
                             beyond: false,
+                            stretch: 1.0,
                         };
                         let case = if seed == 0 {
                             case
@@ -1900,6 +1908,92 @@ fn decals_reaching_beyond_the_far_plane() {
         .filter(|case| case.far > 10.0 * case.near && case.decal_in_depth())
         .step_by(every(6));
     sweep(picked.collect(), 100);
+}
+
+/// One description, several realizations: each sampled scene (every 13th of the grid's quad
+/// and grid scenes, one drawn through one view-projection left out; `ZSHIFT_ENGINE_SCENES_EVERY`
+/// another step) drawn again with the whole scene moved by `k·0.0371` units and the ground's
+/// half extent by `k·0.037 %` (`k` = 0 to 5; `ZSHIFT_ENGINE_SCENES_REALIZATIONS` another
+/// count), so that the vertex shader's and the clipper's inputs differ. The eye-space scene
+/// under the decal is the same; what zshift is told barely changes (the view matrix's
+/// translation, the world box, the base's reach), and so does its offset; the f32 roundings
+/// differ, and with them the smallest working offset.
+/// A sound offset must hold for every realization, so it is at least the largest of their
+/// smallest working offsets: the spread of those says how close to any one realization's a
+/// sound answer can be. Probed profile; asserts 0 lost and 0 bled in every realization, and
+/// prints per scene the offset and each realization's smallest working offset, then the
+/// medians over scenes of largest ÷ median realization and of offset ÷ largest realization.
+#[test]
+fn one_description_many_realizations() {
+    let count: u32 = std::env::var("ZSHIFT_ENGINE_SCENES_REALIZATIONS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&k| k > 1)
+        .unwrap_or(6);
+    let mut gl = Gl::new(Profile::Core).unwrap_or_else(|e| panic!("no GL context: {e}"));
+    let probed = gl_common::probed(&gl);
+    let sampled = cases()
+        .into_iter()
+        .filter(|case| case.ground != Ground::Hills && !case.combined)
+        .step_by(every(13));
+    let (mut spreads, mut over_largest, mut failures, mut drawn) =
+        (Vec::new(), Vec::new(), Vec::new(), 0);
+    for case in sampled {
+        let mut steps = Vec::new();
+        let mut smallest = Vec::new();
+        for k in 0..count {
+            let moved = Case {
+                translate: case.translate + f64::from(k) * 0.0371 * case.scale,
+                stretch: 1.0 + f64::from(k) * 3.7e-4,
+                ..case
+            };
+            let Some(out) = run_case(&mut gl, moved, &probed)
+                .unwrap_or_else(|e| panic!("{}: {e}", moved.label()))
+            else {
+                continue;
+            };
+            drawn += 1;
+            if out.lost + out.bled > 0 {
+                failures.push(format!(
+                    "{}: lost {} bled {}",
+                    moved.label(),
+                    out.lost,
+                    out.bled
+                ));
+            }
+            if let Some(ratio) = out.ratio {
+                steps.push(out.steps);
+                smallest.push(out.steps / ratio);
+            }
+        }
+        if smallest.len() < 2 {
+            continue;
+        }
+        let largest = smallest.iter().copied().fold(0.0, f64::max);
+        let offset = steps.iter().copied().fold(f64::INFINITY, f64::min);
+        let mut sorted = smallest.clone();
+        sorted.sort_by(f64::total_cmp);
+        spreads.push(largest / median(&mut smallest));
+        over_largest.push(offset / largest);
+        println!(
+            "{}: offset {offset:.0}..{:.0} steps; smallest working {sorted:.0?}",
+            case.label(),
+            steps.iter().copied().fold(0.0, f64::max)
+        );
+    }
+    println!(
+        "{} scenes, {drawn} drawn: largest ÷ median realization, median over scenes {:.2} (max {:.1}); offset ÷ largest realization, median {:.1}",
+        spreads.len(),
+        median(&mut spreads.clone()),
+        spreads.iter().copied().fold(0.0, f64::max),
+        median(&mut over_largest)
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert!(
+        spreads.len() >= 10,
+        "only {} scenes answered",
+        spreads.len()
+    );
 }
 
 /// Draws `cases` (those whose label holds `ZSHIFT_ENGINE_SCENES_ONLY` where set) with both
@@ -2147,6 +2241,7 @@ fn a_decal_one_matrix_cannot_serve_is_drawn_piece_by_piece() {
         samples: 1,
         behind: false,
         beyond: false,
+        stretch: 1.0,
     };
     for profile in [RasterizerProfile::worst_case(), probed] {
         let out = run_case(&mut gl, case, &profile)
