@@ -856,25 +856,15 @@ impl Case {
             self.at.label,
             self.pitch_deg,
             self.yaw_deg,
-            if self.roll_deg != 0.0 {
-                format!(" roll {}°", self.roll_deg)
-            } else {
-                String::new()
-            },
+            tag(self.roll_deg != 0.0, || format!(" roll {}°", self.roll_deg)),
             self.translate,
             self.jitter,
-            if self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG {
+            tag(self.ground_y != 0.0 || self.fovy_deg != FOVY_DEG, || {
                 format!(
                     " ground y {} fovy {}° units {} eye {} skew {:?}",
                     self.ground_y, self.fovy_deg, self.scale, self.eye_height, self.skew
                 )
-            } else {
-                String::new()
-            } + &if self.tilt != 0.0 {
-                format!(" hillside {}", self.tilt)
-            } else {
-                String::new()
-            },
+            }) + &tag(self.tilt != 0.0, || format!(" hillside {}", self.tilt)),
             self.ground.label().to_string()
                 + if self.mesh_decal {
                     " mesh"
@@ -899,19 +889,18 @@ impl Case {
             if self.equal_test { "EQUAL" } else { "strict" },
             self.origin,
             self.depth_range
-        ) + &if self.samples > 1 {
-            format!(" {}xMSAA", self.samples)
-        } else {
-            String::new()
-        } + &if self.length != 1.0 {
-            format!(" long ×{}", self.length)
-        } else {
-            String::new()
-        } + &if self.stretch != 1.0 {
-            format!(" ground ×{}", self.stretch)
-        } else {
-            String::new()
-        }
+        ) + &tag(self.samples > 1, || format!(" {}xMSAA", self.samples))
+            + &tag(self.length != 1.0, || format!(" long ×{}", self.length))
+            + &tag(self.stretch != 1.0, || format!(" ground ×{}", self.stretch))
+    }
+}
+
+/// A part of a label: `text` where `on`, else nothing.
+fn tag(on: bool, text: impl FnOnce() -> String) -> String {
+    if on {
+        text()
+    } else {
+        String::new()
     }
 }
 
