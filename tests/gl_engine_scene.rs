@@ -1875,7 +1875,7 @@ fn samples() -> u32 {
     *SAMPLES.get_or_init(|| {
         std::env::var("ZSHIFT_ENGINE_SCENES_MSAA").map_or(1, |v| {
             v.parse()
-                .unwrap_or_else(|_| panic!("ZSHIFT_ENGINE_SCENES_MSAA={v}: expected 2, 4 or 8"))
+                .unwrap_or_else(|_| panic!("ZSHIFT_ENGINE_SCENES_MSAA={v}: expected 2, 4 or 8, at most GL_MAX_SAMPLES (llvmpipe: 4)"))
         })
     })
 }

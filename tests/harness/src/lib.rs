@@ -1046,6 +1046,13 @@ impl Gl {
                 return Err("no packed depth-stencil format with D16".into())
             }
         };
+        // A count the context cannot draw makes an incomplete framebuffer: say so by name.
+        let most = unsafe { self.gl.get_parameter_i32(glow::MAX_SAMPLES) };
+        if samples > 1 && i64::from(samples) > i64::from(most) {
+            return Err(format!(
+                "{samples} samples asked, but this context draws at most {most} (GL_MAX_SAMPLES)"
+            ));
+        }
         self.make_target(width, height, format, internal, attachment, samples.max(1))?;
         self.check("set_target_samples")
     }
