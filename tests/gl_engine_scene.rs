@@ -2028,9 +2028,12 @@ fn one_description_many_realizations() {
         .step_by(every(13));
     let (mut spreads, mut over_largest, mut failures, mut drawn) =
         (Vec::new(), Vec::new(), Vec::new(), 0);
+    // Offset ÷ largest realization per largest term of the offset.
+    let mut by_term = std::collections::BTreeMap::<&str, Vec<f64>>::new();
     for case in sampled {
         let mut steps = Vec::new();
         let mut smallest = Vec::new();
+        let mut largest_term = "";
         for k in 0..count {
             let moved = Case {
                 translate: case.translate + f64::from(k) * 0.0371 * case.scale,
@@ -2055,6 +2058,9 @@ fn one_description_many_realizations() {
                 steps.push(out.steps);
                 smallest.push(out.steps / ratio);
             }
+            if let Some(t) = out.terms {
+                largest_term = largest_of(&t);
+            }
         }
         if smallest.len() < 2 {
             continue;
@@ -2065,6 +2071,10 @@ fn one_description_many_realizations() {
         sorted.sort_by(f64::total_cmp);
         spreads.push(largest / median(&mut smallest));
         over_largest.push(offset / largest);
+        by_term
+            .entry(largest_term)
+            .or_default()
+            .push(offset / largest);
         println!(
             "{}: offset {offset:.0}..{:.0} steps; smallest working {sorted:.0?}",
             case.label(),
@@ -2078,12 +2088,39 @@ fn one_description_many_realizations() {
         spreads.iter().copied().fold(0.0, f64::max),
         median(&mut over_largest)
     );
+    for (term, ratios) in &mut by_term {
+        println!(
+            "  largest term {term}: {} scenes, offset ÷ largest realization median {:.1}",
+            ratios.len(),
+            median(ratios)
+        );
+    }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(
         spreads.len() >= 10,
         "only {} scenes answered",
         spreads.len()
     );
+}
+
+/// The name of the largest of the terms that make an offset (the world-space vertex term, the
+/// clipping of the base or of the decal, interpolation, snapping, the transform, the quantum).
+fn largest_of(t: &zshift::recommend::ErrorTerms) -> &'static str {
+    [
+        ("vertex", t.vertex),
+        ("clip", t.clip),
+        ("decal clip", t.decal_clip),
+        ("interpolation", t.interpolation),
+        ("snap", t.snap),
+        ("transform", t.transform),
+        ("quantum", t.quantum),
+    ]
+    .into_iter()
+    .fold(
+        ("", f64::NEG_INFINITY),
+        |a, b| if b.1 > a.1 { b } else { a },
+    )
+    .0
 }
 
 /// Draws `cases` (those whose label holds `ZSHIFT_ENGINE_SCENES_ONLY` where set) with both
