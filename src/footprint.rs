@@ -201,7 +201,6 @@ pub fn decal_shape_for_matrix(
     let [w, h] = viewport.map(f64::from);
     let row = |r: usize, p: &[f64; 3]| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
     let mut window = Vec::with_capacity(eye.len());
-    let mut depth_range = [f64::INFINITY, 0.0f64];
     // Whether the rasterizer clips the decal: a corner outside a side, the near or the far plane.
     // NDC depth runs over [−1, 1] under OpenGL's default, [0, 1] otherwise (reversed too).
     let lowest_ndc = if clip == ClipDepth::NegOneToOne {
@@ -242,10 +241,10 @@ pub fn decal_shape_for_matrix(
     // corners for its plane (the model adds the clipping of its own edges) and takes its
     // ranges over the pixels from the cut (below).
     let cut = cut_to_view(&eye, &near_side, &far_cut, &row);
-    let visible = if crosses_near || crosses_far || cut.len() < 3 {
-        cut.clone()
+    let visible: &[[f64; 3]] = if crosses_near || crosses_far || cut.len() < 3 {
+        &cut
     } else {
-        eye.clone()
+        &eye
     };
     if visible.len() < 3 {
         return Err(domain(if eye.iter().all(|p| near_side(p) <= 0.0) {
@@ -297,21 +296,24 @@ pub fn decal_shape_for_matrix(
     let drawn = if outside && cut.len() >= 3 {
         &cut
     } else {
-        &visible
+        visible
     };
-    let mut magnitude_depth = 0.0f64;
+    let mut depth_range = [f64::INFINITY, 0.0f64];
+    let (mut magnitude_depth, mut far_corner) = (0.0f64, [0.0f64, 0.0f64]);
     for p in drawn {
         let (cw, [x, y, _]) = (row(3, p), project(p));
         depth_range = [depth_range[0].min(cw), depth_range[1].max(cw)];
         let magnitude = origin_depth.abs() + gradient[0].abs() * x + gradient[1].abs() * y;
         magnitude_depth = magnitude_depth.max(magnitude * cw);
+        far_corner = [
+            far_corner[0].max(x.clamp(0.0, w)),
+            far_corner[1].max(y.clamp(0.0, h)),
+        ];
     }
     let footprint = Footprint {
         origin_depth,
         gradient,
-        far_corner: drawn.iter().map(project).fold([0.0f64, 0.0f64], |a, p| {
-            [a[0].max(p[0].clamp(0.0, w)), a[1].max(p[1].clamp(0.0, h))]
-        }),
+        far_corner,
         magnitude_depth,
         clipped_reach: if outside {
             eye.iter().flatten().fold(0.0f64, |a, c| a.max(c.abs()))
