@@ -437,7 +437,7 @@ impl Case {
     /// centre on the ground, moved `lift` along the ground's normal, as world corners.
     fn square(&self, half: f64, lift: f64) -> [[f64; 3]; 4] {
         let [x, z] = self.decal_centre();
-        let (half, long) = (half, half * self.length);
+        let long = half * self.length;
         let k = 1.0 / (1.0 + self.tilt * self.tilt).sqrt();
         let on = |x: f64, z: f64| [x - self.tilt * k * lift, self.surface(x, z) + k * lift, z];
         [
@@ -2067,8 +2067,7 @@ fn one_description_many_realizations() {
         }
         let largest = smallest.iter().copied().fold(0.0, f64::max);
         let offset = steps.iter().copied().fold(f64::INFINITY, f64::min);
-        let mut sorted = smallest.clone();
-        sorted.sort_by(f64::total_cmp);
+        // (median sorts them, for the line below too.)
         spreads.push(largest / median(&mut smallest));
         over_largest.push(offset / largest);
         by_term
@@ -2076,7 +2075,7 @@ fn one_description_many_realizations() {
             .or_default()
             .push(offset / largest);
         println!(
-            "{}: offset {offset:.0}..{:.0} steps; smallest working {sorted:.0?}",
+            "{}: offset {offset:.0}..{:.0} steps; smallest working {smallest:.0?}",
             case.label(),
             steps.iter().copied().fold(0.0, f64::max)
         );
@@ -2084,7 +2083,7 @@ fn one_description_many_realizations() {
     println!(
         "{} scenes, {drawn} drawn: largest ÷ median realization, median over scenes {:.2} (max {:.1}); offset ÷ largest realization, median {:.1}",
         spreads.len(),
-        median(&mut spreads.clone()),
+        median(&mut spreads),
         spreads.iter().copied().fold(0.0, f64::max),
         median(&mut over_largest)
     );
