@@ -604,12 +604,14 @@ pub(crate) fn check_near(n: f64, f: f64, d1: f64, window_offset: f64) -> Result<
     if moved <= d1 - n {
         return Ok(());
     }
-    Err(crate::error::Error::new(
-        crate::ErrorKind::Unresolvable,
-        "the offset this scene needs moves the decal past the orthographic near plane: move the near plane back (toward the eye, or behind it) by at least `needed`",
+    Err(
+        crate::error::Error::new(crate::ErrorKind::Unresolvable, PAST_THE_NEAR_PLANE)
+            .with_value("needed", moved - (d1 - n)),
     )
-    .with_value("needed", moved - (d1 - n)))
 }
+
+/// [`check_near`]'s refusal.
+pub(crate) const PAST_THE_NEAR_PLANE: &str = "the offset this scene needs moves the decal past the orthographic near plane: move the near plane back (toward the eye, or behind it) by at least `needed`";
 
 /// The scene's rules: the decal's range inside `[n, f]` and increasing, a nonzero viewport, a
 /// finite non-negative slope, `exact_depth` only facing the camera, at most 32 sub-pixel bits.

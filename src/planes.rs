@@ -112,7 +112,7 @@ fn at_plane(e: crate::Error, i: usize) -> crate::Error {
 /// whose piece covers few pixels).
 fn own_refusal(e: crate::Error, i: usize) -> crate::Error {
     let e = at_plane(e, i);
-    if e.kind() == crate::ErrorKind::Unresolvable && e.detail().contains("past the near plane") {
+    if crate::recommend::moves_past_the_near_plane(&e) {
         e.with_note(LEAVE_THE_PIECE_OUT)
     } else {
         e

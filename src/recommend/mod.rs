@@ -591,6 +591,20 @@ const NEAR_PLANE_DECAL: [&str; 4] = near_plane!(
 /// [`near_plane`] for a decal that the rasterizer clips (off screen, or behind the camera).
 const NEAR_PLANE_DECAL_CLIPPING: [&str; 4] = near_plane!("the offset this scene needs moves the decal past the near plane (the float clipping of a decal that reaches off screen or behind the camera): cut the decal to the frustum (zshift_clip_to_frustum in C, zshift.clip_to_frustum in Python; stored in world space, zshift_clip_to_frustum_stored), draw the cut polygon and pass its corners");
 
+/// Whether `e` is a refusal of an offset that moves the decal past the near plane
+/// ([`check_in_range`], or [`crate::orthographic`]'s), known by its sentence, not its wording.
+pub(crate) fn moves_past_the_near_plane(e: &crate::Error) -> bool {
+    let perspective = [
+        NEAR_PLANE_CLIPPING,
+        NEAR_PLANE_WORLD,
+        NEAR_PLANE_DECAL,
+        NEAR_PLANE_DECAL_CLIPPING,
+    ];
+    e.kind() == crate::ErrorKind::Unresolvable
+        && (e.detail() == crate::orthographic::PAST_THE_NEAR_PLANE
+            || perspective.iter().flatten().any(|s| *s == e.detail()))
+}
+
 /// Refuses an offset that would move the decal's nearest point out of the depth range (past
 /// the near plane's window depth 0, or 1 under reversed Z): no offset then ends z-fighting,
 /// which happens when the clipping term `C` of a large clipped base, or the vertex term of
