@@ -2271,6 +2271,21 @@ fn sweep(cases: Vec<Case>, at_least: usize) {
     println!(
         "refused although bisection finds a working offset: {refused_drawable} ({probed_refused_drawable} with the probed profile)"
     );
+    // The smallest working offset for the quad as drawn over the cut ground's recommendation
+    // (over_cut ÷ ratio): above 4, no working answer for the quad is within 4 times the cut
+    // ground's (issue 18's "≤ 4× the same scene with the ground cut").
+    let beyond_cut: Vec<f64> = table
+        .iter()
+        .filter(|(key, _)| key.contains(" probed "))
+        .flat_map(|(_, outs)| outs.iter())
+        .filter_map(|o| Some(o.over_cut? / o.ratio?))
+        .collect();
+    println!(
+        "probed quad scenes whose smallest working offset exceeds 4 times the cut ground's recommendation: {} of {} (largest {:.1} times)",
+        beyond_cut.iter().filter(|&&x| x > 4.0).count(),
+        beyond_cut.len(),
+        beyond_cut.iter().copied().fold(f64::NAN, f64::max)
+    );
     println!(
         "answered piece by piece (one plane's offset would move another past the near plane; each piece drawn with its own plane's matrix): {by_pieces}"
     );
