@@ -33,6 +33,9 @@
 //! origin, in f32 world positions. `placed::receiver_side_offsets_are_acne_free`: zshift's
 //! `along_light` and `along_normal` applied in the lookup, the map drawn without bias.
 //! `placed::disk_kernels_are_acne_free`: `Lookup::Radius`, a disk of taps.
+//! `realizations::peers_that_beat_zshift_in_many_realizations`: the spot scenes at f/n 10⁵ drawn
+//! again with the scene moved a little (other f32 roundings): zshift acne-free in every one, and
+//! whether a peer that leaks less than zshift does so in every one.
 
 mod gl_common;
 // Receivers other than flat ground (a sphere, a terrain): a test of their own.
@@ -41,6 +44,9 @@ mod receivers;
 // Maps placed as engines place them (atlas tiles, scenes far from the origin): tests of their own.
 #[path = "gl_shadow/placed.rs"]
 mod placed;
+// One scene drawn under many f32 realizations: whether a peer that beats zshift is lucky.
+#[path = "gl_shadow/realizations.rs"]
+mod realizations;
 
 use glow::HasContext;
 use zshift::projection::ClipDepth;
