@@ -760,6 +760,60 @@ fn measure(gl: &mut Gl, case: Case, probed: RasterizerProfile) -> Result<Option<
     }))
 }
 
+/// What a scene [`measure`] could not measure (refused by some description, or empty) gives
+/// with the probed profile alone.
+enum ProbedAlone {
+    /// The decal covers no pixel (or `ZSHIFT_SCENES_ONLY` leaves the scene out): nothing to judge.
+    Empty,
+    /// The probed profile refuses it too.
+    Refused,
+    /// The probed descriptions answer: drawn, with their failures (lost or bled pixels).
+    Drawn(Vec<String>),
+}
+
+/// Asks for `case` with the probed profile alone (without and with corners) and draws the
+/// answers ([`ProbedAlone`]).
+fn probed_alone(gl: &mut Gl, case: Case, probed: RasterizerProfile) -> Result<ProbedAlone, String> {
+    // `ZSHIFT_SCENES_ONLY` left it out of `measure`: out of this too.
+    if let Ok(only) = std::env::var("ZSHIFT_SCENES_ONLY") {
+        if !case.label().contains(only.as_str()) {
+            return Ok(ProbedAlone::Empty);
+        }
+    }
+    if std::env::var_os("ZSHIFT_SCENES_TERMS").is_some() {
+        let worst = zshift::recommend::clip_error_terms(
+            &case.scene(RasterizerProfile::worst_case()),
+            case.clip,
+        );
+        println!("terms {} [default, refused]: {worst:?}", case.label());
+    }
+    let asks = [case.scene(probed), case.scene_with_corners(probed)];
+    let Ok(recs) = asks
+        .iter()
+        .map(|s| recommend_clip(s, case.clip))
+        .collect::<Result<Vec<_>, _>>()
+    else {
+        return Ok(ProbedAlone::Refused);
+    };
+    let mut bench = Bench::new(gl, &case)?;
+    if !bench.mask.iter().any(|&m| m) {
+        return Ok(ProbedAlone::Empty);
+    }
+    let mut failed = Vec::new();
+    for rec in recs {
+        let o = outcome(&mut bench, rec)?;
+        if o.lost.hit > 0 || o.bled.hit > 0 {
+            failed.push(format!(
+                "{} [probed, the worst case refused]: {} lost, {} bled",
+                case.label(),
+                o.lost.hit,
+                o.bled.hit
+            ));
+        }
+    }
+    Ok(ProbedAlone::Drawn(failed))
+}
+
 fn every() -> usize {
     match std::env::var("ZSHIFT_SCENES").ok().as_deref() {
         Some("full") => 1,
@@ -876,21 +930,39 @@ fn the_recommendation_holds_on_every_scene() {
     let total = cases.len();
     let mut rows = Vec::new();
     let (mut refused, mut refused_clipped) = (0, 0);
+    let mut worst_only = Vec::new();
+    let mut probed_failures = Vec::new();
     for c in cases {
         let clipped = c.base_kind == BaseKind::Ground;
-        match measure(&mut gl, c, profile).unwrap_or_else(|e| panic!("GL: {e}")) {
+        let label = c.label();
+        match measure(&mut gl, c.clone(), profile).unwrap_or_else(|e| panic!("GL: {e}")) {
             Some(r) => rows.push(r),
             None if clipped => refused_clipped += 1,
-            None => refused += 1,
+            None => match probed_alone(&mut gl, c, profile).unwrap_or_else(|e| panic!("GL: {e}")) {
+                ProbedAlone::Empty => {}
+                ProbedAlone::Refused => refused += 1,
+                ProbedAlone::Drawn(failed) => {
+                    worst_only.push(label);
+                    probed_failures.extend(failed);
+                }
+            },
         }
     }
-    let failures = failures_of(&rows);
+    let mut failures = failures_of(&rows);
+    failures.extend(probed_failures);
     print_classes(&rows);
     println!(
-        "{} scenes ({total} sampled; refused or empty: {refused_clipped} with a rasterizer-clipped base, {refused} others), {} failures",
+        "{} scenes ({total} sampled; refused or empty: {refused_clipped} with a rasterizer-clipped base, {} others, {refused} of them with the probed profile), {} failures",
         rows.len(),
+        refused + worst_only.len(),
         failures.len()
     );
+    // The worst-case bound covers a rasterizer that snaps to 8 sub-pixel bits; a steep plane
+    // just beyond the near plane can need more offset there than the depth left in front of
+    // it, which this (unsnapped) rasterizer does not: printed, its probed answers drawn.
+    for label in &worst_only {
+        println!("refused by the worst-case bound alone (its probed answers drawn, judged with the others): {label}");
+    }
     for f in failures.iter().take(40) {
         println!("FAIL {f}");
     }
@@ -910,7 +982,7 @@ fn the_recommendation_holds_on_every_scene() {
     // useless, and the status says to cut it); every other scene gets an answer.
     assert_eq!(
         refused, 0,
-        "scenes without a clipped base were refused or empty"
+        "scenes without a clipped base were refused with the probed profile"
     );
     assert!(
         refused_clipped * 2 < total / 3,
