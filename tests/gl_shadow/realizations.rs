@@ -4,7 +4,8 @@
 //! `docs/shadows.md`): an engine's default is acne-free there and leaves fewer shadowed pixels
 //! lit than zshift's bias. zshift's bias must hold for every rounding the scene can get; a
 //! peer's constant might hold only for the rounding one drawing happened to get. This test
-//! draws each spot scene at f/n 10⁵ of the default grid again with the whole scene moved by
+//! draws each spot scene at f/n 10⁵ of the default grid (f/n ≥ 10⁴ in a seeded draw,
+//! `ZSHIFT_SHADOW_SEED`) again with the whole scene moved by
 //! `k·(0.0371, 0, −0.0293)` world units (the shaders add it in f32, as engines' world positions
 //! hold it): the shadow is the same, the f32 roundings of the caster and of the lookup are not.
 //! It asserts that zshift's bias (probed profile, the ground listed, the light's view given)
@@ -52,7 +53,7 @@ fn peers_that_beat_zshift_in_many_realizations() {
     let (eye, camera) = camera();
     let spots: Vec<Case> = cases(false)
         .into_iter()
-        .filter(|c| c.kind == Kind::Spot && c.ratio >= 1e5)
+        .filter(|c| c.kind == Kind::Spot && c.ratio >= 1e4)
         .collect();
     let mut failures = Vec::new();
     let mut pairs: Vec<(String, Pair)> = Vec::new();
@@ -131,7 +132,7 @@ fn peers_that_beat_zshift_in_many_realizations() {
         .filter(|(_, p)| (0..realizations).all(|k| p.beaten_in(k)))
         .count();
     println!(
-        "spot scenes at f/n 1e5: {} scenes, {realizations} realizations, {} (scene, engine) pairs",
+        "spot scenes at f/n ≥ 1e4: {} scenes, {realizations} realizations, {} (scene, engine) pairs",
         spots.len(),
         complete.len()
     );
@@ -145,7 +146,7 @@ fn peers_that_beat_zshift_in_many_realizations() {
             p.engine_acne, p.engine_leak, p.zshift_leak
         );
     }
-    assert!(spots.len() >= 10, "too few spot scenes: {}", spots.len());
+    assert!(spots.len() >= 5, "too few spot scenes: {}", spots.len());
     assert!(
         failures.is_empty(),
         "{} failures:\n{}",
