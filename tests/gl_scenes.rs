@@ -696,13 +696,15 @@ fn outcome(bench: &mut Bench, rec: ClipRecommendation) -> Result<Outcome, String
     })
 }
 
+/// `ZSHIFT_SCENES_ONLY=<text>`: only the scenes whose label contains it (to look at one).
+fn left_out(label: &str) -> bool {
+    std::env::var("ZSHIFT_SCENES_ONLY").is_ok_and(|only| !label.contains(only.as_str()))
+}
+
 fn measure(gl: &mut Gl, case: Case, probed: RasterizerProfile) -> Result<Option<Row>, String> {
     let label = case.label();
-    // `ZSHIFT_SCENES_ONLY=<text>`: only the scenes whose label contains it (to look at one).
-    if let Ok(only) = std::env::var("ZSHIFT_SCENES_ONLY") {
-        if !label.contains(only.as_str()) {
-            return Ok(None);
-        }
+    if left_out(&label) {
+        return Ok(None);
     }
     let worst = RasterizerProfile::worst_case();
     let scenes = [
@@ -774,11 +776,8 @@ enum ProbedAlone {
 /// Asks for `case` with the probed profile alone (without and with corners) and draws the
 /// answers ([`ProbedAlone`]).
 fn probed_alone(gl: &mut Gl, case: Case, probed: RasterizerProfile) -> Result<ProbedAlone, String> {
-    // `ZSHIFT_SCENES_ONLY` left it out of `measure`: out of this too.
-    if let Ok(only) = std::env::var("ZSHIFT_SCENES_ONLY") {
-        if !case.label().contains(only.as_str()) {
-            return Ok(ProbedAlone::Empty);
-        }
+    if left_out(&case.label()) {
+        return Ok(ProbedAlone::Empty);
     }
     if std::env::var_os("ZSHIFT_SCENES_TERMS").is_some() {
         let worst = zshift::recommend::clip_error_terms(
