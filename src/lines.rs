@@ -44,7 +44,10 @@
 //! edge, on the neighbour's side of the line). So polygon-mode lines keep the worst-case reach
 //! `(w + 1)/2` with either profile and the line term doubles, `L = 2·g·Δ` (the neighbour up to
 //! the face-slope limit); under (a) the factor `Δ` pays the face's own part and the units the
-//! neighbour's `g·Δ`, which the face's factor does not see.
+//! neighbour's `g·Δ`, which the face's factor does not see. Wide ones (`w > 1`) add 1/4
+//! (`WIDE_OUTLINE_SHIFT`): a wide-line stage that draws them as quads shifted half a pixel
+//! along the line (Mesa's) makes a fragment take the line's depth up to `w/2 + 1/8` across and
+//! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`, and a seeded draw needed as much again.
 //!
 //! **MSAA** ([`Edges::samples`] > 1): a multisampled line is a rectangle `w` wide whose samples
 //! take the line's depth at their projection on it (or along the minor axis), and the face's
@@ -451,10 +454,22 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
 /// `ZSHIFT_LINES_SEED=1`); the issue's own measurement reached 0.52.
 const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 
+/// What a wide polygon-mode outline adds to the worst-case reach `(w + 1)/2`, pixels of `M`.
+/// Mesa's draw module (llvmpipe) draws a wide line as a quad: the line's end points moved
+/// `w/2 + 1/8` along the minor axis and the whole quad `1/2` pixel back along the major axis,
+/// each vertex keeping its end point's depth (`draw_pipe_wide_line.c`). A fragment thus takes
+/// the line's depth at a point up to `w/2 + 1/8` across and `1/2` along from its centre: off
+/// the face by up to `(w/2 + 1/8)·|g_minor| + (1/2)·|g_major| ≤ ((w + 1)/2 + 1/8)·M`. Measured:
+/// `ZSHIFT_LINES_SEED=19 ZSHIFT_LINES_FULL=1` lost single pixels of width-3 polygon-mode edges
+/// under (a) at `(w + 1)/2` in three scenes, each kept from 1.1 times the offset; with 1/8 one still lost
+/// its pixel, so this is the quad's 1/8 and as much again measured (docs/edges.md).
+const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 4.0;
+
 /// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
 /// profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
-/// case), else `(w + 1)/2` (module docs, "The line term").
+/// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
+/// [`WIDE_OUTLINE_SHIFT`].
 fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let worst = (w + 1.0) / 2.0;
@@ -478,6 +493,8 @@ fn line_reach(edges: &Edges) -> f64 {
         }
         // Polygon-mode lines keep the worst case: the probe draws them in one plane per tile,
         // where no neighbour's outline can land on a face (module docs, "Polygon-mode lines").
+        // Wide ones also take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]).
+        LineKind::PolygonMode if w > 1.0 => worst + WIDE_OUTLINE_SHIFT,
         LineKind::Lines | LineKind::PolygonMode => worst,
     }
 }
