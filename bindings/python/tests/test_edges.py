@@ -41,11 +41,12 @@ class Edges(unittest.TestCase):
         front = n / (1 - w / big_f)
         self.assertAlmostEqual(r.hidden_gap, d - front, delta=1e-6 * r.hidden_gap)
 
-    def test_polygon_offset_factor_is_half_the_width_plus_one(self):
+    def test_polygon_offset_factor_is_the_wide_outline_reach(self):
+        # Polygon-mode width 3: (w + 1)/2, plus 1/4 for a wide outline drawn as a shifted quad.
         r = self.offset(zshift.EdgeMethod.POLYGON_OFFSET, line_width=3.0, polygon_mode=True)
-        self.assertEqual(r.polygon_offset[0], 2.0)
+        self.assertEqual(r.polygon_offset[0], 2.25)
         self.assertEqual(r.d3d_bias[0], math.ceil(r.d3d_bias[0]))
-        self.assertEqual(r.vulkan_bias[1], 2.0)
+        self.assertEqual(r.vulkan_bias[1], 2.25)
 
     def test_refusal_and_planes(self):
         m = perspective(0.01, 100.0)
