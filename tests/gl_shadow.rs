@@ -366,11 +366,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
             };
             match answer {
                 Ok(bias) => {
-                    let [f, u, c] = bias.gl_polygon_offset;
-                    let caster = CasterBias {
-                        offset: Some((f as f32, u as f32, c as f32)),
-                        ..Default::default()
-                    };
+                    let caster = CasterBias::of(&bias);
                     let px = unsafe {
                         rig.look_biased(
                             &mut gl,
@@ -388,7 +384,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                     leaks.push((pname.to_string(), got.leak));
                     let on_ground = {
                         let k = bias.terms.constant + bias.terms.slope_factor * slope;
-                        let clamp = c.abs();
+                        let clamp = bias.gl_polygon_offset[2].abs();
                         if clamp > 0.0 {
                             k.min(clamp)
                         } else {

@@ -152,11 +152,8 @@ fn zshift_bias(s: &Setting) -> Result<(CasterBias, [String; 2]), String> {
     );
     let bias = shadow_bias_for_receivers(&map, &[&s.light.ground_quad()])
         .map_err(|e| format!("zshift refused the scene: {e}"))?;
+    let caster = CasterBias::of(&bias);
     let [f, u, c] = bias.gl_polygon_offset.map(|x| x as f32);
-    let caster = CasterBias {
-        offset: Some((f, u, c)),
-        ..Default::default()
-    };
     println!("zshift: glPolygonOffsetClamp({f}, {u}, {c:e})");
     let label = format!("OFFSET {f:.2}, {u:.0}, {c:.1E}");
     Ok((caster, ["ZSHIFT".into(), label]))

@@ -35,12 +35,7 @@ struct Looker<'a> {
 impl Looker<'_> {
     /// The camera's count with `case`'s map drawn under `bias`'s `glPolygonOffsetClamp`.
     fn look(&mut self, case: &Case, bias: &ShadowBias) -> Count {
-        let [f, u, c] = bias.gl_polygon_offset;
-        let caster = CasterBias {
-            offset: Some((f as f32, u as f32, c as f32)),
-            ..Default::default()
-        };
-        self.look_with(case, caster, ReceiverBias::default())
+        self.look_with(case, CasterBias::of(bias), ReceiverBias::default())
     }
 
     /// [`Looker::look_judged`] against the case's own reference.

@@ -85,12 +85,7 @@ fn peers_that_beat_zshift_in_many_realizations() {
                 .unwrap_or_else(|e| panic!("{e}"));
                 count(&px, &truth)
             };
-            let [f, u, c] = bias.gl_polygon_offset;
-            let caster = CasterBias {
-                offset: Some((f as f32, u as f32, c as f32)),
-                ..Default::default()
-            };
-            let zshift = look(&mut gl, caster, ReceiverBias::default());
+            let zshift = look(&mut gl, CasterBias::of(&bias), ReceiverBias::default());
             if zshift.acne > 0 {
                 failures.push(format!(
                     "{} shift {:?}: {} acne pixels of {} lit at {:?}",

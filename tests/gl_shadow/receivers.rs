@@ -681,12 +681,7 @@ fn spheres_and_terrain_receive_without_acne() {
                     Ok(bias) => {
                         answered += 1;
                         let truth = &truths[usize::from(!listed)];
-                        let [f, u, c] = bias.gl_polygon_offset;
-                        let offset = Some((f as f32, u as f32, c as f32));
-                        let caster = CasterBias {
-                            offset,
-                            ..Default::default()
-                        };
+                        let caster = CasterBias::of(&bias);
                         let px = through.look(&mut gl, caster, ReceiverBias::default());
                         let got = count(&px, truth);
                         if got.acne > 0 {
@@ -715,6 +710,7 @@ fn spheres_and_terrain_receive_without_acne() {
                             }
                         }
                         if pname == "probed, receivers" {
+                            let [f, u, c] = bias.gl_polygon_offset;
                             let acne_at = |gl: &mut Gl, s: f32| {
                                 let offset = Some((f as f32 * s, u as f32 * s, c as f32 * s));
                                 let caster = CasterBias {

@@ -662,6 +662,18 @@ pub struct CasterBias {
     pub along_normal: f32,
 }
 
+impl CasterBias {
+    /// zshift's answer as the map is drawn with it: its `glPolygonOffsetClamp(factor, units,
+    /// clamp)` in f32, nothing else.
+    pub fn of(bias: &zshift::shadow::ShadowBias) -> Self {
+        let [f, u, c] = bias.gl_polygon_offset.map(|x| x as f32);
+        Self {
+            offset: Some((f, u, c)),
+            ..Default::default()
+        }
+    }
+}
+
 /// One lookup's receiver-side bias.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct ReceiverBias {
