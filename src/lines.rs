@@ -44,10 +44,10 @@
 //! edge, on the neighbour's side of the line). So polygon-mode lines keep the worst-case reach
 //! `(w + 1)/2` with either profile and the line term doubles, `L = 2·g·Δ` (the neighbour up to
 //! the face-slope limit); under (a) the factor `Δ` pays the face's own part and the units the
-//! neighbour's `g·Δ`, which the face's factor does not see. Wide ones (`w > 1`) add 1/4
+//! neighbour's `g·Δ`, which the face's factor does not see. Wide ones (`w > 1`) add 1/8
 //! (`WIDE_OUTLINE_SHIFT`): a wide-line stage that draws them as quads shifted half a pixel
 //! along the line (Mesa's) makes a fragment take the line's depth up to `w/2 + 1/8` across and
-//! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`, and a seeded draw needed as much again.
+//! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`.
 //!
 //! **MSAA** ([`Edges::samples`] > 1): a multisampled line is a rectangle `w` wide whose samples
 //! take the line's depth at their projection on it (or along the minor axis), and the face's
@@ -461,9 +461,9 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 /// the line's depth at a point up to `w/2 + 1/8` across and `1/2` along from its centre: off
 /// the face by up to `(w/2 + 1/8)·|g_minor| + (1/2)·|g_major| ≤ ((w + 1)/2 + 1/8)·M`. Measured:
 /// `ZSHIFT_LINES_SEED=19 ZSHIFT_LINES_FULL=1` lost single pixels of width-3 polygon-mode edges
-/// under (a) at `(w + 1)/2` in three scenes, each kept from 1.1 times the offset; with 1/8 one still lost
-/// its pixel, so this is the quad's 1/8 and as much again measured (docs/edges.md).
-const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 4.0;
+/// under (a) at `(w + 1)/2` in three scenes, each kept from 1.1 times the offset; with 1/8 none
+/// does (a pixel once counted lost at 1/8 was a hidden side's outline, misattributed: docs/edges.md).
+const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 
 /// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
 /// profile's measured reach for the

@@ -406,7 +406,7 @@ fn edges_over_faces_sweep() {
                                 variant,
                                 ms,
                             );
-                            let ids = edge_ids(&scene, &p);
+                            let ids = edge_ids(&scene);
                             for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
                                 for (pname, profile) in profiles {
                                     let mut edges =
@@ -842,7 +842,7 @@ fn refusals_confirmed_by_bisection() {
                                 variant,
                                 None,
                             );
-                            let ids = edge_ids(&scene, &p);
+                            let ids = edge_ids(&scene);
                             let rfs = std::slice::from_ref(&rf);
                             let g = rec.face_gradient;
                             let c = classify(&scene, &p, rfs, &ids, b, g, sep);

@@ -99,7 +99,7 @@ pub struct ZshiftEdgeOffset {
     /// triangle's outline adds its own slope term), window depth.
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
-    /// depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines (plus 1/4 for
+    /// depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines (plus 1/8 for
     /// wide ones, w > 1), the probed reach plus 1/16 plus (w - 1)/2 for GL_LINES with a profile,
     /// sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
     pub line_reach: f64,

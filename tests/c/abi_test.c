@@ -1100,8 +1100,8 @@ static void test_edges(void) {
   e.line_width = 3.0;
   e.polygon_mode = 1;
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_POLYGON_OFFSET, &a), ZSHIFT_OK);
-  /* Polygon-mode width 3: (w + 1)/2 plus the 1/4 of a wide outline's quad. */
-  CHECK(a.polygon_offset[0] == 2.25 && a.d3d_bias[1] == 2.25 && a.vulkan_bias[1] == 2.25, "edges: factor %g", a.polygon_offset[0]);
+  /* Polygon-mode width 3: (w + 1)/2 plus the 1/8 of a wide outline's quad. */
+  CHECK(a.polygon_offset[0] == 2.125 && a.d3d_bias[1] == 2.125 && a.vulkan_bias[1] == 2.125, "edges: factor %g", a.polygon_offset[0]);
   CHECK(a.d3d_bias[0] == (double)(long)a.d3d_bias[0] && a.d3d_bias[0] >= a.polygon_offset[1], "edges: D3D bias %g", a.d3d_bias[0]);
   CHECK(memcmp(a.matrix, m, sizeof m) == 0, "edges: the polygon-offset method changed the matrix");
   /* Refusal below the gap, and planes that answer. */

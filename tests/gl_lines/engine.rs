@@ -187,7 +187,7 @@ fn edges_drawn_as_engines_draw() {
                 );
                 scene.view = Some(view32);
                 scene.origin = origin;
-                let ids = edge_ids(&scene, &p);
+                let ids = edge_ids(&scene);
                 scenes += 1;
                 let pipeline = Pipeline {
                     world_reach: camera.iter().fold(0.0f64, |a, c| a.max(c.abs())),

@@ -42,11 +42,11 @@ class Edges(unittest.TestCase):
         self.assertAlmostEqual(r.hidden_gap, d - front, delta=1e-6 * r.hidden_gap)
 
     def test_polygon_offset_factor_is_the_wide_outline_reach(self):
-        # Polygon-mode width 3: (w + 1)/2, plus 1/4 for a wide outline drawn as a shifted quad.
+        # Polygon-mode width 3: (w + 1)/2, plus 1/8 for a wide outline drawn as a shifted quad.
         r = self.offset(zshift.EdgeMethod.POLYGON_OFFSET, line_width=3.0, polygon_mode=True)
-        self.assertEqual(r.polygon_offset[0], 2.25)
+        self.assertEqual(r.polygon_offset[0], 2.125)
         self.assertEqual(r.d3d_bias[0], math.ceil(r.d3d_bias[0]))
-        self.assertEqual(r.vulkan_bias[1], 2.25)
+        self.assertEqual(r.vulkan_bias[1], 2.125)
 
     def test_refusal_and_planes(self):
         m = perspective(0.01, 100.0)

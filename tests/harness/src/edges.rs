@@ -62,6 +62,40 @@ void main() {
 }
 ";
 
+/// For the polygon-mode ID renders: passes each triangle through with a one-hot weight per
+/// corner, so a fragment of an outline knows its side (the corner off the side interpolates
+/// two zeros: exactly 0 along the whole side, its wide-line quad and ends included).
+const GS_SIDES: &str = "#version 330 core
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+noperspective out vec3 corner;
+void main() {
+    for (int i = 0; i < 3; i++) {
+        gl_Position = gl_in[i].gl_Position;
+        corner = vec3(i == 0, i == 1, i == 2);
+        gl_PrimitiveID = gl_PrimitiveIDIn;
+        EmitVertex();
+    }
+    EndPrimitive();
+}
+";
+
+/// The outline's triangle and side: `3·triangle + side + 1` in RGB (side 0 from corner 0 to 1,
+/// 1 from 1 to 2, 2 from 2 to 0, as [`Mesh::tri_edges`]), in drawing order (`id_mode` 1) or
+/// reversed (2).
+const FS_SIDES: &str = "#version 330 core
+noperspective in vec3 corner;
+uniform int id_mode;
+uniform int id_count;
+out vec4 frag;
+void main() {
+    int side = corner.z == 0.0 ? 0 : (corner.x == 0.0 ? 1 : 2);
+    int tri = id_mode == 1 ? gl_PrimitiveID : id_count - 1 - gl_PrimitiveID;
+    int id = 3 * tri + side + 1;
+    frag = vec4(float(id & 255), float((id >> 8) & 255), float((id >> 16) & 255), 255.0) / 255.0;
+}
+";
+
 /// The exact geometry of a mesh under a frustum: window x, y and 1/d of every vertex.
 pub struct Projected {
     /// Window x, y of every vertex.
@@ -199,6 +233,8 @@ pub fn edge_at(
 /// the mesh's vertex buffer and an index buffer refilled at each draw.
 pub struct Renderer {
     program: glow::Program,
+    /// The polygon-mode ID program: each fragment's triangle and side ([`GS_SIDES`]).
+    sides: glow::Program,
     vao: glow::VertexArray,
     vbo: glow::Buffer,
     ebo: glow::Buffer,
@@ -209,6 +245,15 @@ impl Renderer {
     pub fn new(gl: &glow::Context) -> Renderer {
         unsafe {
             let program = crate::link_program(gl, VS, FS).unwrap_or_else(|e| panic!("{e}"));
+            let sides = crate::link_stages(
+                gl,
+                &[
+                    (glow::VERTEX_SHADER, VS),
+                    (glow::GEOMETRY_SHADER, GS_SIDES),
+                    (glow::FRAGMENT_SHADER, FS_SIDES),
+                ],
+            )
+            .unwrap_or_else(|e| panic!("{e}"));
             let vao = gl.create_vertex_array().unwrap();
             let vbo = gl.create_buffer().unwrap();
             let ebo = gl.create_buffer().unwrap();
@@ -219,6 +264,7 @@ impl Renderer {
             gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(ebo));
             Renderer {
                 program,
+                sides,
                 vao,
                 vbo,
                 ebo,
@@ -260,25 +306,31 @@ impl Renderer {
         count: i32,
     ) {
         let bytes: Vec<u8> = indices.iter().flat_map(|v| v.to_ne_bytes()).collect();
+        // Triangles' IDs name the side too (polygon-mode outlines).
+        let program = if id != 0 && mode == glow::TRIANGLES {
+            self.sides
+        } else {
+            self.program
+        };
         unsafe {
-            gl.use_program(Some(self.program));
+            gl.use_program(Some(program));
             gl.bind_vertex_array(Some(self.vao));
             gl.bind_buffer(glow::ELEMENT_ARRAY_BUFFER, Some(self.ebo));
             gl.buffer_data_u8_slice(glow::ELEMENT_ARRAY_BUFFER, &bytes, glow::STREAM_DRAW);
-            let p = gl.get_uniform_location(self.program, "proj");
+            let p = gl.get_uniform_location(program, "proj");
             gl.uniform_matrix_4_f32_slice(p.as_ref(), false, proj);
-            let w = gl.get_uniform_location(self.program, "world");
+            let w = gl.get_uniform_location(program, "world");
             gl.uniform_1_i32(w.as_ref(), i32::from(view.is_some()));
             if let Some(view) = view {
-                let v = gl.get_uniform_location(self.program, "view");
+                let v = gl.get_uniform_location(program, "view");
                 gl.uniform_matrix_4_f32_slice(v.as_ref(), false, view);
             }
-            let c = gl.get_uniform_location(self.program, "color");
+            let c = gl.get_uniform_location(program, "color");
             let [r, g, b] = color.map(|x| f32::from(x) / 255.0);
             gl.uniform_4_f32(c.as_ref(), r, g, b, 1.0);
-            let m = gl.get_uniform_location(self.program, "id_mode");
+            let m = gl.get_uniform_location(program, "id_mode");
             gl.uniform_1_i32(m.as_ref(), id);
-            let k = gl.get_uniform_location(self.program, "id_count");
+            let k = gl.get_uniform_location(program, "id_count");
             gl.uniform_1_i32(k.as_ref(), count);
             gl.draw_elements(mode, indices.len() as i32, glow::UNSIGNED_INT, 0);
         }
@@ -671,7 +723,7 @@ pub fn read_at(gl: &Gl, origin: [u32; 2]) -> Vec<[u8; 4]> {
 
 /// The edges that drew each pixel (each sample under MSAA, laid end to end): two ID renders
 /// (forward and reversed order).
-pub fn edge_ids(scene: &Scene, p: &Projected) -> Vec<Vec<usize>> {
+pub fn edge_ids(scene: &Scene) -> Vec<Vec<usize>> {
     let g = scene.gl.glow();
     let n = SIZE as usize;
     let planes = scene.offsets().len();
@@ -704,20 +756,12 @@ pub fn edge_ids(scene: &Scene, p: &Projected) -> Vec<Vec<usize>> {
             if id == 0 {
                 continue;
             }
-            let i = j % (n * n);
             let prim = id - 1;
+            // A polygon-mode outline's ID names its triangle's side ([`FS_SIDES`]).
             let e = if lines {
                 prim
             } else {
-                // The triangle's side nearest the pixel centre.
-                let (x, y) = ((i % n) as f64 + 0.5, (i / n) as f64 + 0.5);
-                let te = scene.mesh.tri_edges[prim];
-                *te.iter()
-                    .min_by(|&&a, &&b| {
-                        seg_dist(scene.mesh, p, a, x, y)
-                            .total_cmp(&seg_dist(scene.mesh, p, b, x, y))
-                    })
-                    .unwrap()
+                scene.mesh.tri_edges[prim / 3][prim % 3]
             };
             if !ids[j].contains(&e) {
                 ids[j].push(e);

@@ -951,11 +951,29 @@ pub unsafe fn link_program(
     vertex_shader: &str,
     fragment_shader: &str,
 ) -> Result<glow::Program, String> {
+    link_stages(
+        gl,
+        &[
+            (glow::VERTEX_SHADER, vertex_shader),
+            (glow::FRAGMENT_SHADER, fragment_shader),
+        ],
+    )
+}
+
+/// Compiles each `(stage, source)` (`glow::VERTEX_SHADER`, `GEOMETRY_SHADER`, …) and links them
+/// into a program.
+///
+/// # Safety
+/// `gl` must be current on this thread.
+///
+/// # Errors
+/// A compile or link failure, with the driver's log.
+pub unsafe fn link_stages(
+    gl: &glow::Context,
+    stages: &[(u32, &str)],
+) -> Result<glow::Program, String> {
     let program = gl.create_program()?;
-    for (kind, source) in [
-        (glow::VERTEX_SHADER, vertex_shader),
-        (glow::FRAGMENT_SHADER, fragment_shader),
-    ] {
+    for &(kind, source) in stages {
         let shader = gl.create_shader(kind)?;
         gl.shader_source(shader, source);
         gl.compile_shader(shader);
