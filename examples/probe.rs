@@ -57,8 +57,8 @@ fn main() {
         p.near_clip, figures.near_clip_error, figures.near_preclipped_error, p.clip_ulps
     );
     println!(
-        "lines          reach (pixels along the steepest gradient): GL_LINES width 1 {:.4} over {} fragments, polygon-mode {:.4} over {}; glPolygonOffset slope rule {:.4} on a diagonal plane (1 = max, 1.414 = root sum of squares), {:.4} on an axis plane",
-        p.line_reach[0], figures.line_pixels[0], p.line_reach[1], figures.line_pixels[1], p.offset_slope, figures.offset_slope_axis
+        "lines          reach (pixels along the steepest gradient): GL_LINES width 1 {:.4} over {} fragments, polygon-mode {:.4} over {} (off its line onto a neighbour: {:.2e} over {}); glPolygonOffset slope rule {:.4} on a diagonal plane (1 = max, 1.414 = root sum of squares), {:.4} on an axis plane",
+        p.line_reach[0], figures.line_pixels[0], p.line_reach[1], figures.line_pixels[1], p.outline_neighbour, figures.outline_neighbour_pixels, p.offset_slope, figures.offset_slope_axis
     );
     println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {

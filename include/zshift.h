@@ -324,6 +324,15 @@ typedef struct {
    */
   double line_reach[2];
   /*
+   How far a polygon-mode outline takes its depth off its side's line, onto the
+   neighbouring face, in pixels of the triangle's max(|dz/dx|, |dz/dy|): the largest
+   |stored - side's depth| over 1-pixel outline fragments beyond a side of constant depth,
+   outside its triangle. Near 0 where the outline's depth follows its line (llvmpipe);
+   zshift_edge_offset then leaves out the neighbour's slope term for polygon-mode lines.
+   NAN where not measured (the term is kept). NAN or finite >= 0.
+   */
+  double outline_neighbour;
+  /*
    glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
    |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
    root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -832,15 +841,16 @@ typedef struct {
    */
   double window_offset;
   /*
-   The line term g*line_reach (polygon-mode lines: 2*g*line_reach, the neighbouring
-   triangle's outline adds its own slope term), window depth.
+   The line term g*line_reach, window depth; polygon-mode lines add the neighbouring
+   triangle's slope term where its outline may take its own plane beyond the shared side
+   (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
    */
   double line_term;
   /*
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
-   depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines (plus 1/8 for
-   wide ones, w > 1), the probed reach plus 1/16 plus (w - 1)/2 for GL_LINES with a profile,
-   sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
+   depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
+   1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile,
+   sqrt(2)*(w + 1)/2 under MSAA.
    */
   double line_reach;
   /*

@@ -35,16 +35,21 @@
 //! the probe found 0.5006), plus `(w − 1)/2`.
 //!
 //! **Polygon-mode lines** ([`LineKind::PolygonMode`]): every triangle draws its own outline, so
-//! along a shared edge a face's pixel may take its line fragment from the neighbour's outline.
-//! Measured in another draw of the sweep (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=1`): on a torus
-//! and a chamfered box, polygon-mode edges lost single pixels with the probe's reach (0.50 on
-//! planes drawn alone) and with the worst case (kept from 1.1–2× the offset), where the
-//! neighbouring face is steeper than the pixel's: the fragment is off the pixel's face by up to
-//! `Δ·(m_F + m_G)`, both faces' slope terms (the outline's pixel lies up to `Δ` from the shared
-//! edge, on the neighbour's side of the line). So polygon-mode lines keep the worst-case reach
-//! `(w + 1)/2` with either profile and the line term doubles, `L = 2·g·Δ` (the neighbour up to
-//! the face-slope limit); under (a) the factor `Δ` pays the face's own part and the units the
-//! neighbour's `g·Δ`, which the face's factor does not see. Wide ones (`w > 1`) add 1/8
+//! along a shared edge a face `F`'s pixel may take its line fragment from the neighbour `G`'s
+//! outline. A rasterizer that takes an outline's depth from its line (Mesa's draw module, the
+//! line's depth constant across it) puts that fragment on the shared side's line, which lies in
+//! `F`: it is off `F` by `F`'s own slope term only, as `F`'s own outline is. One that evaluates
+//! `G`'s plane there puts it off `F` by `(∇G − ∇F)·v`, `v` the pixel's offset from the side: up to
+//! `Δ_n·(m_F + m_G)`. The worst case assumes the second, `Δ_n = Δ = (w + 1)/2`, so the line term
+//! doubles, `L = 2·g·Δ` (the neighbour up to the face-slope limit); under (a) the factor `Δ` pays
+//! the face's own part and the units the neighbour's `g·Δ_n`, which the face's factor does not
+//! see. The probe measures which it is ([`RasterizerProfile::outline_neighbour`]: outline
+//! fragments beyond a side of constant depth, read against that depth): f32 noise (llvmpipe,
+//! 6·10⁻⁶ pixel) leaves the neighbour's term out, and a 1-pixel outline then takes the probe's
+//! reach like `GL_LINES`; a larger figure `n` gives the face `Δ = max(reach, n) + 1/16` and the
+//! neighbour `n + 1/16`, scaled to the variant's worst-case reach. (An earlier judge counted
+//! pixels drawn by a thin triangle's hidden side as its visible one's, which looked like a
+//! neighbour's slope: docs/edges.md.) Wide ones (`w > 1`) add 1/8
 //! (`WIDE_OUTLINE_SHIFT`): a wide-line stage that draws them as quads shifted half a pixel
 //! along the line (Mesa's) makes a fragment take the line's depth up to `w/2 + 1/8` across and
 //! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`.
@@ -55,11 +60,11 @@
 //! in a direction that is not an axis: the face's gradient along it is up to `|∇z| ≤ √2·M`, so a
 //! sample is off the face by up to `(w/2)·√2·M`, more than `(w + 1)/2·M` from `w ≥ 2.5`. Under
 //! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction), with
-//! either profile (the probe measures single-sampled lines). Polygon-mode lines under MSAA add
-//! a sample's distance from its pixel centre (`√2/2`, times `√2`: `Δ = √2·(w + 1)/2 + 1`), as a
-//! rasterizer that takes an outline fragment's depth once per pixel needs: measured on
-//! llvmpipe (`tests/gl_lines.rs`, the `polymode 4xMSAA` variant of the full grid), a torus lost
-//! 2 samples of 21767 under (a) at `√2·(w + 1)/2` in 75 scene-asks, kept from 1.25× the offset.
+//! either profile (the probe measures single-sampled lines), for polygon-mode lines too. (They
+//! once added a sample's distance from its pixel centre, after a torus lost 2 samples at
+//! `√2·(w + 1)/2`; that count came from the judge that named a thin triangle's hidden side as
+//! its visible one, and the `polymode 4xMSAA` variant of the full grid and of two seeded draws
+//! keeps every sample without it: docs/edges.md.)
 //! `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
@@ -465,7 +470,7 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 /// does (a pixel once counted lost at 1/8 was a hidden side's outline, misattributed: docs/edges.md).
 const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 
-/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
+/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA, else the
 /// profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
@@ -476,26 +481,54 @@ fn line_reach(edges: &Edges) -> f64 {
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
-        let across = std::f64::consts::SQRT_2 * worst;
-        // Polygon-mode outlines under MSAA also take a sample's depth where its pixel centre's
-        // is: add the sample's distance from the centre, up to √2/2, times √2 (module docs,
-        // "MSAA"; measured on llvmpipe: a torus lost 2 samples at `across`, kept from 1.25×).
-        return match edges.kind {
-            LineKind::PolygonMode => across + 1.0,
-            LineKind::Lines => across,
-        };
+        return std::f64::consts::SQRT_2 * worst;
     }
     let p = &edges.profile;
-    let measured = p.line_reach[0];
+    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
     match edges.kind {
-        LineKind::Lines if p.measured && measured.is_finite() && measured > 0.0 => {
-            (measured + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
+        LineKind::Lines if measured(p.line_reach[0]) => {
+            (p.line_reach[0] + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
         }
-        // Polygon-mode lines keep the worst case: the probe draws them in one plane per tile,
-        // where no neighbour's outline can land on a face (module docs, "Polygon-mode lines").
-        // Wide ones also take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]).
+        // Wide outlines take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]); the
+        // probe draws 1-pixel ones only.
         LineKind::PolygonMode if w > 1.0 => worst + WIDE_OUTLINE_SHIFT,
+        // A 1-pixel outline takes its depth up to its own measured reach from the pixel, or,
+        // where the rasterizer evaluates its triangle's plane beyond the side, up to the
+        // measured distance there (module docs, "Polygon-mode lines"): the larger.
+        LineKind::PolygonMode if measured(p.line_reach[1]) && p.outline_neighbour.is_finite() => {
+            (p.line_reach[1].max(p.outline_neighbour) + LINE_REACH_MARGIN).min(worst)
+        }
         LineKind::Lines | LineKind::PolygonMode => worst,
+    }
+}
+
+/// A measured [`RasterizerProfile::outline_neighbour`] at most this (pixels) is f32 noise: the
+/// rasterizer takes an outline's depth from its line (llvmpipe reads 6·10⁻⁶), and a neighbour's
+/// outline lands on a face with the face's own depth along the shared side.
+const OUTLINE_NEIGHBOUR_NOISE: f64 = 1.0 / 64.0;
+
+/// `Δ_n`, in pixels of the neighbouring face's `M`: how far off the shared side's line a
+/// neighbour's polygon-mode outline takes a face's pixel (module docs, "Polygon-mode lines").
+/// 0 for `GL_LINES`, and for outlines where the profile measured noise
+/// ([`OUTLINE_NEIGHBOUR_NOISE`]); where it measured more, the figure plus
+/// [`LINE_REACH_MARGIN`] scaled from the probe's outline (width 1, single-sampled: 1 pixel in
+/// the worst case) to the variant's worst-case reach; else that worst-case reach.
+fn neighbour_reach(edges: &Edges) -> f64 {
+    if edges.kind == LineKind::Lines {
+        return 0.0;
+    }
+    let worst = line_reach(&Edges {
+        profile: RasterizerProfile::worst_case(),
+        ..*edges
+    });
+    let p = &edges.profile;
+    let measured = p.outline_neighbour;
+    if !(p.measured && measured.is_finite()) {
+        worst
+    } else if measured <= OUTLINE_NEIGHBOUR_NOISE {
+        0.0
+    } else {
+        (worst * (measured + LINE_REACH_MARGIN)).min(worst)
     }
 }
 
@@ -552,15 +585,11 @@ fn unchecked_gap(
     let mapping = crate::recommend::mapping_of(&scene, clip)?;
     let reach = line_reach(edges);
     // Polygon-mode edges: every triangle draws its own outline, so a face's pixel along a shared
-    // edge may take its line fragment from the neighbour's outline, off the face by the slope
-    // terms of both (module docs, "Polygon-mode lines"): the neighbour's part, up to the
-    // face-slope limit, is `neighbour`.
+    // edge may take its line fragment from the neighbour's outline, off the face by the
+    // neighbour's slope term too where the rasterizer evaluates the neighbour's plane there
+    // (module docs, "Polygon-mode lines"): that part, up to the face-slope limit, is `neighbour`.
     let own = representable(g * reach, "the line term overflows f64")?;
-    let neighbour = if edges.kind == LineKind::PolygonMode {
-        own
-    } else {
-        0.0
-    };
+    let neighbour = representable(g * neighbour_reach(edges), "the line term overflows f64")?;
     let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
@@ -770,6 +799,54 @@ mod tests {
         );
     }
 
+    /// Polygon-mode outlines with a measured neighbour: f32 noise leaves the neighbour's term out
+    /// (the outline's own reach, measured, plus 1/16); a rasterizer that evaluates the
+    /// triangle's plane beyond its side pays that distance for the face (the factor) and for the
+    /// neighbour (the units, scaled to the variant's worst case).
+    #[test]
+    fn a_measured_outline_neighbour_sets_the_neighbours_term() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        e.kind = LineKind::PolygonMode;
+        e.profile.measured = true;
+        e.profile.line_reach = [0.5, 0.5];
+        e.profile.offset_slope = 1.0;
+        let lines = Edges {
+            kind: LineKind::Lines,
+            ..e
+        };
+        let r_gl = 1.0 / (2f64.powi(24) - 1.0);
+        let units = |e: &Edges| recommend(&m, clip, e, EdgeMethod::PolygonOffset).unwrap();
+        // Noise: as GL_LINES of the same reach.
+        e.profile.outline_neighbour = 6e-6;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        assert_eq!(r.line_reach, 0.5625);
+        assert_eq!(r.line_term, 0.5625 * r.face_gradient);
+        assert_eq!(units(&e).polygon_offset, units(&lines).polygon_offset);
+        // A plane evaluated 0.75 pixel beyond the side: reach 0.8125 for the face, as much for
+        // the neighbour (width 1, single-sampled: the worst case is 1 pixel).
+        e.profile.outline_neighbour = 0.75;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        let g = r.face_gradient;
+        assert_eq!(r.line_reach, 0.8125);
+        assert!((r.line_term - 2.0 * 0.8125 * g).abs() < 1e-15 * g, "{r:?}");
+        let a = units(&e);
+        assert_eq!(a.polygon_offset[0], 0.8125);
+        let extra = a.polygon_offset[1] - units(&lines).polygon_offset[1];
+        assert!(
+            (extra * r_gl - 0.8125 * g).abs() < 1e-9 * g,
+            "{extra} units"
+        );
+        // Width 3: the outline keeps the wide quad's reach, the neighbour scales to it.
+        e.line_width = 3.0;
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        let wide = 2.0 + WIDE_OUTLINE_SHIFT;
+        assert_eq!(r.line_reach, wide);
+        let neighbour = r.line_term / r.face_gradient - wide;
+        assert!((neighbour - wide * 0.8125).abs() < 1e-12, "{neighbour}");
+    }
+
     /// (a): factor Δ, units (B + 2u(1 + w))/r; D3D rounded up; width 3 reaches 2 pixels.
     #[test]
     fn polygon_offset_factor_is_the_line_reach() {
@@ -822,9 +899,10 @@ mod tests {
         e.line_width = 1.0;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
         assert_eq!(r.line_reach, 1.0);
-        // Polygon-mode lines keep the worst case whatever the probe measured, and under (a)
-        // their units also cover the line term (a neighbour's outline).
+        // Polygon-mode lines keep the worst case where the probe did not measure a neighbour's
+        // outline, and under (a) their units also cover the line term (a neighbour's outline).
         e.profile.line_reach = [0.5, 0.5];
+        assert!(e.profile.outline_neighbour.is_nan());
         e.kind = LineKind::PolygonMode;
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
         assert_eq!(r.line_reach, 1.0);
@@ -850,8 +928,8 @@ mod tests {
         e.samples = 4;
         assert_eq!(e.kind, LineKind::PolygonMode);
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        // Polygon-mode outlines add a sample's distance from its pixel centre, √2/2 times √2.
-        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2 + 1.0);
+        // Polygon-mode outlines as GL_LINES.
+        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2);
         let lines = Edges {
             kind: LineKind::Lines,
             ..e

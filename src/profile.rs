@@ -151,6 +151,15 @@ pub struct RasterizerProfile {
     /// not measured. Measured on llvmpipe: 0.5 and 0.72 (its unfilled stage draws the
     /// triangle's edges with their own set-up). A sampled maximum (96 lines, 48 triangles).
     pub line_reach: [f64; 2],
+    /// How far a polygon-mode outline takes its depth off its side's line, onto the
+    /// neighbouring face, in pixels of the triangle's `max(|gₓ|, |g_y|)`: the largest
+    /// `|stored − side's depth|` over fragments of 1-pixel outlines beyond a side of constant
+    /// depth (outside its triangle: where a neighbour's face is). Near 0 (f32 noise: 2·10⁻⁵ on
+    /// llvmpipe) where the outline's depth follows its line, as Mesa's draw module draws it; up to
+    /// the fragment's distance from the side where a rasterizer evaluates the triangle's plane
+    /// there. [`crate::lines`] then adds the neighbour's slope term (worst case: the whole reach).
+    /// NaN where not measured. A sampled maximum (16 sides).
+    pub outline_neighbour: f64,
     /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
     /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
     /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
@@ -184,6 +193,7 @@ impl RasterizerProfile {
             near_clip: NearClip::ClippedF32,
             clip_ulps: f64::NAN,
             line_reach: [f64::NAN; 2],
+            outline_neighbour: f64::NAN,
             offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,

@@ -129,6 +129,15 @@ fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
             figures.line_pixels[0] > 2000 && figures.line_pixels[1] > 2000,
             "{figures:?}"
         );
+        // Mesa's draw module draws a triangle's outline as lines with their own set-up: beyond a
+        // side of constant depth its fragments keep that depth (f32 noise), not the plane's
+        // (0.5 pixel of gradient a pixel out), so a neighbour's outline adds no slope term.
+        assert!(
+            p.outline_neighbour < 1e-3 && figures.outline_neighbour_pixels > 100,
+            "{} over {}",
+            p.outline_neighbour,
+            figures.outline_neighbour_pixels
+        );
         assert!((p.offset_slope - 1.0).abs() < 1e-3, "{}", p.offset_slope);
         assert!(
             (figures.offset_slope_axis - 1.0).abs() < 1e-3,

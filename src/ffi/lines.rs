@@ -95,13 +95,14 @@ pub struct ZshiftEdgeOffset {
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies.
     pub window_offset: f64,
-    /// The line term g*line_reach (polygon-mode lines: 2*g*line_reach, the neighbouring
-    /// triangle's outline adds its own slope term), window depth.
+    /// The line term g*line_reach, window depth; polygon-mode lines add the neighbouring
+    /// triangle's slope term where its outline may take its own plane beyond the shared side
+    /// (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
-    /// depth is taken: (w + 1)/2 in the worst case and for polygon-mode lines (plus 1/8 for
-    /// wide ones, w > 1), the probed reach plus 1/16 plus (w - 1)/2 for GL_LINES with a profile,
-    /// sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
+    /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
+    /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile,
+    /// sqrt(2)*(w + 1)/2 under MSAA.
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,

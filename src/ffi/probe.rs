@@ -101,6 +101,13 @@ pub struct ZshiftProfile {
     /// offsets (zshift_edge_offset) take it for their line reach (worst case (w + 1)/2); wider
     /// lines add (w - 1)/2. NAN where not measured. NAN or finite >= 0.
     pub line_reach: [f64; 2],
+    /// How far a polygon-mode outline takes its depth off its side's line, onto the
+    /// neighbouring face, in pixels of the triangle's max(|dz/dx|, |dz/dy|): the largest
+    /// |stored - side's depth| over 1-pixel outline fragments beyond a side of constant depth,
+    /// outside its triangle. Near 0 where the outline's depth follows its line (llvmpipe);
+    /// zshift_edge_offset then leaves out the neighbour's slope term for polygon-mode lines.
+    /// NAN where not measured (the term is kept). NAN or finite >= 0.
+    pub outline_neighbour: f64,
     /// glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
     /// |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
     /// root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -139,6 +146,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             facing_chain: p.facing_chain.map_or(-1, |c| c.code()),
             clip_ulps: p.clip_ulps,
             line_reach: p.line_reach,
+            outline_neighbour: p.outline_neighbour,
             offset_slope: p.offset_slope,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
@@ -186,6 +194,7 @@ impl ZshiftProfile {
             self.clip_ulps,
             self.line_reach[0],
             self.line_reach[1],
+            self.outline_neighbour,
             self.offset_slope,
         ];
         if self
@@ -197,7 +206,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, offset_slope or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, offset_slope or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -224,6 +233,7 @@ impl ZshiftProfile {
             near_clip,
             clip_ulps: self.clip_ulps,
             line_reach: self.line_reach,
+            outline_neighbour: self.outline_neighbour,
             offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

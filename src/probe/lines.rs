@@ -17,6 +17,15 @@ pub(super) struct LineFigures {
     pub(super) reach: [f64; 2],
     /// Fragments compared per kind.
     pub(super) pixels: [usize; 2],
+    /// How far a polygon-mode outline takes its depth off its side's line, onto the
+    /// neighbouring face: the largest `|stored − side's depth| / max(|gₓ|, |g_y|)` over outline
+    /// fragments beyond a side of constant depth, outside its triangle (the neighbour's side),
+    /// `gₓ`, `g_y` the triangle's gradients, pixels. Near 0 (f32 noise) where the outline's
+    /// depth follows its line, as Mesa's draw module does; up to the fragment's distance from
+    /// the side (in `max` units) where the rasterizer evaluates the triangle's plane.
+    pub(super) neighbour: f64,
+    /// Fragments compared for `neighbour`.
+    pub(super) neighbour_pixels: usize,
     /// `glPolygonOffset(1, 0)`'s offset on a plane with `|gₓ| = |g_y| = g`, over `g`
     /// (1: `max(|gₓ|, |g_y|)`; `√2`: their root sum of squares), and the same on a plane with
     /// `g_y = 0` (1 under either rule: the factor's scale).
@@ -88,6 +97,9 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         vec![c[0], c[1], c[2], c[0], c[2], c[3]]
     };
     let slope_tiles = [quad(diagonal), quad(axis)];
+    let sides: Vec<OutlineSide> = (0..LINE_TILES)
+        .map(|k| outline_side(k, &mut next))
+        .collect();
 
     let mut all: Vec<[f32; 4]> = Vec::new();
     let mut draws: Vec<(usize, Enum, usize, usize, bool)> = Vec::new(); // tile, mode, first, count, offset
@@ -105,12 +117,15 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         push(2 * LINE_TILES + 2 * k, TRIANGLES, v, false);
         push(2 * LINE_TILES + 2 * k + 1, TRIANGLES, v, true);
     }
+    for (k, side) in sides.iter().enumerate() {
+        push(NEIGHBOUR_TILE + k, TRIANGLES, &side.triangle, false);
+    }
     clear_and_upload(gl, &all);
     (gl.UniformMatrix4fv)(o.projection, 1, 0, IDENTITY.as_ptr());
     for &(tile, mode, first, count, offset) in &draws {
         let (x, y) = tile_origin(tile);
         (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
-        let polygon_lines = (LINE_TILES..2 * LINE_TILES).contains(&tile);
+        let polygon_lines = (LINE_TILES..2 * LINE_TILES).contains(&tile) || tile >= NEIGHBOUR_TILE;
         if polygon_lines {
             (gl.PolygonMode)(FRONT_AND_BACK, LINE);
         }
@@ -125,7 +140,7 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
     }
     gl.check("drawing the probe's lines raised a GL error")?;
     let width = SIZE * TILES;
-    let rows = (2 * LINE_TILES + 4).div_ceil(TILES);
+    let rows = (NEIGHBOUR_TILE + LINE_TILES).div_ceil(TILES);
     let depth = read_depth(gl, Format::Float, 0, width, rows * SIZE)?;
     let at = |tile: usize, px: usize, py: usize| {
         let (x, y) = tile_origin(tile);
@@ -151,6 +166,21 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
             }
         }
     }
+    let (mut neighbour, mut neighbour_pixels) = (0.0f64, 0usize);
+    for (k, side) in sides.iter().enumerate() {
+        for py in 0..SIZE {
+            for px in 0..SIZE {
+                let stored = at(NEIGHBOUR_TILE + k, px, py);
+                if stored >= 0.99 {
+                    continue;
+                }
+                if let Some(depth) = side.depth_beyond(px as f64 + 0.5, py as f64 + 0.5) {
+                    neighbour = neighbour.max((stored - depth).abs() / LINE_GRADIENT);
+                    neighbour_pixels += 1;
+                }
+            }
+        }
+    }
     let mut slope = [0.0; 2];
     for (k, s) in slope.iter_mut().enumerate() {
         let (plain, offset) = (2 * LINE_TILES + 2 * k, 2 * LINE_TILES + 2 * k + 1);
@@ -163,7 +193,7 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         }
         *s = sum / count as f64 / LINE_GRADIENT;
     }
-    if pixels.contains(&0) {
+    if pixels.contains(&0) || neighbour_pixels == 0 {
         return Err(Error::new(
             ErrorKind::Gl,
             "the probe's lines drew no fragment (GL_LINES or glPolygonMode(GL_LINE))",
@@ -172,6 +202,67 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
     Ok(LineFigures {
         reach,
         pixels,
+        neighbour,
+        neighbour_pixels,
         slope,
     })
+}
+
+/// The first tile of the outline-neighbour measurement (after the lines', the polygon-mode
+/// lines' and the four slope-rule tiles).
+const NEIGHBOUR_TILE: usize = 2 * LINE_TILES + 4;
+
+/// A triangle for the outline-neighbour measurement: one long side of constant window depth
+/// through the tile, the third corner 20 pixels to one side, the plane's gradient across the
+/// side with its larger component [`LINE_GRADIENT`].
+struct OutlineSide {
+    /// The triangle's corners (clip coordinates, as [`tile_vertex`]).
+    triangle: [[f32; 4]; 3],
+    /// The side's midpoint, tile pixels.
+    centre: (f64, f64),
+    /// The side's unit direction.
+    along: (f64, f64),
+    /// The unit normal pointing away from the third corner (the neighbour's side).
+    outward: (f64, f64),
+    /// The side's window depth.
+    depth: f64,
+}
+
+/// Tile `k`'s [`OutlineSide`]: directions spread over the half circle, the third corner on
+/// alternate sides, the midpoint jittered by `next`.
+fn outline_side(k: usize, next: &mut impl FnMut() -> f64) -> OutlineSide {
+    let phi = std::f64::consts::PI * (k as f64 + next()) / LINE_TILES as f64;
+    let along = (phi.cos(), phi.sin());
+    let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+    let inward = (-along.1 * sign, along.0 * sign);
+    let centre = (32.0 + 8.0 * (next() - 0.5), 32.0 + 8.0 * (next() - 0.5));
+    // Depth rises into the triangle across the side: gradient `s·inward`, max component g.
+    let s = LINE_GRADIENT / inward.0.abs().max(inward.1.abs());
+    let plane = (s * inward.0, s * inward.1);
+    let half = 24.0;
+    let corners = [
+        (centre.0 - half * along.0, centre.1 - half * along.1),
+        (centre.0 + half * along.0, centre.1 + half * along.1),
+        (centre.0 + 20.0 * inward.0, centre.1 + 20.0 * inward.1),
+    ];
+    let triangle = corners.map(|(x, y)| tile_vertex(x, y, plane));
+    let depth = 0.5 + plane.0 * (centre.0 - 32.0) + plane.1 * (centre.1 - 32.0);
+    OutlineSide {
+        triangle,
+        centre,
+        along,
+        outward: (-inward.0, -inward.1),
+        depth,
+    }
+}
+
+impl OutlineSide {
+    /// The side's depth, for a pixel centre `(x, y)` beyond the side (outside the triangle, up to
+    /// 4 pixels) along its middle 60 %, where no other side of the triangle reaches; else `None`.
+    fn depth_beyond(&self, x: f64, y: f64) -> Option<f64> {
+        let (dx, dy) = (x - self.centre.0, y - self.centre.1);
+        let t = dx * self.along.0 + dy * self.along.1;
+        let out = dx * self.outward.0 + dy * self.outward.1;
+        (t.abs() <= 0.6 * 24.0 && out > 0.0 && out < 4.0).then_some(self.depth)
+    }
 }

@@ -62,7 +62,11 @@
 //!   direction and 48 triangles drawn under `glPolygonMode(GL_LINE)`, in 32 tiles each with its
 //!   own plane (window-depth gradient 1/256 per pixel along the steeper axis, in 16 directions);
 //!   the largest `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` over every fragment
-//!   (0.5006 and 0.5012 pixel on llvmpipe). **`offset_slope`**: `glPolygonOffset(1, 0)` on a plane
+//!   (0.5006 and 0.5012 pixel on llvmpipe). **`outline_neighbour`**: 16 triangles under
+//!   `glPolygonMode(GL_LINE)`, each with a long side of constant depth and its gradient across
+//!   it; the largest `|stored − side's depth| / max(|gₓ|, |g_y|)` over outline fragments beyond
+//!   that side, outside the triangle (where a neighbouring face lies): near 0 where the outline
+//!   takes its line's depth, as on llvmpipe. **`offset_slope`**: `glPolygonOffset(1, 0)` on a plane
 //!   with `|gₓ| = |g_y|`, over the gradient (1: GL's `max` rule; √2: a root sum of squares). One
 //!   draw batch and one read-back, about 2 ms.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
@@ -202,6 +206,8 @@ pub struct Figures {
     pub chain_observations: usize,
     /// Line fragments compared for [`RasterizerProfile::line_reach`] (`GL_LINES`, polygon-mode).
     pub line_pixels: [usize; 2],
+    /// Outline fragments compared for [`RasterizerProfile::outline_neighbour`].
+    pub outline_neighbour_pixels: usize,
     /// `glPolygonOffset(1, 0)`'s offset over the gradient on a plane with `g_y = 0` (1 under
     /// either slope rule: the factor's scale); [`RasterizerProfile::offset_slope`] is the
     /// diagonal plane's.
@@ -336,6 +342,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         float_local_plane_error: [f64::NAN; 2],
         chain_observations: 0,
         line_pixels: [0; 2],
+        outline_neighbour_pixels: 0,
         offset_slope_axis: f64::NAN,
     };
     let mut seen = Vec::new();
@@ -397,6 +404,8 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         if format == Format::Float {
             let lines = line_reach(gl, o)?;
             profile.line_reach = lines.reach;
+            profile.outline_neighbour = lines.neighbour;
+            figures.outline_neighbour_pixels = lines.neighbour_pixels;
             profile.offset_slope = lines.slope[0];
             figures.line_pixels = lines.pixels;
             figures.offset_slope_axis = lines.slope[1];

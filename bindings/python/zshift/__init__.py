@@ -938,6 +938,7 @@ class _ZshiftProfile(_ctypes.Structure):
         ("facing_chain", _ctypes.c_int32),
         ("clip_ulps", _ctypes.c_double),
         ("line_reach", _ctypes.c_double * 2),
+        ("outline_neighbour", _ctypes.c_double),
         ("offset_slope", _ctypes.c_double),
     ]
 
