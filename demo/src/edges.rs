@@ -244,7 +244,7 @@ fn measure(gl: &mut Gl, renderer: &Renderer, s: &'static EdgeScene) -> Result<Ro
         samples: 1,
     };
     let scene = Scene::new(gl, renderer, &mesh, m, false, variant, None);
-    let ids = edge_ids(&scene, &p);
+    let ids = edge_ids(&scene);
     // Every hidden edge pixel, behind its front face by any amount (gap 0), for every panel.
     let b = s.far * NEAR / (s.far - NEAR);
     let g = recs[0].face_gradient;
