@@ -850,7 +850,7 @@ typedef struct {
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
    depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
    1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile,
-   sqrt(2)*(w + 1)/2 under MSAA.
+   sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
    */
   double line_reach;
   /*

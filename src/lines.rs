@@ -60,11 +60,13 @@
 //! in a direction that is not an axis: the face's gradient along it is up to `|∇z| ≤ √2·M`, so a
 //! sample is off the face by up to `(w/2)·√2·M`, more than `(w + 1)/2·M` from `w ≥ 2.5`. Under
 //! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction), with
-//! either profile (the probe measures single-sampled lines), for polygon-mode lines too. (They
-//! once added a sample's distance from its pixel centre, after a torus lost 2 samples at
-//! `√2·(w + 1)/2`; that count came from the judge that named a thin triangle's hidden side as
-//! its visible one, and the `polymode 4xMSAA` variant of the full grid and of two seeded draws
-//! keeps every sample without it: docs/edges.md.)
+//! either profile (the probe measures single-sampled lines). Polygon-mode lines under MSAA add
+//! a sample's distance from its pixel centre (`√2/2`, times `√2`: `Δ = √2·(w + 1)/2 + 1`), as a
+//! rasterizer that takes an outline fragment's depth once per pixel needs. Measured on llvmpipe
+//! with the judge that names an outline's side (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4
+//! ZSHIFT_LINES_FULL=1`, variant `polymode 4xMSAA`): a sphere lost 1 sample of 8769 under (a)
+//! at `√2·(w + 1)/2`, at a vertex on its seam, kept from 1.5× the offset. (The first count that
+//! set it, a torus's 2 samples, came from the judge that named a thin triangle's hidden side.)
 //! `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
@@ -470,7 +472,7 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 /// does (a pixel once counted lost at 1/8 was a hidden side's outline, misattributed: docs/edges.md).
 const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 
-/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA, else the
+/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
 /// profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
@@ -481,7 +483,13 @@ fn line_reach(edges: &Edges) -> f64 {
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
-        return std::f64::consts::SQRT_2 * worst;
+        let across = std::f64::consts::SQRT_2 * worst;
+        // Polygon-mode outlines under MSAA also take a sample's depth up to a sample's distance
+        // from its pixel centre further, √2/2, times √2 (module docs, "MSAA": measured).
+        return match edges.kind {
+            LineKind::PolygonMode => across + 1.0,
+            LineKind::Lines => across,
+        };
     }
     let p = &edges.profile;
     let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
@@ -928,8 +936,8 @@ mod tests {
         e.samples = 4;
         assert_eq!(e.kind, LineKind::PolygonMode);
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        // Polygon-mode outlines as GL_LINES.
-        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2);
+        // Polygon-mode outlines add a sample's distance from its pixel centre, √2/2 times √2.
+        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2 + 1.0);
         let lines = Edges {
             kind: LineKind::Lines,
             ..e
