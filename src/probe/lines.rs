@@ -22,7 +22,8 @@ pub(super) struct LineFigures {
     /// fragments beyond a side of constant depth, outside its triangle (the neighbour's side),
     /// `gₓ`, `g_y` the triangle's gradients, pixels. Near 0 (f32 noise) where the outline's
     /// depth follows its line, as Mesa's draw module does; up to the fragment's distance from
-    /// the side (in `max` units) where the rasterizer evaluates the triangle's plane.
+    /// the side (in `max` units) where the rasterizer evaluates the triangle's plane. NaN where
+    /// no outline fragment landed beyond a side.
     pub(super) neighbour: f64,
     /// Fragments compared for `neighbour`.
     pub(super) neighbour_pixels: usize,
@@ -193,7 +194,11 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         }
         *s = sum / count as f64 / LINE_GRADIENT;
     }
-    if pixels.contains(&0) || neighbour_pixels == 0 {
+    if neighbour_pixels == 0 {
+        // No outline fragment beyond a side: nothing measured, the model keeps the worst case.
+        neighbour = f64::NAN;
+    }
+    if pixels.contains(&0) {
         return Err(Error::new(
             ErrorKind::Gl,
             "the probe's lines drew no fragment (GL_LINES or glPolygonMode(GL_LINE))",
