@@ -154,7 +154,7 @@ pub struct RasterizerProfile {
     /// How far a polygon-mode outline takes its depth off its side's line, onto the
     /// neighbouring face, in pixels of the triangle's `max(|gₓ|, |g_y|)`: the largest
     /// `|stored − side's depth|` over fragments of 1-pixel outlines beyond a side of constant
-    /// depth (outside its triangle: where a neighbour's face is). Near 0 (f32 noise: 2·10⁻⁵ on
+    /// depth (outside its triangle: where a neighbour's face is). Near 0 (f32 noise: 6·10⁻⁶ on
     /// llvmpipe) where the outline's depth follows its line, as Mesa's draw module draws it; up to
     /// the fragment's distance from the side where a rasterizer evaluates the triangle's plane
     /// there. [`crate::lines`] then adds the neighbour's slope term (worst case: the whole reach).

@@ -217,6 +217,9 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
 /// lines' and the four slope-rule tiles).
 const NEIGHBOUR_TILE: usize = 2 * LINE_TILES + 4;
 
+/// Half the length of an [`OutlineSide`]'s long side, tile pixels.
+const SIDE_HALF: f64 = 24.0;
+
 /// A triangle for the outline-neighbour measurement: one long side of constant window depth
 /// through the tile, the third corner 20 pixels to one side, the plane's gradient across the
 /// side with its larger component [`LINE_GRADIENT`].
@@ -244,10 +247,15 @@ fn outline_side(k: usize, next: &mut impl FnMut() -> f64) -> OutlineSide {
     // Depth rises into the triangle across the side: gradient `s·inward`, max component g.
     let s = LINE_GRADIENT / inward.0.abs().max(inward.1.abs());
     let plane = (s * inward.0, s * inward.1);
-    let half = 24.0;
     let corners = [
-        (centre.0 - half * along.0, centre.1 - half * along.1),
-        (centre.0 + half * along.0, centre.1 + half * along.1),
+        (
+            centre.0 - SIDE_HALF * along.0,
+            centre.1 - SIDE_HALF * along.1,
+        ),
+        (
+            centre.0 + SIDE_HALF * along.0,
+            centre.1 + SIDE_HALF * along.1,
+        ),
         (centre.0 + 20.0 * inward.0, centre.1 + 20.0 * inward.1),
     ];
     let triangle = corners.map(|(x, y)| tile_vertex(x, y, plane));
@@ -268,6 +276,6 @@ impl OutlineSide {
         let (dx, dy) = (x - self.centre.0, y - self.centre.1);
         let t = dx * self.along.0 + dy * self.along.1;
         let out = dx * self.outward.0 + dy * self.outward.1;
-        (t.abs() <= 0.6 * 24.0 && out > 0.0 && out < 4.0).then_some(self.depth)
+        (t.abs() <= 0.6 * SIDE_HALF && out > 0.0 && out < 4.0).then_some(self.depth)
     }
 }
