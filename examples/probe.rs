@@ -60,6 +60,10 @@ fn main() {
         "lines          reach (pixels along the steepest gradient): GL_LINES width 1 {:.4} over {} fragments, polygon-mode {:.4} over {} (off its line onto a neighbour: {:.2e} over {}); glPolygonOffset slope rule {:.4} on a diagonal plane (1 = max, 1.414 = root sum of squares), {:.4} on an axis plane",
         p.line_reach[0], figures.line_pixels[0], p.line_reach[1], figures.line_pixels[1], p.outline_neighbour, figures.outline_neighbour_pixels, p.offset_slope, figures.offset_slope_axis
     );
+    println!(
+        "MSAA lines     reach (pixels along the steepest gradient, from the sample): GL_LINES width 1 {:.4} over {} samples, polygon-mode {:.4} over {} (drawn at {:?} samples)",
+        p.line_reach_msaa[0], figures.msaa_line_samples[0], p.line_reach_msaa[1], figures.msaa_line_samples[1], figures.msaa_sample_counts
+    );
     println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(

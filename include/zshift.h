@@ -333,6 +333,15 @@ typedef struct {
    */
   double outline_neighbour;
   /*
+   How far from a sample a multisampled 1-pixel line's sample takes its depth, in pixels of
+   max(|dz/dx|, |dz/dy|): the largest |stored - plane at the sample| over every sample of
+   lines drawn into a multisampled depth texture, at 4 samples and at the context's largest
+   count up to 16; GL_LINES [0], polygon-mode lines [1]. zshift_edge_offset takes it for its
+   line reach under MSAA (worst case sqrt(2)*(w + 1)/2); wider lines add sqrt(2)*(w - 1)/2.
+   llvmpipe: 1.056 and 1.054. NAN where not measured. NAN or finite >= 0.
+   */
+  double line_reach_msaa[2];
+  /*
    glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
    |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
    root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -761,8 +770,9 @@ typedef struct {
   uint32_t polygon_mode;
   /*
    MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
-   sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), plus 1 for
-   polygon-mode lines (a sample's distance from its pixel centre, measured).
+   sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), or with a
+   probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller; plus 1
+   for polygon-mode lines (a sample's distance from its pixel centre, measured).
    */
   uint32_t samples;
   /*
@@ -849,8 +859,9 @@ typedef struct {
   /*
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
    depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
-   1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile,
-   sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
+   1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
+   sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
+   sqrt(2)*(w - 1)/2 where smaller (plus 1 for polygon-mode lines).
    */
   double line_reach;
   /*

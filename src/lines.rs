@@ -59,8 +59,12 @@
 //! depth is taken at the sample. A sample lies up to `w/2` from the point whose depth it takes,
 //! in a direction that is not an axis: the face's gradient along it is up to `|∇z| ≤ √2·M`, so a
 //! sample is off the face by up to `(w/2)·√2·M`, more than `(w + 1)/2·M` from `w ≥ 2.5`. Under
-//! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction), with
-//! either profile (the probe measures single-sampled lines). Polygon-mode lines under MSAA add
+//! MSAA `Δ = √2·(w + 1)/2` (half a pixel of freedom beyond `w/2`, along any direction) in the
+//! worst case. A measured profile ([`RasterizerProfile::line_reach_msaa`]: every sample of
+//! multisampled 1-pixel lines against the plane at the sample) replaces it by the probe's reach
+//! for the line kind plus 1/16 and `√2·(w − 1)/2` (the rectangle's further half-width, along
+//! any direction), where smaller: llvmpipe measures 1.056 for `GL_LINES`, so `Δ` = 1.12 at width
+//! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines under MSAA add
 //! a sample's distance from its pixel centre (`√2/2`, times `√2`: `Δ = √2·(w + 1)/2 + 1`), as a
 //! rasterizer that takes an outline fragment's depth once per pixel needs. Measured on llvmpipe
 //! with the judge that names an outline's side (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4
@@ -472,18 +476,33 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 /// does (a pixel once counted lost at 1/8 was a hidden side's outline, misattributed: docs/edges.md).
 const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 
-/// `Δ`, in pixels of `M`: `√2·(w + 1)/2` under MSAA (`+ 1` for polygon-mode lines), else the
-/// profile's measured reach for the
+/// `Δ`, in pixels of `M`: under MSAA the profile's measured multisampled reach for the line
+/// kind plus [`LINE_REACH_MARGIN`] and `√2·(w − 1)/2`, at most (and unmeasured) `√2·(w + 1)/2`,
+/// `+ 1` for polygon-mode lines; else the profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
 /// [`WIDE_OUTLINE_SHIFT`].
 fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let worst = (w + 1.0) / 2.0;
+    let p = &edges.profile;
+    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
-        // of freedom beyond, in any direction: the face's gradient there is up to √2·M.
-        let across = std::f64::consts::SQRT_2 * worst;
+        // of freedom beyond, in any direction: the face's gradient there is up to √2·M. A
+        // measured profile's width-1 reach, its margin, and the rest of the width at √2.
+        let kind = match edges.kind {
+            LineKind::Lines => 0,
+            LineKind::PolygonMode => 1,
+        };
+        let root2 = std::f64::consts::SQRT_2;
+        let across = root2 * worst;
+        let reach = p.line_reach_msaa[kind];
+        let across = if measured(reach) {
+            (reach + LINE_REACH_MARGIN + root2 * (w - 1.0) / 2.0).min(across)
+        } else {
+            across
+        };
         // Polygon-mode outlines under MSAA also take a sample's depth up to a sample's distance
         // from its pixel centre further, √2/2, times √2 (module docs, "MSAA": measured).
         return match edges.kind {
@@ -491,8 +510,6 @@ fn line_reach(edges: &Edges) -> f64 {
             LineKind::Lines => across,
         };
     }
-    let p = &edges.profile;
-    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
     match edges.kind {
         LineKind::Lines if measured(p.line_reach[0]) => {
             (p.line_reach[0] + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
@@ -811,6 +828,41 @@ mod tests {
     /// (the outline's own reach, measured, plus 1/16); a rasterizer that evaluates the
     /// triangle's plane beyond its side pays that distance for the face (the factor) and for the
     /// neighbour (the units, scaled to the variant's worst case).
+    #[test]
+    fn a_measured_msaa_reach_sets_the_multisampled_line_term() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        e.samples = 4;
+        let reach = |e: &Edges| {
+            recommend(&m, clip, e, EdgeMethod::Matrix)
+                .unwrap()
+                .line_reach
+        };
+        let root2 = std::f64::consts::SQRT_2;
+        // Unmeasured (the worst case, or a measured profile without the figure): √2·(w + 1)/2.
+        assert_eq!(reach(&e), root2);
+        e.profile.measured = true;
+        e.profile.line_reach = [0.5, 0.5];
+        e.profile.outline_neighbour = 0.0;
+        assert_eq!(reach(&e), root2);
+        // Measured: the figure plus 1/16, the single-sampled figure unused.
+        e.profile.line_reach_msaa = [1.0, 0.75];
+        assert_eq!(reach(&e), 1.0625);
+        // Width 3: the rest of the width at √2.
+        e.line_width = 3.0;
+        assert!((reach(&e) - (1.0625 + root2)).abs() < 1e-15);
+        // Polygon mode: its own figure, and the sample's distance from its centre (+1).
+        e.kind = LineKind::PolygonMode;
+        e.line_width = 1.0;
+        assert_eq!(reach(&e), 0.8125 + 1.0);
+        // Never above the worst case.
+        e.profile.line_reach_msaa = [2.0, 2.0];
+        assert_eq!(reach(&e), root2 + 1.0);
+        e.kind = LineKind::Lines;
+        assert_eq!(reach(&e), root2);
+    }
+
     #[test]
     fn a_measured_outline_neighbour_sets_the_neighbours_term() {
         let clip = ClipDepth::NegOneToOne;

@@ -160,6 +160,18 @@ pub struct RasterizerProfile {
     /// there. [`crate::lines`] then adds the neighbour's slope term (worst case: the whole reach).
     /// NaN where not measured. A sampled maximum (16 sides).
     pub outline_neighbour: f64,
+    /// How far from a sample a multisampled 1-pixel line's sample takes its depth: the largest
+    /// `|stored − plane at the sample| / max(|gₓ|, |g_y|)` over every sample of the
+    /// [`RasterizerProfile::line_reach`] lines and outlines drawn into a multisampled
+    /// `GL_DEPTH_COMPONENT32F` texture (each sample copied out with `texelFetch`, compared with
+    /// the plane at its `glGetMultisamplefv` position), at 4 samples and at the context's largest
+    /// count up to 16, the larger; `GL_LINES` (`[0]`) and polygon-mode lines (`[1]`), pixels.
+    /// [`crate::lines`] takes it for its reach under MSAA (worst case `√2·(w + 1)/2`, 1.41 pixels
+    /// at width 1); wider lines add `√2·(w − 1)/2`. Measured on llvmpipe: 1.056 and 1.054 (a
+    /// sample takes the line's depth about a pixel from itself along the gradient). NaN where not
+    /// measured. A sampled maximum (2048 lines and 2048 triangles in 32 gradient directions, every
+    /// sample).
+    pub line_reach_msaa: [f64; 2],
     /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
     /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
     /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
@@ -194,6 +206,7 @@ impl RasterizerProfile {
             clip_ulps: f64::NAN,
             line_reach: [f64::NAN; 2],
             outline_neighbour: f64::NAN,
+            line_reach_msaa: [f64::NAN; 2],
             offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,

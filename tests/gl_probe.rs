@@ -138,6 +138,17 @@ fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
             p.outline_neighbour,
             figures.outline_neighbour_pixels
         );
+        // Under 4x MSAA llvmpipe's line sample takes its depth about a pixel from itself along
+        // the gradient (1.056), both kinds: less than the worst case's sqrt(2).
+        assert!(
+            p.line_reach_msaa.iter().all(|r| (1.0..1.1).contains(r))
+                && figures.msaa_line_samples.iter().all(|&n| n > 30000)
+                && figures.msaa_sample_counts[0] == 4,
+            "{:?} over {:?} samples at {:?}",
+            p.line_reach_msaa,
+            figures.msaa_line_samples,
+            figures.msaa_sample_counts
+        );
         assert!((p.offset_slope - 1.0).abs() < 1e-3, "{}", p.offset_slope);
         assert!(
             (figures.offset_slope_axis - 1.0).abs() < 1e-3,
@@ -326,6 +337,14 @@ unsafe fn set_odd_state(g: &glow::Context) -> (glow::Framebuffer, glow::VertexAr
     g.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
     g.pixel_store_i32(glow::PACK_ROW_LENGTH, 7);
     g.pixel_store_i32(glow::PACK_SKIP_ROWS, 2);
+    // A multisampled texture on unit 0 with another unit active, multisampling off and the
+    // sample mask on: the multisampled line measurement binds unit 0 and turns both its way.
+    let texture = g.create_texture().unwrap();
+    g.active_texture(glow::TEXTURE0);
+    g.bind_texture(glow::TEXTURE_2D_MULTISAMPLE, Some(texture));
+    g.active_texture(glow::TEXTURE3);
+    g.disable(glow::MULTISAMPLE);
+    g.enable(glow::SAMPLE_MASK);
     (fbo, vao, buffer)
 }
 
@@ -345,8 +364,14 @@ unsafe fn state(g: &glow::Context) -> Vec<String> {
         glow::RASTERIZER_DISCARD,
         glow::CLIP_DISTANCE0 + 3,
         glow::POLYGON_SMOOTH,
+        glow::MULTISAMPLE,
+        glow::SAMPLE_MASK,
     ]
     .map(|cap| g.is_enabled(cap));
+    let active = g.get_parameter_i32(glow::ACTIVE_TEXTURE);
+    g.active_texture(glow::TEXTURE0);
+    let unit0 = g.get_parameter_i32(glow::TEXTURE_BINDING_2D_MULTISAMPLE);
+    g.active_texture(active as u32);
     let ints = [
         glow::DRAW_FRAMEBUFFER_BINDING,
         glow::READ_FRAMEBUFFER_BINDING,
@@ -376,6 +401,7 @@ unsafe fn state(g: &glow::Context) -> Vec<String> {
         format!("enabled {enabled:?}"),
         format!("ints {ints:?}"),
         format!("floats {floats:?} depth mask {mask}"),
+        format!("active texture {active:#x}, unit 0's multisampled texture {unit0}"),
     ]
 }
 

@@ -43,8 +43,9 @@ pub struct ZshiftEdges {
     /// 0: GL_LINES; 1: the faces drawn again in glPolygonMode(GL_LINE).
     pub polygon_mode: u32,
     /// MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
-    /// sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), plus 1 for
-    /// polygon-mode lines (a sample's distance from its pixel centre, measured).
+    /// sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), or with a
+    /// probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller; plus 1
+    /// for polygon-mode lines (a sample's distance from its pixel centre, measured).
     pub samples: u32,
     /// The steepest face whose edges must be kept, as the largest angle between a face's normal
     /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
@@ -101,8 +102,9 @@ pub struct ZshiftEdgeOffset {
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
     /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
-    /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile,
-    /// sqrt(2)*(w + 1)/2 under MSAA (plus 1 for polygon-mode lines).
+    /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
+    /// sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
+    /// sqrt(2)*(w - 1)/2 where smaller (plus 1 for polygon-mode lines).
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,

@@ -108,6 +108,13 @@ pub struct ZshiftProfile {
     /// zshift_edge_offset then leaves out the neighbour's slope term for polygon-mode lines.
     /// NAN where not measured (the term is kept). NAN or finite >= 0.
     pub outline_neighbour: f64,
+    /// How far from a sample a multisampled 1-pixel line's sample takes its depth, in pixels of
+    /// max(|dz/dx|, |dz/dy|): the largest |stored - plane at the sample| over every sample of
+    /// lines drawn into a multisampled depth texture, at 4 samples and at the context's largest
+    /// count up to 16; GL_LINES [0], polygon-mode lines [1]. zshift_edge_offset takes it for its
+    /// line reach under MSAA (worst case sqrt(2)*(w + 1)/2); wider lines add sqrt(2)*(w - 1)/2.
+    /// llvmpipe: 1.056 and 1.054. NAN where not measured. NAN or finite >= 0.
+    pub line_reach_msaa: [f64; 2],
     /// glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
     /// |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
     /// root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -147,6 +154,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             clip_ulps: p.clip_ulps,
             line_reach: p.line_reach,
             outline_neighbour: p.outline_neighbour,
+            line_reach_msaa: p.line_reach_msaa,
             offset_slope: p.offset_slope,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
@@ -195,6 +203,8 @@ impl ZshiftProfile {
             self.line_reach[0],
             self.line_reach[1],
             self.outline_neighbour,
+            self.line_reach_msaa[0],
+            self.line_reach_msaa[1],
             self.offset_slope,
         ];
         if self
@@ -206,7 +216,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, offset_slope or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, offset_slope or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -234,6 +244,7 @@ impl ZshiftProfile {
             clip_ulps: self.clip_ulps,
             line_reach: self.line_reach,
             outline_neighbour: self.outline_neighbour,
+            line_reach_msaa: self.line_reach_msaa,
             offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

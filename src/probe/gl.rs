@@ -97,6 +97,17 @@ pub(crate) const EXTENSIONS: Enum = 0x1F03;
 pub(crate) const RENDERER: Enum = 0x1F01;
 pub(crate) const VERSION: Enum = 0x1F02;
 pub(crate) const NUM_EXTENSIONS: Enum = 0x821D;
+pub(crate) const TEXTURE0: Enum = 0x84C0;
+pub(crate) const ACTIVE_TEXTURE: Enum = 0x84E0;
+pub(crate) const MULTISAMPLE: Enum = 0x809D;
+pub(crate) const SAMPLE_ALPHA_TO_COVERAGE: Enum = 0x809E;
+pub(crate) const SAMPLE_ALPHA_TO_ONE: Enum = 0x809F;
+pub(crate) const SAMPLE_COVERAGE: Enum = 0x80A0;
+pub(crate) const SAMPLE_POSITION: Enum = 0x8E50;
+pub(crate) const SAMPLE_MASK: Enum = 0x8E51;
+pub(crate) const TEXTURE_2D_MULTISAMPLE: Enum = 0x9100;
+pub(crate) const TEXTURE_BINDING_2D_MULTISAMPLE: Enum = 0x9104;
+pub(crate) const MAX_DEPTH_TEXTURE_SAMPLES: Enum = 0x910F;
 
 /// Declares the table: one field per entry point, its C name, and the error detail used when the
 /// loader returns NULL for it (so each detail names its entry point, in a `'static` string).
@@ -212,6 +223,14 @@ entry_points! {
         GetString: "glGetString" fn(Enum) -> *const u8;
         GetUniformLocation: "glGetUniformLocation" fn(Uint, *const c_char) -> Int;
         UniformMatrix4fv: "glUniformMatrix4fv" fn(Int, Sizei, Boolean, *const f32);
+        Uniform1i: "glUniform1i" fn(Int, Int);
+        GenTextures: "glGenTextures" fn(Sizei, *mut Uint);
+        DeleteTextures: "glDeleteTextures" fn(Sizei, *const Uint);
+        BindTexture: "glBindTexture" fn(Enum, Uint);
+        ActiveTexture: "glActiveTexture" fn(Enum);
+        TexImage2DMultisample: "glTexImage2DMultisample" fn(Enum, Sizei, Enum, Sizei, Sizei, Boolean);
+        FramebufferTexture2D: "glFramebufferTexture2D" fn(Enum, Enum, Enum, Uint, Int);
+        GetMultisamplefv: "glGetMultisamplefv" fn(Enum, Uint, *mut f32);
     }
     optional {
         ClipControl: "glClipControl" fn(Enum, Enum);

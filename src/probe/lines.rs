@@ -55,24 +55,31 @@ pub(super) fn tile_vertex(x: f64, y: f64, (gx, gy): (f64, f64)) -> [f32; 4] {
     ]
 }
 
-/// Measures how far from the pixel a line fragment's depth is taken, per line kind, and
-/// `glPolygonOffset`'s slope rule (module docs). Needs D32F attached.
-pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
-    // A small deterministic generator: sub-pixel endpoints in every direction.
+/// Each tile's vertices (clip coordinates, as [`tile_vertex`] makes them), tile by tile.
+pub(super) type Tiles = Vec<Vec<[f32; 4]>>;
+
+/// The probe's small deterministic generator (xorshift64): sub-pixel endpoints in every
+/// direction, the same on every run.
+pub(super) fn xorshift() -> impl FnMut() -> f64 {
     let mut seed = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = move || {
+    move || {
         seed ^= seed << 13;
         seed ^= seed >> 7;
         seed ^= seed << 17;
         (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut lines: Vec<Vec<[f32; 4]>> = Vec::new();
-    let mut polygons: Vec<Vec<[f32; 4]>> = Vec::new();
+    }
+}
+
+/// The line tiles' geometry, tile `k` on plane [`tile_plane`]`(k)`: six `GL_LINES` segments
+/// in six directions (each tile turned a little further), and three triangles for polygon-mode
+/// outlines, all with sub-pixel corners from `next`.
+fn line_tiles(next: &mut impl FnMut() -> f64) -> (Tiles, Tiles) {
+    let mut lines = Vec::new();
+    let mut polygons = Vec::new();
     for k in 0..LINE_TILES {
         let plane = tile_plane(k);
         let mut segments = Vec::new();
         for j in 0..6 {
-            // Six directions per tile, each tile turned a little further.
             let phi = std::f64::consts::PI * (j as f64 + k as f64 / LINE_TILES as f64) / 6.0;
             let (cx, cy) = (32.0 + 16.0 * (next() - 0.5), 32.0 + 16.0 * (next() - 0.5));
             let half = 18.0 + 8.0 * next();
@@ -89,6 +96,15 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         }
         polygons.push(triangles);
     }
+    (lines, polygons)
+}
+
+/// Measures how far from the pixel a line fragment's depth is taken, per line kind, and
+/// `glPolygonOffset`'s slope rule (module docs). Needs D32F attached.
+pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
+    // A small deterministic generator: sub-pixel endpoints in every direction.
+    let mut next = xorshift();
+    let (lines, polygons) = line_tiles(&mut next);
     // Slope rule: a filled tile on a diagonal plane and on an axis plane, plain and offset.
     let diagonal = (LINE_GRADIENT, LINE_GRADIENT);
     let axis = (LINE_GRADIENT, 0.0);

@@ -68,7 +68,12 @@
 //!   that side, outside the triangle (where a neighbouring face lies): near 0 where the outline
 //!   takes its line's depth, as on llvmpipe. **`offset_slope`**: `glPolygonOffset(1, 0)` on a plane
 //!   with `|gₓ| = |g_y|`, over the gradient (1: GL's `max` rule; √2: a root sum of squares). One
-//!   draw batch and one read-back, about 2 ms.
+//!   draw batch and one read-back, about 2 ms. **`line_reach_msaa`**: the same lines and
+//!   outlines drawn into a 4× multisampled `GL_DEPTH_COMPONENT32F` texture (and at the context's
+//!   largest count up to 16 where larger); each sample copied out (`texelFetch` written as
+//!   `gl_FragDepth` into the probe's D32F renderbuffer) and compared with the plane at its
+//!   `glGetMultisamplefv` position: the largest `|stored − plane| / max(|gₓ|, |g_y|)` (1.056 and
+//!   1.054 on llvmpipe); NaN where no multisampled depth texture can be attached.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -86,15 +91,17 @@
 //! thread, and leaves no trace in it: it first fails if `glGetError` reports an error pending from
 //! the caller's own calls (reading it clears it: the error's detail says so), then saves and
 //! afterwards restores the draw and read framebuffer bindings, the renderbuffer, program, vertex
-//! array, array buffer and pixel-pack buffer bindings, every viewport and depth range (all of
+//! array, array buffer and pixel-pack buffer bindings, the active texture unit and unit 0's
+//! `GL_TEXTURE_2D_MULTISAMPLE` binding, every viewport and depth range (all of
 //! them under `ARB_viewport_array`), the depth function, write mask and clear value, polygon
 //! offset factor, units and clamp, polygon mode, line width, the enables it touches (depth test,
 //! polygon offset fill and line, cull face, polygon and line smooth, stencil, depth clamp, rasterizer discard, scissor
-//! per viewport, every clip distance, depth-bounds test, alpha test in compatibility), every
+//! per viewport, multisampling and the sample coverage enables (alpha to coverage and to one,
+//! sample coverage, sample mask), every clip distance, depth-bounds test, alpha test in compatibility), every
 //! `GL_PACK_*` parameter, `glClipControl` and, in a compatibility context,
 //! `GL_DEPTH_SCALE`/`GL_DEPTH_BIAS`. It deletes every object
 //! it creates, also on error. Not restored because it never changes them: colour state (its
-//! framebuffer has no colour attachment), textures, samplers, stencil values, uniform state of
+//! framebuffer has no colour attachment), other textures and units, samplers, stencil values, uniform state of
 //! other programs. Not handled: an active transform feedback, query or conditional render of
 //! the caller would see (or discard) the probe's draws; end them before probing.
 //!
@@ -117,6 +124,7 @@ mod draw;
 mod facing;
 mod gl;
 mod lines;
+mod msaa_lines;
 mod near_clip;
 mod plane_error;
 mod resolvable;
@@ -134,6 +142,7 @@ use draw::*;
 use facing::*;
 use gl::*;
 use lines::*;
+use msaa_lines::msaa_line_reach;
 use near_clip::*;
 use plane_error::*;
 use resolvable::*;
@@ -208,6 +217,12 @@ pub struct Figures {
     pub line_pixels: [usize; 2],
     /// Outline fragments compared for [`RasterizerProfile::outline_neighbour`].
     pub outline_neighbour_pixels: usize,
+    /// Line samples compared for [`RasterizerProfile::line_reach_msaa`] (`GL_LINES`,
+    /// polygon-mode).
+    pub msaa_line_samples: [usize; 2],
+    /// The sample counts [`RasterizerProfile::line_reach_msaa`] was drawn at: 4, and the
+    /// context's largest up to 16 (0 where not drawn).
+    pub msaa_sample_counts: [i32; 2],
     /// `glPolygonOffset(1, 0)`'s offset over the gradient on a plane with `g_y = 0` (1 under
     /// either slope rule: the factor's scale); [`RasterizerProfile::offset_slope`] is the
     /// diagonal plane's.
@@ -343,6 +358,8 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         chain_observations: 0,
         line_pixels: [0; 2],
         outline_neighbour_pixels: 0,
+        msaa_line_samples: [0; 2],
+        msaa_sample_counts: [0; 2],
         offset_slope_axis: f64::NAN,
     };
     let mut seen = Vec::new();
@@ -409,6 +426,10 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             profile.offset_slope = lines.slope[0];
             figures.line_pixels = lines.pixels;
             figures.offset_slope_axis = lines.slope[1];
+            let msaa = msaa_line_reach(gl, o)?;
+            profile.line_reach_msaa = msaa.reach;
+            figures.msaa_line_samples = msaa.samples;
+            figures.msaa_sample_counts = msaa.counts;
         }
         if internal == DEPTH_COMPONENT24 {
             (
@@ -442,41 +463,12 @@ void main() { gl_Position = projection * eye; }\n\0";
 const FRAGMENT_SHADER: &[u8] = b"#version 150\nvoid main() {}\n\0";
 
 unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
-    o.program = (gl.CreateProgram)();
-    for (kind, source, detail) in [
-        (
-            VERTEX_SHADER_KIND,
-            VERTEX_SHADER,
-            "the probe's vertex shader (GLSL 1.50) did not compile",
-        ),
-        (
-            FRAGMENT_SHADER_KIND,
-            FRAGMENT_SHADER,
-            "the probe's fragment shader (GLSL 1.50) did not compile",
-        ),
-    ] {
-        let shader = (gl.CreateShader)(kind);
-        let text = source.as_ptr().cast();
-        (gl.ShaderSource)(shader, 1, &text, std::ptr::null());
-        (gl.CompileShader)(shader);
-        let mut ok = 0;
-        (gl.GetShaderiv)(shader, COMPILE_STATUS, &mut ok);
-        (gl.AttachShader)(o.program, shader);
-        (gl.DeleteShader)(shader);
-        if ok == 0 {
-            return Err(Error::new(ErrorKind::Gl, detail));
-        }
-    }
-    (gl.BindAttribLocation)(o.program, 0, c"eye".as_ptr());
-    (gl.LinkProgram)(o.program);
-    let mut ok = 0;
-    (gl.GetProgramiv)(o.program, LINK_STATUS, &mut ok);
-    if ok == 0 {
-        return Err(Error::new(
-            ErrorKind::Gl,
-            "the probe's shader program did not link",
-        ));
-    }
+    o.program = link(
+        gl,
+        VERTEX_SHADER,
+        FRAGMENT_SHADER,
+        "the probe's shaders (GLSL 1.50) did not compile or link",
+    )?;
     (gl.GenVertexArrays)(1, &mut o.vertex_array);
     (gl.GenBuffers)(1, &mut o.buffer);
     (gl.GenFramebuffers)(1, &mut o.framebuffer);
@@ -499,6 +491,37 @@ unsafe fn create_objects(gl: &Gl, o: &mut Objects) -> Result<()> {
     (gl.Viewport)(0, 0, SIZE as Sizei, SIZE as Sizei);
     (gl.DepthFunc)(ALWAYS);
     gl.check("creating the probe's program, vertex array, buffer or framebuffer raised a GL error")
+}
+
+/// Compiles `vertex` and `fragment` (NUL-terminated GLSL) and links them, with the vertex
+/// attribute `eye` at location 0; `detail` is the error where either fails.
+unsafe fn link(gl: &Gl, vertex: &[u8], fragment: &[u8], detail: &'static str) -> Result<Uint> {
+    let program = (gl.CreateProgram)();
+    let mut ok = 1;
+    for (kind, source) in [
+        (VERTEX_SHADER_KIND, vertex),
+        (FRAGMENT_SHADER_KIND, fragment),
+    ] {
+        let shader = (gl.CreateShader)(kind);
+        let text = source.as_ptr().cast();
+        (gl.ShaderSource)(shader, 1, &text, std::ptr::null());
+        (gl.CompileShader)(shader);
+        let mut compiled = 0;
+        (gl.GetShaderiv)(shader, COMPILE_STATUS, &mut compiled);
+        (gl.AttachShader)(program, shader);
+        (gl.DeleteShader)(shader);
+        ok &= compiled;
+    }
+    if ok != 0 {
+        (gl.BindAttribLocation)(program, 0, c"eye".as_ptr());
+        (gl.LinkProgram)(program);
+        (gl.GetProgramiv)(program, LINK_STATUS, &mut ok);
+    }
+    if ok == 0 {
+        (gl.DeleteProgram)(program);
+        return Err(Error::new(ErrorKind::Gl, detail));
+    }
+    Ok(program)
 }
 
 const VERTEX_SHADER_KIND: Enum = gl::VERTEX_SHADER;

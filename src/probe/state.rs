@@ -18,6 +18,9 @@ pub struct Saved {
     vertex_array: Int,
     array_buffer: Int,
     pixel_pack_buffer: Int,
+    /// `GL_ACTIVE_TEXTURE`, and unit 0's `GL_TEXTURE_BINDING_2D_MULTISAMPLE` (the multisampled
+    /// line measurement binds its depth texture there).
+    texture: (Int, Int),
     capabilities: Vec<Capability>,
     /// `(x, y, w, h, near, far, scissor on)` per viewport index (one without viewport arrays).
     viewports: Vec<([f32; 4], [f64; 2], bool)>,
@@ -34,7 +37,7 @@ pub struct Saved {
 }
 
 /// Capabilities the probe turns on or off; each is restored as it was.
-const CAPABILITIES: [Enum; 10] = [
+const CAPABILITIES: [Enum; 15] = [
     POLYGON_SMOOTH,
     LINE_SMOOTH,
     POLYGON_OFFSET_LINE,
@@ -45,6 +48,13 @@ const CAPABILITIES: [Enum; 10] = [
     DEPTH_CLAMP,
     RASTERIZER_DISCARD,
     SCISSOR_TEST,
+    // Multisampling (on by default; the multisampled line measurement turns it on for its own
+    // draws) and what could drop a sample's coverage there.
+    MULTISAMPLE,
+    SAMPLE_ALPHA_TO_COVERAGE,
+    SAMPLE_ALPHA_TO_ONE,
+    SAMPLE_COVERAGE,
+    SAMPLE_MASK,
 ];
 
 const PACK_STATE: [Enum; 8] = [
@@ -116,7 +126,12 @@ impl Saved {
         } else {
             None
         };
+        let active = gl.integer(ACTIVE_TEXTURE);
+        (gl.ActiveTexture)(TEXTURE0);
+        let texture = (active, gl.integer(TEXTURE_BINDING_2D_MULTISAMPLE));
+        (gl.ActiveTexture)(active as Enum);
         Saved {
+            texture,
             draw_framebuffer: gl.integer(DRAW_FRAMEBUFFER_BINDING),
             read_framebuffer: gl.integer(READ_FRAMEBUFFER_BINDING),
             renderbuffer: gl.integer(RENDERBUFFER_BINDING),
@@ -173,6 +188,10 @@ impl Saved {
         (gl.BindVertexArray)(self.vertex_array as Uint);
         (gl.BindBuffer)(ARRAY_BUFFER, self.array_buffer as Uint);
         (gl.BindBuffer)(PIXEL_PACK_BUFFER, self.pixel_pack_buffer as Uint);
+        let (active, multisample) = self.texture;
+        (gl.ActiveTexture)(TEXTURE0);
+        (gl.BindTexture)(TEXTURE_2D_MULTISAMPLE, multisample as Uint);
+        (gl.ActiveTexture)(active as Enum);
         for c in &self.capabilities {
             if c.on {
                 (gl.Enable)(c.cap);
