@@ -771,8 +771,7 @@ typedef struct {
   /*
    MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
    sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), or with a
-   probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller; plus 1
-   for polygon-mode lines (a sample's distance from its pixel centre, measured).
+   probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller.
    */
   uint32_t samples;
   /*
@@ -861,7 +860,7 @@ typedef struct {
    depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
    1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
    sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
-   sqrt(2)*(w - 1)/2 where smaller (plus 1 for polygon-mode lines).
+   sqrt(2)*(w - 1)/2 where smaller.
    */
   double line_reach;
   /*

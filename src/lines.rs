@@ -64,13 +64,14 @@
 //! multisampled 1-pixel lines against the plane at the sample) replaces it by the probe's reach
 //! for the line kind plus 1/16 and `√2·(w − 1)/2` (the rectangle's further half-width, along
 //! any direction), where smaller: llvmpipe measures 1.056 for `GL_LINES`, so `Δ` = 1.12 at width
-//! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines under MSAA add
-//! a sample's distance from its pixel centre (`√2/2`, times `√2`: `Δ = √2·(w + 1)/2 + 1`), as a
-//! rasterizer that takes an outline fragment's depth once per pixel needs. Measured on llvmpipe
-//! with the judge that names an outline's side (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4
-//! ZSHIFT_LINES_FULL=1`, variant `polymode 4xMSAA`): a sphere lost 1 sample of 8769 under (a)
-//! at `√2·(w + 1)/2`, at a vertex on its seam, kept from 1.5× the offset. (The first count that
-//! set it, a torus's 2 samples, came from the judge that named a thin triangle's hidden side.)
+//! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines take the same, with their
+//! own figure (llvmpipe 1.054). They had added a pixel (`+ 1`) under MSAA, set from one sample
+//! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay
+//! 0.001 pixel inside its exact front face, on the side of a shallower face that borders none
+//! of the edges drawn there and that the rasterizer gave it to, so its steep face's edges lost
+//! to that face's smaller push under (a), with `GL_LINES` as with polygon-mode lines and with
+//! either profile. The sweep no longer judges such a tie (docs/edges.md), and without the
+//! `+ 1` the polygon-mode MSAA variant's full grid and seeds 1–4 and 19 keep every sample.
 //! `M` is exactly the slope term of
 //! `glPolygonOffset` on GL and llvmpipe (Vulkan also allows `√(gₓ² + g_y²) ≥ M`), which is why a
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
@@ -263,7 +264,8 @@ pub struct EdgeRecommendation {
     /// `Δ`, pixels (times `max(|∂z/∂x|, |∂z/∂y|)`): how far from the pixel or sample a line
     /// fragment's depth is taken. `(w + 1)/2` in the worst case and for polygon-mode lines;
     /// the probed reach plus 1/16 plus `(w − 1)/2` for `GL_LINES` with a profile;
-    /// `√2·(w + 1)/2` under MSAA (plus 1 for polygon-mode lines).
+    /// `√2·(w + 1)/2` under MSAA, or the profile's multisampled reach plus 1/16 plus
+    /// `√2·(w − 1)/2` where smaller.
     pub line_reach: f64,
     /// `g`: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,
@@ -477,8 +479,8 @@ const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 
 /// `Δ`, in pixels of `M`: under MSAA the profile's measured multisampled reach for the line
-/// kind plus [`LINE_REACH_MARGIN`] and `√2·(w − 1)/2`, at most (and unmeasured) `√2·(w + 1)/2`,
-/// `+ 1` for polygon-mode lines; else the profile's measured reach for the
+/// kind plus [`LINE_REACH_MARGIN`] and `√2·(w − 1)/2`, at most (and unmeasured) `√2·(w + 1)/2`;
+/// else the profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
 /// [`WIDE_OUTLINE_SHIFT`].
@@ -498,16 +500,10 @@ fn line_reach(edges: &Edges) -> f64 {
         let root2 = std::f64::consts::SQRT_2;
         let across = root2 * worst;
         let reach = p.line_reach_msaa[kind];
-        let across = if measured(reach) {
+        return if measured(reach) {
             (reach + LINE_REACH_MARGIN + root2 * (w - 1.0) / 2.0).min(across)
         } else {
             across
-        };
-        // Polygon-mode outlines under MSAA also take a sample's depth up to a sample's distance
-        // from its pixel centre further, √2/2, times √2 (module docs, "MSAA": measured).
-        return match edges.kind {
-            LineKind::PolygonMode => across + 1.0,
-            LineKind::Lines => across,
         };
     }
     match edges.kind {
@@ -852,13 +848,13 @@ mod tests {
         // Width 3: the rest of the width at √2.
         e.line_width = 3.0;
         assert!((reach(&e) - (1.0625 + root2)).abs() < 1e-15);
-        // Polygon mode: its own figure, and the sample's distance from its centre (+1).
+        // Polygon mode: its own figure.
         e.kind = LineKind::PolygonMode;
         e.line_width = 1.0;
-        assert_eq!(reach(&e), 0.8125 + 1.0);
+        assert_eq!(reach(&e), 0.8125);
         // Never above the worst case.
         e.profile.line_reach_msaa = [2.0, 2.0];
-        assert_eq!(reach(&e), root2 + 1.0);
+        assert_eq!(reach(&e), root2);
         e.kind = LineKind::Lines;
         assert_eq!(reach(&e), root2);
     }
@@ -988,8 +984,8 @@ mod tests {
         e.samples = 4;
         assert_eq!(e.kind, LineKind::PolygonMode);
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        // Polygon-mode outlines add a sample's distance from its pixel centre, √2/2 times √2.
-        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2 + 1.0);
+        // Polygon-mode outlines as GL_LINES (no `+ 1`: docs/edges.md).
+        assert_eq!(r.line_reach, 2.0 * std::f64::consts::SQRT_2);
         let lines = Edges {
             kind: LineKind::Lines,
             ..e

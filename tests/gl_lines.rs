@@ -314,6 +314,8 @@ fn edges_over_faces_sweep() {
     let mut classes: Vec<(String, Class)> = Vec::new();
     let mut failures = Vec::new();
     let mut refusals = Refusals::default();
+    // Edge samples on a boundary of their front face, left unjudged (`BOUNDARY_TIE`).
+    let mut ties = 0usize;
     let meshes: [(&str, MeshMaker); 4] = [
         ("sphere", sphere),
         ("torus", torus),
@@ -446,6 +448,7 @@ fn edges_over_faces_sweep() {
                                     let c = classify(&scene, &p, rfs, &ids, b, g, rec.hidden_gap);
                                     class.visible += c.visible.len();
                                     class.hidden += c.hidden.len();
+                                    ties += c.ties;
                                     let (lost, shown) =
                                         scene.count(&scaled(&rec, &m, clip, 1.0), &c);
                                     class.lost += lost;
@@ -656,6 +659,10 @@ fn edges_over_faces_sweep() {
     println!(
         "refusals asked (hidden_separation = gap/2): {}; confirmed (the smallest offset keeping every visible edge shows a hidden one beyond the separation): {}; conservative (that offset does both): {}; no hidden edge beyond the separation in the scene: {}",
         refusals.asked, refusals.confirmed, refusals.conservative, refusals.no_hidden_edge
+    );
+    let judged: usize = classes.iter().map(|(_, c)| c.visible + c.hidden).sum();
+    println!(
+        "edge samples on a side of their front face whose other face borders none of their edges (left unjudged, BOUNDARY_TIE): {ties}, beside {judged} judged"
     );
     assert!(
         failures.is_empty(),

@@ -44,8 +44,7 @@ pub struct ZshiftEdges {
     pub polygon_mode: u32,
     /// MSAA samples per pixel (1 without multisampling), 1..=64. Above 1 the line reach is
     /// sqrt(2)*(w + 1)/2 (a sample lies up to w/2 off the line in any direction), or with a
-    /// probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller; plus 1
-    /// for polygon-mode lines (a sample's distance from its pixel centre, measured).
+    /// probed profile its line_reach_msaa plus 1/16 plus sqrt(2)*(w - 1)/2 where smaller.
     pub samples: u32,
     /// The steepest face whose edges must be kept, as the largest angle between a face's normal
     /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
@@ -104,7 +103,7 @@ pub struct ZshiftEdgeOffset {
     /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
     /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
     /// sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
-    /// sqrt(2)*(w - 1)/2 where smaller (plus 1 for polygon-mode lines).
+    /// sqrt(2)*(w - 1)/2 where smaller.
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters.
     pub face_gradient: f64,

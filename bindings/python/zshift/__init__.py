@@ -1102,7 +1102,7 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     ``m`` the engine's perspective projection (16 floats, column-major) under ``clip``, the mesh
     over eye depths ``depth_range`` (nearest, farthest), ``method`` an :class:`EdgeMethod`, edges as
     GL_LINES of ``line_width`` pixels (or ``polygon_mode`` lines) with ``samples`` MSAA samples per
-    pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, plus 1 for polygon-mode lines), the steepest face that matters as
+    pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, or a probed profile's line_reach_msaa plus 1/16 where smaller), the steepest face that matters as
     ``face_angle`` (radians from the view axis) or ``face_gradient`` (window depth per pixel), and
     ``hidden_separation`` the eye depth from which hidden edges must not show (0: no promise).
     How the engine draws the mesh (``ZshiftEdges.pipeline``): ``viewport_origin`` (``glViewport``'s
