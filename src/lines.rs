@@ -820,10 +820,8 @@ mod tests {
         );
     }
 
-    /// Polygon-mode outlines with a measured neighbour: f32 noise leaves the neighbour's term out
-    /// (the outline's own reach, measured, plus 1/16); a rasterizer that evaluates the
-    /// triangle's plane beyond its side pays that distance for the face (the factor) and for the
-    /// neighbour (the units, scaled to the variant's worst case).
+    /// Under MSAA a measured profile's multisampled reach, plus 1/16 and the rest of the width at
+    /// √2, replaces `√2·(w + 1)/2` where smaller, per line kind; unmeasured, the worst case.
     #[test]
     fn a_measured_msaa_reach_sets_the_multisampled_line_term() {
         let clip = ClipDepth::NegOneToOne;
@@ -859,6 +857,10 @@ mod tests {
         assert_eq!(reach(&e), root2);
     }
 
+    /// Polygon-mode outlines with a measured neighbour: f32 noise leaves the neighbour's term out
+    /// (the outline's own reach, measured, plus 1/16); a rasterizer that evaluates the
+    /// triangle's plane beyond its side pays that distance for the face (the factor) and for the
+    /// neighbour (the units, scaled to the variant's worst case).
     #[test]
     fn a_measured_outline_neighbour_sets_the_neighbours_term() {
         let clip = ClipDepth::NegOneToOne;

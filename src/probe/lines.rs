@@ -58,6 +58,21 @@ pub(super) fn tile_vertex(x: f64, y: f64, (gx, gy): (f64, f64)) -> [f32; 4] {
 /// Each tile's vertices (clip coordinates, as [`tile_vertex`] makes them), tile by tile.
 pub(super) type Tiles = Vec<Vec<[f32; 4]>>;
 
+/// A segment's two vertices on `plane`: centred at `(cx, cy)` (tile pixels), `half` pixels
+/// each way in direction `phi`.
+pub(super) fn segment(
+    (cx, cy): (f64, f64),
+    half: f64,
+    phi: f64,
+    plane: (f64, f64),
+) -> [[f32; 4]; 2] {
+    let (dx, dy) = (half * phi.cos(), half * phi.sin());
+    [
+        tile_vertex(cx - dx, cy - dy, plane),
+        tile_vertex(cx + dx, cy + dy, plane),
+    ]
+}
+
 /// The probe's small deterministic generator (xorshift64): sub-pixel endpoints in every
 /// direction, the same on every run.
 pub(super) fn xorshift() -> impl FnMut() -> f64 {
@@ -81,11 +96,8 @@ fn line_tiles(next: &mut impl FnMut() -> f64) -> (Tiles, Tiles) {
         let mut segments = Vec::new();
         for j in 0..6 {
             let phi = std::f64::consts::PI * (j as f64 + k as f64 / LINE_TILES as f64) / 6.0;
-            let (cx, cy) = (32.0 + 16.0 * (next() - 0.5), 32.0 + 16.0 * (next() - 0.5));
-            let half = 18.0 + 8.0 * next();
-            let (dx, dy) = (half * phi.cos(), half * phi.sin());
-            segments.push(tile_vertex(cx - dx, cy - dy, plane));
-            segments.push(tile_vertex(cx + dx, cy + dy, plane));
+            let centre = (32.0 + 16.0 * (next() - 0.5), 32.0 + 16.0 * (next() - 0.5));
+            segments.extend(segment(centre, 18.0 + 8.0 * next(), phi, plane));
         }
         lines.push(segments);
         let mut triangles = Vec::new();

@@ -61,11 +61,8 @@ fn dense_tiles() -> (Tiles, Tiles) {
         for j in 0..PER_TILE {
             let turn = (j as f64 + k as f64 / MSAA_TILES as f64) / PER_TILE as f64;
             let phi = std::f64::consts::PI * turn;
-            let (cx, cy) = (32.0 + 24.0 * (next() - 0.5), 32.0 + 24.0 * (next() - 0.5));
-            let half = 6.0 + 4.0 * next();
-            let (dx, dy) = (half * phi.cos(), half * phi.sin());
-            segments.push(tile_vertex(cx - dx, cy - dy, plane));
-            segments.push(tile_vertex(cx + dx, cy + dy, plane));
+            let centre = (32.0 + 24.0 * (next() - 0.5), 32.0 + 24.0 * (next() - 0.5));
+            segments.extend(segment(centre, 6.0 + 4.0 * next(), phi, plane));
         }
         lines.push(segments);
         let mut triangles = Vec::new();
