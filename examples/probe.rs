@@ -64,6 +64,10 @@ fn main() {
         "MSAA lines     reach (pixels along the steepest gradient, from the sample): GL_LINES width 1 {:.4} over {} samples, polygon-mode {:.4} over {} (drawn at {:?} samples)",
         p.line_reach_msaa[0], figures.msaa_line_samples[0], p.line_reach_msaa[1], figures.msaa_line_samples[1], figures.msaa_sample_counts
     );
+    println!(
+        "wide lines     reach at glLineWidth(3) (pixels along the steepest gradient): GL_LINES {:.4} over {} fragments, polygon-mode {:.4} over {}",
+        p.line_reach_wide[0], figures.wide_line_pixels[0], p.line_reach_wide[1], figures.wide_line_pixels[1]
+    );
     println!("format  r (quanta)  plane_error (quanta)  error (u*(1+M))  pixels");
     for (i, name) in ["D16", "D24", "D32", "D32F"].iter().enumerate() {
         println!(

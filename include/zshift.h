@@ -342,6 +342,15 @@ typedef struct {
    */
   double line_reach_msaa[2];
   /*
+   How far from the pixel a 3-pixel line fragment takes its depth, in pixels of
+   max(|dz/dx|, |dz/dy|): the largest |stored - plane at the pixel centre| over lines drawn
+   single-sampled at glLineWidth(3); GL_LINES [0], polygon-mode lines [1].
+   zshift_edge_offset takes the polygon-mode figure for wide outlines (worst case
+   (w + 1)/2 + 1/8); wider lines add (w - 3)/2. llvmpipe: 1.5006 and 1.5007. NAN where not
+   measured (a forward-compatible core context refuses the width). NAN or finite >= 0.
+   */
+  double line_reach_wide[2];
+  /*
    glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
    |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
    root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -858,7 +867,8 @@ typedef struct {
   /*
    How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
    depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
-   1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
+   1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile (wider
+   polygon-mode lines: line_reach_wide plus 1/16, plus (w - 3)/2 beyond width 3);
    sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
    sqrt(2)*(w - 1)/2 where smaller.
    */

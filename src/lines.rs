@@ -52,7 +52,11 @@
 //! neighbour's slope: docs/edges.md.) Wide ones (`w > 1`) add 1/8
 //! (`WIDE_OUTLINE_SHIFT`): a wide-line stage that draws them as quads shifted half a pixel
 //! along the line (Mesa's) makes a fragment take the line's depth up to `w/2 + 1/8` across and
-//! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`.
+//! `1/2` along from its centre, 1/8 beyond `(w + 1)/2`. A measured profile
+//! ([`RasterizerProfile::line_reach_wide`]: the probe's dense geometry drawn at `glLineWidth(3)`)
+//! replaces it by the 3-pixel reach plus 1/16 and `(w − 3)/2` beyond width 3, where smaller:
+//! llvmpipe measures 1.5007, so `Δ` = 1.56 at width 3 (2.125 in the worst case); the quad's
+//! along-the-line half pixel does not reach a fragment's depth there.
 //!
 //! **MSAA** ([`Edges::samples`] > 1): a multisampled line is a rectangle `w` wide whose samples
 //! take the line's depth at their projection on it (or along the minor axis), and the face's
@@ -467,6 +471,9 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
 /// `ZSHIFT_LINES_SEED=1`); the issue's own measurement reached 0.52.
 const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 
+/// The width [`RasterizerProfile::line_reach_wide`] is measured at, pixels.
+const WIDE_WIDTH: f32 = 3.0;
+
 /// What a wide polygon-mode outline adds to the worst-case reach `(w + 1)/2`, pixels of `M`.
 /// Mesa's draw module (llvmpipe) draws a wide line as a quad: the line's end points moved
 /// `w/2 + 1/8` along the minor axis and the whole quad `1/2` pixel back along the major axis,
@@ -483,7 +490,8 @@ const WIDE_OUTLINE_SHIFT: f64 = 1.0 / 8.0;
 /// else the profile's measured reach for the
 /// line kind plus [`LINE_REACH_MARGIN`] and `(w − 1)/2` (a measured profile; at most the worst
 /// case), else `(w + 1)/2` (module docs, "The line term"); wide polygon-mode lines add
-/// [`WIDE_OUTLINE_SHIFT`].
+/// [`WIDE_OUTLINE_SHIFT`], or with a measured profile take its 3-pixel reach plus
+/// [`LINE_REACH_MARGIN`] and `(w − 3)/2` beyond width 3, where smaller.
 fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let worst = (w + 1.0) / 2.0;
@@ -510,9 +518,18 @@ fn line_reach(edges: &Edges) -> f64 {
         LineKind::Lines if measured(p.line_reach[0]) => {
             (p.line_reach[0] + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
         }
-        // Wide outlines take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]); the
-        // probe draws 1-pixel ones only.
-        LineKind::PolygonMode if w > 1.0 => worst + WIDE_OUTLINE_SHIFT,
+        // Wide outlines take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]), or
+        // the probe's 3-pixel reach, its margin and half of any width beyond 3 (narrower ones
+        // reach no further than 3-pixel ones).
+        LineKind::PolygonMode if w > 1.0 => {
+            let wide = worst + WIDE_OUTLINE_SHIFT;
+            if measured(p.line_reach_wide[1]) {
+                let beyond = (w - f64::from(WIDE_WIDTH)).max(0.0) / 2.0;
+                (p.line_reach_wide[1] + LINE_REACH_MARGIN + beyond).min(wide)
+            } else {
+                wide
+            }
+        }
         // A 1-pixel outline takes its depth up to its own measured reach from the pixel, or,
         // where the rasterizer evaluates its triangle's plane beyond the side, up to the
         // measured distance there (module docs, "Polygon-mode lines"): the larger.
@@ -818,6 +835,41 @@ mod tests {
             (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
             "{r:?}"
         );
+    }
+
+    /// Wide polygon-mode outlines take a measured profile's 3-pixel reach plus 1/16 (and half the
+    /// width beyond 3) where smaller than the wide quad's `(w + 1)/2 + 1/8`; `GL_LINES` keep the
+    /// 1-pixel figure plus `(w − 1)/2`.
+    #[test]
+    fn a_measured_wide_reach_sets_wide_outlines() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        e.kind = LineKind::PolygonMode;
+        e.line_width = 3.0;
+        let reach = |e: &Edges| {
+            recommend(&m, clip, e, EdgeMethod::Matrix)
+                .unwrap()
+                .line_reach
+        };
+        assert_eq!(reach(&e), 2.0 + WIDE_OUTLINE_SHIFT);
+        e.profile.measured = true;
+        e.profile.line_reach = [0.5, 0.5];
+        e.profile.outline_neighbour = 0.0;
+        assert_eq!(reach(&e), 2.0 + WIDE_OUTLINE_SHIFT);
+        e.profile.line_reach_wide = [1.25, 1.5];
+        assert_eq!(reach(&e), 1.5625);
+        e.line_width = 5.0;
+        assert_eq!(reach(&e), 2.5625);
+        e.line_width = 2.0;
+        assert_eq!(reach(&e), 1.5625);
+        // Never above the quad's bound.
+        e.profile.line_reach_wide = [3.0, 3.0];
+        assert_eq!(reach(&e), 1.5 + WIDE_OUTLINE_SHIFT);
+        // GL_LINES: the 1-pixel figure, unchanged.
+        e.kind = LineKind::Lines;
+        e.line_width = 3.0;
+        assert_eq!(reach(&e), 0.5 + LINE_REACH_MARGIN + 1.0);
     }
 
     /// Under MSAA a measured profile's multisampled reach, plus 1/16 and the rest of the width at

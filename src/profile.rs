@@ -172,6 +172,14 @@ pub struct RasterizerProfile {
     /// measured. A sampled maximum (2048 lines and 2048 triangles in 32 gradient directions, every
     /// sample).
     pub line_reach_msaa: [f64; 2],
+    /// How far from the pixel a 3-pixel line fragment takes its depth: the largest
+    /// `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` over the fragments of the
+    /// [`RasterizerProfile::line_reach_msaa`] geometry drawn single-sampled at `glLineWidth(3)`,
+    /// `GL_LINES` (`[0]`) and polygon-mode lines (`[1]`), pixels. [`crate::lines`] takes the
+    /// polygon-mode figure for wide outlines (worst case `(w + 1)/2 + 1/8`, 2.125 at width 3);
+    /// wider ones add `(w − 3)/2`. Measured on llvmpipe: 1.5006 and 1.5007. NaN where not measured
+    /// (a forward-compatible core context refuses the width). A sampled maximum.
+    pub line_reach_wide: [f64; 2],
     /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
     /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
     /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
@@ -207,6 +215,7 @@ impl RasterizerProfile {
             line_reach: [f64::NAN; 2],
             outline_neighbour: f64::NAN,
             line_reach_msaa: [f64::NAN; 2],
+            line_reach_wide: [f64::NAN; 2],
             offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,

@@ -149,6 +149,14 @@ fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
             figures.msaa_line_samples,
             figures.msaa_sample_counts
         );
+        // 3-pixel lines and outlines: 1.5 pixels (the wide quad's bound is 2.125 for outlines).
+        assert!(
+            p.line_reach_wide.iter().all(|r| (1.49..1.6).contains(r))
+                && figures.wide_line_pixels.iter().all(|&n| n > 5000),
+            "{:?} over {:?}",
+            p.line_reach_wide,
+            figures.wide_line_pixels
+        );
         assert!((p.offset_slope - 1.0).abs() < 1e-3, "{}", p.offset_slope);
         assert!(
             (figures.offset_slope_axis - 1.0).abs() < 1e-3,

@@ -101,7 +101,8 @@ pub struct ZshiftEdgeOffset {
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
     /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
-    /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile;
+    /// 1), the probed reach plus 1/16 (plus (w - 1)/2 for GL_LINES) with a profile (wider
+    /// polygon-mode lines: line_reach_wide plus 1/16, plus (w - 3)/2 beyond width 3);
     /// sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
     /// sqrt(2)*(w - 1)/2 where smaller.
     pub line_reach: f64,

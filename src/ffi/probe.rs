@@ -115,6 +115,13 @@ pub struct ZshiftProfile {
     /// line reach under MSAA (worst case sqrt(2)*(w + 1)/2); wider lines add sqrt(2)*(w - 1)/2.
     /// llvmpipe: 1.056 and 1.054. NAN where not measured. NAN or finite >= 0.
     pub line_reach_msaa: [f64; 2],
+    /// How far from the pixel a 3-pixel line fragment takes its depth, in pixels of
+    /// max(|dz/dx|, |dz/dy|): the largest |stored - plane at the pixel centre| over lines drawn
+    /// single-sampled at glLineWidth(3); GL_LINES [0], polygon-mode lines [1].
+    /// zshift_edge_offset takes the polygon-mode figure for wide outlines (worst case
+    /// (w + 1)/2 + 1/8); wider lines add (w - 3)/2. llvmpipe: 1.5006 and 1.5007. NAN where not
+    /// measured (a forward-compatible core context refuses the width). NAN or finite >= 0.
+    pub line_reach_wide: [f64; 2],
     /// glPolygonOffset's slope rule: the offset of glPolygonOffset(1, 0) on a plane with
     /// |dz/dx| = |dz/dy| = g, over g: 1 for max(|dz/dx|, |dz/dy|) (GL's rule), 1.414 for their
     /// root sum of squares (allowed by Vulkan and Direct3D). The edge offsets' hidden-line gap
@@ -155,6 +162,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             line_reach: p.line_reach,
             outline_neighbour: p.outline_neighbour,
             line_reach_msaa: p.line_reach_msaa,
+            line_reach_wide: p.line_reach_wide,
             offset_slope: p.offset_slope,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
@@ -205,6 +213,8 @@ impl ZshiftProfile {
             self.outline_neighbour,
             self.line_reach_msaa[0],
             self.line_reach_msaa[1],
+            self.line_reach_wide[0],
+            self.line_reach_wide[1],
             self.offset_slope,
         ];
         if self
@@ -216,7 +226,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, offset_slope or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, line_reach_wide, offset_slope or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -245,6 +255,7 @@ impl ZshiftProfile {
             line_reach: self.line_reach,
             outline_neighbour: self.outline_neighbour,
             line_reach_msaa: self.line_reach_msaa,
+            line_reach_wide: self.line_reach_wide,
             offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

@@ -98,6 +98,7 @@ pub(crate) const RENDERER: Enum = 0x1F01;
 pub(crate) const VERSION: Enum = 0x1F02;
 pub(crate) const NUM_EXTENSIONS: Enum = 0x821D;
 pub(crate) const TEXTURE0: Enum = 0x84C0;
+pub(crate) const ALIASED_LINE_WIDTH_RANGE: Enum = 0x846E;
 pub(crate) const ACTIVE_TEXTURE: Enum = 0x84E0;
 pub(crate) const MULTISAMPLE: Enum = 0x809D;
 pub(crate) const SAMPLE_ALPHA_TO_COVERAGE: Enum = 0x809E;

@@ -120,6 +120,7 @@
 //! the 256 varied planes every other pixel. The profile records its own run time in
 //! [`RasterizerProfile::probe_seconds`].
 
+mod dense;
 mod draw;
 mod facing;
 mod gl;
@@ -130,6 +131,7 @@ mod plane_error;
 mod resolvable;
 mod snapping;
 mod state;
+mod wide_lines;
 
 use std::ffi::{c_void, CStr};
 use std::time::Instant;
@@ -138,6 +140,7 @@ use crate::depth_chain::DepthChain;
 use crate::error::{Error, ErrorKind, Result};
 use crate::profile::{NearClip, RasterizerProfile, Snapping};
 use crate::projection::ClipDepth;
+use dense::*;
 use draw::*;
 use facing::*;
 use gl::*;
@@ -147,6 +150,7 @@ use near_clip::*;
 use plane_error::*;
 use resolvable::*;
 use snapping::*;
+use wide_lines::wide_line_reach;
 
 /// Width and height of the probe's framebuffer in pixels.
 const SIZE: usize = 64;
@@ -220,6 +224,9 @@ pub struct Figures {
     /// Line samples compared for [`RasterizerProfile::line_reach_msaa`] (`GL_LINES`,
     /// polygon-mode).
     pub msaa_line_samples: [usize; 2],
+    /// Line fragments compared for [`RasterizerProfile::line_reach_wide`] (`GL_LINES`,
+    /// polygon-mode).
+    pub wide_line_pixels: [usize; 2],
     /// The sample counts [`RasterizerProfile::line_reach_msaa`] was drawn at: 4, and the
     /// context's largest up to 16 (0 where not drawn).
     pub msaa_sample_counts: [i32; 2],
@@ -359,6 +366,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         line_pixels: [0; 2],
         outline_neighbour_pixels: 0,
         msaa_line_samples: [0; 2],
+        wide_line_pixels: [0; 2],
         msaa_sample_counts: [0; 2],
         offset_slope_axis: f64::NAN,
     };
@@ -426,6 +434,9 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             profile.offset_slope = lines.slope[0];
             figures.line_pixels = lines.pixels;
             figures.offset_slope_axis = lines.slope[1];
+            let wide = wide_line_reach(gl, o)?;
+            profile.line_reach_wide = wide.reach;
+            figures.wide_line_pixels = wide.pixels;
             let msaa = msaa_line_reach(gl, o)?;
             profile.line_reach_msaa = msaa.reach;
             figures.msaa_line_samples = msaa.samples;

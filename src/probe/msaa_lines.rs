@@ -4,7 +4,7 @@
 //! Under MSAA a rasterizer may take a line sample's depth once per pixel, or at the sample's
 //! projection on the line, or along the minor axis; the face under it is evaluated at the
 //! sample. The probe draws lines and polygon-mode outlines in 32 gradient directions, 64 per
-//! tile ([`dense_tiles`]), into a multisampled `GL_DEPTH_COMPONENT32F` texture, copies each
+//! tile ([`dense_tiles`], shared with [`super::wide_lines`]), into a multisampled `GL_DEPTH_COMPONENT32F` texture, copies each
 //! sample out
 //! (`texelFetch` of a `sampler2DMS` written as `gl_FragDepth` into the probe's own D32F
 //! renderbuffer, which stores it exactly, read with `glReadPixels` as every other measurement:
@@ -27,59 +27,6 @@ const SAMPLES: Int = 4;
 
 /// The largest sample count measured.
 const MOST_SAMPLES: Int = 16;
-
-/// Tiles per line kind, each with its own plane: twice the single-sampled measurement's
-/// gradient directions, since a multisampled sample's reach depends on how the line, the
-/// gradient and the sample pattern line up.
-const MSAA_TILES: usize = 32;
-
-/// Lines per `GL_LINES` tile and triangles per polygon-mode tile (overlapping: a later one
-/// overwrites an earlier one's samples, all on one plane). On llvmpipe the reach grows with the
-/// count and levels off: 1.045 at 16 per tile, 1.0556 at 32, 1.0559 at 64 (6 lines per tile in
-/// 16 tiles, as the single-sampled measurement draws, found 0.998).
-const PER_TILE: usize = 64;
-
-/// Tile `k`'s plane: gradient directions spread over the circle, the larger component
-/// [`LINE_GRADIENT`].
-fn msaa_plane(k: usize) -> (f64, f64) {
-    let theta = std::f64::consts::PI * (2 * k + 1) as f64 / MSAA_TILES as f64;
-    let (c, s) = (theta.cos(), theta.sin());
-    let big = c.abs().max(s.abs());
-    (LINE_GRADIENT * c / big, LINE_GRADIENT * s / big)
-}
-
-/// The multisampled measurement's geometry: per tile [`PER_TILE`] segments 12–20 pixels long
-/// in directions spread over the half circle (each tile turned a little further), and as many
-/// triangles for polygon-mode outlines, corners at sub-pixel positions.
-fn dense_tiles() -> (Tiles, Tiles) {
-    let mut next = xorshift();
-    let mut lines = Vec::new();
-    let mut polygons = Vec::new();
-    for k in 0..MSAA_TILES {
-        let plane = msaa_plane(k);
-        let mut segments = Vec::new();
-        for j in 0..PER_TILE {
-            let turn = (j as f64 + k as f64 / MSAA_TILES as f64) / PER_TILE as f64;
-            let phi = std::f64::consts::PI * turn;
-            let centre = (32.0 + 24.0 * (next() - 0.5), 32.0 + 24.0 * (next() - 0.5));
-            segments.extend(segment(centre, 6.0 + 4.0 * next(), phi, plane));
-        }
-        lines.push(segments);
-        let mut triangles = Vec::new();
-        for _ in 0..PER_TILE {
-            let (cx, cy) = (12.0 + 40.0 * next(), 12.0 + 40.0 * next());
-            for _ in 0..3 {
-                triangles.push(tile_vertex(
-                    cx + 20.0 * (next() - 0.5),
-                    cy + 20.0 * (next() - 0.5),
-                    plane,
-                ));
-            }
-        }
-        polygons.push(triangles);
-    }
-    (lines, polygons)
-}
 
 /// What [`msaa_line_reach`] measured.
 pub(super) struct MsaaFigures {
@@ -163,7 +110,7 @@ unsafe fn draw_and_compare(
     t: &mut Targets,
 ) -> Result<Option<([f64; 2], [usize; 2])>> {
     let side = (SIZE * TILES) as Sizei;
-    let rows = (2 * MSAA_TILES).div_ceil(TILES) * SIZE;
+    let rows = DENSE_ROWS;
     (gl.GenTextures)(1, &mut t.texture);
     (gl.ActiveTexture)(TEXTURE0);
     (gl.BindTexture)(TEXTURE_2D_MULTISAMPLE, t.texture);
@@ -194,43 +141,13 @@ unsafe fn draw_and_compare(
     for (s, p) in positions.iter_mut().enumerate() {
         (gl.GetMultisamplefv)(SAMPLE_POSITION, s as Uint, p.as_mut_ptr());
     }
-    draw_lines(gl, o, side, rows as Sizei)?;
-    let depth = copy_samples(gl, o, t, count, side, rows as Sizei)?;
-    Ok(Some(compare(&depth, &positions, side as usize, rows)))
-}
-
-/// Draws [`dense_tiles`] (the `GL_LINES` tiles, then the polygon-mode ones) with multisampling
-/// on, depth test `GL_ALWAYS`, into the bound multisampled framebuffer cleared to 1.
-unsafe fn draw_lines(gl: &Gl, o: &Objects, side: Sizei, rows: Sizei) -> Result<()> {
-    let (lines, polygons) = dense_tiles();
-    let mut all: Vec<[f32; 4]> = Vec::new();
-    let mut draws = Vec::new(); // (tile, first, count)
-    for (k, v) in lines.iter().chain(&polygons).enumerate() {
-        draws.push((k, all.len(), v.len()));
-        all.extend_from_slice(v);
-    }
-    (gl.Viewport)(0, 0, side, rows);
-    (gl.ClearDepth)(1.0);
-    (gl.Clear)(DEPTH_BUFFER_BIT);
-    (gl.BindBuffer)(ARRAY_BUFFER, o.buffer);
-    let bytes = std::mem::size_of_val(all.as_slice()) as isize;
-    (gl.BufferData)(ARRAY_BUFFER, bytes, all.as_ptr().cast(), STREAM_DRAW);
-    (gl.UseProgram)(o.program);
-    (gl.UniformMatrix4fv)(o.projection, 1, 0, IDENTITY.as_ptr());
     (gl.Enable)(MULTISAMPLE);
-    for (tile, first, count) in draws {
-        let (x, y) = tile_origin(tile);
-        (gl.Viewport)(x as Int, y as Int, SIZE as Sizei, SIZE as Sizei);
-        let outline = tile >= MSAA_TILES;
-        if outline {
-            (gl.PolygonMode)(FRONT_AND_BACK, LINE);
-        }
-        let mode = if outline { TRIANGLES } else { LINES };
-        (gl.DrawArrays)(mode, first as Int, count as Sizei);
-        (gl.PolygonMode)(FRONT_AND_BACK, FILL);
-    }
+    let drawn = draw_dense(gl, o, side, rows as Sizei, PER_TILE);
     (gl.Disable)(MULTISAMPLE);
-    gl.check("drawing the probe's multisampled lines raised a GL error")
+    drawn?;
+    let depth = copy_samples(gl, o, t, count, side, rows as Sizei)?;
+    let positions: Vec<[f64; 2]> = positions.iter().map(|p| p.map(f64::from)).collect();
+    Ok(Some(dense_reach(&depth, &positions, side as usize, rows)))
 }
 
 /// Every sample of the multisampled depth, `count` images of `side × rows`, sample 0's first:
@@ -243,7 +160,7 @@ unsafe fn copy_samples(
     count: Int,
     side: Sizei,
     rows: Sizei,
-) -> Result<Vec<f32>> {
+) -> Result<Vec<f64>> {
     t.program = link(
         gl,
         COPY_VERTEX_SHADER,
@@ -261,42 +178,8 @@ unsafe fn copy_samples(
         (gl.Uniform1i)(at_sample, s);
         (gl.DrawArrays)(TRIANGLES, 0, 3);
         let depth = read_depth(gl, Format::Float, 0, side as usize, rows as usize)?;
-        out.extend(depth.iter().map(|&d| d as f32));
+        out.extend(depth);
     }
     gl.check("copying the probe's depth samples out raised a GL error")?;
     Ok(out)
-}
-
-/// The largest `|stored − plane at the sample| / LINE_GRADIENT` per kind over every sample a
-/// line or outline wrote (stored below 0.99; cleared to 1), and how many.
-fn compare(
-    depth: &[f32],
-    positions: &[[f32; 2]],
-    width: usize,
-    rows: usize,
-) -> ([f64; 2], [usize; 2]) {
-    let mut reach = [0.0f64; 2];
-    let mut samples = [0usize; 2];
-    let half = SIZE as f64 / 2.0;
-    for (s, image) in depth.chunks_exact(width * rows).enumerate() {
-        let [sx, sy] = positions[s].map(f64::from);
-        for tile in 0..2 * MSAA_TILES {
-            let kind = tile / MSAA_TILES;
-            let (gx, gy) = msaa_plane(tile % MSAA_TILES);
-            let (ox, oy) = tile_origin(tile);
-            for py in 0..SIZE {
-                for px in 0..SIZE {
-                    let stored = f64::from(image[(oy + py) * width + ox + px]);
-                    if stored >= 0.99 {
-                        continue;
-                    }
-                    let (x, y) = (px as f64 + sx - half, py as f64 + sy - half);
-                    let exact = 0.5 + gx * x + gy * y;
-                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
-                    samples[kind] += 1;
-                }
-            }
-        }
-    }
-    (reach, samples)
 }

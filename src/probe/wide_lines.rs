@@ -1,0 +1,58 @@
+//! Wide lines over their faces: where a 3-pixel line fragment takes its depth
+//! (`line_reach_wide`).
+//!
+//! A rasterizer draws a wide line with a set-up of its own (Mesa's draw module: a quad moved
+//! `w/2 + 1/8` across and half a pixel along, [`crate::lines`]), not the 1-pixel one
+//! [`super::lines`] measures. The probe draws the dense geometry ([`dense_tiles`]) at
+//! `glLineWidth(3)` into its D32F renderbuffer and compares every fragment with its tile's plane
+//! at the pixel centre. A context that refuses the width (a forward-compatible core profile
+//! allows only 1) or draws narrower lines leaves it unmeasured.
+
+use super::*;
+
+/// The width measured, pixels: the wide lines engines still draw (selection outlines, CAD
+/// silhouettes).
+pub(super) const WIDE: f32 = 3.0;
+
+/// Primitives drawn per tile: a wide line's reach is set by its quad, not by how a sample
+/// pattern lines up, and levels off sooner than the multisampled one, at a tenth of the time.
+/// On llvmpipe the figure is 1.5005–1.5016 at 4, 8, 16 and 64 per tile.
+const WIDE_PER_TILE: usize = 16;
+
+/// What [`wide_line_reach`] measured.
+pub(super) struct WideFigures {
+    /// The largest `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` per kind
+    /// (`GL_LINES`, polygon-mode lines) at width [`WIDE`], pixels; NaN where not measured.
+    pub(super) reach: [f64; 2],
+    /// Fragments compared per kind.
+    pub(super) pixels: [usize; 2],
+}
+
+/// Measures the reach of [`WIDE`]-pixel lines per kind (module docs). Needs D32F attached.
+pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<WideFigures> {
+    let mut figures = WideFigures {
+        reach: [f64::NAN; 2],
+        pixels: [0; 2],
+    };
+    let mut range = [0.0f32; 2];
+    (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
+    gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
+    if range[1] < WIDE {
+        return Ok(figures);
+    }
+    (gl.LineWidth)(WIDE);
+    // A forward-compatible core context refuses widths above 1 (GL_INVALID_VALUE): not measured.
+    if gl.failed() {
+        return Ok(figures);
+    }
+    let side = (SIZE * TILES) as Sizei;
+    let drawn = draw_dense(gl, o, side, DENSE_ROWS as Sizei, WIDE_PER_TILE);
+    (gl.LineWidth)(1.0);
+    drawn?;
+    let depth = read_depth(gl, Format::Float, 0, side as usize, DENSE_ROWS)?;
+    let (reach, pixels) = dense_reach(&depth, &[[0.5, 0.5]], side as usize, DENSE_ROWS);
+    if pixels.iter().all(|&n| n > 0) {
+        figures = WideFigures { reach, pixels };
+    }
+    Ok(figures)
+}
