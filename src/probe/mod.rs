@@ -73,7 +73,9 @@
 //!   largest count up to 16 where larger); each sample copied out (`texelFetch` written as
 //!   `gl_FragDepth` into the probe's D32F renderbuffer) and compared with the plane at its
 //!   `glGetMultisamplefv` position: the largest `|stored − plane| / max(|gₓ|, |g_y|)` (1.056 and
-//!   1.054 on llvmpipe); NaN where no multisampled depth texture can be attached.
+//!   1.054 on llvmpipe); NaN where no multisampled depth texture can be attached. **`line_reach_wide`**:
+//!   the same geometry, 16 of each per tile, single-sampled at `glLineWidth(3)` against the plane
+//!   at the pixel centre (1.5006 and 1.5007 on llvmpipe); NaN where the context refuses the width.
 //! * **`near_clip`** ([`NearClip`]): four ground planes (sloped, and a floor) whose triangles
 //!   reach 1000 units behind and ahead of the camera (n = 0.1, f = 1000, 16:9), on D24. Each is
 //!   drawn as given — the rasterizer clips it at the near plane — and again clipped by the probe
@@ -115,7 +117,9 @@
 //! # Time
 //! On Mesa llvmpipe on 2 cores (`ZSHIFT_PROBE_RUNS=5 cargo run --release --example probe`): the
 //! first call in a context 80–100 ms, later calls 50–65 ms, both measured while other builds
-//! loaded the machine; the first pays llvmpipe's compilation of a shader variant per depth format
+//! loaded the machine, before the multisampled and 3-pixel lines; with them, paired against the
+//! build before them on a later machine, the first call 208–238 ms (was 154–170) and later
+//! calls 140–163 ms (135–159); the first pays llvmpipe's compilation of a shader variant per depth format
 //! and polygon-offset state. The facing measurements read back only the pixel rows they need and
 //! the 256 varied planes every other pixel. The profile records its own run time in
 //! [`RasterizerProfile::probe_seconds`].
