@@ -471,9 +471,6 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
 /// `ZSHIFT_LINES_SEED=1`); the issue's own measurement reached 0.52.
 const LINE_REACH_MARGIN: f64 = 1.0 / 16.0;
 
-/// The width [`RasterizerProfile::line_reach_wide`] is measured at, pixels.
-const WIDE_WIDTH: f32 = 3.0;
-
 /// What a wide polygon-mode outline adds to the worst-case reach `(w + 1)/2`, pixels of `M`.
 /// Mesa's draw module (llvmpipe) draws a wide line as a quad: the line's end points moved
 /// `w/2 + 1/8` along the minor axis and the whole quad `1/2` pixel back along the major axis,
@@ -524,7 +521,7 @@ fn line_reach(edges: &Edges) -> f64 {
         LineKind::PolygonMode if w > 1.0 => {
             let wide = worst + WIDE_OUTLINE_SHIFT;
             if measured(p.line_reach_wide[1]) {
-                let beyond = (w - f64::from(WIDE_WIDTH)).max(0.0) / 2.0;
+                let beyond = (w - f64::from(crate::profile::WIDE_LINE_WIDTH)).max(0.0) / 2.0;
                 (p.line_reach_wide[1] + LINE_REACH_MARGIN + beyond).min(wide)
             } else {
                 wide

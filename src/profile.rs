@@ -194,6 +194,11 @@ pub struct RasterizerProfile {
     pub probe_seconds: f64,
 }
 
+/// The line width, pixels, [`RasterizerProfile::line_reach_wide`] is measured at (the wide lines
+/// engines still draw: selection outlines, CAD silhouettes): the probe draws at it, the model
+/// scales from it.
+pub(crate) const WIDE_LINE_WIDTH: f32 = 3.0;
+
 impl RasterizerProfile {
     /// The profile that assumes the worst of every fact: 8 sub-pixel bits of snapping, `r` of 1
     /// quantum (the most `glPolygonOffset` units), per-pixel errors as the model bounds them,

@@ -308,8 +308,8 @@ fn edges_over_faces_sweep() {
     let profiles = profiles(&gl);
     let probed = profiles[1].1;
     println!(
-        "probed line_reach {:?}, line_reach_msaa {:?}, offset_slope {}",
-        probed.line_reach, probed.line_reach_msaa, probed.offset_slope
+        "probed line_reach {:?}, line_reach_msaa {:?}, line_reach_wide {:?}, offset_slope {}",
+        probed.line_reach, probed.line_reach_msaa, probed.line_reach_wide, probed.offset_slope
     );
     let mut classes: Vec<(String, Class)> = Vec::new();
     let mut failures = Vec::new();

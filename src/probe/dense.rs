@@ -1,5 +1,6 @@
 //! The dense line geometry the multisampled and the wide-line measurements draw: lines and
-//! polygon-mode outlines in 32 gradient directions, 64 per tile, and the reach read from it.
+//! polygon-mode outlines in 32 gradient directions, 64 per tile (read back with
+//! [`reach_in_tiles`]).
 
 use super::*;
 
@@ -17,15 +18,6 @@ pub(super) const DENSE_ROWS: usize = (2 * DENSE_TILES).div_ceil(TILES) * SIZE;
 /// 16 tiles, as the single-sampled measurement draws, found 0.998).
 pub(super) const PER_TILE: usize = 64;
 
-/// Tile `k`'s plane: gradient directions spread over the circle, the larger component
-/// [`LINE_GRADIENT`].
-fn dense_plane(k: usize) -> (f64, f64) {
-    let theta = std::f64::consts::PI * (2 * k + 1) as f64 / DENSE_TILES as f64;
-    let (c, s) = (theta.cos(), theta.sin());
-    let big = c.abs().max(s.abs());
-    (LINE_GRADIENT * c / big, LINE_GRADIENT * s / big)
-}
-
 /// The dense geometry: per tile [`PER_TILE`] segments 12–20 pixels long
 /// in directions spread over the half circle (each tile turned a little further), and as many
 /// triangles for polygon-mode outlines, corners at sub-pixel positions.
@@ -34,7 +26,7 @@ pub(super) fn dense_tiles() -> (Tiles, Tiles) {
     let mut lines = Vec::new();
     let mut polygons = Vec::new();
     for k in 0..DENSE_TILES {
-        let plane = dense_plane(k);
+        let plane = tile_plane(k, DENSE_TILES);
         let mut segments = Vec::new();
         for j in 0..PER_TILE {
             let turn = (j as f64 + k as f64 / DENSE_TILES as f64) / PER_TILE as f64;
@@ -97,40 +89,4 @@ pub(super) unsafe fn draw_dense(
         (gl.PolygonMode)(FRONT_AND_BACK, FILL);
     }
     gl.check("drawing the probe's dense lines raised a GL error")
-}
-
-/// The largest `|stored − plane at the sample| / LINE_GRADIENT` per kind over every sample a
-/// line or outline of [`dense_tiles`] wrote (stored below 0.99; cleared to 1), and how many:
-/// `depth` holds one `width × rows` image per sample position (pixel offsets; `[0.5, 0.5]`
-/// for a single-sampled pixel centre).
-pub(super) fn dense_reach(
-    depth: &[f64],
-    positions: &[[f64; 2]],
-    width: usize,
-    rows: usize,
-) -> ([f64; 2], [usize; 2]) {
-    let mut reach = [0.0f64; 2];
-    let mut samples = [0usize; 2];
-    let half = SIZE as f64 / 2.0;
-    for (s, image) in depth.chunks_exact(width * rows).enumerate() {
-        let [sx, sy] = positions[s];
-        for tile in 0..2 * DENSE_TILES {
-            let kind = tile / DENSE_TILES;
-            let (gx, gy) = dense_plane(tile % DENSE_TILES);
-            let (ox, oy) = tile_origin(tile);
-            for py in 0..SIZE {
-                for px in 0..SIZE {
-                    let stored = image[(oy + py) * width + ox + px];
-                    if stored >= 0.99 {
-                        continue;
-                    }
-                    let (x, y) = (px as f64 + sx - half, py as f64 + sy - half);
-                    let exact = 0.5 + gx * x + gy * y;
-                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
-                    samples[kind] += 1;
-                }
-            }
-        }
-    }
-    (reach, samples)
 }

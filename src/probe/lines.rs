@@ -33,13 +33,50 @@ pub(super) struct LineFigures {
     pub(super) slope: [f64; 2],
 }
 
-/// A tile's plane, window depth `0.5 + gₓ·(x − 32) + g_y·(y − 32)` in tile pixels.
-pub(super) fn tile_plane(k: usize) -> (f64, f64) {
+/// Tile `k`'s plane of `tiles` (one per gradient direction), window depth
+/// `0.5 + gₓ·(x − 32) + g_y·(y − 32)` in tile pixels.
+pub(super) fn tile_plane(k: usize, tiles: usize) -> (f64, f64) {
     // Gradient directions spread over the circle, the larger component always LINE_GRADIENT.
-    let theta = std::f64::consts::PI * (2 * k + 1) as f64 / (LINE_TILES as f64);
+    let theta = std::f64::consts::PI * (2 * k + 1) as f64 / (tiles as f64);
     let (c, s) = (theta.cos(), theta.sin());
     let big = c.abs().max(s.abs());
     (LINE_GRADIENT * c / big, LINE_GRADIENT * s / big)
+}
+
+/// The largest `|stored − plane at the sample| / LINE_GRADIENT` per kind over every sample a
+/// line (tiles `0..tiles`) or outline (tiles `tiles..2·tiles`, each on [`tile_plane`]`(k,
+/// tiles)`) wrote (stored below 0.99; cleared to 1), and how many: `depth` holds one
+/// `width × rows` image per sample position (pixel offsets; `[0.5, 0.5]` for a single-sampled
+/// pixel centre).
+pub(super) fn reach_in_tiles(
+    depth: &[f64],
+    positions: &[[f64; 2]],
+    (width, rows): (usize, usize),
+    tiles: usize,
+) -> ([f64; 2], [usize; 2]) {
+    let mut reach = [0.0f64; 2];
+    let mut samples = [0usize; 2];
+    let half = SIZE as f64 / 2.0;
+    for (image, [sx, sy]) in depth.chunks_exact(width * rows).zip(positions) {
+        for tile in 0..2 * tiles {
+            let kind = tile / tiles;
+            let (gx, gy) = tile_plane(tile % tiles, tiles);
+            let (ox, oy) = tile_origin(tile);
+            for py in 0..SIZE {
+                for px in 0..SIZE {
+                    let stored = image[(oy + py) * width + ox + px];
+                    if stored >= 0.99 {
+                        continue;
+                    }
+                    let (x, y) = (px as f64 + sx - half, py as f64 + sy - half);
+                    let exact = 0.5 + gx * x + gy * y;
+                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
+                    samples[kind] += 1;
+                }
+            }
+        }
+    }
+    (reach, samples)
 }
 
 /// The vertex of tile pixel coordinates `(x, y)` on plane `(gₓ, g_y)`: clip coordinates with
@@ -85,14 +122,14 @@ pub(super) fn xorshift() -> impl FnMut() -> f64 {
     }
 }
 
-/// The line tiles' geometry, tile `k` on plane [`tile_plane`]`(k)`: six `GL_LINES` segments
+/// The line tiles' geometry, tile `k` on plane [`tile_plane`]`(k, LINE_TILES)`: six `GL_LINES` segments
 /// in six directions (each tile turned a little further), and three triangles for polygon-mode
 /// outlines, all with sub-pixel corners from `next`.
 fn line_tiles(next: &mut impl FnMut() -> f64) -> (Tiles, Tiles) {
     let mut lines = Vec::new();
     let mut polygons = Vec::new();
     for k in 0..LINE_TILES {
-        let plane = tile_plane(k);
+        let plane = tile_plane(k, LINE_TILES);
         let mut segments = Vec::new();
         for j in 0..6 {
             let phi = std::f64::consts::PI * (j as f64 + k as f64 / LINE_TILES as f64) / 6.0;
@@ -175,26 +212,7 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         let (x, y) = tile_origin(tile);
         depth[(y + py) * width + x + px]
     };
-    let mut reach = [0.0f64; 2];
-    let mut pixels = [0usize; 2];
-    for kind in 0..2 {
-        for k in 0..LINE_TILES {
-            let (gx, gy) = tile_plane(k);
-            for py in 0..SIZE {
-                for px in 0..SIZE {
-                    let stored = at(kind * LINE_TILES + k, px, py);
-                    if stored >= 0.99 {
-                        continue;
-                    }
-                    let half = SIZE as f64 / 2.0;
-                    let (x, y) = (px as f64 + 0.5 - half, py as f64 + 0.5 - half);
-                    let exact = 0.5 + gx * x + gy * y;
-                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
-                    pixels[kind] += 1;
-                }
-            }
-        }
-    }
+    let (reach, pixels) = reach_in_tiles(&depth, &[[0.5, 0.5]], (width, rows * SIZE), LINE_TILES);
     let (mut neighbour, mut neighbour_pixels) = (0.0f64, 0usize);
     for (k, side) in sides.iter().enumerate() {
         for py in 0..SIZE {

@@ -147,7 +147,12 @@ unsafe fn draw_and_compare(
     drawn?;
     let depth = copy_samples(gl, o, t, count, side, rows as Sizei)?;
     let positions: Vec<[f64; 2]> = positions.iter().map(|p| p.map(f64::from)).collect();
-    Ok(Some(dense_reach(&depth, &positions, side as usize, rows)))
+    Ok(Some(reach_in_tiles(
+        &depth,
+        &positions,
+        (side as usize, rows),
+        DENSE_TILES,
+    )))
 }
 
 /// Every sample of the multisampled depth, `count` images of `side × rows`, sample 0's first:

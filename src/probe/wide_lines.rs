@@ -9,10 +9,7 @@
 //! allows only 1) or draws narrower lines leaves it unmeasured.
 
 use super::*;
-
-/// The width measured, pixels: the wide lines engines still draw (selection outlines, CAD
-/// silhouettes).
-pub(super) const WIDE: f32 = 3.0;
+use crate::profile::WIDE_LINE_WIDTH as WIDE;
 
 /// Primitives drawn per tile: a wide line's reach is set by its quad, not by how a sample
 /// pattern lines up, and levels off sooner than the multisampled one, at a tenth of the time.
@@ -50,7 +47,12 @@ pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<WideFigures
     (gl.LineWidth)(1.0);
     drawn?;
     let depth = read_depth(gl, Format::Float, 0, side as usize, DENSE_ROWS)?;
-    let (reach, pixels) = dense_reach(&depth, &[[0.5, 0.5]], side as usize, DENSE_ROWS);
+    let (reach, pixels) = reach_in_tiles(
+        &depth,
+        &[[0.5, 0.5]],
+        (side as usize, DENSE_ROWS),
+        DENSE_TILES,
+    );
     if pixels.iter().all(|&n| n > 0) {
         figures = WideFigures { reach, pixels };
     }
