@@ -39,6 +39,9 @@
 //! (`world_beyond_vertex_term`). A measured profile's `clip_ulps` `k` replaces `6 + 5k` by `4k`
 //! where smaller (the probe's sampled maximum, 0.86 on llvmpipe, with the margin `CLIP_MARGIN`
 //! the full `tests/gl_scenes.rs` grid asks for: it needs up to 2 where the probe finds 0.86).
+//! An f32 replay of Mesa's clipper on grounds of ±1000 behind the camera (`clipper_emulation`,
+//! a test) makes vertices up to 1.42 of the unit off the plane: above the probe's figure, below
+//! the margin's 3.44.
 //!
 //! With the bound it is sound but large: on the floor (corners at ±1000, n = 0.1, decals
 //! 8–13 units away) it asks 7700 f32 steps of element 10 where 27 work (`tests/gl_scenes.rs`),
@@ -99,7 +102,7 @@ fn far_cut(n: f64, f: f64) -> f64 {
 /// `γ` the grid needs; `tests/gl_scenes.rs` (`the_clippers_hardest_scenes_hold`) replays those
 /// 27 scenes in CI. Four other draws of the grid (`ZSHIFT_SCENES_SEED=1` to `4`) lost nothing on
 /// a clipped base with it.
-const CLIP_MARGIN: f64 = 4.0;
+pub(crate) const CLIP_MARGIN: f64 = 4.0;
 
 /// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
 /// f32 rounding, `(6 + 5k)·u`; with a measured profile `CLIP_MARGIN·clip_ulps·u` where smaller

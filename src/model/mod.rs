@@ -24,6 +24,8 @@
 //! is what the problems budget; `q` is what the depth test needs on top under a strict test.
 
 pub mod clip;
+#[cfg(test)]
+mod clipper_emulation;
 pub mod gradient;
 pub mod interpolation;
 pub mod measured;
