@@ -69,7 +69,11 @@
 //! for the line kind plus 1/16 and `√2·(w − 1)/2` (the rectangle's further half-width, along
 //! any direction), where smaller: llvmpipe measures 1.056 for `GL_LINES`, so `Δ` = 1.12 at width
 //! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines take the same, with their
-//! own figure (llvmpipe 1.054). They had added a pixel (`+ 1`) under MSAA, set from one sample
+//! own figure (llvmpipe 1.054). A face-slope limit given as an angle ([`FaceSlope::Angle`])
+//! bounds a face's whole gradient `|∇z|`, so against it the line term is `g·min(Δ, (w + 1)/2)`
+//! (a sample within `(w + 1)/2` of its line's point in any direction; llvmpipe's within 0.87
+//! of the whole gradient); the polygon-offset factor keeps `Δ`, which multiplies each face's
+//! own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
 //! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay
 //! 0.001 pixel inside its exact front face, on the side of a shallower face that borders none
 //! of the edges drawn there and that the rasterizer gave it to, so its steep face's edges lost
@@ -263,7 +267,9 @@ pub struct EdgeRecommendation {
     /// (unit window depth; (a) at the steepest face that matters).
     pub window_offset: f64,
     /// The line term `L = g·Δ` (unit window depth; polygon-mode lines `2·g·Δ`: the
-    /// neighbouring triangle's outline adds its own slope term).
+    /// neighbouring triangle's outline adds its own slope term; under MSAA with a face-slope
+    /// angle, `g·min(Δ, (w + 1)/2)` for the face's own part: the angle bounds the whole
+    /// gradient).
     pub line_term: f64,
     /// `Δ`, pixels (times `max(|∂z/∂x|, |∂z/∂y|)`): how far from the pixel or sample a line
     /// fragment's depth is taken. `(w + 1)/2` in the worst case and for polygon-mode lines;
@@ -537,6 +543,21 @@ fn line_reach(edges: &Edges) -> f64 {
     }
 }
 
+/// The reach `L` takes against the face-slope limit `g`: `Δ` (pixels of `M`), except under MSAA
+/// with the limit given as an angle ([`FaceSlope::Angle`]), whose `g` bounds a face's whole
+/// gradient `|∇z|`, not only its larger component `M`: a sample lies at most `(w + 1)/2` from
+/// the point whose depth it takes, in any direction (module docs, "MSAA"), so it is off its
+/// face by at most `g·(w + 1)/2`, less than `g·Δ` wherever `Δ` exceeds `(w + 1)/2` (the worst
+/// case's `√2·(w + 1)/2`; llvmpipe's measured 1.12 at width 1: its samples lie within 0.87 of
+/// their face's whole gradient, [`crate::probe::Figures::msaa_line_reach_whole`]). The
+/// polygon-offset factor keeps `Δ`: it multiplies each face's own `M`.
+fn reach_against_limit(edges: &Edges, reach: f64) -> f64 {
+    match edges.face_slope {
+        FaceSlope::Angle(_) if edges.samples > 1 => reach.min((edges.line_width + 1.0) / 2.0),
+        FaceSlope::Angle(_) | FaceSlope::WindowGradient(_) => reach,
+    }
+}
+
 /// A measured [`RasterizerProfile::outline_neighbour`] at most this (pixels) is f32 noise: the
 /// rasterizer takes an outline's depth from its line (llvmpipe reads 6·10⁻⁶), and a neighbour's
 /// outline lands on a face with the face's own depth along the shared side.
@@ -623,7 +644,10 @@ fn unchecked_gap(
     // edge may take its line fragment from the neighbour's outline, off the face by the
     // neighbour's slope term too where the rasterizer evaluates the neighbour's plane there
     // (module docs, "Polygon-mode lines"): that part, up to the face-slope limit, is `neighbour`.
-    let own = representable(g * reach, "the line term overflows f64")?;
+    let own = representable(
+        g * reach_against_limit(edges, reach),
+        "the line term overflows f64",
+    )?;
     let neighbour = representable(g * neighbour_reach(edges), "the line term overflows f64")?;
     let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
@@ -904,6 +928,56 @@ mod tests {
         assert_eq!(reach(&e), root2);
         e.kind = LineKind::Lines;
         assert_eq!(reach(&e), root2);
+    }
+
+    /// Under MSAA a face-slope angle bounds a face's whole gradient, and a sample lies within
+    /// `(w + 1)/2` of its line's point in any direction: the line term is `g·(w + 1)/2` where
+    /// `Δ` is larger (the worst case's `√2·(w + 1)/2`, a measured 1.12), the factor keeps `Δ`
+    /// (it multiplies each face's `max(|gₓ|, |g_y|)`), and a limit given as a gradient (on that
+    /// larger component) keeps `g·Δ`; single-sampled lines keep `g·Δ` under either limit.
+    #[test]
+    fn an_angle_limit_bounds_the_multisampled_line_term_by_the_whole_gradient() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 100.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+        e.face_slope = FaceSlope::Angle(60f64.to_radians());
+        let ask = |e: &Edges, method| recommend(&m, clip, e, method).unwrap();
+        let root2 = std::f64::consts::SQRT_2;
+        let relative = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b;
+        for (samples, width, measured) in [(4, 1.0, false), (4, 3.0, false), (4, 1.0, true)] {
+            e.samples = samples;
+            e.line_width = width;
+            e.profile.measured = measured;
+            e.profile.line_reach_msaa = if measured { [1.056; 2] } else { [f64::NAN; 2] };
+            let b = ask(&e, EdgeMethod::Matrix);
+            let g = b.face_gradient;
+            let delta = if measured {
+                1.056 + 1.0 / 16.0
+            } else {
+                root2 * (width + 1.0) / 2.0
+            };
+            assert!(relative(b.line_reach, delta), "{b:?}");
+            assert!(relative(b.line_term, g * (width + 1.0) / 2.0), "{b:?}");
+            assert!(relative(
+                ask(&e, EdgeMethod::PolygonOffset).polygon_offset[0],
+                delta
+            ));
+            // The same g as a gradient limit bounds only the larger component: g·Δ.
+            let mut by_gradient = e;
+            by_gradient.face_slope = FaceSlope::WindowGradient(g);
+            assert!(relative(
+                ask(&by_gradient, EdgeMethod::Matrix).line_term,
+                g * delta
+            ));
+        }
+        e.samples = 1;
+        e.line_width = 1.0;
+        e.profile.measured = false;
+        let b = ask(&e, EdgeMethod::Matrix);
+        assert!(
+            relative(b.line_term, b.face_gradient * b.line_reach),
+            "{b:?}"
+        );
     }
 
     /// Polygon-mode outlines with a measured neighbour: f32 noise leaves the neighbour's term out

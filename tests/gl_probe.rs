@@ -149,6 +149,19 @@ fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
             figures.msaa_line_samples,
             figures.msaa_sample_counts
         );
+        // Against the whole gradient |∇z| those samples lie within (w + 1)/2 = 1 of their line,
+        // as the model takes under a face-slope angle (zshift::lines): 0.87 here, each sample
+        // off the plane by less than |∇z|·0.9 whatever the gradient's direction.
+        assert!(
+            figures
+                .msaa_line_reach_whole
+                .iter()
+                .zip(p.line_reach_msaa)
+                .all(|(&whole, reach)| (0.7..0.9).contains(&whole) && whole < reach),
+            "{:?} against {:?}",
+            figures.msaa_line_reach_whole,
+            p.line_reach_msaa
+        );
         // 3-pixel lines and outlines: 1.5 pixels (the wide quad's bound is 2.125 for outlines).
         assert!(
             p.line_reach_wide.iter().all(|r| (1.49..1.6).contains(r))

@@ -43,24 +43,38 @@ pub(super) fn tile_plane(k: usize, tiles: usize) -> (f64, f64) {
     (LINE_GRADIENT * c / big, LINE_GRADIENT * s / big)
 }
 
-/// The largest `|stored − plane at the sample| / LINE_GRADIENT` per kind over every sample a
-/// line (tiles `0..tiles`) or outline (tiles `tiles..2·tiles`, each on [`tile_plane`]`(k,
-/// tiles)`) wrote (stored below 0.99; cleared to 1), and how many: `depth` holds one
-/// `width × rows` image per sample position (pixel offsets; `[0.5, 0.5]` for a single-sampled
-/// pixel centre).
+/// What [`reach_in_tiles`] measured, per kind (`GL_LINES`, polygon-mode).
+pub(super) struct TileReach {
+    /// The largest `|stored − plane at the sample| / max(|gₓ|, |g_y|)`, pixels.
+    pub(super) reach: [f64; 2],
+    /// The largest `|stored − plane at the sample| / |∇z|` (the plane's whole gradient),
+    /// pixels: how far from its sample a fragment's depth is taken, in any direction.
+    pub(super) whole: [f64; 2],
+    /// Fragments (samples) compared.
+    pub(super) samples: [usize; 2],
+}
+
+/// The reach over every sample a line (tiles `0..tiles`) or outline (tiles `tiles..2·tiles`,
+/// each on [`tile_plane`]`(k, tiles)`) wrote (stored below 0.99; cleared to 1): `depth` holds
+/// one `width × rows` image per sample position (pixel offsets; `[0.5, 0.5]` for a
+/// single-sampled pixel centre).
 pub(super) fn reach_in_tiles(
     depth: &[f64],
     positions: &[[f64; 2]],
     (width, rows): (usize, usize),
     tiles: usize,
-) -> ([f64; 2], [usize; 2]) {
-    let mut reach = [0.0f64; 2];
-    let mut samples = [0usize; 2];
+) -> TileReach {
+    let mut out = TileReach {
+        reach: [0.0; 2],
+        whole: [0.0; 2],
+        samples: [0; 2],
+    };
     let half = SIZE as f64 / 2.0;
     for (image, [sx, sy]) in depth.chunks_exact(width * rows).zip(positions) {
         for tile in 0..2 * tiles {
             let kind = tile / tiles;
             let (gx, gy) = tile_plane(tile % tiles, tiles);
+            let norm = gx.hypot(gy);
             let (ox, oy) = tile_origin(tile);
             for py in 0..SIZE {
                 for px in 0..SIZE {
@@ -69,14 +83,15 @@ pub(super) fn reach_in_tiles(
                         continue;
                     }
                     let (x, y) = (px as f64 + sx - half, py as f64 + sy - half);
-                    let exact = 0.5 + gx * x + gy * y;
-                    reach[kind] = reach[kind].max((stored - exact).abs() / LINE_GRADIENT);
-                    samples[kind] += 1;
+                    let off = (stored - (0.5 + gx * x + gy * y)).abs();
+                    out.reach[kind] = out.reach[kind].max(off / LINE_GRADIENT);
+                    out.whole[kind] = out.whole[kind].max(off / norm);
+                    out.samples[kind] += 1;
                 }
             }
         }
     }
-    (reach, samples)
+    out
 }
 
 /// The vertex of tile pixel coordinates `(x, y)` on plane `(gₓ, g_y)`: clip coordinates with
@@ -212,7 +227,11 @@ pub(super) unsafe fn line_reach(gl: &Gl, o: &Objects) -> Result<LineFigures> {
         let (x, y) = tile_origin(tile);
         depth[(y + py) * width + x + px]
     };
-    let (reach, pixels) = reach_in_tiles(&depth, &[[0.5, 0.5]], (width, rows * SIZE), LINE_TILES);
+    let TileReach {
+        reach,
+        samples: pixels,
+        ..
+    } = reach_in_tiles(&depth, &[[0.5, 0.5]], (width, rows * SIZE), LINE_TILES);
     let (mut neighbour, mut neighbour_pixels) = (0.0f64, 0usize);
     for (k, side) in sides.iter().enumerate() {
         for py in 0..SIZE {

@@ -33,6 +33,9 @@ pub(super) struct MsaaFigures {
     /// The largest `|stored − plane at the sample| / max(|gₓ|, |g_y|)` per kind (`GL_LINES`
     /// width 1, polygon-mode lines width 1), pixels; NaN where not measured.
     pub(super) reach: [f64; 2],
+    /// The same over the plane's whole gradient `|∇z|`, pixels ([`TileReach::whole`]); NaN
+    /// where not measured.
+    pub(super) whole: [f64; 2],
     /// Samples compared per kind.
     pub(super) samples: [usize; 2],
     /// The sample counts drawn (0: none).
@@ -69,6 +72,7 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
     gl.check("glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES) raised a GL error")?;
     let mut figures = MsaaFigures {
         reach: [f64::NAN; 2],
+        whole: [f64::NAN; 2],
         samples: [0; 2],
         counts: [0; 2],
     };
@@ -85,16 +89,14 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
         let result = draw_and_compare(gl, o, count, &mut targets);
         targets.delete(gl, o);
         // A count the context cannot attach is not measured (the model keeps the worst case).
-        let Some((reach, samples)) = result? else {
+        let Some(measured) = result? else {
             continue;
         };
+        // NaN until measured; f64::max keeps the number.
         for kind in 0..2 {
-            figures.reach[kind] = if figures.reach[kind].is_nan() {
-                reach[kind]
-            } else {
-                figures.reach[kind].max(reach[kind])
-            };
-            figures.samples[kind] += samples[kind];
+            figures.reach[kind] = figures.reach[kind].max(measured.reach[kind]);
+            figures.whole[kind] = figures.whole[kind].max(measured.whole[kind]);
+            figures.samples[kind] += measured.samples[kind];
         }
         figures.counts[i] = count;
     }
@@ -102,13 +104,13 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
 }
 
 /// One sample count: draws the line tiles multisampled, copies every sample out and compares
-/// it with its plane. Returns the reach and the samples compared per kind.
+/// it with its plane. Returns what [`reach_in_tiles`] measured.
 unsafe fn draw_and_compare(
     gl: &Gl,
     o: &Objects,
     count: Int,
     t: &mut Targets,
-) -> Result<Option<([f64; 2], [usize; 2])>> {
+) -> Result<Option<TileReach>> {
     let side = (SIZE * TILES) as Sizei;
     let rows = DENSE_ROWS;
     (gl.GenTextures)(1, &mut t.texture);

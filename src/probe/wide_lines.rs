@@ -47,7 +47,11 @@ pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<WideFigures
     (gl.LineWidth)(1.0);
     drawn?;
     let depth = read_depth(gl, Format::Float, 0, side as usize, DENSE_ROWS)?;
-    let (reach, pixels) = reach_in_tiles(
+    let TileReach {
+        reach,
+        samples: pixels,
+        ..
+    } = reach_in_tiles(
         &depth,
         &[[0.5, 0.5]],
         (side as usize, DENSE_ROWS),
