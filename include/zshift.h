@@ -862,8 +862,8 @@ typedef struct {
    The line term g*line_reach, window depth; polygon-mode lines add the neighbouring
    triangle's slope term where its outline may take its own plane beyond the shared side
    (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
-   Under MSAA with face_angle set, the face's own part is g*min(line_reach, (w + 1)/2): the
-   angle bounds the face's whole gradient, and a sample lies within (w + 1)/2 of its line.
+   Under MSAA with face_angle set, each part is at most g*(w + 1)/2: the angle bounds the
+   face's whole gradient, and a sample lies within (w + 1)/2 of its line.
    */
   double line_term;
   /*

@@ -268,8 +268,7 @@ pub struct EdgeRecommendation {
     pub window_offset: f64,
     /// The line term `L = g·Δ` (unit window depth; polygon-mode lines `2·g·Δ`: the
     /// neighbouring triangle's outline adds its own slope term; under MSAA with a face-slope
-    /// angle, `g·min(Δ, (w + 1)/2)` for the face's own part: the angle bounds the whole
-    /// gradient).
+    /// angle, each part at most `g·(w + 1)/2`: the angle bounds the whole gradient).
     pub line_term: f64,
     /// `Δ`, pixels (times `max(|∂z/∂x|, |∂z/∂y|)`): how far from the pixel or sample a line
     /// fragment's depth is taken. `(w + 1)/2` in the worst case and for polygon-mode lines;
@@ -543,7 +542,8 @@ fn line_reach(edges: &Edges) -> f64 {
     }
 }
 
-/// The reach `L` takes against the face-slope limit `g`: `Δ` (pixels of `M`), except under MSAA
+/// The reach `L` takes against the face-slope limit `g` (the face's own `Δ`, or a polygon-mode
+/// neighbour's `Δ_n`): the reach (pixels of `M`), except under MSAA
 /// with the limit given as an angle ([`FaceSlope::Angle`]), whose `g` bounds a face's whole
 /// gradient `|∇z|`, not only its larger component `M`: a sample lies at most `(w + 1)/2` from
 /// the point whose depth it takes, in any direction (module docs, "MSAA"), so it is off its
@@ -648,7 +648,10 @@ fn unchecked_gap(
         g * reach_against_limit(edges, reach),
         "the line term overflows f64",
     )?;
-    let neighbour = representable(g * neighbour_reach(edges), "the line term overflows f64")?;
+    let neighbour = representable(
+        g * reach_against_limit(edges, neighbour_reach(edges)),
+        "the line term overflows f64",
+    )?;
     let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
@@ -934,7 +937,8 @@ mod tests {
     /// `(w + 1)/2` of its line's point in any direction: the line term is `g·(w + 1)/2` where
     /// `Δ` is larger (the worst case's `√2·(w + 1)/2`, a measured 1.12), the factor keeps `Δ`
     /// (it multiplies each face's `max(|gₓ|, |g_y|)`), and a limit given as a gradient (on that
-    /// larger component) keeps `g·Δ`; single-sampled lines keep `g·Δ` under either limit.
+    /// larger component) keeps `g·Δ`; a polygon-mode neighbour's part is capped alike;
+    /// single-sampled lines keep `g·Δ` under either limit.
     #[test]
     fn an_angle_limit_bounds_the_multisampled_line_term_by_the_whole_gradient() {
         let clip = ClipDepth::NegOneToOne;
@@ -970,9 +974,15 @@ mod tests {
                 g * delta
             ));
         }
-        e.samples = 1;
+        // Polygon-mode lines in the worst case: the neighbour's outline adds its own part, also
+        // within (w + 1)/2 of the sample against the whole gradient.
         e.line_width = 1.0;
+        e.kind = LineKind::PolygonMode;
         e.profile.measured = false;
+        let b = ask(&e, EdgeMethod::Matrix);
+        assert!(relative(b.line_term, b.face_gradient * 2.0), "{b:?}");
+        e.samples = 1;
+        e.kind = LineKind::Lines;
         let b = ask(&e, EdgeMethod::Matrix);
         assert!(
             relative(b.line_term, b.face_gradient * b.line_reach),

@@ -98,8 +98,8 @@ pub struct ZshiftEdgeOffset {
     /// The line term g*line_reach, window depth; polygon-mode lines add the neighbouring
     /// triangle's slope term where its outline may take its own plane beyond the shared side
     /// (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
-    /// Under MSAA with face_angle set, the face's own part is g*min(line_reach, (w + 1)/2): the
-    /// angle bounds the face's whole gradient, and a sample lies within (w + 1)/2 of its line.
+    /// Under MSAA with face_angle set, each part is at most g*(w + 1)/2: the angle bounds the
+    /// face's whole gradient, and a sample lies within (w + 1)/2 of its line.
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
     /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
