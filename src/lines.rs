@@ -655,6 +655,11 @@ fn unchecked_gap(
     let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
+    // Against a face-slope angle a face's window gradient at a pixel of depth d is at most
+    // g·d₁/d (`slopes`' bound taken at d), so every part of the line term falls as 1/d; against a
+    // gradient limit it is the same at every depth.
+    let falls = matches!(edges.face_slope, FaceSlope::Angle(_));
+    let at_depth = move |d: f64| if falls { d1 / d } else { 1.0 };
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
     let (w_lo, w_hi) = (w1.min(w2), w1.max(w2));
     let fits = |x: f64| representable(x, "an edge offset overflows f64");
@@ -710,12 +715,21 @@ fn unchecked_gap(
                 quanta.max(LARGEST_KNOWN_RESOLVABLE)
             };
             let r_hi = quanta_hi * r_of(BiasApi::OpenGl, w_hi)?;
-            let push = fits(reach * g * offset_slope(&edges.profile) + units * r_hi)?;
-            out.window_offset = push;
-            Box::new(move |_| Ok(push))
+            let slope_push = fits(reach * g * offset_slope(&edges.profile))?;
+            let units_push = fits(units * r_hi)?;
+            out.window_offset = fits(slope_push + units_push)?;
+            Box::new(move |d| Ok(slope_push * at_depth(d) + units_push))
         }
         EdgeMethod::Matrix if reversed => {
-            let eps = crate::recommend::reversed_epsilon_with(&scene, &mapping, &terms, line)?;
+            // A line term falling as 1/d is what ε·b/d pays alike at every depth: L·d₁/b.
+            let (constant_line, falling_line) = if falls { (0.0, line * d1) } else { (line, 0.0) };
+            let eps = crate::recommend::reversed_epsilon_with(
+                &scene,
+                &mapping,
+                &terms,
+                constant_line,
+                falling_line,
+            )?;
             let b = crate::model::gradient::scale(&scene.frustum);
             // The line term is a window error the same at every depth (faces of gradient up to
             // g anywhere), which the relative ε, falling as 1/d, reaches only at the mesh's far
@@ -749,7 +763,7 @@ fn unchecked_gap(
     for d in [d1, d2] {
         let q = q_at(d)?;
         let tie = if terms.strict { 0.0 } else { q };
-        let gw = offset_at(d)? + budget + line + tie;
+        let gw = offset_at(d)? + budget + line * at_depth(d) + tie;
         let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
             Ok(x) => x.min(d),
             Err(_) => d,
@@ -859,6 +873,56 @@ mod tests {
             (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
             "{r:?}"
         );
+    }
+
+    /// Against a face-slope angle the line term falls as `1/d` (a face's window gradient at a
+    /// pixel of depth `d` is at most `g·d₁/d`): (b)'s constant offset still pays `L` at `d₁`, and
+    /// its gap at `d₂` takes `L·d₁/d₂` (independent reference: Walker's `w(d)` solved for the
+    /// eye depth); the same `g` given as a gradient limit keeps `L` at every depth, so its gap is
+    /// larger, under (a) and under reversed Z's relative `ε` too.
+    #[test]
+    fn an_angle_limit_lets_the_line_term_fall_with_depth() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 1000.0, clip);
+        let mut e = edges(DepthFormat::Unorm24, [10.0, 20.0], clip);
+        e.face_slope = FaceSlope::Angle(60f64.to_radians());
+        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+        let (l, b) = (r.line_term, 2.0 * (r.terms.plane + r.terms.snap));
+        assert!((r.window_offset - (l + b)).abs() < 1e-15, "{r:?}");
+        let gw = r.window_offset + b + l * 10.0 / 20.0 + r.terms.quantum;
+        let (n, f) = (1.0f64, 1000.0f64);
+        let big_f = f / (f - n);
+        let w = |d: f64| big_f * (1.0 - n / d);
+        let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
+        assert!(
+            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
+            "{r:?}"
+        );
+        let by_gradient = |e: &Edges, g: f64| Edges {
+            face_slope: FaceSlope::WindowGradient(g),
+            ..*e
+        };
+        let flat = recommend(
+            &m,
+            clip,
+            &by_gradient(&e, r.face_gradient),
+            EdgeMethod::Matrix,
+        );
+        let flat = flat.unwrap();
+        // (The scene's slope differs, and with it the plane terms a little: not the offset's L.)
+        assert_eq!(flat.line_term, r.line_term);
+        assert!(flat.hidden_gap > r.hidden_gap * 1.01, "{flat:?} vs {r:?}");
+        for (clip, method) in [
+            (ClipDepth::NegOneToOne, EdgeMethod::PolygonOffset),
+            (ClipDepth::ReversedZeroToOne, EdgeMethod::Matrix),
+        ] {
+            let m = matrix(1.0, 1000.0, clip);
+            let mut e = edges(DepthFormat::Float32, [10.0, 40.0], clip);
+            e.face_slope = FaceSlope::Angle(60f64.to_radians());
+            let r = recommend(&m, clip, &e, method).unwrap();
+            let flat = recommend(&m, clip, &by_gradient(&e, r.face_gradient), method).unwrap();
+            assert!(flat.hidden_gap > r.hidden_gap * 1.01, "{flat:?} vs {r:?}");
+        }
     }
 
     /// Wide polygon-mode outlines take a measured profile's 3-pixel reach plus 1/16 (and half the

@@ -255,25 +255,29 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
 /// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
 /// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
 fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
-    reversed_epsilon_with(scene, mapping, terms, 0.0)
+    reversed_epsilon_with(scene, mapping, terms, 0.0, 0.0)
 }
 
-/// [`reversed_epsilon`] with `extra`, a constant window-depth error beside the budget (the line
-/// term of [`crate::lines`]), added to the budget at every depth.
+/// [`reversed_epsilon`] with a window-depth error beside the budget (the line term of
+/// [`crate::lines`]): `extra` the same at every depth, added to the budget, and `falling`
+/// (given as its value times depth) one that falls as `1/d`, which `ε·b/d` pays alike at every
+/// depth: `falling/b`.
 pub(crate) fn reversed_epsilon_with(
     scene: &Scene,
     mapping: &DepthMapping,
     terms: &ErrorTerms,
     extra: f64,
+    falling: f64,
 ) -> Result<f64> {
     let b = scale(&scene.frustum);
     let [d1, d2] = scene.depth_range;
     let budget = terms.budget() + extra;
+    let falling = falling / b;
     let strict = if terms.strict { 1.0 } else { 0.0 };
     let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
         let q = unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?;
-        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
+        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget) + falling)
     };
     let mut eps = need(d1)?.max(need(d2)?);
     // The binades are those of the stored depth, near + (far − near)·w under glDepthRange.
@@ -290,7 +294,7 @@ pub(crate) fn reversed_epsilon_with(
             let unit = ((p - pipeline.depth_range[0]) / pipeline.span()).clamp(0.0, 1.0);
             let d = mapping.distance_at_window(unit)?;
             let q = pipeline.per_unit(p * 2f64.powi(-23));
-            eps = eps.max(strict * q * (d / b) + (budget * (d / b)).min(relative_budget));
+            eps = eps.max(strict * q * (d / b) + (budget * (d / b)).min(relative_budget) + falling);
             p *= 2.0;
         }
     }
