@@ -127,7 +127,12 @@
 //! `G_w = offset + B + L + q_t`  (`q_t = q` under `…EQUAL`, 0 strict)
 //!
 //! never shows. [`EdgeRecommendation::hidden_gap`] is `G_w` as an eye depth (`−z`) at the worse
-//! of the mesh's nearest and farthest depths. An engine that needs hidden edges hidden from a
+//! of the mesh's nearest and farthest depths. Against a face-slope angle ([`FaceSlope::Angle`])
+//! a face's window gradient at a pixel of depth `d` is at most `g·d₁/d` (the bound [`FaceSlope`]
+//! takes at `d₁`, taken at `d`), so `L` and (a)'s slope push `Δ·g·ρ` fall as `1/d`: each end
+//! takes its own, and reversed Z's relative `ε`, which falls alike, pays `L·d₁/b` at every depth
+//! rather than `L` at the far end. (b)'s constant offset still pays `L` at `d₁`. A limit given
+//! as a window gradient holds at every depth and keeps `L` throughout. An engine that needs hidden edges hidden from a
 //! given separation on (a hidden-line drawing of a thin part) passes it as
 //! [`Edges::hidden_separation`]; where the gap exceeds it no offset does both, and
 //! [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`]); [`working_planes`] then gives the
