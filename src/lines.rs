@@ -869,15 +869,16 @@ mod tests {
             r.matrix[10].abs() < m[10].abs(),
             "element 10 moved toward 0"
         );
-        let gw = 2.0 * r.window_offset + r.terms.quantum;
-        let (n, f) = (1.0f64, 1000.0f64);
+        let gap = walker_gap(1.0, 1000.0, 20.0, 2.0 * r.window_offset + r.terms.quantum);
+        assert!((r.hidden_gap - gap).abs() < 1e-6 * r.hidden_gap, "{r:?}");
+    }
+
+    /// The eye depth in front of `d` whose window depth is `gw` less, from Walker's
+    /// `w(d) = F(1 − n/d)`, `F = f/(f − n)` (`[−1, 1]` and `[0, 1]` alike).
+    fn walker_gap(n: f64, f: f64, d: f64, gw: f64) -> f64 {
         let big_f = f / (f - n);
         let w = |d: f64| big_f * (1.0 - n / d);
-        let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
-        assert!(
-            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
-            "{r:?}"
-        );
+        d - n / (1.0 - (w(d) - gw) / big_f)
     }
 
     /// Against a face-slope angle the line term falls as `1/d` (a face's window gradient at a
@@ -895,14 +896,8 @@ mod tests {
         let (l, b) = (r.line_term, 2.0 * (r.terms.plane + r.terms.snap));
         assert!((r.window_offset - (l + b)).abs() < 1e-15, "{r:?}");
         let gw = r.window_offset + b + l * 10.0 / 20.0 + r.terms.quantum;
-        let (n, f) = (1.0f64, 1000.0f64);
-        let big_f = f / (f - n);
-        let w = |d: f64| big_f * (1.0 - n / d);
-        let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
-        assert!(
-            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
-            "{r:?}"
-        );
+        let gap = walker_gap(1.0, 1000.0, 20.0, gw);
+        assert!((r.hidden_gap - gap).abs() < 1e-6 * r.hidden_gap, "{r:?}");
         let by_gradient = |e: &Edges, g: f64| Edges {
             face_slope: FaceSlope::WindowGradient(g),
             ..*e
