@@ -104,13 +104,16 @@
 //! passes), `2u·(1 + w_max)` the f32 roundings of the bias itself, `r` the profile's
 //! [`RasterizerProfile::resolvable`] times the format's spacing at the mesh's smallest window
 //! depth (D32F's `r` follows the primitive's largest depth: the smallest is the safe count).
-//! Under reversed Z two offsets exist: the constant NDC offset through element 10 (as above,
-//! `Δw ≥ L + B + q_s` with the quantum at the mesh's largest window depth, plus `2u·Δw` for its
-//! own rounding), and the relative `ε` of element 14 (`ε·b/d` at depth `d`, carried to every
-//! depth of the mesh as the decal's is). The line term is the same window error at every depth
-//! (faces of gradient up to `g` anywhere), which a relative offset, falling as `1/d`, reaches
-//! only at the far end (`L·d₂/d₁` at `d₁`): the constant one is used unless the relative one is
-//! smaller at `d₁`.
+//! Two offsets exist under every convention: the constant NDC offset through element 10 (as
+//! above; under reversed Z with the quantum at the mesh's largest window depth, plus `2u·Δw`
+//! for its own rounding), and the relative `ε` of element 14 (`z_ndc = −m10 + m14/d`, so
+//! scaling `m14` by `1 + ε` moves window depth by `ε·b/d` toward the camera at depth `d`,
+//! carried to every depth of the mesh as the reversed-Z decal's is). Against a gradient limit
+//! the line term is the same window error at every depth, which the relative offset reaches
+//! only at the far end (`L·d₂/d₁` at `d₁`); against a face-slope angle it falls as `1/d`, as
+//! the relative offset does ("The hidden-line gap", below). Both keep every edge; the one whose
+//! hidden-line gap is smaller is used (the constant one within 1 %, or where the relative one
+//! would move the nearest edge out of range).
 //!
 //! # The hidden-line gap
 //! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
@@ -130,7 +133,7 @@
 //! of the mesh's nearest and farthest depths. Against a face-slope angle ([`FaceSlope::Angle`])
 //! a face's window gradient at a pixel of depth `d` is at most `g·d₁/d` (the bound [`FaceSlope`]
 //! takes at `d₁`, taken at `d`), so `L` and (a)'s slope push `Δ·g·ρ` fall as `1/d`: each end
-//! takes its own, and reversed Z's relative `ε`, which falls alike, pays `L·d₁/b` at every depth
+//! takes its own, and the relative `ε` of (b), which falls alike, pays `L·d₁/b` at every depth
 //! rather than `L` at the far end. (b)'s constant offset still pays `L` at `d₁`. A limit given
 //! as a window gradient holds at every depth and keeps `L` throughout. An engine that needs hidden edges hidden from a
 //! given separation on (a hidden-line drawing of a thin part) passes it as
@@ -260,13 +263,14 @@ pub struct EdgeRecommendation {
     /// (a) Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`; zero for (b).
     pub vulkan_bias: [f64; 2],
     /// (b) the edges' projection matrix: the engine's own with the offset applied to element 10
-    /// (or, under reversed Z where that offsets less, element 14 scaled), rounded outward, every
-    /// other element bit-identical; (a) the engine's matrix unchanged.
+    /// (or, where that leaves the smaller hidden-line gap, element 14 scaled), rounded outward,
+    /// every other element bit-identical; (a) the engine's matrix unchanged.
     pub matrix: [f32; 16],
     /// (b) the constant NDC offset applied through element 10 (negative: toward the camera);
-    /// 0 for (a) and where reversed Z uses `relative_epsilon`.
+    /// 0 for (a) and where (b) uses `relative_epsilon`.
     pub ndc_offset: f64,
-    /// (b) under reversed Z where element 14 is scaled instead: its relative `ε`; 0 otherwise.
+    /// (b) where element 14 is scaled by `1 + ε` instead (window depth moved by `ε·b/d` at depth
+    /// `d`, `b = f·n/(f − n)`; any convention): its relative `ε`; 0 otherwise.
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies over the mesh
     /// (unit window depth; (a) at the steepest face that matters).
@@ -689,7 +693,23 @@ fn unchecked_gap(
     };
     let strict_q = |q: f64| if terms.strict { q } else { 0.0 };
     let remedies = Remedies::of(&edges.pipeline, &edges.profile);
-    let offset_at: Box<dyn Fn(f64) -> Result<f64>> = match method {
+    // The hidden-line gap an offset leaves (window offset `offset_at(d)` at depth d), as an eye
+    // depth at the worse of the mesh's ends.
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let gap_for = |offset_at: &dyn Fn(f64) -> f64| -> Result<f64> {
+        let mut gap = 0.0f64;
+        for d in [d1, d2] {
+            let tie = if terms.strict { 0.0 } else { q_at(d)? };
+            let gw = offset_at(d) + budget + line * at_depth(d) + tie;
+            let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
+                Ok(x) => x.min(d),
+                Err(_) => d,
+            };
+            gap = gap.max(g_eye);
+        }
+        Ok(gap)
+    };
+    let offset_at: Box<dyn Fn(f64) -> f64> = match method {
         EdgeMethod::PolygonOffset => {
             // units·r ≥ B + q_s + the bias's own roundings, r counted at the smallest window
             // depth (D32F's r follows the primitive's largest depth, so it is never smaller).
@@ -723,58 +743,54 @@ fn unchecked_gap(
             let slope_push = fits(reach * g * offset_slope(&edges.profile))?;
             let units_push = fits(units * r_hi)?;
             out.window_offset = fits(slope_push + units_push)?;
-            Box::new(move |d| Ok(slope_push * at_depth(d) + units_push))
+            Box::new(move |d| slope_push * at_depth(d) + units_push)
         }
-        EdgeMethod::Matrix if reversed => {
-            // A line term falling as 1/d is what ε·b/d pays alike at every depth: L·d₁/b.
+        EdgeMethod::Matrix => {
+            // Two offsets keep every edge. The constant NDC offset through element 10 pays the
+            // line term and the budget once, at every depth (under reversed Z with the quantum
+            // at the mesh's largest window depth and 2u of its own rounding). The relative ε of
+            // element 14 moves depth by ε·b/d at depth d, in every convention: it pays a term
+            // falling as 1/d alike at every depth (the line term against a face-slope angle:
+            // L·d₁/b) and a term the same at every depth at the far end (L·d₂/d₁ at d₁ against a
+            // gradient limit). Whichever leaves the smaller hidden-line gap is used; the
+            // constant one where equal or where the relative one is out of range.
+            let b = crate::model::gradient::scale(&scene.frustum);
+            let constant = if reversed {
+                let q = if terms.strict {
+                    q_at(d1)?.max(q_at(d2)?).max(terms.quantum)
+                } else {
+                    0.0
+                };
+                fits((line + budget + q) * (1.0 + 2.0 * U))?
+            } else {
+                fits(line + budget + strict_q(terms.quantum))?
+            };
             let (constant_line, falling_line) = if falls { (0.0, line * d1) } else { (line, 0.0) };
-            let eps = crate::recommend::reversed_epsilon_with(
+            let eps = crate::recommend::relative_epsilon_with(
                 &scene,
                 &mapping,
                 &terms,
                 constant_line,
                 falling_line,
-            )?;
-            let b = crate::model::gradient::scale(&scene.frustum);
-            // The line term is a window error the same at every depth (faces of gradient up to
-            // g anywhere), which the relative ε, falling as 1/d, reaches only at the mesh's far
-            // end: L·d₂/d₁ at d₁. A constant NDC offset through element 10 pays it once; every
-            // other term is at most its value at d₁ (the budget is a window bound at every
-            // depth, the quantum largest at the largest window depth), plus the offset's own f32
-            // rounding (2u of it). Whichever is smaller at d₁ is used.
-            let q = if terms.strict {
-                q_at(d1)?.max(q_at(d2)?).max(terms.quantum)
-            } else {
-                0.0
+            );
+            // (Where the two gaps are within 1 % — the same far end — the constant one, which
+            // pulls the near edges less.)
+            let smaller_gap = match eps {
+                Ok(eps) => gap_for(&|d| eps * (b / d))? < 0.99 * gap_for(&|_| constant)?,
+                Err(_) => false,
             };
-            let constant = fits((line + budget + q) * (1.0 + 2.0 * U))?;
-            if constant < eps * (b / d1) {
-                constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms, remedies)?;
-                Box::new(move |_| Ok(constant))
+            let eps = eps.unwrap_or(0.0);
+            if smaller_gap && relative(&mut out, m, eps, b, d1, &mapping, &terms, remedies).is_ok()
+            {
+                Box::new(move |d| eps * (b / d))
             } else {
-                relative(&mut out, m, eps, b, d1, &mapping, &terms, remedies)?;
-                Box::new(move |d| Ok(eps * (b / d)))
+                out.relative_epsilon = 0.0;
+                constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms, remedies)?;
+                Box::new(move |_| constant)
             }
         }
-        EdgeMethod::Matrix => {
-            let dw = fits(line + budget + strict_q(terms.quantum))?;
-            constant_offset(&mut out, m, clip, dw, d1, &mapping, &terms, remedies)?;
-            Box::new(move |_| Ok(dw))
-        }
     };
-    // The gap, as an eye depth, at the worse of the mesh's ends.
-    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
-    let mut gap = 0.0f64;
-    for d in [d1, d2] {
-        let q = q_at(d)?;
-        let tie = if terms.strict { 0.0 } else { q };
-        let gw = offset_at(d)? + budget + line * at_depth(d) + tie;
-        let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
-            Ok(x) => x.min(d),
-            Err(_) => d,
-        };
-        gap = gap.max(g_eye);
-    }
+    let gap = gap_for(&*offset_at)?;
     out.hidden_gap = fits(gap)?;
     Ok(out)
 }
@@ -801,8 +817,8 @@ fn constant_offset(
     Ok(())
 }
 
-/// Reversed Z (b) with the relative `ε` of element 14: the matrix, `ε` and the window offset at
-/// the mesh's nearest depth `d₁` into `out`, checked to stay in range.
+/// (b) with the relative `ε` of element 14 (any convention): the matrix, `ε` and the window
+/// offset at the mesh's nearest depth `d₁` into `out`, checked to stay in range.
 #[allow(clippy::too_many_arguments)]
 fn relative(
     out: &mut EdgeRecommendation,
@@ -882,10 +898,12 @@ mod tests {
     }
 
     /// Against a face-slope angle the line term falls as `1/d` (a face's window gradient at a
-    /// pixel of depth `d` is at most `g·d₁/d`): (b)'s constant offset still pays `L` at `d₁`, and
-    /// its gap at `d₂` takes `L·d₁/d₂` (independent reference: Walker's `w(d)` solved for the
-    /// eye depth); the same `g` given as a gradient limit keeps `L` at every depth, so its gap is
-    /// larger, under (a) and under reversed Z's relative `ε` too.
+    /// pixel of depth `d` is at most `g·d₁/d`). On a mesh over [10, 20] under `[−1, 1]` D24 (b)
+    /// has two offsets that keep every edge: the constant `L + B` at every depth, or element 14's
+    /// relative `ε` with `ε·b/d ≥ L·10/d + B` at both ends (`ε·b = 10·L + 20·B`); their gaps at
+    /// `d₂` take `L·d₁/d₂` (independent reference: Walker's `w(d)` solved for the eye depth),
+    /// and the smaller is used. The same `g` given as a gradient limit keeps `L` at every depth,
+    /// so its gap is larger, under (a) and under reversed Z too.
     #[test]
     fn an_angle_limit_lets_the_line_term_fall_with_depth() {
         let clip = ClipDepth::NegOneToOne;
@@ -893,11 +911,23 @@ mod tests {
         let mut e = edges(DepthFormat::Unorm24, [10.0, 20.0], clip);
         e.face_slope = FaceSlope::Angle(60f64.to_radians());
         let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        let (l, b) = (r.line_term, 2.0 * (r.terms.plane + r.terms.snap));
-        assert!((r.window_offset - (l + b)).abs() < 1e-15, "{r:?}");
-        let gw = r.window_offset + b + l * 10.0 / 20.0 + r.terms.quantum;
-        let gap = walker_gap(1.0, 1000.0, 20.0, gw);
-        assert!((r.hidden_gap - gap).abs() < 1e-6 * r.hidden_gap, "{r:?}");
+        let (l, b, q) = (
+            r.line_term,
+            2.0 * (r.terms.plane + r.terms.snap),
+            r.terms.quantum,
+        );
+        let scale = 1000.0 / 999.0;
+        let eps = (10.0 * l + 20.0 * b) / scale;
+        let constant_gap = walker_gap(1.0, 1000.0, 20.0, (l + b) + b + l / 2.0 + q);
+        let relative_gap = walker_gap(1.0, 1000.0, 20.0, eps * scale / 20.0 + b + l / 2.0 + q);
+        assert!(relative_gap < 0.99 * constant_gap);
+        assert!(r.relative_epsilon > 0.0 && r.ndc_offset == 0.0, "{r:?}");
+        assert!((r.relative_epsilon - eps).abs() < 1e-6 * eps, "{r:?}");
+        assert!(
+            (r.hidden_gap - relative_gap).abs() < 1e-6 * r.hidden_gap,
+            "{r:?}"
+        );
+        assert!((r.window_offset - eps * scale / 10.0).abs() < 1e-6 * r.window_offset);
         let by_gradient = |e: &Edges, g: f64| Edges {
             face_slope: FaceSlope::WindowGradient(g),
             ..*e
@@ -911,6 +941,10 @@ mod tests {
         let flat = flat.unwrap();
         // (The scene's slope differs, and with it the plane terms a little: not the offset's L.)
         assert_eq!(flat.line_term, r.line_term);
+        assert!(
+            flat.relative_epsilon == 0.0 && flat.ndc_offset < 0.0,
+            "{flat:?}"
+        );
         assert!(flat.hidden_gap > r.hidden_gap * 1.01, "{flat:?} vs {r:?}");
         for (clip, method) in [
             (ClipDepth::NegOneToOne, EdgeMethod::PolygonOffset),
@@ -1218,10 +1252,10 @@ mod tests {
     }
 
     /// Under reversed Z (b) takes the relative ε of element 14 or a constant NDC offset through
-    /// element 10, whichever is smaller at the mesh's nearest depth. The line term `L` is the
-    /// same window error at every depth: where it dominates, the constant one (about `L`) beats
-    /// the relative one (`L·d₂/d₁` at `d₁`); on a thin depth range with a budget that falls
-    /// with depth, the relative one can win.
+    /// element 10, whichever leaves the smaller gap. Against a gradient limit the line term `L`
+    /// is the same window error at every depth: the relative one pays it at the far end
+    /// (`L·d₂/d₁` at `d₁`), its gap there no smaller than the constant one's (about `L`), and
+    /// the constant one is used.
     #[test]
     fn reversed_matrix_offset_takes_the_smaller_form() {
         let clip = ClipDepth::ReversedZeroToOne;

@@ -255,14 +255,16 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
 /// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
 /// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
 fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
-    reversed_epsilon_with(scene, mapping, terms, 0.0, 0.0)
+    relative_epsilon_with(scene, mapping, terms, 0.0, 0.0)
 }
 
 /// [`reversed_epsilon`] with a window-depth error beside the budget (the line term of
 /// [`crate::lines`]): `extra` the same at every depth, added to the budget, and `falling`
 /// (given as its value times depth) one that falls as `1/d`, which `ε·b/d` pays alike at every
-/// depth: `falling/b`.
-pub(crate) fn reversed_epsilon_with(
+/// depth: `falling/b`. Element 14's relative `ε` moves window depth by `ε·b/d` toward the camera
+/// under every convention (`z_ndc = −m10 + m14/d`), so [`crate::lines`] asks it under `[−1, 1]`
+/// and `[0, 1]` too: the binades walked are those between the mesh's ends, in either order.
+pub(crate) fn relative_epsilon_with(
     scene: &Scene,
     mapping: &DepthMapping,
     terms: &ErrorTerms,
@@ -282,10 +284,11 @@ pub(crate) fn reversed_epsilon_with(
     let mut eps = need(d1)?.max(need(d2)?);
     // The binades are those of the stored depth, near + (far − near)·w under glDepthRange.
     let pipeline = scene.pipeline;
-    let (w_lo, w_hi) = (
-        pipeline.actual(mapping.window_depth(d2)?),
+    let (w_a, w_b) = (
         pipeline.actual(mapping.window_depth(d1)?),
+        pipeline.actual(mapping.window_depth(d2)?),
     );
+    let (w_lo, w_hi) = (w_a.min(w_b), w_a.max(w_b));
     if !scene.format.is_unorm() && w_lo > 0.0 {
         // exp2, not powi: powi(k) for k < −1022 is 1/2^−k, which overflows to ∞ and gives 0,
         // and a walk from 0 never ends (a subnormal window depth reaches here).
