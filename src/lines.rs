@@ -104,16 +104,13 @@
 //! passes), `2u·(1 + w_max)` the f32 roundings of the bias itself, `r` the profile's
 //! [`RasterizerProfile::resolvable`] times the format's spacing at the mesh's smallest window
 //! depth (D32F's `r` follows the primitive's largest depth: the smallest is the safe count).
-//! Two offsets exist under every convention: the constant NDC offset through element 10 (as
-//! above; under reversed Z with the quantum at the mesh's largest window depth, plus `2u·Δw`
-//! for its own rounding), and the relative `ε` of element 14 (`z_ndc = −m10 + m14/d`, so
-//! scaling `m14` by `1 + ε` moves window depth by `ε·b/d` toward the camera at depth `d`,
-//! carried to every depth of the mesh as the reversed-Z decal's is). Against a gradient limit
-//! the line term is the same window error at every depth, which the relative offset reaches
-//! only at the far end (`L·d₂/d₁` at `d₁`); against a face-slope angle it falls as `1/d`, as
-//! the relative offset does ("The hidden-line gap", below). Both keep every edge; the one whose
-//! hidden-line gap is smaller is used (the constant one within 1 %, or where the relative one
-//! would move the nearest edge out of range).
+//! Under reversed Z two offsets exist: the constant NDC offset through element 10 (as above,
+//! `Δw ≥ L + B + q_s` with the quantum at the mesh's largest window depth, plus `2u·Δw` for its
+//! own rounding), and the relative `ε` of element 14 (`ε·b/d` at depth `d`, carried to every
+//! depth of the mesh as the decal's is). The line term is the same window error at every depth
+//! (faces of gradient up to `g` anywhere), which a relative offset, falling as `1/d`, reaches
+//! only at the far end (`L·d₂/d₁` at `d₁`): the constant one is used unless the relative one is
+//! smaller at `d₁`.
 //!
 //! # The hidden-line gap
 //! A hidden edge must stay behind the front face it lies behind. Its fragment competes with the
@@ -130,12 +127,7 @@
 //! `G_w = offset + B + L + q_t`  (`q_t = q` under `…EQUAL`, 0 strict)
 //!
 //! never shows. [`EdgeRecommendation::hidden_gap`] is `G_w` as an eye depth (`−z`) at the worse
-//! of the mesh's nearest and farthest depths. Against a face-slope angle ([`FaceSlope::Angle`])
-//! a face's window gradient at a pixel of depth `d` is at most `g·d₁/d` (the bound [`FaceSlope`]
-//! takes at `d₁`, taken at `d`), so `L` and (a)'s slope push `Δ·g·ρ` fall as `1/d`: each end
-//! takes its own, and the relative `ε` of (b), which falls alike, pays `L·d₁/b` at every depth
-//! rather than `L` at the far end. (b)'s constant offset still pays `L` at `d₁`. A limit given
-//! as a window gradient holds at every depth and keeps `L` throughout. An engine that needs hidden edges hidden from a
+//! of the mesh's nearest and farthest depths. An engine that needs hidden edges hidden from a
 //! given separation on (a hidden-line drawing of a thin part) passes it as
 //! [`Edges::hidden_separation`]; where the gap exceeds it no offset does both, and
 //! [`recommend`] refuses ([`crate::ErrorKind::Unresolvable`]); [`working_planes`] then gives the
@@ -263,14 +255,13 @@ pub struct EdgeRecommendation {
     /// (a) Vulkan `depthBiasConstantFactor` and `depthBiasSlopeFactor`; zero for (b).
     pub vulkan_bias: [f64; 2],
     /// (b) the edges' projection matrix: the engine's own with the offset applied to element 10
-    /// (or, where that leaves the smaller hidden-line gap, element 14 scaled), rounded outward,
-    /// every other element bit-identical; (a) the engine's matrix unchanged.
+    /// (or, under reversed Z where that offsets less, element 14 scaled), rounded outward, every
+    /// other element bit-identical; (a) the engine's matrix unchanged.
     pub matrix: [f32; 16],
     /// (b) the constant NDC offset applied through element 10 (negative: toward the camera);
-    /// 0 for (a) and where (b) uses `relative_epsilon`.
+    /// 0 for (a) and where reversed Z uses `relative_epsilon`.
     pub ndc_offset: f64,
-    /// (b) where element 14 is scaled by `1 + ε` instead (window depth moved by `ε·b/d` at depth
-    /// `d`, `b = f·n/(f − n)`; any convention): its relative `ε`; 0 otherwise.
+    /// (b) under reversed Z where element 14 is scaled instead: its relative `ε`; 0 otherwise.
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies over the mesh
     /// (unit window depth; (a) at the steepest face that matters).
@@ -664,11 +655,6 @@ fn unchecked_gap(
     let line = representable(own + neighbour, "the line term overflows f64")?;
     let budget = terms.budget();
     let [d1, d2] = edges.depth_range;
-    // Against a face-slope angle a face's window gradient at a pixel of depth d is at most
-    // g·d₁/d (`slopes`' bound taken at d), so every part of the line term falls as 1/d; against a
-    // gradient limit it is the same at every depth.
-    let falls = matches!(edges.face_slope, FaceSlope::Angle(_));
-    let at_depth = move |d: f64| if falls { d1 / d } else { 1.0 };
     let (w1, w2) = (mapping.window_depth(d1)?, mapping.window_depth(d2)?);
     let (w_lo, w_hi) = (w1.min(w2), w1.max(w2));
     let fits = |x: f64| representable(x, "an edge offset overflows f64");
@@ -693,23 +679,7 @@ fn unchecked_gap(
     };
     let strict_q = |q: f64| if terms.strict { q } else { 0.0 };
     let remedies = Remedies::of(&edges.pipeline, &edges.profile);
-    // The hidden-line gap an offset leaves (window offset `offset_at(d)` at depth d), as an eye
-    // depth at the worse of the mesh's ends.
-    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
-    let gap_for = |offset_at: &dyn Fn(f64) -> f64| -> Result<f64> {
-        let mut gap = 0.0f64;
-        for d in [d1, d2] {
-            let tie = if terms.strict { 0.0 } else { q_at(d)? };
-            let gw = offset_at(d) + budget + line * at_depth(d) + tie;
-            let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
-                Ok(x) => x.min(d),
-                Err(_) => d,
-            };
-            gap = gap.max(g_eye);
-        }
-        Ok(gap)
-    };
-    let offset_at: Box<dyn Fn(f64) -> f64> = match method {
+    let offset_at: Box<dyn Fn(f64) -> Result<f64>> = match method {
         EdgeMethod::PolygonOffset => {
             // units·r ≥ B + q_s + the bias's own roundings, r counted at the smallest window
             // depth (D32F's r follows the primitive's largest depth, so it is never smaller).
@@ -740,57 +710,52 @@ fn unchecked_gap(
                 quanta.max(LARGEST_KNOWN_RESOLVABLE)
             };
             let r_hi = quanta_hi * r_of(BiasApi::OpenGl, w_hi)?;
-            let slope_push = fits(reach * g * offset_slope(&edges.profile))?;
-            let units_push = fits(units * r_hi)?;
-            out.window_offset = fits(slope_push + units_push)?;
-            Box::new(move |d| slope_push * at_depth(d) + units_push)
+            let push = fits(reach * g * offset_slope(&edges.profile) + units * r_hi)?;
+            out.window_offset = push;
+            Box::new(move |_| Ok(push))
         }
-        EdgeMethod::Matrix => {
-            // Two offsets keep every edge. The constant NDC offset through element 10 pays the
-            // line term and the budget once, at every depth (under reversed Z with the quantum
-            // at the mesh's largest window depth and 2u of its own rounding). The relative ε of
-            // element 14 moves depth by ε·b/d at depth d, in every convention: it pays a term
-            // falling as 1/d alike at every depth (the line term against a face-slope angle:
-            // L·d₁/b) and a term the same at every depth at the far end (L·d₂/d₁ at d₁ against a
-            // gradient limit). Whichever leaves the smaller hidden-line gap is used; the
-            // constant one where equal or where the relative one is out of range.
+        EdgeMethod::Matrix if reversed => {
+            let eps = crate::recommend::reversed_epsilon_with(&scene, &mapping, &terms, line)?;
             let b = crate::model::gradient::scale(&scene.frustum);
-            let constant = if reversed {
-                let q = if terms.strict {
-                    q_at(d1)?.max(q_at(d2)?).max(terms.quantum)
-                } else {
-                    0.0
-                };
-                fits((line + budget + q) * (1.0 + 2.0 * U))?
+            // The line term is a window error the same at every depth (faces of gradient up to
+            // g anywhere), which the relative ε, falling as 1/d, reaches only at the mesh's far
+            // end: L·d₂/d₁ at d₁. A constant NDC offset through element 10 pays it once; every
+            // other term is at most its value at d₁ (the budget is a window bound at every
+            // depth, the quantum largest at the largest window depth), plus the offset's own f32
+            // rounding (2u of it). Whichever is smaller at d₁ is used.
+            let q = if terms.strict {
+                q_at(d1)?.max(q_at(d2)?).max(terms.quantum)
             } else {
-                fits(line + budget + strict_q(terms.quantum))?
+                0.0
             };
-            let (constant_line, falling_line) = if falls { (0.0, line * d1) } else { (line, 0.0) };
-            let eps = crate::recommend::relative_epsilon_with(
-                &scene,
-                &mapping,
-                &terms,
-                constant_line,
-                falling_line,
-            );
-            // (Where the two gaps are within 1 % — the same far end — the constant one, which
-            // pulls the near edges less.)
-            let smaller_gap = match eps {
-                Ok(eps) => gap_for(&|d| eps * (b / d))? < 0.99 * gap_for(&|_| constant)?,
-                Err(_) => false,
-            };
-            let eps = eps.unwrap_or(0.0);
-            if smaller_gap && relative(&mut out, m, eps, b, d1, &mapping, &terms, remedies).is_ok()
-            {
-                Box::new(move |d| eps * (b / d))
-            } else {
-                out.relative_epsilon = 0.0;
+            let constant = fits((line + budget + q) * (1.0 + 2.0 * U))?;
+            if constant < eps * (b / d1) {
                 constant_offset(&mut out, m, clip, constant, d1, &mapping, &terms, remedies)?;
-                Box::new(move |_| constant)
+                Box::new(move |_| Ok(constant))
+            } else {
+                relative(&mut out, m, eps, b, d1, &mapping, &terms, remedies)?;
+                Box::new(move |d| Ok(eps * (b / d)))
             }
         }
+        EdgeMethod::Matrix => {
+            let dw = fits(line + budget + strict_q(terms.quantum))?;
+            constant_offset(&mut out, m, clip, dw, d1, &mapping, &terms, remedies)?;
+            Box::new(move |_| Ok(dw))
+        }
     };
-    let gap = gap_for(&*offset_at)?;
+    // The gap, as an eye depth, at the worse of the mesh's ends.
+    let toward = |dw: f64| if mapping.is_reversed() { dw } else { -dw };
+    let mut gap = 0.0f64;
+    for d in [d1, d2] {
+        let q = q_at(d)?;
+        let tie = if terms.strict { 0.0 } else { q };
+        let gw = offset_at(d)? + budget + line + tie;
+        let g_eye = match mapping.shift_of_window_change(toward(gw), d) {
+            Ok(x) => x.min(d),
+            Err(_) => d,
+        };
+        gap = gap.max(g_eye);
+    }
     out.hidden_gap = fits(gap)?;
     Ok(out)
 }
@@ -817,8 +782,8 @@ fn constant_offset(
     Ok(())
 }
 
-/// (b) with the relative `ε` of element 14 (any convention): the matrix, `ε` and the window
-/// offset at the mesh's nearest depth `d₁` into `out`, checked to stay in range.
+/// Reversed Z (b) with the relative `ε` of element 14: the matrix, `ε` and the window offset at
+/// the mesh's nearest depth `d₁` into `out`, checked to stay in range.
 #[allow(clippy::too_many_arguments)]
 fn relative(
     out: &mut EdgeRecommendation,
@@ -885,78 +850,15 @@ mod tests {
             r.matrix[10].abs() < m[10].abs(),
             "element 10 moved toward 0"
         );
-        let gap = walker_gap(1.0, 1000.0, 20.0, 2.0 * r.window_offset + r.terms.quantum);
-        assert!((r.hidden_gap - gap).abs() < 1e-6 * r.hidden_gap, "{r:?}");
-    }
-
-    /// The eye depth in front of `d` whose window depth is `gw` less, from Walker's
-    /// `w(d) = F(1 − n/d)`, `F = f/(f − n)` (`[−1, 1]` and `[0, 1]` alike).
-    fn walker_gap(n: f64, f: f64, d: f64, gw: f64) -> f64 {
+        let gw = 2.0 * r.window_offset + r.terms.quantum;
+        let (n, f) = (1.0f64, 1000.0f64);
         let big_f = f / (f - n);
         let w = |d: f64| big_f * (1.0 - n / d);
-        d - n / (1.0 - (w(d) - gw) / big_f)
-    }
-
-    /// Against a face-slope angle the line term falls as `1/d` (a face's window gradient at a
-    /// pixel of depth `d` is at most `g·d₁/d`). On a mesh over [10, 20] under `[−1, 1]` D24 (b)
-    /// has two offsets that keep every edge: the constant `L + B` at every depth, or element 14's
-    /// relative `ε` with `ε·b/d ≥ L·10/d + B` at both ends (`ε·b = 10·L + 20·B`); their gaps at
-    /// `d₂` take `L·d₁/d₂` (independent reference: Walker's `w(d)` solved for the eye depth),
-    /// and the smaller is used. The same `g` given as a gradient limit keeps `L` at every depth,
-    /// so its gap is larger, under (a) and under reversed Z too.
-    #[test]
-    fn an_angle_limit_lets_the_line_term_fall_with_depth() {
-        let clip = ClipDepth::NegOneToOne;
-        let m = matrix(1.0, 1000.0, clip);
-        let mut e = edges(DepthFormat::Unorm24, [10.0, 20.0], clip);
-        e.face_slope = FaceSlope::Angle(60f64.to_radians());
-        let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
-        let (l, b, q) = (
-            r.line_term,
-            2.0 * (r.terms.plane + r.terms.snap),
-            r.terms.quantum,
-        );
-        let scale = 1000.0 / 999.0;
-        let eps = (10.0 * l + 20.0 * b) / scale;
-        let constant_gap = walker_gap(1.0, 1000.0, 20.0, (l + b) + b + l / 2.0 + q);
-        let relative_gap = walker_gap(1.0, 1000.0, 20.0, eps * scale / 20.0 + b + l / 2.0 + q);
-        assert!(relative_gap < 0.99 * constant_gap);
-        assert!(r.relative_epsilon > 0.0 && r.ndc_offset == 0.0, "{r:?}");
-        assert!((r.relative_epsilon - eps).abs() < 1e-6 * eps, "{r:?}");
+        let d_front = n / (1.0 - (w(20.0) - gw) / big_f);
         assert!(
-            (r.hidden_gap - relative_gap).abs() < 1e-6 * r.hidden_gap,
+            (r.hidden_gap - (20.0 - d_front)).abs() < 1e-6 * r.hidden_gap,
             "{r:?}"
         );
-        assert!((r.window_offset - eps * scale / 10.0).abs() < 1e-6 * r.window_offset);
-        let by_gradient = |e: &Edges, g: f64| Edges {
-            face_slope: FaceSlope::WindowGradient(g),
-            ..*e
-        };
-        let flat = recommend(
-            &m,
-            clip,
-            &by_gradient(&e, r.face_gradient),
-            EdgeMethod::Matrix,
-        );
-        let flat = flat.unwrap();
-        // (The scene's slope differs, and with it the plane terms a little: not the offset's L.)
-        assert_eq!(flat.line_term, r.line_term);
-        assert!(
-            flat.relative_epsilon == 0.0 && flat.ndc_offset < 0.0,
-            "{flat:?}"
-        );
-        assert!(flat.hidden_gap > r.hidden_gap * 1.01, "{flat:?} vs {r:?}");
-        for (clip, method) in [
-            (ClipDepth::NegOneToOne, EdgeMethod::PolygonOffset),
-            (ClipDepth::ReversedZeroToOne, EdgeMethod::Matrix),
-        ] {
-            let m = matrix(1.0, 1000.0, clip);
-            let mut e = edges(DepthFormat::Float32, [10.0, 40.0], clip);
-            e.face_slope = FaceSlope::Angle(60f64.to_radians());
-            let r = recommend(&m, clip, &e, method).unwrap();
-            let flat = recommend(&m, clip, &by_gradient(&e, r.face_gradient), method).unwrap();
-            assert!(flat.hidden_gap > r.hidden_gap * 1.01, "{flat:?} vs {r:?}");
-        }
     }
 
     /// Wide polygon-mode outlines take a measured profile's 3-pixel reach plus 1/16 (and half the
@@ -1252,10 +1154,10 @@ mod tests {
     }
 
     /// Under reversed Z (b) takes the relative ε of element 14 or a constant NDC offset through
-    /// element 10, whichever leaves the smaller gap. Against a gradient limit the line term `L`
-    /// is the same window error at every depth: the relative one pays it at the far end
-    /// (`L·d₂/d₁` at `d₁`), its gap there no smaller than the constant one's (about `L`), and
-    /// the constant one is used.
+    /// element 10, whichever is smaller at the mesh's nearest depth. The line term `L` is the
+    /// same window error at every depth: where it dominates, the constant one (about `L`) beats
+    /// the relative one (`L·d₂/d₁` at `d₁`); on a thin depth range with a budget that falls
+    /// with depth, the relative one can win.
     #[test]
     fn reversed_matrix_offset_takes_the_smaller_form() {
         let clip = ClipDepth::ReversedZeroToOne;

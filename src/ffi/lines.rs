@@ -88,10 +88,10 @@ pub struct ZshiftEdgeOffset {
     /// Vulkan depthBiasConstantFactor and depthBiasSlopeFactor; 0 for the matrix method.
     pub vulkan_bias: [f64; 2],
     /// The NDC offset applied to element 10 (negative: toward the camera); 0 for the polygon
-    /// offset method and where element 14 is scaled instead.
+    /// offset method and where reversed Z scales element 14 instead.
     pub ndc_offset: f64,
-    /// Where element 14 is scaled by 1 + epsilon instead of element 10 moved (any convention;
-    /// whichever leaves the smaller hidden_gap): its relative epsilon; 0 otherwise.
+    /// Under reversed Z, where element 14 is scaled instead of element 10 moved (whichever
+    /// offsets less at the mesh's nearest depth): its relative epsilon; 0 otherwise.
     pub relative_epsilon: f64,
     /// The largest window-depth offset between edge and face the method applies.
     pub window_offset: f64,

@@ -255,40 +255,33 @@ fn footprint_relative_budget(scene: &Scene, terms: &ErrorTerms, b: f64) -> Optio
 /// depth, where `w` is smallest, so at `d₂` or where `w(d)` is a power of two. Element 14
 /// rounded to f32 (`p ≥ b·(1 − u)`) carries `ε·p`, hence the final `1/(1 − u)`.
 fn reversed_epsilon(scene: &Scene, mapping: &DepthMapping, terms: &ErrorTerms) -> Result<f64> {
-    relative_epsilon_with(scene, mapping, terms, 0.0, 0.0)
+    reversed_epsilon_with(scene, mapping, terms, 0.0)
 }
 
-/// [`reversed_epsilon`] with a window-depth error beside the budget (the line term of
-/// [`crate::lines`]): `extra` the same at every depth, added to the budget, and `falling`
-/// (given as its value times depth) one that falls as `1/d`, which `ε·b/d` pays alike at every
-/// depth: `falling/b`. Element 14's relative `ε` moves window depth by `ε·b/d` toward the camera
-/// under every convention (`z_ndc = −m10 + m14/d`), so [`crate::lines`] asks it under `[−1, 1]`
-/// and `[0, 1]` too: the binades walked are those between the mesh's ends, in either order.
-pub(crate) fn relative_epsilon_with(
+/// [`reversed_epsilon`] with `extra`, a constant window-depth error beside the budget (the line
+/// term of [`crate::lines`]), added to the budget at every depth.
+pub(crate) fn reversed_epsilon_with(
     scene: &Scene,
     mapping: &DepthMapping,
     terms: &ErrorTerms,
     extra: f64,
-    falling: f64,
 ) -> Result<f64> {
     let b = scale(&scene.frustum);
     let [d1, d2] = scene.depth_range;
     let budget = terms.budget() + extra;
-    let falling = falling / b;
     let strict = if terms.strict { 1.0 } else { 0.0 };
     let relative_budget = footprint_relative_budget(scene, terms, b).unwrap_or(f64::INFINITY);
     let need = |d: f64| -> Result<f64> {
         let q = unit_quantum(scene.format, &scene.pipeline, mapping.window_depth(d)?)?;
-        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget) + falling)
+        Ok(strict * q * (d / b) + (budget * (d / b)).min(relative_budget))
     };
     let mut eps = need(d1)?.max(need(d2)?);
     // The binades are those of the stored depth, near + (far − near)·w under glDepthRange.
     let pipeline = scene.pipeline;
-    let (w_a, w_b) = (
-        pipeline.actual(mapping.window_depth(d1)?),
+    let (w_lo, w_hi) = (
         pipeline.actual(mapping.window_depth(d2)?),
+        pipeline.actual(mapping.window_depth(d1)?),
     );
-    let (w_lo, w_hi) = (w_a.min(w_b), w_a.max(w_b));
     if !scene.format.is_unorm() && w_lo > 0.0 {
         // exp2, not powi: powi(k) for k < −1022 is 1/2^−k, which overflows to ∞ and gives 0,
         // and a walk from 0 never ends (a subnormal window depth reaches here).
@@ -297,7 +290,7 @@ pub(crate) fn relative_epsilon_with(
             let unit = ((p - pipeline.depth_range[0]) / pipeline.span()).clamp(0.0, 1.0);
             let d = mapping.distance_at_window(unit)?;
             let q = pipeline.per_unit(p * 2f64.powi(-23));
-            eps = eps.max(strict * q * (d / b) + (budget * (d / b)).min(relative_budget) + falling);
+            eps = eps.max(strict * q * (d / b) + (budget * (d / b)).min(relative_budget));
             p *= 2.0;
         }
     }

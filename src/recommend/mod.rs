@@ -183,7 +183,7 @@ mod tests;
 
 pub(crate) use conventions::bleed_gap_with;
 pub use conventions::{recommend_clip, ClipRecommendation};
-pub(crate) use conventions::{recommend_clip_building, relative_epsilon_with};
+pub(crate) use conventions::{recommend_clip_building, reversed_epsilon_with};
 pub(crate) use facing::chain_covers;
 use facing::{measured_facing, measured_facing_reversed};
 pub use terms::clip_error_terms;
