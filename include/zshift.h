@@ -787,8 +787,10 @@ typedef struct {
    The steepest face whose edges must be kept, as the largest angle between a face's normal
    and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
    into a window gradient at the mesh's nearest depth (ZshiftEdgeOffset.face_gradient, with a
-   first-order tilt for off-axis rays): faces up to that gradient are guaranteed; a face
-   within the angle that grazes an off-axis ray can be steeper.
+   first-order tilt for off-axis rays): faces whose window gradient has a length
+   sqrt(dz/dx^2 + dz/dy^2) up to it are guaranteed (single-sampled, those with max(|dz/dx|,
+   |dz/dy|) up to it too); a face within the angle that grazes an off-axis ray can be
+   steeper.
    */
   double face_angle;
   /*
@@ -876,7 +878,8 @@ typedef struct {
    */
   double line_reach;
   /*
-   g: the window-depth gradient per pixel of the steepest face that matters.
+   g: the window-depth gradient per pixel of the steepest face that matters (its larger
+   component given face_gradient, its length given face_angle).
    */
   double face_gradient;
   /*

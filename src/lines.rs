@@ -172,10 +172,12 @@ pub enum FaceSlope {
     WindowGradient(f64),
     /// The largest angle between a face's normal and the view axis, radians in `[0, π/2)`: its
     /// window gradient at the mesh's nearest depth, anywhere on screen, is the bound
-    /// ([`EdgeRecommendation::face_gradient`]; the guarantee is for faces of window gradient up
-    /// to it). That gradient takes the first-order tilt of [`crate::model`]'s gradient term: a
-    /// face within the angle that grazes an off-axis ray can be steeper, and is then not
-    /// guaranteed.
+    /// ([`EdgeRecommendation::face_gradient`]; the guarantee is for faces whose window gradient
+    /// has a length `√((∂w/∂x)² + (∂w/∂y)²)` up to it: an angle bounds the whole gradient, not
+    /// only its larger component, and under MSAA the line term uses that, module docs "MSAA";
+    /// single-sampled, faces with `max(|∂w/∂x|, |∂w/∂y|)` up to it hold too). That gradient
+    /// takes the first-order tilt of [`crate::model`]'s gradient term: a face within the angle
+    /// that grazes an off-axis ray can be steeper, and is then not guaranteed.
     Angle(f64),
 }
 
@@ -276,7 +278,8 @@ pub struct EdgeRecommendation {
     /// `√2·(w + 1)/2` under MSAA, or the profile's multisampled reach plus 1/16 plus
     /// `√2·(w − 1)/2` where smaller.
     pub line_reach: f64,
-    /// `g`: the window-depth gradient per pixel of the steepest face that matters.
+    /// `g`: the window-depth gradient per pixel of the steepest face that matters (its larger
+    /// component for [`FaceSlope::WindowGradient`], its length for [`FaceSlope::Angle`]).
     pub face_gradient: f64,
     /// Hidden edges behind a front face by at least this eye depth (`−z`, at the same pixel)
     /// never show.

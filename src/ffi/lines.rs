@@ -49,8 +49,10 @@ pub struct ZshiftEdges {
     /// The steepest face whose edges must be kept, as the largest angle between a face's normal
     /// and the view axis, radians in (0, pi/2); 0 to give `face_gradient` instead. It is turned
     /// into a window gradient at the mesh's nearest depth (ZshiftEdgeOffset.face_gradient, with a
-    /// first-order tilt for off-axis rays): faces up to that gradient are guaranteed; a face
-    /// within the angle that grazes an off-axis ray can be steeper.
+    /// first-order tilt for off-axis rays): faces whose window gradient has a length
+    /// sqrt(dz/dx^2 + dz/dy^2) up to it are guaranteed (single-sampled, those with max(|dz/dx|,
+    /// |dz/dy|) up to it too); a face within the angle that grazes an off-axis ray can be
+    /// steeper.
     pub face_angle: f64,
     /// With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
     /// (what glPolygonOffset's factor multiplies), >= 0.
@@ -108,7 +110,8 @@ pub struct ZshiftEdgeOffset {
     /// sqrt(2)*(w + 1)/2 under MSAA, or the profile's line_reach_msaa plus 1/16 plus
     /// sqrt(2)*(w - 1)/2 where smaller.
     pub line_reach: f64,
-    /// g: the window-depth gradient per pixel of the steepest face that matters.
+    /// g: the window-depth gradient per pixel of the steepest face that matters (its larger
+    /// component given face_gradient, its length given face_angle).
     pub face_gradient: f64,
     /// Hidden edges behind a front face by at least this eye depth never show.
     pub hidden_gap: f64,
