@@ -1103,8 +1103,10 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     ``m`` the engine's perspective projection (16 floats, column-major) under ``clip``, the mesh
     over eye depths ``depth_range`` (nearest, farthest), ``method`` an :class:`EdgeMethod`, edges as
     GL_LINES of ``line_width`` pixels (or ``polygon_mode`` lines) with ``samples`` MSAA samples per
-    pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, or a probed profile's line_reach_msaa plus 1/16 where smaller), the steepest face that matters as
-    ``face_angle`` (radians from the view axis) or ``face_gradient`` (window depth per pixel), and
+    pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, or a probed profile's line_reach_msaa plus 1/16 where smaller;
+    against a ``face_angle`` the line term takes at most (w + 1)/2 of the face's whole gradient), the steepest face that
+    matters as ``face_angle`` (radians from the view axis: faces whose window gradient has a length up to the returned
+    ``face_gradient``) or ``face_gradient`` (window depth per pixel, max(|dz/dx|, |dz/dy|)), and
     ``hidden_separation`` the eye depth from which hidden edges must not show (0: no promise).
     How the engine draws the mesh (``ZshiftEdges.pipeline``): ``viewport_origin`` (``glViewport``'s
     x, y in a larger framebuffer), ``framebuffer_depth_range`` (``glDepthRange``), ``world_reach``
