@@ -14,8 +14,8 @@
 //! `ZSHIFT_LINES_FULL=1` draws the whole grid; `ZSHIFT_LINES_SEED=<n>` another draw
 //! ([`Variation`]); `ZSHIFT_LINES_VARIANT=<text>` only the variants whose name contains it
 //! (`MSAA`, `w3`, `polymode`); `ZSHIFT_LINES_ONLY=<text>` only the scenes whose label contains it,
-//! and with `ZSHIFT_LINES_VERBOSE=1` each lost pixel of a failing scene and the offsets that keep
-//! it.
+//! and with `ZSHIFT_LINES_VERBOSE=1` each scene's zshift ÷ smallest working offset, and each lost
+//! pixel of a failing scene and the offsets that keep it.
 //!
 //! **Refusals**: in every answered scene with a smallest working offset, zshift is asked again
 //! with `hidden_separation` half its gap (it must refuse), and the smallest offset that keeps
@@ -302,6 +302,8 @@ fn edges_over_faces_sweep() {
     let only = std::env::var("ZSHIFT_LINES_VARIANT").ok();
     // `ZSHIFT_LINES_ONLY=<text>`: only the scenes whose label contains it (for looking at one).
     let only_scene = std::env::var("ZSHIFT_LINES_ONLY").ok();
+    // `ZSHIFT_LINES_VERBOSE=1`: each scene's ratio, and each lost pixel of a failing scene.
+    let verbose = std::env::var_os("ZSHIFT_LINES_VERBOSE").is_some();
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
@@ -455,7 +457,7 @@ fn edges_over_faces_sweep() {
                                     class.shown += shown;
                                     if lost + shown > 0 {
                                         failures.push(format!("{where_}: {lost} of {} visible lost, {shown} of {} hidden shown (gap {:.3e}, {rec:?})", c.visible.len(), c.hidden.len(), rec.hidden_gap));
-                                        if std::env::var_os("ZSHIFT_LINES_VERBOSE").is_some() {
+                                        if verbose {
                                             let faces = scene.face_ids();
                                             let img = scene.render(&scaled(&rec, &m, clip, 1.0));
                                             let n = SIZE as usize;
@@ -517,6 +519,14 @@ fn edges_over_faces_sweep() {
                                     }
                                     if hi.is_finite() {
                                         class.ratios.push((-hi).exp2());
+                                        if verbose {
+                                            println!(
+                                                "{where_}: zshift ÷ smallest working {:.3} (window offset {:.3e}, line term {:.3e})",
+                                                (-hi).exp2(),
+                                                rec.window_offset,
+                                                rec.line_term
+                                            );
+                                        }
                                     }
                                     // (ZSHIFT_LINES_FULL only: the refusal scenes below confirm
                                     // refusals where they can be.)
