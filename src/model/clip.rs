@@ -102,7 +102,7 @@ fn far_cut(n: f64, f: f64) -> f64 {
 /// `γ` the grid needs; `tests/gl_scenes.rs` (`the_clippers_hardest_scenes_hold`) replays those
 /// 27 scenes in CI. Four other draws of the grid (`ZSHIFT_SCENES_SEED=1` to `4`) lost nothing on
 /// a clipped base with it.
-pub(crate) const CLIP_MARGIN: f64 = 4.0;
+const CLIP_MARGIN: f64 = 4.0;
 
 /// `γ`, the bound on a rasterizer-made vertex's relative clip-space error: six clip stages of
 /// f32 rounding, `(6 + 5k)·u`; with a measured profile `CLIP_MARGIN·clip_ulps·u` where smaller

@@ -13,12 +13,14 @@
 //! own vertices (whose roundings the vertex and transform terms pay), in the unit the probe
 //! reports `clip_ulps` in.
 
-use super::clip::{clip_magnitudes, CLIP_MARGIN};
+use super::clip::{clip_gamma, clip_magnitudes};
+use super::PlaneForm;
 use super::F32_UNIT_ROUNDOFF as U;
+use crate::profile::RasterizerProfile;
 use crate::projection::{projection_f64, ClipDepth, Frustum};
 
 /// llvmpipe's `clip_ulps` (`cargo run --release --example probe`, Mesa 25 on this project's
-/// machines): what a probed profile multiplies by [`CLIP_MARGIN`].
+/// machines): what a probed profile multiplies by the clipping term's margin.
 const LLVMPIPE_CLIP_ULPS: f64 = 0.86;
 
 /// Mesa's view-volume planes (`draw_context.c`): `x ≥ −w`, `x ≤ w`, `y ≥ −w`, `y ≤ w`, the near
@@ -99,14 +101,18 @@ fn clip_position(m32: &[f32; 16], eye: [f64; 3]) -> [f32; 4] {
     [0, 1, 2, 3].map(|r| m32[r] * e[0] + m32[4 + r] * e[1] + m32[8 + r] * e[2] + m32[12 + r])
 }
 
-/// The ground's linear form on clip coordinates, `π = M⁻ᵀ·(N, D)` for the eye-space plane
-/// `N·q + D = 0`, scaled to `π_z = 1` as [`super::PlaneForm`] is (so that `Σₖ |πₖ|·A_k` is the
-/// form's bound).
-fn ground_form(m: &[f64; 16], plane: [f64; 4]) -> [f64; 4] {
+/// The ground's [`PlaneForm`] from its eye-space plane `N·q + D = 0` (`plane` = `(N, D)`):
+/// `π = M⁻ᵀ·(N, D)` on clip coordinates, scaled to `π_z = 1`, so `aₓ = −πₓ`, `a_y = −π_y`,
+/// `a₀ = −π_w` exactly, where the footprint's form would come from f32 corners.
+fn ground_form(m: &[f64; 16], plane: [f64; 4]) -> PlaneForm {
     let inverse = glam::DMat4::from_cols_array(m).inverse();
     let p = glam::DVec4::from_array(plane);
-    let form = [0, 1, 2, 3].map(|j| inverse.col(j).dot(p));
-    form.map(|v| v / form[2])
+    let pi = [0, 1, 2, 3].map(|j| inverse.col(j).dot(p));
+    PlaneForm {
+        ax: -pi[0] / pi[2],
+        ay: -pi[1] / pi[2],
+        a0: -pi[3] / pi[2],
+    }
 }
 
 /// The worst made-vertex error over the emulated grounds, in units of `u·Σₖ |πₖ|·A_k`, for
@@ -142,9 +148,8 @@ fn worst_made_vertex(clip: ClipDepth, n: f64, pitches: &[f64]) -> f64 {
             let plane = [normal[0], normal[1], normal[2], height];
             let form = ground_form(&m, plane);
             let reach = corners.iter().flatten().fold(0.0f64, |r, c| r.max(c.abs()));
-            let a = clip_magnitudes(&m, reach);
-            let unit = U * (0..4).map(|k| form[k].abs() * a[k]).sum::<f64>();
-            let l = |c: &[f32; 4]| (0..4).map(|k| form[k] * f64::from(c[k])).sum::<f64>();
+            let unit = form.bound(clip_magnitudes(&m, reach).map(|a| U * a));
+            let l = |c: &[f32; 4]| form.at(c.map(f64::from));
             for tri in [[0, 1, 2], [0, 2, 3]] {
                 let clip_pos = tri.map(|i| clip_position(&m32, corners[i]));
                 let own = clip_pos.iter().map(|c| l(c).abs()).fold(0.0, f64::max);
@@ -161,14 +166,19 @@ fn worst_made_vertex(clip: ClipDepth, n: f64, pitches: &[f64]) -> f64 {
 
 /// Every vertex the emulated clipper makes on a ground of ±1000 behind a level or pitched
 /// camera (0.5°–60°, near 0.1 and 0.01, every convention; 12000 triangles) is off the plane by
-/// less than the probed term's `CLIP_MARGIN · clip_ulps` (llvmpipe's figure) and far less than
+/// less than the probed term's `γ` (`clip_gamma` with llvmpipe's figure) and far less than
 /// the worst-case `6 + 5·6`, and the worst of them reaches more than an eighth of the probed
 /// term: the term is within 8× of what Mesa's algorithm can need on this ground, so the sweeps'
 /// smaller needs (a tenth of a unit in most scenes) are their roundings' luck, not the term's
 /// slack (docs/engine-scene.md, "Why the quad's clipping term stays large").
 #[test]
 fn the_clipping_term_covers_mesas_clipper_on_a_ground_behind_the_camera() {
-    let probed = CLIP_MARGIN * LLVMPIPE_CLIP_ULPS;
+    let profile = RasterizerProfile {
+        measured: true,
+        clip_ulps: LLVMPIPE_CLIP_ULPS,
+        ..RasterizerProfile::worst_case()
+    };
+    let probed = clip_gamma(&profile) / U;
     let mut overall = 0.0f64;
     for clip in [
         ClipDepth::NegOneToOne,

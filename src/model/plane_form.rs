@@ -83,6 +83,12 @@ impl PlaneForm {
         }
     }
 
+    /// `L(c) = z_c − aₓ·x_c − a_y·y_c − a₀·w_c` of clip coordinates `c`: 0 on the plane's image,
+    /// and for an error `e` how far it moves a vertex off the plane (over `w`, in NDC depth).
+    pub fn at(&self, c: [f64; 4]) -> f64 {
+        c[2] - self.ax * c[0] - self.ay * c[1] - self.a0 * c[3]
+    }
+
     /// `max |L(e)|` over clip-space errors with `|e_x| ≤ e[0]`, `|e_y| ≤ e[1]`, `|e_z| ≤ e[2]`,
     /// `|e_w| ≤ e[3]`: `e_z + |aₓ|·e_x + |a_y|·e_y + |a₀|·e_w`.
     pub fn bound(&self, e: [f64; 4]) -> f64 {
@@ -94,10 +100,7 @@ impl PlaneForm {
     /// `a_y`·row 1 minus `a₀`·row 3 of `m`'s first three columns. An eye-space error `δp` of a
     /// vertex moves it off the plane by `L(m·δp)` (the translation column does not move).
     pub fn on_eye(&self, m: &[f64; 16]) -> [f64; 3] {
-        [0, 1, 2].map(|k| {
-            let col = 4 * k;
-            m[col + 2] - self.ax * m[col] - self.ay * m[col + 1] - self.a0 * m[col + 3]
-        })
+        [0, 1, 2].map(|k| self.at([m[4 * k], m[4 * k + 1], m[4 * k + 2], m[4 * k + 3]]))
     }
 }
 
@@ -139,10 +142,9 @@ mod tests {
             "{on_eye:?}"
         );
         for p in [[5.0, -h32, -30.0], [-40.0, -h32, -300.0]] {
-            let c: Vec<f64> = (0..4)
-                .map(|r| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r])
-                .collect();
-            let l = c[2] - form.ax * c[0] - form.ay * c[1] - form.a0 * c[3];
+            let c =
+                [0, 1, 2, 3].map(|r| m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+            let l = form.at(c);
             assert!(l.abs() < 1e-6 * c[3], "L = {l} at {p:?}");
         }
     }

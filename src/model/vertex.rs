@@ -297,8 +297,8 @@ mod tests {
             for signs in 0..8 {
                 let s = |i: u32| if signs >> i & 1 == 1 { 1.0 } else { -1.0 };
                 let q = [0, 1, 2].map(|i| p[i] * (1.0 + s(i as u32) * U));
-                let e: Vec<f64> = clip(q).iter().zip(c).map(|(a, b)| a - b).collect();
-                let l = e[2] - form.ax * e[0] - form.ay * e[1] - form.a0 * e[3];
+                let q = clip(q);
+                let l = form.at([0, 1, 2, 3].map(|k| q[k] - c[k]));
                 worst = worst.max(l.abs() / c[3]);
             }
         }
