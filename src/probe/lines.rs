@@ -54,6 +54,27 @@ pub(super) struct TileReach {
     pub(super) samples: [usize; 2],
 }
 
+impl TileReach {
+    /// Nothing measured: NaN figures (the model keeps the worst case), no samples.
+    pub(super) fn unmeasured() -> Self {
+        Self {
+            reach: [f64::NAN; 2],
+            whole: [f64::NAN; 2],
+            samples: [0; 2],
+        }
+    }
+
+    /// The larger figures of `self` and `other` (NaN until measured: `f64::max` keeps the
+    /// number), and the samples of both.
+    pub(super) fn merge(&mut self, other: &TileReach) {
+        for kind in 0..2 {
+            self.reach[kind] = self.reach[kind].max(other.reach[kind]);
+            self.whole[kind] = self.whole[kind].max(other.whole[kind]);
+            self.samples[kind] += other.samples[kind];
+        }
+    }
+}
+
 /// The reach over every sample a line (tiles `0..tiles`) or outline (tiles `tiles..2·tiles`,
 /// each on [`tile_plane`]`(k, tiles)`) wrote (stored below 0.99; cleared to 1): `depth` holds
 /// one `width × rows` image per sample position (pixel offsets; `[0.5, 0.5]` for a

@@ -447,11 +447,11 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             figures.offset_slope_axis = lines.slope[1];
             let wide = wide_line_reach(gl, o)?;
             profile.line_reach_wide = wide.reach;
-            figures.wide_line_pixels = wide.pixels;
+            figures.wide_line_pixels = wide.samples;
             let msaa = msaa_line_reach(gl, o)?;
-            profile.line_reach_msaa = msaa.reach;
-            figures.msaa_line_samples = msaa.samples;
-            figures.msaa_line_reach_whole = msaa.whole;
+            profile.line_reach_msaa = msaa.measured.reach;
+            figures.msaa_line_samples = msaa.measured.samples;
+            figures.msaa_line_reach_whole = msaa.measured.whole;
             figures.msaa_sample_counts = msaa.counts;
         }
         if internal == DEPTH_COMPONENT24 {

@@ -30,14 +30,10 @@ const MOST_SAMPLES: Int = 16;
 
 /// What [`msaa_line_reach`] measured.
 pub(super) struct MsaaFigures {
-    /// The largest `|stored − plane at the sample| / max(|gₓ|, |g_y|)` per kind (`GL_LINES`
-    /// width 1, polygon-mode lines width 1), pixels; NaN where not measured.
-    pub(super) reach: [f64; 2],
-    /// The same over the plane's whole gradient `|∇z|`, pixels ([`TileReach::whole`]); NaN
-    /// where not measured.
-    pub(super) whole: [f64; 2],
-    /// Samples compared per kind.
-    pub(super) samples: [usize; 2],
+    /// Per kind (`GL_LINES` width 1, polygon-mode lines width 1): the largest
+    /// `|stored − plane at the sample|` over `max(|gₓ|, |g_y|)` and over `|∇z|`, pixels, the
+    /// larger of the sample counts drawn (NaN where none was), and the samples compared.
+    pub(super) measured: TileReach,
     /// The sample counts drawn (0: none).
     pub(super) counts: [Int; 2],
 }
@@ -71,9 +67,7 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
     let most = gl.integer(MAX_DEPTH_TEXTURE_SAMPLES).min(MOST_SAMPLES);
     gl.check("glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES) raised a GL error")?;
     let mut figures = MsaaFigures {
-        reach: [f64::NAN; 2],
-        whole: [f64::NAN; 2],
-        samples: [0; 2],
+        measured: TileReach::unmeasured(),
         counts: [0; 2],
     };
     if most < SAMPLES {
@@ -92,12 +86,7 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
         let Some(measured) = result? else {
             continue;
         };
-        // NaN until measured; f64::max keeps the number.
-        for kind in 0..2 {
-            figures.reach[kind] = figures.reach[kind].max(measured.reach[kind]);
-            figures.whole[kind] = figures.whole[kind].max(measured.whole[kind]);
-            figures.samples[kind] += measured.samples[kind];
-        }
+        figures.measured.merge(&measured);
         figures.counts[i] = count;
     }
     Ok(figures)

@@ -16,21 +16,12 @@ use crate::profile::WIDE_LINE_WIDTH as WIDE;
 /// On llvmpipe the figure is 1.5005–1.5016 at 4, 8, 16 and 64 per tile.
 const WIDE_PER_TILE: usize = 16;
 
-/// What [`wide_line_reach`] measured.
-pub(super) struct WideFigures {
-    /// The largest `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` per kind
-    /// (`GL_LINES`, polygon-mode lines) at width [`WIDE`], pixels; NaN where not measured.
-    pub(super) reach: [f64; 2],
-    /// Fragments compared per kind.
-    pub(super) pixels: [usize; 2],
-}
-
-/// Measures the reach of [`WIDE`]-pixel lines per kind (module docs). Needs D32F attached.
-pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<WideFigures> {
-    let mut figures = WideFigures {
-        reach: [f64::NAN; 2],
-        pixels: [0; 2],
-    };
+/// Measures the reach of [`WIDE`]-pixel lines per kind (module docs): the largest
+/// `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` per kind (`GL_LINES`, polygon-mode
+/// lines), pixels, and the fragments compared; [`TileReach::unmeasured`] where the context does
+/// not draw the width. Needs D32F attached.
+pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<TileReach> {
+    let figures = TileReach::unmeasured();
     let mut range = [0.0f32; 2];
     (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
     gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
@@ -47,18 +38,15 @@ pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<WideFigures
     (gl.LineWidth)(1.0);
     drawn?;
     let depth = read_depth(gl, Format::Float, 0, side as usize, DENSE_ROWS)?;
-    let TileReach {
-        reach,
-        samples: pixels,
-        ..
-    } = reach_in_tiles(
+    let measured = reach_in_tiles(
         &depth,
         &[[0.5, 0.5]],
         (side as usize, DENSE_ROWS),
         DENSE_TILES,
     );
-    if pixels.iter().all(|&n| n > 0) {
-        figures = WideFigures { reach, pixels };
-    }
-    Ok(figures)
+    Ok(if measured.samples.iter().all(|&n| n > 0) {
+        measured
+    } else {
+        figures
+    })
 }
