@@ -72,6 +72,7 @@
 #ifndef ZSHIFT_H
 #define ZSHIFT_H
 
+#include <stddef.h>
 #include <stdint.h>
 #ifdef __cplusplus
 extern "C" {
@@ -795,7 +796,9 @@ typedef struct {
   double face_angle;
   /*
    With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
-   (what glPolygonOffset's factor multiplies), >= 0.
+   (what glPolygonOffset's factor multiplies), >= 0: `zshift_steepest_face` computes the
+   mesh's own from its triangles (its steepest face within the gradient an angle gives),
+   which for a mesh with no face at the angle costs less.
    */
   double face_gradient;
   /*
@@ -887,6 +890,36 @@ typedef struct {
    */
   double hidden_gap;
 } ZshiftEdgeOffset;
+
+/*
+ The steepest face of a mesh as drawn (`zshift_steepest_face`): what to pass as
+ ZshiftEdges.face_gradient for this mesh under this matrix and viewport.
+ */
+typedef struct {
+  /*
+   max(|dz/dx|, |dz/dy|) of the steepest drawn face within the limit, window depth in
+   [0, 1] per pixel; 0 when no face counts. Pass it as ZshiftEdges.face_gradient (with
+   face_angle = 0).
+   */
+  double gradient;
+  /*
+   That face: its first index's position in `indices` divided by 3; -1 when no face counts.
+   */
+  int64_t triangle;
+  /*
+   Triangles that count (drawn, within the limit).
+   */
+  uint64_t counted;
+  /*
+   Triangles drawn but steeper than the limit (grazing: their edges are not guaranteed).
+   */
+  uint64_t beyond_limit;
+  /*
+   Triangles that draw nothing: all three vertices outside one clip plane, or no area on
+   screen.
+   */
+  uint64_t culled;
+} ZshiftSteepestFace;
 
 /*
  What an engine knows about one shadow map, for `zshift_shadow_bias`.
@@ -1926,6 +1959,37 @@ ZshiftStatus zshift_edge_planes(const float *m,
                                 const ZshiftEdges *edges,
                                 uint32_t method,
                                 double *out);
+
+/*
+ Writes the steepest face of a mesh as it is drawn: the largest window-depth gradient
+ max(|dz/dx|, |dz/dy|) among its triangles (GL_TRIANGLES order, `index_count` indices into
+ `vertex_count` positions of three floats, `position_stride` bytes apart, 0 for tightly
+ packed) under `clip_matrix` (the whole projection * view * model, 16 floats, column-major)
+ and `clip`, in a viewport of `viewport_width` x `viewport_height` pixels, leaving out
+ triangles that draw nothing and those steeper than `limit` (grazing; pass the
+ ZshiftEdgeOffset.face_gradient a face_angle gives to keep every face within that angle, or
+ INFINITY for all). Pass `out->gradient` as ZshiftEdges.face_gradient (face_angle = 0):
+ the offset then pays the mesh's own steepest face, not the angle's (src/steepest_face.rs).
+ Exact from the float inputs up to double rounding; no GL call.
+
+ Errors: ZSHIFT_ERR_NULL_POINTER if `clip_matrix` or `out` is NULL, or `positions` /
+ `indices` with a nonzero count; ZSHIFT_ERR_NOT_FINITE for a NaN or infinite matrix element
+ or position (zshift_last_error() names which); ZSHIFT_ERR_DOMAIN for a zero viewport side,
+ index_count not a multiple of 3, an index past vertex_count, a position_stride that is
+ neither 0 nor a multiple of 4 of at least 12, or limit NaN or negative. `*out` is untouched
+ on error.
+ */
+ZshiftStatus zshift_steepest_face(const float *clip_matrix,
+                                  ZshiftClip clip,
+                                  uint32_t viewport_width,
+                                  uint32_t viewport_height,
+                                  const float *positions,
+                                  size_t vertex_count,
+                                  size_t position_stride,
+                                  const uint32_t *indices,
+                                  size_t index_count,
+                                  double limit,
+                                  ZshiftSteepestFace *out);
 
 /*
  Writes the smallest caster-side shadow bias that keeps every receiver within the limit

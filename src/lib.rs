@@ -27,6 +27,7 @@
 //! | [`polygon_offset`] | eye-space δ ↔ `glPolygonOffset` units, D3D `DepthBias`, Vulkan `depthBiasConstantFactor` | 004 |
 //! | [`plan`] | tight near/far planes, one offset for a depth range, stacked decal layers | 000, 001, 002 |
 //! | [`lines`] | edges over their own faces (wireframe on shaded, outlines, hidden-line drawing): polygon offset for the faces or a matrix offset for the edges, and the hidden-line gap | 004 |
+//! | [`steepest_face`] | a mesh's steepest face as drawn (its window-depth gradient from its triangles and matrix): the `face_gradient` an engine passes for its own mesh | 004 |
 //! | [`decal`] | what an engine knows about a decal besides its matrix (the recommendation's input) | |
 //! | [`matrix_in`] | the engine's own `float[16]` in, the decal's matrix out: recognised (perspective, infinite, tweaked, reversed, orthographic), one element offset, rounded outward | 000 eq. 4.1.3–4.1.7 |
 //! | [`planes`] | one decal over several planes (a mesh decal over terrain): the largest of the planes' offsets, every plane's bleed gap at it | 000, 004 |
@@ -61,6 +62,7 @@ pub mod projection;
 pub mod recommend;
 pub mod rounding;
 pub mod shadow;
+pub mod steepest_face;
 
 pub use domain::{depth_steps, Planes};
 pub use error::{Error, ErrorKind, Result};

@@ -214,6 +214,29 @@ fn profiles(gl: &Gl) -> [(&'static str, RasterizerProfile); 2] {
     [("worst", worst), ("probed", gl_common::probed(gl))]
 }
 
+/// The ways zshift is asked: the face-slope limit as an angle with the worst-case and the probed
+/// profile, and with the probed profile the mesh's own steepest face within that angle's gradient
+/// (`zshift::steepest_face`; `true`).
+fn asks(
+    profiles: &[(&'static str, RasterizerProfile); 2],
+) -> [(&'static str, RasterizerProfile, bool); 3] {
+    [
+        (profiles[0].0, profiles[0].1, false),
+        (profiles[1].0, profiles[1].1, false),
+        ("probed mesh", profiles[1].1, true),
+    ]
+}
+
+/// The face slope an engine passes for its own mesh: the largest window gradient of a drawn face
+/// within `limit` (the angle's gradient), from its triangles and matrix.
+fn mesh_gradient(mesh: &Mesh, m: &[f32; 16], clip: ClipDepth, limit: f64) -> FaceSlope {
+    let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
+    let face =
+        zshift::steepest_face::steepest_face(m, clip, [SIZE, SIZE], &mesh.verts, &indices, limit)
+            .expect("steepest_face");
+    FaceSlope::WindowGradient(face.gradient)
+}
+
 /// `make`'s mesh near eye distance `d0`, moved to lie inside `[1.1n, 0.95f]` (its depth extent
 /// per unit of distance taken from a unit mesh), its radius `radius_factor` of its distance;
 /// and that distance.
@@ -318,6 +341,8 @@ fn edges_over_faces_sweep() {
     let mut refusals = Refusals::default();
     // Edge samples on a boundary of their front face, left unjudged (`BOUNDARY_TIE`).
     let mut ties = 0usize;
+    // Mesh asks not made: the angle that sets their limit was refused.
+    let mut angle_refused = 0usize;
     let meshes: [(&str, MeshMaker); 4] = [
         ("sphere", sphere),
         ("torus", torus),
@@ -412,9 +437,21 @@ fn edges_over_faces_sweep() {
                             );
                             let ids = edge_ids(&scene);
                             for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
-                                for (pname, profile) in profiles {
+                                for (pname, profile, from_mesh) in asks(&profiles) {
                                     let mut edges =
                                         edges_for(fmt, conv, variant, profile, [dmin, dmax]);
+                                    // The mesh's own steepest face within the angle's
+                                    // gradient; the pixels judged are those of faces within the
+                                    // angle's gradient, whichever way zshift is asked.
+                                    let mut g_angle = f64::NAN;
+                                    if from_mesh {
+                                        let Ok(r) = recommend(&m, clip, &edges, method) else {
+                                            angle_refused += 1;
+                                            continue;
+                                        };
+                                        g_angle = r.face_gradient;
+                                        edges.face_slope = mesh_gradient(&mesh, &m, clip, g_angle);
+                                    }
                                     let label = format!(
                                         "{} {} {} {} {pname}",
                                         conv.name(),
@@ -446,7 +483,11 @@ fn edges_over_faces_sweep() {
                                         }
                                     };
                                     class.answered += 1;
-                                    let g = rec.face_gradient;
+                                    let g = if from_mesh {
+                                        g_angle
+                                    } else {
+                                        rec.face_gradient
+                                    };
                                     let c = classify(&scene, &p, rfs, &ids, b, g, rec.hidden_gap);
                                     class.visible += c.visible.len();
                                     class.hidden += c.hidden.len();
@@ -671,6 +712,7 @@ fn edges_over_faces_sweep() {
         refusals.asked, refusals.confirmed, refusals.conservative, refusals.no_hidden_edge
     );
     let judged: usize = classes.iter().map(|(_, c)| c.visible + c.hidden).sum();
+    println!("mesh asks not made (the angle that sets their limit refused): {angle_refused}");
     println!(
         "edge samples on a side of their front face whose other face borders none of their edges (left unjudged, BOUNDARY_TIE): {ties}, beside {judged} judged"
     );

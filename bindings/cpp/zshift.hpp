@@ -17,6 +17,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -728,6 +729,35 @@ inline std::array<double, 2> edge_planes(const float *m, Clip clip, const Edges 
 /// edge_planes() of a Matrix.
 inline std::array<double, 2> edge_planes(const Matrix &m, Clip clip, const Edges &edges, EdgeMethod method) {
   return edge_planes(m.data(), clip, edges, method);
+}
+
+/// A mesh's steepest face as drawn (ZshiftSteepestFace): `gradient` is what to pass as
+/// Edges::face_gradient (face_angle 0) for this mesh, matrix and viewport.
+using SteepestFace = ZshiftSteepestFace;
+
+/// The steepest face of a mesh as drawn (zshift_steepest_face): the largest window-depth gradient
+/// max(|dz/dx|, |dz/dy|) of its triangles (`index_count` indices, GL_TRIANGLES order, into
+/// `vertex_count` xyz positions `stride` bytes apart, 0 for packed) through `clip_matrix`
+/// (projection * view * model) into a `width` x `height` viewport, leaving out triangles that draw
+/// nothing and those steeper than `limit` (the face_gradient a face_angle gives, or infinity).
+/// Throws Error naming a bad input (an index past the positions, a NaN position, a zero viewport).
+inline SteepestFace steepest_face(const float *clip_matrix, Clip clip, std::uint32_t width, std::uint32_t height,
+                                  const float *positions, std::size_t vertex_count, std::size_t stride,
+                                  const std::uint32_t *indices, std::size_t index_count,
+                                  double limit = std::numeric_limits<double>::infinity()) {
+  SteepestFace out{};
+  detail::check(zshift_steepest_face(clip_matrix, detail::to_c(clip), width, height, positions, vertex_count, stride,
+                                     indices, index_count, limit, &out));
+  return out;
+}
+/// steepest_face() of a Matrix, packed positions and an index vector.
+inline SteepestFace steepest_face(const Matrix &clip_matrix, Clip clip, std::uint32_t width, std::uint32_t height,
+                                  const std::vector<std::array<float, 3>> &positions,
+                                  const std::vector<std::uint32_t> &indices,
+                                  double limit = std::numeric_limits<double>::infinity()) {
+  return steepest_face(clip_matrix.data(), clip, width, height, positions.empty() ? nullptr : positions[0].data(),
+                       positions.size(), sizeof(positions[0]), indices.empty() ? nullptr : indices.data(),
+                       indices.size(), limit);
 }
 
 /// What an engine knows about one shadow map (ZshiftShadowMap): the light's projection

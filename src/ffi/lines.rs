@@ -55,7 +55,9 @@ pub struct ZshiftEdges {
     /// steeper.
     pub face_angle: f64,
     /// With face_angle = 0: the largest window-depth gradient per pixel, max(|dz/dx|, |dz/dy|)
-    /// (what glPolygonOffset's factor multiplies), >= 0.
+    /// (what glPolygonOffset's factor multiplies), >= 0: `zshift_steepest_face` computes the
+    /// mesh's own from its triangles (its steepest face within the gradient an angle gives),
+    /// which for a mesh with no face at the angle costs less.
     pub face_gradient: f64,
     /// The eye depth behind a front face from which hidden edges must not show; 0 for no
     /// promise. Where the hidden-line gap exceeds it the call fails with
@@ -311,4 +313,122 @@ pub extern "C" fn zshift_edge_planes(
         let clip = clip_of(clip)?;
         crate::lines::working_planes(&m, clip, &input(clip, &e)?, method_of(method)?)
     })
+}
+
+/// The steepest face of a mesh as drawn (`zshift_steepest_face`): what to pass as
+/// ZshiftEdges.face_gradient for this mesh under this matrix and viewport.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ZshiftSteepestFace {
+    /// max(|dz/dx|, |dz/dy|) of the steepest drawn face within the limit, window depth in
+    /// [0, 1] per pixel; 0 when no face counts. Pass it as ZshiftEdges.face_gradient (with
+    /// face_angle = 0).
+    pub gradient: f64,
+    /// That face: its first index's position in `indices` divided by 3; -1 when no face counts.
+    pub triangle: i64,
+    /// Triangles that count (drawn, within the limit).
+    pub counted: u64,
+    /// Triangles drawn but steeper than the limit (grazing: their edges are not guaranteed).
+    pub beyond_limit: u64,
+    /// Triangles that draw nothing: all three vertices outside one clip plane, or no area on
+    /// screen.
+    pub culled: u64,
+}
+
+/// Writes the steepest face of a mesh as it is drawn: the largest window-depth gradient
+/// max(|dz/dx|, |dz/dy|) among its triangles (GL_TRIANGLES order, `index_count` indices into
+/// `vertex_count` positions of three floats, `position_stride` bytes apart, 0 for tightly
+/// packed) under `clip_matrix` (the whole projection * view * model, 16 floats, column-major)
+/// and `clip`, in a viewport of `viewport_width` x `viewport_height` pixels, leaving out
+/// triangles that draw nothing and those steeper than `limit` (grazing; pass the
+/// ZshiftEdgeOffset.face_gradient a face_angle gives to keep every face within that angle, or
+/// INFINITY for all). Pass `out->gradient` as ZshiftEdges.face_gradient (face_angle = 0):
+/// the offset then pays the mesh's own steepest face, not the angle's (src/steepest_face.rs).
+/// Exact from the float inputs up to double rounding; no GL call.
+///
+/// Errors: ZSHIFT_ERR_NULL_POINTER if `clip_matrix` or `out` is NULL, or `positions` /
+/// `indices` with a nonzero count; ZSHIFT_ERR_NOT_FINITE for a NaN or infinite matrix element
+/// or position (zshift_last_error() names which); ZSHIFT_ERR_DOMAIN for a zero viewport side,
+/// index_count not a multiple of 3, an index past vertex_count, a position_stride that is
+/// neither 0 nor a multiple of 4 of at least 12, or limit NaN or negative. `*out` is untouched
+/// on error.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn zshift_steepest_face(
+    clip_matrix: *const f32,
+    clip: ZshiftClip,
+    viewport_width: u32,
+    viewport_height: u32,
+    positions: *const f32,
+    vertex_count: usize,
+    position_stride: usize,
+    indices: *const u32,
+    index_count: usize,
+    limit: f64,
+    out: *mut ZshiftSteepestFace,
+) -> ZshiftStatus {
+    if clip_matrix.is_null() {
+        return null_pointer("clip_matrix");
+    }
+    if positions.is_null() && vertex_count > 0 {
+        return null_pointer("positions");
+    }
+    if indices.is_null() && index_count > 0 {
+        return null_pointer("indices");
+    }
+    // SAFETY: not NULL; the caller promises 16 readable floats.
+    let m = unsafe { clip_matrix.cast::<[f32; 16]>().read_unaligned() };
+    // SAFETY (store): `checked` has refused NULL; the caller promises a writable
+    // ZshiftSteepestFace; write_unaligned needs no alignment.
+    checked(
+        out,
+        move || {
+            let clip = clip_of(clip)?;
+            let positions = read_positions(positions, vertex_count, position_stride)?;
+            let indices = read_indices(indices, index_count);
+            let face = crate::steepest_face::steepest_face(
+                &m,
+                clip,
+                [viewport_width, viewport_height],
+                &positions,
+                &indices,
+                limit,
+            )?;
+            Ok(ZshiftSteepestFace {
+                gradient: face.gradient,
+                triangle: face.triangle.map_or(-1, |t| t as i64),
+                counted: face.counted as u64,
+                beyond_limit: face.beyond_limit as u64,
+                culled: face.culled as u64,
+            })
+        },
+        |out, record| unsafe { out.write_unaligned(record) },
+    )
+}
+
+/// The caller's `count` positions, three floats each, `stride` bytes apart (0: 12).
+fn read_positions(p: *const f32, count: usize, stride: usize) -> Result<Vec<[f32; 3]>> {
+    let stride = if stride == 0 { 12 } else { stride };
+    if stride < 12 || stride % 4 != 0 {
+        return Err(domain(
+            "position_stride must be 0 (tightly packed) or a multiple of 4 bytes of at least 12",
+        )
+        .with_integer("position_stride", stride as i64));
+    }
+    let step = stride / 4;
+    // SAFETY: `p` is not NULL when count > 0 (checked by the caller of this function); the
+    // caller promises `count` positions `stride` bytes apart, readable; read_unaligned needs no
+    // alignment and any bit pattern is an f32.
+    Ok((0..count)
+        .map(|i| [0, 1, 2].map(|k| unsafe { p.add(step * i + k).read_unaligned() }))
+        .collect())
+}
+
+/// The caller's `count` indices (`p` not NULL when count > 0, checked by the caller of this
+/// function).
+fn read_indices(p: *const u32, count: usize) -> Vec<u32> {
+    // SAFETY: the caller promises `count` readable u32; read_unaligned needs no alignment.
+    (0..count)
+        .map(|i| unsafe { p.add(i).read_unaligned() })
+        .collect()
 }

@@ -1085,6 +1085,75 @@ static ZshiftEdges edges_for(void) {
   return e;
 }
 
+/* The steepest face of a mesh as drawn: an interleaved buffer (position, normal), a facing
+ * triangle, a tilted one and one behind the camera; the tilted one's window gradient computed
+ * here by projecting its vertices (long double) and fitting the plane; then passed on. */
+static long double window_gradient_c(const float *m, const float *t, int w, int h) {
+  long double win[3][3], gx, gy, area;
+  int v, r;
+  for (v = 0; v < 3; v++) {
+    long double c[4];
+    for (r = 0; r < 4; r++)
+      c[r] = (long double)m[r] * t[6 * v] + (long double)m[4 + r] * t[6 * v + 1] +
+             (long double)m[8 + r] * t[6 * v + 2] + m[12 + r];
+    win[v][0] = (c[0] / c[3] + 1) / 2 * w;
+    win[v][1] = (c[1] / c[3] + 1) / 2 * h;
+    win[v][2] = (c[2] / c[3] + 1) / 2;
+  }
+  area = (win[1][0] - win[0][0]) * (win[2][1] - win[0][1]) - (win[2][0] - win[0][0]) * (win[1][1] - win[0][1]);
+  gx = ((win[1][2] - win[0][2]) * (win[2][1] - win[0][1]) - (win[2][2] - win[0][2]) * (win[1][1] - win[0][1])) / area;
+  gy = ((win[2][2] - win[0][2]) * (win[1][0] - win[0][0]) - (win[1][2] - win[0][2]) * (win[2][0] - win[0][0])) / area;
+  return fabsl(gx) > fabsl(gy) ? fabsl(gx) : fabsl(gy);
+}
+
+static void test_steepest_face(void) {
+  /* x, y, z, then a normal the call must skip (stride 24 bytes). */
+  static const float verts[9][6] = {
+      {-1, -1, -10, 0, 0, 1}, {1, -1, -10, 0, 0, 1}, {0, 1, -10, 0, 0, 1},
+      {-1, -1, -10, 0, 0, 1}, {1, -1, -14, 0, 0, 1}, {0, 1, -10, 0, 0, 1},
+      {-1, -1, 5, 0, 0, 1},   {1, -1, 5, 0, 0, 1},   {0, 1, 6, 0, 0, 1},
+  };
+  static const uint32_t idx[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  float m[16];
+  ZshiftSteepestFace s, out;
+  ZshiftEdges e = edges_for();
+  ZshiftEdgeOffset b;
+  long double expected;
+  engine_perspective(1.0471976f, 1.0f, 1.0f, 1000.0f, m);
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &s), ZSHIFT_OK);
+  expected = window_gradient_c(m, &verts[3][0], 512, 512);
+  CHECK(s.triangle == 1 && s.counted == 2 && s.culled == 1 && s.beyond_limit == 0,
+        "steepest face: triangle %lld counted %llu culled %llu", (long long)s.triangle,
+        (unsigned long long)s.counted, (unsigned long long)s.culled);
+  CHECK(fabsl(s.gradient - expected) <= 1e-9L * expected, "steepest face: %.17g, by projection %.17Lg", s.gradient, expected);
+  /* Below the tilted face's gradient only the facing one counts, at 0. */
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, s.gradient / 2, &out), ZSHIFT_OK);
+  CHECK(out.triangle == 0 && out.gradient == 0.0 && out.beyond_limit == 1, "steepest face under a limit: %g", out.gradient);
+  /* Passed on as the face gradient: the worst case's 1-pixel line term is the gradient. */
+  e.depth_near = 9.0;
+  e.depth_far = 15.0;
+  e.face_gradient = s.gradient;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
+  CHECK(b.face_gradient == s.gradient && b.line_term == s.gradient, "steepest face passed on: line term %g", b.line_term);
+  /* Errors name what is wrong and leave the output untouched. */
+  memset(&out, PATTERN, sizeof out);
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 10, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("steepest face stride", "position_stride");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 8, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("steepest face index", "indices");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 8, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("steepest face index count", "index_count");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, NAN, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("steepest face limit", "limit");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  expect_detail("steepest face viewport", "viewport_width");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, NULL, 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, NULL, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_steepest_face(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK(untouched(&out, sizeof out), "zshift_steepest_face wrote its output on error");
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, NULL), ZSHIFT_ERR_NULL_POINTER);
+}
+
 static void test_edges(void) {
   float m[16];
   ZshiftEdges e = edges_for();
@@ -1326,6 +1395,7 @@ static void test_shadow_bias_pipeline(void) {
 
 int main(void) {
   test_edges();
+  test_steepest_face();
   test_last_error();
   test_front_door();
   test_decal_corners();

@@ -90,3 +90,49 @@ class Edges(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class SteepestFace(unittest.TestCase):
+    M = perspective(1.0, 1000.0)
+
+    @staticmethod
+    def projected_gradient(m, tri, width, height):
+        # Each vertex to window coordinates (divide by w), then the plane through the three.
+        win = []
+        for x, y, z in tri:
+            c = [m[r] * x + m[4 + r] * y + m[8 + r] * z + m[12 + r] for r in range(4)]
+            win.append(((c[0] / c[3] + 1) / 2 * width, (c[1] / c[3] + 1) / 2 * height, (c[2] / c[3] + 1) / 2))
+        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = win
+        area = (bx - ax) * (cy - ay) - (cx - ax) * (by - ay)
+        gx = ((bz - az) * (cy - ay) - (cz - az) * (by - ay)) / area
+        gy = ((cz - az) * (bx - ax) - (bz - az) * (cx - ax)) / area
+        return max(abs(gx), abs(gy))
+
+    def test_the_steepest_drawn_face_within_the_limit(self):
+        facing = [(-1, -1, -10), (1, -1, -10), (0, 1, -10)]
+        tilted = [(-1, -1, -10), (1, -1, -14), (0, 1, -10)]
+        behind = [(-1, -1, 5), (1, -1, 5), (0, 1, 6)]
+        positions = facing + tilted + behind
+        s = zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), positions, range(9))
+        expected = self.projected_gradient(self.M, tilted, 512, 512)
+        self.assertEqual((s.triangle, s.counted, s.beyond_limit, s.culled), (1, 2, 0, 1))
+        self.assertAlmostEqual(s.gradient, expected, delta=1e-6 * expected)
+        limited = zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), positions,
+                                       [(0, 1, 2), (3, 4, 5), (6, 7, 8)], limit=expected / 2)
+        self.assertEqual((limited.triangle, limited.gradient, limited.beyond_limit), (0, 0.0, 1))
+        # Passed on: the worst case's 1-pixel line term is the gradient.
+        r = zshift.edge_offset(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM24, (9.0, 15.0),
+                               zshift.EdgeMethod.MATRIX, face_gradient=s.gradient,
+                               subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
+        self.assertEqual(r.line_term, s.gradient)
+
+    def test_bad_inputs_are_named(self):
+        tri = [(0, 0, -5), (1, 0, -5), (0, 1, -5)]
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (64, 64), tri, [0, 1, 3])
+        self.assertIn("indices", str(caught.exception))
+        with self.assertRaises(zshift.ZshiftError) as caught:
+            zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (64, 64), tri, [0, 1, 2], limit=-1.0)
+        self.assertIn("limit", str(caught.exception))
+        with self.assertRaises(TypeError):
+            zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (64, 64), [(0, 0)], [0, 0, 0])

@@ -20,6 +20,7 @@ import collections as _collections
 import ctypes as _ctypes
 import enum as _enum_module
 import functools as _functools
+import math as _math
 
 from . import _library
 from ._library import LibraryNotFound
@@ -1143,7 +1144,72 @@ def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width
     return (out[0], out[1])
 
 
-__all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes"]
+class _SteepestFace(_ctypes.Structure):
+    """The C ``ZshiftSteepestFace``."""
+
+    _fields_ = [("gradient", _ctypes.c_double), ("triangle", _ctypes.c_int64), ("counted", _ctypes.c_uint64),
+                ("beyond_limit", _ctypes.c_uint64), ("culled", _ctypes.c_uint64)]
+
+
+SteepestFace = _collections.namedtuple("SteepestFace", [name for name, _ in _SteepestFace._fields_])
+SteepestFace.__doc__ = """A mesh's steepest face as drawn (``zshift_steepest_face``): ``gradient`` (window depth per
+pixel, max(|dz/dx|, |dz/dy|): pass it as :func:`edge_offset`'s ``face_gradient``), ``triangle`` (its index, ``None``
+when no face counts), ``counted``, ``beyond_limit`` (steeper than the limit) and ``culled`` (drawing nothing)."""
+
+
+def _flattened(values, name, kind):
+    """``values`` as one flat list: a sequence of triples (or a numpy array of shape (N, 3)) or a flat sequence."""
+    flat = []
+    for item in values:
+        if isinstance(item, (int, float)) or getattr(item, "shape", None) == ():
+            flat.append(kind(item))
+        else:
+            triple = [kind(x) for x in item]
+            if len(triple) != 3:
+                raise TypeError(f"{name} must be triples (or a flat sequence), not items of {len(triple)} values")
+            flat.extend(triple)
+    return flat
+
+
+def steepest_face(clip_matrix, clip, viewport, positions, indices, limit=_math.inf):
+    """The steepest face of a mesh as drawn (``zshift_steepest_face``): the largest window-depth gradient
+    max(|dz/dx|, |dz/dy|) among its triangles (``indices``, three per triangle, GL_TRIANGLES order, into
+    ``positions``, (x, y, z) each), drawn through ``clip_matrix`` (projection * view * model, 16 floats,
+    column-major) under ``clip`` into a ``viewport`` of (width, height) pixels, leaving out triangles that draw
+    nothing and those steeper than ``limit`` (grazing: pass the ``face_gradient`` that :func:`edge_offset` returns
+    for a ``face_angle`` to keep every face within that angle). Pass ``gradient`` as :func:`edge_offset`'s
+    ``face_gradient``: the offset then pays the mesh's own steepest face, not the angle's. Returns a
+    :data:`SteepestFace`. Raises :class:`ZshiftError` naming a bad input (an index past the positions, a NaN
+    position, a zero viewport side, a negative limit)."""
+    lib = _lib()
+    if not getattr(lib, "_zshift_steepest", False):
+        lib.zshift_steepest_face.argtypes = [
+            _ctypes.POINTER(_ctypes.c_float), _ctypes.c_int32, _ctypes.c_uint32, _ctypes.c_uint32,
+            _ctypes.POINTER(_ctypes.c_float), _ctypes.c_size_t, _ctypes.c_size_t,
+            _ctypes.POINTER(_ctypes.c_uint32), _ctypes.c_size_t, _ctypes.c_double,
+            _ctypes.POINTER(_SteepestFace)]
+        lib.zshift_steepest_face.restype = _ctypes.c_int32
+        lib._zshift_steepest = True
+    mat = _engine_matrix(clip_matrix)
+    width, height = viewport
+    for what, value in (("viewport width", width), ("viewport height", height)):
+        if not isinstance(value, int) or not 0 <= value < 2**32:
+            raise ZshiftError(Status.DOMAIN, f"the {what} must be an integer in [0, 2**32) ({what} = {value!r})")
+    flat = _flattened(positions, "positions", float)
+    if len(flat) % 3:
+        raise TypeError(f"positions must hold three floats per vertex, not {len(flat)} values")
+    index_list = _flattened(indices, "indices", int)
+    if any(not 0 <= i < 2**32 for i in index_list):
+        raise ZshiftError(Status.DOMAIN, "indices must be integers in [0, 2**32)")
+    out = _SteepestFace()
+    _check(lib.zshift_steepest_face(mat, _enum(clip, Clip), width, height, (_ctypes.c_float * len(flat))(*flat),
+                                    len(flat) // 3, 0, (_ctypes.c_uint32 * len(index_list))(*index_list),
+                                    len(index_list), limit, _ctypes.byref(out)))
+    return SteepestFace(out.gradient, None if out.triangle < 0 else out.triangle, out.counted, out.beyond_limit,
+                        out.culled)
+
+
+__all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes", "SteepestFace", "steepest_face"]
 
 
 # ---- Shadow-map bias (docs/shadows.md) ----
