@@ -26,6 +26,19 @@ const ORIGINS: [[u32; 2]; 3] = [[0, 0], [700, 300], [1500, 900]];
 /// `glDepthRange`s.
 const RANGES: [[f64; 2]; 3] = [[0.0, 1.0], [0.25, 0.75], [0.5, 1.0]];
 
+/// `a · b` of two column-major matrices, in f64, rounded to f32 (an engine's MVP).
+fn times(a: &[f32; 16], b: &[f32; 16]) -> [f32; 16] {
+    let mut out = [0.0f32; 16];
+    for c in 0..4 {
+        for r in 0..4 {
+            out[4 * c + r] = (0..4)
+                .map(|k| f64::from(a[4 * k + r]) * f64::from(b[4 * c + k]))
+                .sum::<f64>() as f32;
+        }
+    }
+    out
+}
+
 /// A rigid view `[R | −R·c]` (column-major, f64) with `R` a yaw then a pitch, and its rows.
 fn view_of(yaw: f64, pitch: f64, camera: [f64; 3]) -> ([f64; 16], [[f64; 3]; 3]) {
     let (sy, cy) = yaw.sin_cos();
@@ -198,11 +211,33 @@ fn edges_drawn_as_engines_draw() {
                     depth_range: range,
                 };
                 for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
-                    for (pname, profile) in profiles {
-                        let edges = Edges {
+                    for (pname, profile, from_mesh) in asks(&profiles) {
+                        let mut edges = Edges {
                             pipeline,
                             ..edges_for(fmt, conv, variant, profile, [dmin, dmax])
                         };
+                        // The mesh's own steepest face, from its world positions through the
+                        // engine's projection times view (as an f32 MVP), within the angle's
+                        // gradient; the pixels judged are the angle's.
+                        let mut g_angle = f64::NAN;
+                        if from_mesh {
+                            let Ok(r) = recommend(&m, clip, &edges, method) else {
+                                continue;
+                            };
+                            g_angle = r.face_gradient;
+                            let mvp = times(&m, &view32);
+                            let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
+                            let face = zshift::steepest_face::steepest_face(
+                                &mvp,
+                                clip,
+                                [SIZE, SIZE],
+                                &world,
+                                &indices,
+                                g_angle,
+                            )
+                            .expect("steepest_face");
+                            edges.face_slope = FaceSlope::WindowGradient(face.gradient);
+                        }
                         let where_ = format!(
                             "{} {} {} {method:?} {pname} {} f/n {ratio} at {frac} T {t} viewport@{origin:?} range {range:?}",
                             conv.name(),
@@ -222,8 +257,12 @@ fn edges_drawn_as_engines_draw() {
                             }
                         };
                         answered += 1;
-                        let c =
-                            classify(&scene, &p, &rfs, &ids, b, rec.face_gradient, rec.hidden_gap);
+                        let g = if from_mesh {
+                            g_angle
+                        } else {
+                            rec.face_gradient
+                        };
+                        let c = classify(&scene, &p, &rfs, &ids, b, g, rec.hidden_gap);
                         visible += c.visible.len();
                         hidden += c.hidden.len();
                         let (lost, shown) = scene.count(&scaled(&rec, &m, clip, 1.0), &c);
