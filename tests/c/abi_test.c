@@ -1115,9 +1115,9 @@ static void test_steepest_face(void) {
   };
   static const uint32_t idx[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   float m[16];
-  ZshiftSteepestFace s, out;
+  ZshiftSteepestFace s, out, face;
   ZshiftEdges e = edges_for();
-  ZshiftEdgeOffset b;
+  ZshiftEdgeOffset b, by_angle;
   long double expected;
   engine_perspective(1.0471976f, 1.0f, 1.0f, 1000.0f, m);
   CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &s), ZSHIFT_OK);
@@ -1135,6 +1135,21 @@ static void test_steepest_face(void) {
   e.face_gradient = s.gradient;
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
   CHECK(b.face_gradient == s.gradient && b.line_term == s.gradient, "steepest face passed on: line term %g", b.line_term);
+  /* The three calls in order (docs/edges.md quotes them); eye-space vertices, so the clip matrix is m. */
+  /* 1. The angle's gradient: the limit beyond which faces are grazing (their edges not promised). */
+  e.face_angle = 60.0 * 3.14159265358979 / 180.0;
+  e.face_gradient = 0.0;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &by_angle), ZSHIFT_OK);
+  /* 2. The mesh's steepest face within it (positions 24 bytes apart in an interleaved buffer). */
+  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9,
+                                    by_angle.face_gradient, &face),
+               ZSHIFT_OK);
+  /* 3. The offset for that face: every face within the limit keeps its edges. */
+  e.face_angle = 0.0;
+  e.face_gradient = face.gradient;
+  CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
+  CHECK(face.triangle == 1 && b.window_offset < by_angle.window_offset,
+        "steepest face: the mesh's offset %g, the angle's %g", b.window_offset, by_angle.window_offset);
   /* Errors name what is wrong and leave the output untouched. */
   memset(&out, PATTERN, sizeof out);
   CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 10, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
