@@ -179,6 +179,18 @@ pub enum FaceSlope {
     /// takes the first-order tilt of [`crate::model`]'s gradient term: a face within the angle
     /// that grazes an off-axis ray can be steeper, and is then not guaranteed.
     Angle(f64),
+    /// The steepest faces of the mesh itself, as [`crate::steepest_face::steepest_face`] reads
+    /// them from its triangles under this view ([`recommend_for_mesh`] does both): the largest
+    /// `max(|∂w/∂x|, |∂w/∂y|)` and the largest gradient length of a face that matters. The
+    /// guarantee is for faces within both; single-sampled the line term is that of
+    /// `WindowGradient(max_component)`, under MSAA the smaller of it and `length·(w + 1)/2` (a
+    /// sample within `(w + 1)/2` of its line's point in any direction, module docs "MSAA").
+    Faces {
+        /// The largest `max(|∂w/∂x|, |∂w/∂y|)`, `≥ 0`.
+        max_component: f64,
+        /// The largest `√((∂w/∂x)² + (∂w/∂y)²)`, `≥ 0`.
+        length: f64,
+    },
 }
 
 /// Which of the two ways of drawing edges over faces (module docs).
@@ -279,7 +291,8 @@ pub struct EdgeRecommendation {
     /// `√2·(w − 1)/2` where smaller.
     pub line_reach: f64,
     /// `g`: the window-depth gradient per pixel of the steepest face that matters (its larger
-    /// component for [`FaceSlope::WindowGradient`], its length for [`FaceSlope::Angle`]).
+    /// component for [`FaceSlope::WindowGradient`], its length for [`FaceSlope::Angle`], the
+    /// mesh's `max_component` for [`FaceSlope::Faces`]).
     pub face_gradient: f64,
     /// Hidden edges behind a front face by at least this eye depth (`−z`, at the same pixel)
     /// never show.
@@ -318,6 +331,64 @@ pub fn recommend(
     Ok(rec)
 }
 
+/// A mesh as the engine draws it, for [`recommend_for_mesh`]: its vertex positions, its
+/// triangles (`GL_TRIANGLES` order, three indices each) and the whole matrix that takes the
+/// positions to clip space (`projection · view · model`, column-major f32, as the vertex shader
+/// applies it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeshDraw<'a> {
+    /// `projection · view · model`.
+    pub clip_matrix: &'a [f32; 16],
+    /// The vertex positions the shader reads.
+    pub positions: &'a [[f32; 3]],
+    /// Three indices per triangle into `positions`.
+    pub indices: &'a [u32],
+}
+
+/// [`recommend`] for the mesh's own steepest faces: `edges.face_slope` (an angle or a window
+/// gradient) is the limit beyond which faces are grazing, and the faces of `mesh` within it,
+/// read exactly from its triangles under this view ([`crate::steepest_face::steepest_face`]
+/// with the limit's gradient, [`EdgeRecommendation::face_gradient`] of the same ask), set the
+/// line term ([`FaceSlope::Faces`]). A mesh with no face near the limit (a terrain of gentle
+/// hills, a box, flat panels) pays for the faces it has; every face within the limit keeps its
+/// edges, as with the limit alone. Returns the recommendation and what was read.
+///
+/// # Errors
+/// As [`recommend`] and [`crate::steepest_face::steepest_face`] (the mesh's inputs named);
+/// [`ErrorKind::Domain`] when `edges.face_slope` is already [`FaceSlope::Faces`].
+pub fn recommend_for_mesh(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    edges: &Edges,
+    method: EdgeMethod,
+    mesh: &MeshDraw<'_>,
+) -> Result<(EdgeRecommendation, crate::steepest_face::SteepestFace)> {
+    if matches!(edges.face_slope, FaceSlope::Faces { .. }) {
+        return Err(domain(
+            "recommend_for_mesh reads the mesh's faces itself: give face_slope as the limit (an angle or a window gradient)",
+        ));
+    }
+    let frustum = frustum_of(m, clip)?;
+    check(edges, &frustum)?;
+    let (_, limit) = slopes(edges, &frustum)?;
+    let faces = crate::steepest_face::steepest_face(
+        mesh.clip_matrix,
+        clip,
+        edges.viewport,
+        mesh.positions,
+        mesh.indices,
+        limit,
+    )?;
+    let own = Edges {
+        face_slope: FaceSlope::Faces {
+            max_component: faces.gradient,
+            length: faces.length,
+        },
+        ..*edges
+    };
+    Ok((recommend(m, clip, &own, method)?, faces))
+}
+
 /// Near and far planes that make [`recommend`] answer for `edges` by `method`: the tight planes
 /// of the mesh's extent ([`crate::plan::tight_planes`]) with `m`'s side planes (the same
 /// `l/n`, `r/n`, `b/n`, `t/n`).
@@ -347,9 +418,18 @@ pub fn working_planes(
         // A window gradient belongs to the planes: the same faces under other planes have it
         // scaled by b'/b (window depth is α ± b/d); an angle does not change.
         let mut moved = *edges;
-        if let FaceSlope::WindowGradient(g) = edges.face_slope {
-            moved.face_slope = FaceSlope::WindowGradient(g * (b_of(&tight) / b_of(&frustum)));
-        }
+        let k = b_of(&tight) / b_of(&frustum);
+        moved.face_slope = match edges.face_slope {
+            FaceSlope::WindowGradient(g) => FaceSlope::WindowGradient(g * k),
+            FaceSlope::Faces {
+                max_component,
+                length,
+            } => FaceSlope::Faces {
+                max_component: max_component * k,
+                length: length * k,
+            },
+            angle @ FaceSlope::Angle(_) => angle,
+        };
         match recommend(&mt, clip, &moved, method) {
             Ok(_) => return Ok([planes.near(), planes.far()]),
             Err(e) if e.kind() == ErrorKind::Unresolvable => last = Some(e),
@@ -406,6 +486,21 @@ fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
                 );
             }
         }
+        FaceSlope::Faces {
+            max_component,
+            length,
+        } => {
+            for (name, g) in [("max_component", max_component), ("length", length)] {
+                finite(g, "face_slope (a mesh's face gradient) is NaN or infinite")
+                    .map_err(|e| e.with_value(name, g))?;
+                if g < 0.0 {
+                    return Err(domain(
+                        "face_slope (a mesh's face gradient per pixel) must be >= 0",
+                    )
+                    .with_value(name, g));
+                }
+            }
+        }
         FaceSlope::Angle(a) => {
             finite(a, "face_slope (angle) is NaN or infinite")
                 .map_err(|e| e.with_value("face_slope", a))?;
@@ -460,7 +555,10 @@ fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
     let big_f = frustum.planes().far_over_span();
     let d1 = edges.depth_range[0];
     match edges.face_slope {
-        FaceSlope::WindowGradient(g) => Ok((g * d1 / (big_f * ex.min(ey)), g)),
+        FaceSlope::WindowGradient(g)
+        | FaceSlope::Faces {
+            max_component: g, ..
+        } => Ok((g * d1 / (big_f * ex.min(ey)), g)),
         FaceSlope::Angle(a) => {
             // |sₓ|, |s_y| ≤ tan a, |sₓ| + |s_y| ≤ √2·tan a; gradient per axis s_k·F·e_k/d_a with
             // the tilt (1 + s·e)/d₁ on 1/d_a (first-order: crate::model::gradient).
@@ -545,19 +643,22 @@ fn line_reach(edges: &Edges) -> f64 {
     }
 }
 
-/// The reach `L` takes against the face-slope limit `g` (the face's own `Δ`, or a polygon-mode
-/// neighbour's `Δ_n`): the reach (pixels of `M`), except under MSAA
-/// with the limit given as an angle ([`FaceSlope::Angle`]), whose `g` bounds a face's whole
-/// gradient `|∇z|`, not only its larger component `M`: a sample lies at most `(w + 1)/2` from
-/// the point whose depth it takes, in any direction (module docs, "MSAA"), so it is off its
-/// face by at most `g·(w + 1)/2`, less than `g·Δ` wherever `Δ` exceeds `(w + 1)/2` (the worst
-/// case's `√2·(w + 1)/2`; llvmpipe's measured 1.12 at width 1: its samples lie within 0.87 of
-/// their face's whole gradient, [`crate::probe::Figures::msaa_line_reach_whole`]). The
+/// The part of the line term one reach makes against the face-slope limit `g` (the face's own
+/// `Δ`, or a polygon-mode neighbour's `Δ_n`, in pixels of `M`): `g·reach`, except under MSAA
+/// where the limit also bounds a face's whole gradient `|∇z|`, not only its larger component
+/// `M` — an angle ([`FaceSlope::Angle`]), whose `g` is that length, or a mesh's own faces
+/// ([`FaceSlope::Faces`], `length`): a sample lies at most `(w + 1)/2` from the point whose
+/// depth it takes, in any direction (module docs, "MSAA"), so it is off its face by at most
+/// `|∇z|·(w + 1)/2`, less than `M·Δ` wherever `Δ` exceeds `(w + 1)/2` (the worst case's
+/// `√2·(w + 1)/2`; llvmpipe's measured 1.12 at width 1: its samples lie within 0.87 of their
+/// face's whole gradient, [`crate::probe::Figures::msaa_line_reach_whole`]). The
 /// polygon-offset factor keeps `Δ`: it multiplies each face's own `M`.
-fn reach_against_limit(edges: &Edges, reach: f64) -> f64 {
+fn line_part(edges: &Edges, g: f64, reach: f64) -> f64 {
+    let across = (edges.line_width + 1.0) / 2.0;
     match edges.face_slope {
-        FaceSlope::Angle(_) if edges.samples > 1 => reach.min((edges.line_width + 1.0) / 2.0),
-        FaceSlope::Angle(_) | FaceSlope::WindowGradient(_) => reach,
+        FaceSlope::Angle(_) if edges.samples > 1 => g * reach.min(across),
+        FaceSlope::Faces { length, .. } if edges.samples > 1 => (g * reach).min(length * across),
+        FaceSlope::Angle(_) | FaceSlope::WindowGradient(_) | FaceSlope::Faces { .. } => g * reach,
     }
 }
 
@@ -647,12 +748,9 @@ fn unchecked_gap(
     // edge may take its line fragment from the neighbour's outline, off the face by the
     // neighbour's slope term too where the rasterizer evaluates the neighbour's plane there
     // (module docs, "Polygon-mode lines"): that part, up to the face-slope limit, is `neighbour`.
-    let own = representable(
-        g * reach_against_limit(edges, reach),
-        "the line term overflows f64",
-    )?;
+    let own = representable(line_part(edges, g, reach), "the line term overflows f64")?;
     let neighbour = representable(
-        g * reach_against_limit(edges, neighbour_reach(edges)),
+        line_part(edges, g, neighbour_reach(edges)),
         "the line term overflows f64",
     )?;
     let line = representable(own + neighbour, "the line term overflows f64")?;

@@ -53,6 +53,11 @@ pub struct SteepestFace {
     /// `[0, 1]` per pixel), 0 when none counts: pass it as
     /// [`crate::lines::FaceSlope::WindowGradient`].
     pub gradient: f64,
+    /// The largest length `√((∂z_w/∂x_w)² + (∂z_w/∂y_w)²)` of a face that counts (of any face:
+    /// not necessarily the one of `gradient`), 0 when none counts. Multisampled lines take their
+    /// depth up to `(w + 1)/2` pixels away in any direction, which this bounds
+    /// ([`crate::lines::FaceSlope::Faces`]).
+    pub length: f64,
     /// That face: its first index's position in `indices`, divided by 3; `None` when none counts.
     pub triangle: Option<usize>,
     /// Triangles that count (drawn, within the limit).
@@ -95,6 +100,7 @@ pub fn steepest_face(
     ];
     let mut out = SteepestFace {
         gradient: 0.0,
+        length: 0.0,
         triangle: None,
         counted: 0,
         beyond_limit: 0,
@@ -109,9 +115,10 @@ pub fn steepest_face(
         };
         match gradient {
             None => out.culled += 1,
-            Some(g) if g > limit => out.beyond_limit += 1,
-            Some(g) => {
+            Some((g, _)) if g > limit => out.beyond_limit += 1,
+            Some((g, length)) => {
                 out.counted += 1;
+                out.length = out.length.max(length);
                 if out.triangle.is_none() || g > out.gradient {
                     out.gradient = g;
                     out.triangle = Some(t);
@@ -208,9 +215,9 @@ fn outside_one_plane(c: &[[f64; 4]; 3], clip: ClipDepth) -> bool {
         != 0
 }
 
-/// `max(|∂z_w/∂x_w|, |∂z_w/∂y_w|)` of the plane through clip points `c` (module docs), `None`
-/// for a triangle with no area on screen.
-fn window_gradient(c: &[[f64; 4]; 3], scale: [f64; 2]) -> Option<f64> {
+/// `max(|∂z_w/∂x_w|, |∂z_w/∂y_w|)` and the length of the gradient of the plane through clip
+/// points `c` (module docs), `None` for a triangle with no area on screen.
+fn window_gradient(c: &[[f64; 4]; 3], scale: [f64; 2]) -> Option<(f64, f64)> {
     let d1 = [0, 1, 2, 3].map(|i| c[1][i] - c[0][i]);
     let d2 = [0, 1, 2, 3].map(|i| c[2][i] - c[0][i]);
     let rows = [c[0], d1, d2];
@@ -226,8 +233,9 @@ fn window_gradient(c: &[[f64; 4]; 3], scale: [f64; 2]) -> Option<f64> {
     if a2 == 0.0 {
         return None;
     }
-    let g = (a0 / a2 * scale[0]).abs().max((a1 / a2 * scale[1]).abs());
-    g.is_finite().then_some(g)
+    let (gx, gy) = ((a0 / a2 * scale[0]).abs(), (a1 / a2 * scale[1]).abs());
+    let g = gx.max(gy);
+    g.is_finite().then(|| (g, gx.hypot(gy)))
 }
 
 #[cfg(test)]
@@ -246,6 +254,11 @@ mod tests {
     /// The reference: project each vertex to window coordinates (divide by w, f64), then the
     /// plane z_w(x_w, y_w) through the three, as the GL sweep's reference does.
     fn projected_gradient(m: &[f32; 16], clip: ClipDepth, vp: [u32; 2], t: [[f32; 3]; 3]) -> f64 {
+        projected(m, clip, vp, t).0
+    }
+
+    /// The reference's larger component and length.
+    fn projected(m: &[f32; 16], clip: ClipDepth, vp: [u32; 2], t: [[f32; 3]; 3]) -> (f64, f64) {
         let mf = m.map(f64::from);
         let win = t.map(|p| {
             let c = to_clip(&mf, p);
@@ -265,7 +278,7 @@ mod tests {
         let area = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
         let gx = ((b[2] - a[2]) * (c[1] - a[1]) - (c[2] - a[2]) * (b[1] - a[1])) / area;
         let gy = ((c[2] - a[2]) * (b[0] - a[0]) - (b[2] - a[2]) * (c[0] - a[0])) / area;
-        gx.abs().max(gy.abs())
+        (gx.abs().max(gy.abs()), gx.hypot(gy))
     }
 
     #[test]
@@ -285,10 +298,16 @@ mod tests {
                     [0, 1, 2].map(|_| [0, 1, 2].map(|i| (centre[i] + size * (u() - 0.5)) as f32));
                 let r =
                     steepest_face(&m, clip, [1920, 1080], &t, &[0, 1, 2], f64::INFINITY).unwrap();
-                let reference = projected_gradient(&m, clip, [1920, 1080], t);
+                let reference = projected(&m, clip, [1920, 1080], t);
                 if r.counted == 1 {
-                    let rel = (r.gradient - reference).abs() / reference;
-                    assert!(rel < 1e-7, "{clip:?} {t:?}: {} vs {reference}", r.gradient);
+                    let rel = (r.gradient - reference.0).abs() / reference.0;
+                    assert!(
+                        rel < 1e-7,
+                        "{clip:?} {t:?}: {} vs {reference:?}",
+                        r.gradient
+                    );
+                    let rel = (r.length - reference.1).abs() / reference.1;
+                    assert!(rel < 1e-7, "{clip:?} {t:?}: {} vs {reference:?}", r.length);
                 }
             }
         }

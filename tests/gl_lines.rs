@@ -51,7 +51,9 @@ mod gl_common;
 #[path = "gl_lines/engine.rs"]
 mod engine;
 
-use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
+use zshift::lines::{
+    recommend, recommend_for_mesh, EdgeMethod, Edges, FaceSlope, LineKind, MeshDraw,
+};
 use zshift::precision::DepthFormat as Format;
 use zshift::projection::{projection, projection_f64, ClipDepth, Frustum};
 use zshift::recommend::{DepthTest, RasterizerProfile};
@@ -227,14 +229,26 @@ fn asks(
     ]
 }
 
-/// The face slope an engine passes for its own mesh: the largest window gradient of a drawn face
-/// within `limit` (the angle's gradient), from its triangles and matrix.
-fn mesh_gradient(mesh: &Mesh, m: &[f32; 16], clip: ClipDepth, limit: f64) -> FaceSlope {
+/// zshift's answer for `edges`, with the mesh's own steepest faces (`lines::recommend_for_mesh`,
+/// the mesh in eye space: its clip matrix is `m`) where `from_mesh`.
+fn ask(
+    m: &[f32; 16],
+    clip: ClipDepth,
+    edges: &Edges,
+    method: EdgeMethod,
+    mesh: &Mesh,
+    from_mesh: bool,
+) -> zshift::Result<zshift::lines::EdgeRecommendation> {
+    if !from_mesh {
+        return recommend(m, clip, edges, method);
+    }
     let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
-    let face =
-        zshift::steepest_face::steepest_face(m, clip, [SIZE, SIZE], &mesh.verts, &indices, limit)
-            .expect("steepest_face");
-    FaceSlope::WindowGradient(face.gradient)
+    let draw = MeshDraw {
+        clip_matrix: m,
+        positions: &mesh.verts,
+        indices: &indices,
+    };
+    recommend_for_mesh(m, clip, edges, method, &draw).map(|(r, _)| r)
 }
 
 /// `make`'s mesh near eye distance `d0`, moved to lie inside `[1.1n, 0.95f]` (its depth extent
@@ -440,7 +454,7 @@ fn edges_over_faces_sweep() {
                                 for (pname, profile, from_mesh) in asks(&profiles) {
                                     let mut edges =
                                         edges_for(fmt, conv, variant, profile, [dmin, dmax]);
-                                    // The mesh's own steepest face within the angle's
+                                    // The mesh's own steepest faces within the angle's
                                     // gradient; the pixels judged are those of faces within the
                                     // angle's gradient, whichever way zshift is asked.
                                     let mut g_angle = f64::NAN;
@@ -450,7 +464,6 @@ fn edges_over_faces_sweep() {
                                             continue;
                                         };
                                         g_angle = r.face_gradient;
-                                        edges.face_slope = mesh_gradient(&mesh, &m, clip, g_angle);
                                     }
                                     let label = format!(
                                         "{} {} {} {} {pname}",
@@ -472,7 +485,8 @@ fn edges_over_faces_sweep() {
                                     }
                                     let class = class_of(&mut classes, &label);
                                     class.scenes += 1;
-                                    let rec = match recommend(&m, clip, &edges, method) {
+                                    let rec = match ask(&m, clip, &edges, method, &mesh, from_mesh)
+                                    {
                                         Ok(r) => r,
                                         Err(e) => {
                                             class.refused += 1;
@@ -581,7 +595,7 @@ fn edges_over_faces_sweep() {
                                         // one of them.
                                         let sep = 0.5 * rec.hidden_gap;
                                         edges.hidden_separation = sep;
-                                        match recommend(&m, clip, &edges, method) {
+                                        match ask(&m, clip, &edges, method, &mesh, from_mesh) {
                                             Err(e) if e.kind() == zshift::ErrorKind::Unresolvable => {
                                                 let cs = classify(&scene, &p, rfs, &ids, b, g, sep);
                                                 let (l, shown) = scene

@@ -731,33 +731,52 @@ inline std::array<double, 2> edge_planes(const Matrix &m, Clip clip, const Edges
   return edge_planes(m.data(), clip, edges, method);
 }
 
-/// A mesh's steepest face as drawn (ZshiftSteepestFace): `gradient` is what to pass as
-/// Edges::face_gradient (face_angle 0) for this mesh, matrix and viewport.
+/// A mesh as the engine draws it (ZshiftMesh): clip matrix, positions and stride, indices.
+using Mesh = ZshiftMesh;
+/// A mesh's steepest face as drawn (ZshiftSteepestFace): `gradient` is what Edges::face_gradient
+/// takes (face_angle 0) for this mesh, matrix and viewport; `length` bounds multisampled lines.
 using SteepestFace = ZshiftSteepestFace;
 
+/// A Mesh over packed positions and an index vector (which must outlive it), drawn through
+/// `clip_matrix` (projection * view * model, which must outlive it too).
+inline Mesh make_mesh(const Matrix &clip_matrix, const std::vector<std::array<float, 3>> &positions,
+                      const std::vector<std::uint32_t> &indices) {
+  Mesh mesh{};
+  mesh.clip_matrix = clip_matrix.data();
+  mesh.positions = positions.empty() ? nullptr : positions[0].data();
+  mesh.vertex_count = positions.size();
+  mesh.position_stride = sizeof(positions[0]);
+  mesh.indices = indices.empty() ? nullptr : indices.data();
+  mesh.index_count = indices.size();
+  return mesh;
+}
+
 /// The steepest face of a mesh as drawn (zshift_steepest_face): the largest window-depth gradient
-/// max(|dz/dx|, |dz/dy|) of its triangles (`index_count` indices, GL_TRIANGLES order, into
-/// `vertex_count` xyz positions `stride` bytes apart, 0 for packed) through `clip_matrix`
-/// (projection * view * model) into a `width` x `height` viewport, leaving out triangles that draw
-/// nothing and those steeper than `limit` (the face_gradient a face_angle gives, or infinity).
-/// Throws Error naming a bad input (an index past the positions, a NaN position, a zero viewport).
-inline SteepestFace steepest_face(const float *clip_matrix, Clip clip, std::uint32_t width, std::uint32_t height,
-                                  const float *positions, std::size_t vertex_count, std::size_t stride,
-                                  const std::uint32_t *indices, std::size_t index_count,
+/// max(|dz/dx|, |dz/dy|) of its triangles (and the largest length) in a `width` x `height`
+/// viewport, leaving out triangles that draw nothing and those steeper than `limit` (the
+/// face_gradient a face_angle gives, or infinity). Throws Error naming a bad input (an index
+/// past the positions, a NaN position, a zero viewport).
+inline SteepestFace steepest_face(const Mesh &mesh, Clip clip, std::uint32_t width, std::uint32_t height,
                                   double limit = std::numeric_limits<double>::infinity()) {
   SteepestFace out{};
-  detail::check(zshift_steepest_face(clip_matrix, detail::to_c(clip), width, height, positions, vertex_count, stride,
-                                     indices, index_count, limit, &out));
+  detail::check(zshift_steepest_face(&mesh, detail::to_c(clip), width, height, limit, &out));
   return out;
 }
-/// steepest_face() of a Matrix, packed positions and an index vector.
-inline SteepestFace steepest_face(const Matrix &clip_matrix, Clip clip, std::uint32_t width, std::uint32_t height,
-                                  const std::vector<std::array<float, 3>> &positions,
-                                  const std::vector<std::uint32_t> &indices,
-                                  double limit = std::numeric_limits<double>::infinity()) {
-  return steepest_face(clip_matrix.data(), clip, width, height, positions.empty() ? nullptr : positions[0].data(),
-                       positions.size(), sizeof(positions[0]), indices.empty() ? nullptr : indices.data(),
-                       indices.size(), limit);
+
+/// edge_offset() paying for the mesh's own steepest faces within the limit that `edges`'
+/// face_angle (or face_gradient) sets (zshift_edge_offset_for_mesh). Throws as edge_offset() and
+/// steepest_face().
+inline EdgeOffset edge_offset_for_mesh(const float *m, Clip clip, const Edges &edges, const Mesh &mesh,
+                                       EdgeMethod method) {
+  EdgeOffset out{};
+  detail::check(zshift_edge_offset_for_mesh(m, detail::to_c(clip), &edges, &mesh,
+                                            static_cast<std::uint32_t>(method), &out));
+  return out;
+}
+/// edge_offset_for_mesh() of a Matrix.
+inline EdgeOffset edge_offset_for_mesh(const Matrix &m, Clip clip, const Edges &edges, const Mesh &mesh,
+                                       EdgeMethod method) {
+  return edge_offset_for_mesh(m.data(), clip, edges, mesh, method);
 }
 
 /// What an engine knows about one shadow map (ZshiftShadowMap): the light's projection

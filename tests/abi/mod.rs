@@ -516,14 +516,15 @@ pub const MAX_STATUS: i32 = 7;
 /// records of mixed element types (floats and doubles, signed biases) that the generic byte
 /// checks cannot read as one array: `tests/c/abi_test.c` (`test_edges`, `test_shadow_bias`)
 /// checks their NULL pointers, untouched outputs and details (the sanitizer stage does not call them
-/// yet). `zshift_steepest_face` reads a mesh (strided positions, indices) and writes such a record:
-/// `test_steepest_face` there.
+/// yet). `zshift_steepest_face` and `zshift_edge_offset_for_mesh` read a mesh (strided positions,
+/// indices) and write such records: `test_steepest_face` there.
 pub const COVERED_ELSEWHERE: &[&str] = &[
     "zshift_probe",
     "zshift_profile_worst_case",
     "zshift_edge_offset",
     "zshift_edge_planes",
     "zshift_steepest_face",
+    "zshift_edge_offset_for_mesh",
     "zshift_shadow_bias",
     "zshift_shadow_bias_receivers",
 ];

@@ -1115,19 +1115,28 @@ static void test_steepest_face(void) {
   };
   static const uint32_t idx[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   float m[16];
+  ZshiftMesh mesh, bad;
   ZshiftSteepestFace s, out, face;
   ZshiftEdges e = edges_for();
-  ZshiftEdgeOffset b, by_angle;
+  ZshiftEdgeOffset b, by_angle, by_mesh, untouched_offset;
   long double expected;
   engine_perspective(1.0471976f, 1.0f, 1.0f, 1000.0f, m);
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &s), ZSHIFT_OK);
+  memset(&mesh, 0, sizeof mesh);
+  mesh.clip_matrix = m; /* eye-space vertices: the projection is the whole clip matrix */
+  mesh.positions = &verts[0][0];
+  mesh.vertex_count = 9;
+  mesh.position_stride = 24;
+  mesh.indices = idx;
+  mesh.index_count = 9;
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &s), ZSHIFT_OK);
   expected = window_gradient_c(m, &verts[3][0], 512, 512);
   CHECK(s.triangle == 1 && s.counted == 2 && s.culled == 1 && s.beyond_limit == 0,
         "steepest face: triangle %lld counted %llu culled %llu", (long long)s.triangle,
         (unsigned long long)s.counted, (unsigned long long)s.culled);
   CHECK(fabsl(s.gradient - expected) <= 1e-9L * expected, "steepest face: %.17g, by projection %.17Lg", s.gradient, expected);
+  CHECK(s.length >= s.gradient && s.length <= 1.4142136 * s.gradient, "steepest face: length %g of %g", s.length, s.gradient);
   /* Below the tilted face's gradient only the facing one counts, at 0. */
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, s.gradient / 2, &out), ZSHIFT_OK);
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, s.gradient / 2, &out), ZSHIFT_OK);
   CHECK(out.triangle == 0 && out.gradient == 0.0 && out.beyond_limit == 1, "steepest face under a limit: %g", out.gradient);
   /* Passed on as the face gradient: the worst case's 1-pixel line term is the gradient. */
   e.depth_near = 9.0;
@@ -1135,14 +1144,13 @@ static void test_steepest_face(void) {
   e.face_gradient = s.gradient;
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
   CHECK(b.face_gradient == s.gradient && b.line_term == s.gradient, "steepest face passed on: line term %g", b.line_term);
-  /* The three calls in order (docs/edges.md quotes them); eye-space vertices, so the clip matrix is m. */
+  /* The three calls in order (docs/edges.md quotes them). */
   /* 1. The angle's gradient: the limit beyond which faces are grazing (their edges not promised). */
   e.face_angle = 60.0 * 3.14159265358979 / 180.0;
   e.face_gradient = 0.0;
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &by_angle), ZSHIFT_OK);
-  /* 2. The mesh's steepest face within it (positions 24 bytes apart in an interleaved buffer). */
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9,
-                                    by_angle.face_gradient, &face),
+  /* 2. The mesh's steepest face within it. */
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, by_angle.face_gradient, &face),
                ZSHIFT_OK);
   /* 3. The offset for that face: every face within the limit keeps its edges. */
   e.face_angle = 0.0;
@@ -1150,23 +1158,58 @@ static void test_steepest_face(void) {
   CHECK_STATUS(zshift_edge_offset(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, ZSHIFT_EDGES_MATRIX, &b), ZSHIFT_OK);
   CHECK(face.triangle == 1 && b.window_offset < by_angle.window_offset,
         "steepest face: the mesh's offset %g, the angle's %g", b.window_offset, by_angle.window_offset);
+  /* Or in one call, with the angle as the limit: the same single-sampled offset. */
+  e.face_angle = 60.0 * 3.14159265358979 / 180.0;
+  e.face_gradient = 0.0;
+  CHECK_STATUS(zshift_edge_offset_for_mesh(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, &mesh, ZSHIFT_EDGES_MATRIX, &by_mesh),
+               ZSHIFT_OK);
+  CHECK(memcmp(&by_mesh, &b, sizeof b) == 0, "zshift_edge_offset_for_mesh differs from the three calls");
+  /* Under 4x MSAA the face's gradient length bounds a sample's reach: at most length*(w + 1)/2. */
+  e.samples = 4;
+  CHECK_STATUS(zshift_edge_offset_for_mesh(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, &mesh, ZSHIFT_EDGES_MATRIX, &by_mesh),
+               ZSHIFT_OK);
+  CHECK(by_mesh.line_term <= face.length * (1 + 1e-15) && by_mesh.line_term <= face.gradient * by_mesh.line_reach,
+        "edges for a mesh under MSAA: line term %g, length %g", by_mesh.line_term, face.length);
   /* Errors name what is wrong and leave the output untouched. */
   memset(&out, PATTERN, sizeof out);
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 10, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  bad = mesh;
+  bad.position_stride = 10;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
   expect_detail("steepest face stride", "position_stride");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 8, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  bad = mesh;
+  bad.vertex_count = 8;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
   expect_detail("steepest face index", "indices");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 8, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  bad = mesh;
+  bad.index_count = 8;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
   expect_detail("steepest face index count", "index_count");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, NAN, &out), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, NAN, &out), ZSHIFT_ERR_DOMAIN);
   expect_detail("steepest face limit", "limit");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 0, 512, INFINITY, &out), ZSHIFT_ERR_DOMAIN);
   expect_detail("steepest face viewport", "viewport_width");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, NULL, 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, NULL, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
-  CHECK_STATUS(zshift_steepest_face(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  bad = mesh;
+  bad.positions = NULL;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  expect_detail("steepest face positions", "mesh->positions");
+  bad = mesh;
+  bad.indices = NULL;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  bad = mesh;
+  bad.clip_matrix = NULL;
+  CHECK_STATUS(zshift_steepest_face(&bad, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_steepest_face(NULL, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, &out), ZSHIFT_ERR_NULL_POINTER);
   CHECK(untouched(&out, sizeof out), "zshift_steepest_face wrote its output on error");
-  CHECK_STATUS(zshift_steepest_face(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, &verts[0][0], 9, 24, idx, 9, INFINITY, NULL), ZSHIFT_ERR_NULL_POINTER);
+  CHECK_STATUS(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, INFINITY, NULL), ZSHIFT_ERR_NULL_POINTER);
+  memset(&untouched_offset, PATTERN, sizeof untouched_offset);
+  bad = mesh;
+  bad.index_count = 8;
+  CHECK_STATUS(zshift_edge_offset_for_mesh(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, &bad, ZSHIFT_EDGES_MATRIX, &untouched_offset),
+               ZSHIFT_ERR_DOMAIN);
+  expect_detail("edges for a mesh: index count", "index_count");
+  CHECK_STATUS(zshift_edge_offset_for_mesh(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &e, NULL, ZSHIFT_EDGES_MATRIX, &untouched_offset),
+               ZSHIFT_ERR_NULL_POINTER);
+  CHECK(untouched(&untouched_offset, sizeof untouched_offset), "zshift_edge_offset_for_mesh wrote its output on error");
 }
 
 static void test_edges(void) {

@@ -333,21 +333,30 @@ static void test_edges() {
   e.line_width = 0.5;
   check_throws("edge_offset(line_width 0.5)", zshift::Status::domain,
                [&] { zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix); });
-  // The steepest face: the vector overload gives what the C call writes; the tilted face is
-  // steeper than the facing one; an index past the positions throws.
+  // The steepest face: what the C call writes; the tilted face is steeper than the facing one;
+  // the one-call offset for the mesh pays less than the angle's; an index past the positions
+  // throws.
   const std::vector<std::array<float, 3>> positions = {
       {{-1, -1, -10}}, {{1, -1, -10}}, {{0, 1, -10}}, {{-1, -1, -10}}, {{1, -1, -14}}, {{0, 1, -10}}};
   const std::vector<std::uint32_t> indices = {0, 1, 2, 3, 4, 5};
-  const auto s = zshift::steepest_face(m, zshift::Clip::neg_one_to_one, 512, 512, positions, indices);
+  const zshift::Mesh mesh = zshift::make_mesh(m, positions, indices);
+  const auto s = zshift::steepest_face(mesh, zshift::Clip::neg_one_to_one, 512, 512);
   ZshiftSteepestFace sc{};
-  CHECK(zshift_steepest_face(m.data(), ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, positions[0].data(), 6, 0,
-                             indices.data(), 6, std::numeric_limits<double>::infinity(), &sc) == ZSHIFT_OK,
+  CHECK(zshift_steepest_face(&mesh, ZSHIFT_CLIP_NEG_ONE_TO_ONE, 512, 512, std::numeric_limits<double>::infinity(),
+                             &sc) == ZSHIFT_OK,
         "C call");
   CHECK(std::memcmp(&s, &sc, sizeof s) == 0 && s.triangle == 1 && s.counted == 2 && s.gradient > 0.0,
         "steepest_face() triangle %lld gradient %g", static_cast<long long>(s.triangle), s.gradient);
-  check_throws("steepest_face(index past the positions)", zshift::Status::domain, [&] {
-    zshift::steepest_face(m, zshift::Clip::neg_one_to_one, 512, 512, positions, std::vector<std::uint32_t>{0, 1, 6});
-  });
+  e.line_width = 1.0;
+  e.face_gradient = 0.0;
+  e.face_angle = 1.0471976;
+  const auto by_angle = zshift::edge_offset(m, zshift::Clip::neg_one_to_one, e, zshift::EdgeMethod::matrix);
+  const auto by_mesh = zshift::edge_offset_for_mesh(m, zshift::Clip::neg_one_to_one, e, mesh, zshift::EdgeMethod::matrix);
+  CHECK(by_mesh.window_offset < by_angle.window_offset && by_mesh.face_gradient <= by_angle.face_gradient,
+        "edge_offset_for_mesh() %g vs the angle's %g", by_mesh.window_offset, by_angle.window_offset);
+  const std::vector<std::uint32_t> past = {0, 1, 6};
+  check_throws("steepest_face(index past the positions)", zshift::Status::domain,
+               [&] { zshift::steepest_face(zshift::make_mesh(m, positions, past), zshift::Clip::neg_one_to_one, 512, 512); });
 }
 
 // One decal over two planes (a mesh decal over terrain): the larger of the two offsets, the

@@ -212,11 +212,11 @@ fn edges_drawn_as_engines_draw() {
                 };
                 for method in [EdgeMethod::PolygonOffset, EdgeMethod::Matrix] {
                     for (pname, profile, from_mesh) in asks(&profiles) {
-                        let mut edges = Edges {
+                        let edges = Edges {
                             pipeline,
                             ..edges_for(fmt, conv, variant, profile, [dmin, dmax])
                         };
-                        // The mesh's own steepest face, from its world positions through the
+                        // The mesh's own steepest faces, from its world positions through the
                         // engine's projection times view (as an f32 MVP), within the angle's
                         // gradient; the pixels judged are the angle's.
                         let mut g_angle = f64::NAN;
@@ -225,18 +225,6 @@ fn edges_drawn_as_engines_draw() {
                                 continue;
                             };
                             g_angle = r.face_gradient;
-                            let mvp = times(&m, &view32);
-                            let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
-                            let face = zshift::steepest_face::steepest_face(
-                                &mvp,
-                                clip,
-                                [SIZE, SIZE],
-                                &world,
-                                &indices,
-                                g_angle,
-                            )
-                            .expect("steepest_face");
-                            edges.face_slope = FaceSlope::WindowGradient(face.gradient);
                         }
                         let where_ = format!(
                             "{} {} {} {method:?} {pname} {} f/n {ratio} at {frac} T {t} viewport@{origin:?} range {range:?}",
@@ -245,7 +233,19 @@ fn edges_drawn_as_engines_draw() {
                             variant.name(),
                             mesh.name
                         );
-                        let rec = match recommend(&m, clip, &edges, method) {
+                        let mvp = times(&m, &view32);
+                        let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
+                        let draw = MeshDraw {
+                            clip_matrix: &mvp,
+                            positions: &world,
+                            indices: &indices,
+                        };
+                        let answer = if from_mesh {
+                            recommend_for_mesh(&m, clip, &edges, method, &draw).map(|(r, _)| r)
+                        } else {
+                            recommend(&m, clip, &edges, method)
+                        };
+                        let rec = match answer {
                             Ok(r) => r,
                             Err(e) if e.kind() == zshift::ErrorKind::Unresolvable => {
                                 refused += 1;

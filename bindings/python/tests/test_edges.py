@@ -125,6 +125,22 @@ class SteepestFace(unittest.TestCase):
                                zshift.EdgeMethod.MATRIX, face_gradient=s.gradient,
                                subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
         self.assertEqual(r.line_term, s.gradient)
+        self.assertTrue(s.gradient <= s.length <= math.sqrt(2) * s.gradient, (s.gradient, s.length))
+
+    def test_one_call_pays_less_than_the_angle(self):
+        facing = [(-1, -1, -10), (1, -1, -10), (0, 1, -10)]
+        tilted = [(-1, -1, -10), (1, -1, -14), (0, 1, -10)]
+        kw = dict(face_angle=math.radians(60), subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
+        args = (self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), zshift.Format.UNORM24, (9.0, 15.0),
+                zshift.EdgeMethod.MATRIX)
+        by_angle = zshift.edge_offset(*args, **kw)
+        by_mesh = zshift.edge_offset_for_mesh(*args, self.M, facing + tilted, range(6), **kw)
+        face = zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), facing + tilted, range(6),
+                                    limit=by_angle.face_gradient)
+        self.assertLess(by_mesh.window_offset, by_angle.window_offset)
+        self.assertEqual(by_mesh.face_gradient, face.gradient)
+        with self.assertRaises(TypeError):
+            zshift.edge_offset_for_mesh(*args, self.M, facing, range(3), no_such_argument=1)
 
     def test_bad_inputs_are_named(self):
         tri = [(0, 0, -5), (1, 0, -5), (0, 1, -5)]

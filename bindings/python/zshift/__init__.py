@@ -1061,6 +1061,12 @@ projection for :attr:`EdgeMethod.MATRIX`), ``polygon_offset`` (factor, units for
 ``hidden_gap`` (eye depth behind a front face from which hidden edges never show)."""
 
 
+def _edge_offset_of(out):
+    """The :data:`EdgeOffset` of a filled ``_EdgeOffset``."""
+    return EdgeOffset(*[tuple(getattr(out, name)) if name in ("matrix", "polygon_offset", "d3d_bias", "vulkan_bias")
+                        else getattr(out, name) for name, _ in _EdgeOffset._fields_])
+
+
 def _edges_lib():
     lib = _lib()
     if not getattr(lib, "_zshift_edges", False):
@@ -1123,8 +1129,7 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     out = _EdgeOffset()
     _check(_edges_lib().zshift_edge_offset(mat, _enum(clip, Clip), _ctypes.byref(record),
                                            _enum(method, EdgeMethod, "method"), _ctypes.byref(out)))
-    return EdgeOffset(*[tuple(getattr(out, name)) if name in ("matrix", "polygon_offset", "d3d_bias", "vulkan_bias")
-                        else getattr(out, name) for name, _ in _EdgeOffset._fields_])
+    return _edge_offset_of(out)
 
 
 def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width=1.0, polygon_mode=False,
@@ -1144,17 +1149,26 @@ def edge_planes(m, clip, viewport, depth_format, depth_range, method, line_width
     return (out[0], out[1])
 
 
+class _Mesh(_ctypes.Structure):
+    """The C ``ZshiftMesh``."""
+
+    _fields_ = [("clip_matrix", _ctypes.POINTER(_ctypes.c_float)), ("positions", _ctypes.POINTER(_ctypes.c_float)),
+                ("vertex_count", _ctypes.c_size_t), ("position_stride", _ctypes.c_size_t),
+                ("indices", _ctypes.POINTER(_ctypes.c_uint32)), ("index_count", _ctypes.c_size_t)]
+
+
 class _SteepestFace(_ctypes.Structure):
     """The C ``ZshiftSteepestFace``."""
 
-    _fields_ = [("gradient", _ctypes.c_double), ("triangle", _ctypes.c_int64), ("counted", _ctypes.c_uint64),
-                ("beyond_limit", _ctypes.c_uint64), ("culled", _ctypes.c_uint64)]
+    _fields_ = [("gradient", _ctypes.c_double), ("length", _ctypes.c_double), ("triangle", _ctypes.c_int64),
+                ("counted", _ctypes.c_uint64), ("beyond_limit", _ctypes.c_uint64), ("culled", _ctypes.c_uint64)]
 
 
 SteepestFace = _collections.namedtuple("SteepestFace", [name for name, _ in _SteepestFace._fields_])
 SteepestFace.__doc__ = """A mesh's steepest face as drawn (``zshift_steepest_face``): ``gradient`` (window depth per
-pixel, max(|dz/dx|, |dz/dy|): pass it as :func:`edge_offset`'s ``face_gradient``), ``triangle`` (its index, ``None``
-when no face counts), ``counted``, ``beyond_limit`` (steeper than the limit) and ``culled`` (drawing nothing)."""
+pixel, max(|dz/dx|, |dz/dy|): what :func:`edge_offset`'s ``face_gradient`` takes), ``length`` (the largest gradient
+length, which bounds multisampled lines), ``triangle`` (the index of the face of ``gradient``, ``None`` when no face
+counts), ``counted``, ``beyond_limit`` (steeper than the limit) and ``culled`` (drawing nothing)."""
 
 
 def _flattened(values, name, kind):
@@ -1171,45 +1185,88 @@ def _flattened(values, name, kind):
     return flat
 
 
-def steepest_face(clip_matrix, clip, viewport, positions, indices, limit=_math.inf):
-    """The steepest face of a mesh as drawn (``zshift_steepest_face``): the largest window-depth gradient
-    max(|dz/dx|, |dz/dy|) among its triangles (``indices``, three per triangle, GL_TRIANGLES order, into
-    ``positions``, (x, y, z) each), drawn through ``clip_matrix`` (projection * view * model, 16 floats,
-    column-major) under ``clip`` into a ``viewport`` of (width, height) pixels, leaving out triangles that draw
-    nothing and those steeper than ``limit`` (grazing: pass the ``face_gradient`` that :func:`edge_offset` returns
-    for a ``face_angle`` to keep every face within that angle). Pass ``gradient`` as :func:`edge_offset`'s
-    ``face_gradient``: the offset then pays the mesh's own steepest face, not the angle's. Returns a
-    :data:`SteepestFace`. Raises :class:`ZshiftError` naming a bad input (an index past the positions, a NaN
-    position, a zero viewport side, a negative limit)."""
-    lib = _lib()
-    if not getattr(lib, "_zshift_steepest", False):
-        lib.zshift_steepest_face.argtypes = [
-            _ctypes.POINTER(_ctypes.c_float), _ctypes.c_int32, _ctypes.c_uint32, _ctypes.c_uint32,
-            _ctypes.POINTER(_ctypes.c_float), _ctypes.c_size_t, _ctypes.c_size_t,
-            _ctypes.POINTER(_ctypes.c_uint32), _ctypes.c_size_t, _ctypes.c_double,
-            _ctypes.POINTER(_SteepestFace)]
-        lib.zshift_steepest_face.restype = _ctypes.c_int32
-        lib._zshift_steepest = True
+def _mesh(clip_matrix, positions, indices):
+    """A ``ZshiftMesh`` and the arrays it points into (keep both alive for the call)."""
     mat = _engine_matrix(clip_matrix)
-    width, height = viewport
-    for what, value in (("viewport width", width), ("viewport height", height)):
-        if not isinstance(value, int) or not 0 <= value < 2**32:
-            raise ZshiftError(Status.DOMAIN, f"the {what} must be an integer in [0, 2**32) ({what} = {value!r})")
     flat = _flattened(positions, "positions", float)
     if len(flat) % 3:
         raise TypeError(f"positions must hold three floats per vertex, not {len(flat)} values")
     index_list = _flattened(indices, "indices", int)
     if any(not 0 <= i < 2**32 for i in index_list):
         raise ZshiftError(Status.DOMAIN, "indices must be integers in [0, 2**32)")
+    arrays = (mat, (_ctypes.c_float * len(flat))(*flat), (_ctypes.c_uint32 * len(index_list))(*index_list))
+    record = _Mesh(_ctypes.cast(arrays[0], _ctypes.POINTER(_ctypes.c_float)),
+                   _ctypes.cast(arrays[1], _ctypes.POINTER(_ctypes.c_float)), len(flat) // 3, 0,
+                   _ctypes.cast(arrays[2], _ctypes.POINTER(_ctypes.c_uint32)), len(index_list))
+    return record, arrays
+
+
+def _mesh_lib():
+    lib = _edges_lib()
+    if not getattr(lib, "_zshift_mesh", False):
+        lib.zshift_steepest_face.argtypes = [_ctypes.POINTER(_Mesh), _ctypes.c_int32, _ctypes.c_uint32,
+                                             _ctypes.c_uint32, _ctypes.c_double, _ctypes.POINTER(_SteepestFace)]
+        lib.zshift_edge_offset_for_mesh.argtypes = [_ctypes.POINTER(_ctypes.c_float), _ctypes.c_int32,
+                                                    _ctypes.POINTER(_Edges), _ctypes.POINTER(_Mesh), _ctypes.c_uint32,
+                                                    _ctypes.POINTER(_EdgeOffset)]
+        lib.zshift_steepest_face.restype = lib.zshift_edge_offset_for_mesh.restype = _ctypes.c_int32
+        lib._zshift_mesh = True
+    return lib
+
+
+def steepest_face(clip_matrix, clip, viewport, positions, indices, limit=_math.inf):
+    """The steepest face of a mesh as drawn (``zshift_steepest_face``): the largest window-depth gradient
+    max(|dz/dx|, |dz/dy|) among its triangles (``indices``, three per triangle, GL_TRIANGLES order, into
+    ``positions``, (x, y, z) each), drawn through ``clip_matrix`` (projection * view * model, 16 floats,
+    column-major) under ``clip`` into a ``viewport`` of (width, height) pixels, and the largest gradient length,
+    leaving out triangles that draw nothing and those steeper than ``limit`` (grazing: pass the ``face_gradient``
+    that :func:`edge_offset` returns for a ``face_angle`` to keep every face within that angle).
+    :func:`edge_offset_for_mesh` does this and the offset in one call. Returns a :data:`SteepestFace`. Raises
+    :class:`ZshiftError` naming a bad input (an index past the positions, a NaN position, a zero viewport side, a
+    negative limit)."""
+    width, height = viewport
+    for what, value in (("viewport width", width), ("viewport height", height)):
+        if not isinstance(value, int) or not 0 <= value < 2**32:
+            raise ZshiftError(Status.DOMAIN, f"the {what} must be an integer in [0, 2**32) ({what} = {value!r})")
+    record, _keep = _mesh(clip_matrix, positions, indices)
     out = _SteepestFace()
-    _check(lib.zshift_steepest_face(mat, _enum(clip, Clip), width, height, (_ctypes.c_float * len(flat))(*flat),
-                                    len(flat) // 3, 0, (_ctypes.c_uint32 * len(index_list))(*index_list),
-                                    len(index_list), limit, _ctypes.byref(out)))
-    return SteepestFace(out.gradient, None if out.triangle < 0 else out.triangle, out.counted, out.beyond_limit,
-                        out.culled)
+    _check(_mesh_lib().zshift_steepest_face(_ctypes.byref(record), _enum(clip, Clip), width, height, limit,
+                                            _ctypes.byref(out)))
+    return SteepestFace(out.gradient, out.length, None if out.triangle < 0 else out.triangle, out.counted,
+                        out.beyond_limit, out.culled)
 
 
-__all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes", "SteepestFace", "steepest_face"]
+def edge_offset_for_mesh(m, clip, viewport, depth_format, depth_range, method, clip_matrix, positions, indices,
+                         **kwargs):
+    """:func:`edge_offset` paying for the mesh's own steepest faces (``zshift_edge_offset_for_mesh``): ``face_angle``
+    (or ``face_gradient``) is the limit beyond which faces are grazing, and the faces of the mesh within it
+    (``positions`` and ``indices`` drawn through ``clip_matrix``, as :func:`steepest_face` reads them in
+    ``viewport``) set the line term; every face within the limit keeps its edges. Other arguments as
+    :func:`edge_offset`. Returns an :data:`EdgeOffset`; raises as :func:`edge_offset` and :func:`steepest_face`."""
+    mat = _engine_matrix(m)
+    args = dict(line_width=1.0, polygon_mode=False, samples=1, face_angle=0.0, face_gradient=0.0,
+                hidden_separation=0.0, depth_test=None, subpixel_bits=None, profile=None)
+    unknown = set(kwargs) - set(args) - {"viewport_origin", "framebuffer_depth_range", "world_reach", "eye_first",
+                                         "view_matrix", "world_box"}
+    if unknown:
+        raise TypeError(f"edge_offset_for_mesh() got unexpected keyword arguments {sorted(unknown)}")
+    args.update(kwargs)
+    pipeline = {k: args.pop(k) for k in list(args) if k not in (
+        "line_width", "polygon_mode", "samples", "face_angle", "face_gradient", "hidden_separation", "depth_test",
+        "subpixel_bits", "profile")}
+    record = _edges(viewport, depth_format, depth_range, args["line_width"], args["polygon_mode"], args["samples"],
+                    args["face_angle"], args["face_gradient"], args["hidden_separation"], args["depth_test"],
+                    args["subpixel_bits"], args["profile"], **pipeline)
+    mesh, _keep = _mesh(clip_matrix, positions, indices)
+    out = _EdgeOffset()
+    _check(_mesh_lib().zshift_edge_offset_for_mesh(mat, _enum(clip, Clip), _ctypes.byref(record),
+                                                   _ctypes.byref(mesh), _enum(method, EdgeMethod, "method"),
+                                                   _ctypes.byref(out)))
+    return _edge_offset_of(out)
+
+
+__all__ += ["EdgeMethod", "EdgeOffset", "edge_offset", "edge_planes", "SteepestFace", "steepest_face",
+            "edge_offset_for_mesh"]
 
 
 # ---- Shadow-map bias (docs/shadows.md) ----
