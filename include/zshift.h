@@ -868,7 +868,8 @@ typedef struct {
    triangle's slope term where its outline may take its own plane beyond the shared side
    (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
    Under MSAA with face_angle set, each part is at most g*(w + 1)/2: the angle bounds the
-   face's whole gradient, and a sample lies within (w + 1)/2 of its line.
+   face's whole gradient, and a sample lies within (w + 1)/2 of its line; from
+   `zshift_edge_offset_for_mesh`, at most the mesh's gradient length times (w + 1)/2.
    */
   double line_term;
   /*
@@ -882,7 +883,8 @@ typedef struct {
   double line_reach;
   /*
    g: the window-depth gradient per pixel of the steepest face that matters (its larger
-   component given face_gradient, its length given face_angle).
+   component given face_gradient, its length given face_angle; from
+   `zshift_edge_offset_for_mesh`, the mesh's steepest face's larger component).
    */
   double face_gradient;
   /*

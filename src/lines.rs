@@ -72,8 +72,9 @@
 //! own figure (llvmpipe 1.054). A face-slope limit given as an angle ([`FaceSlope::Angle`])
 //! bounds a face's whole gradient `|∇z|`, so against it the line term is `g·min(Δ, (w + 1)/2)`
 //! (a sample within `(w + 1)/2` of its line's point in any direction; llvmpipe's within 0.87
-//! of the whole gradient); the polygon-offset factor keeps `Δ`, which multiplies each face's
-//! own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
+//! of the whole gradient), and against a mesh's own faces ([`FaceSlope::Faces`]) the smaller
+//! of `M·Δ` and `length·(w + 1)/2`; the polygon-offset factor keeps `Δ`, which multiplies each
+//! face's own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
 //! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay
 //! 0.001 pixel inside its exact front face, on the side of a shallower face that borders none
 //! of the edges drawn there and that the rasterizer gave it to, so its steep face's edges lost
@@ -85,7 +86,10 @@
 //! factor of `Δ` pays the line term of every face whatever its slope. A matrix offset is one
 //! constant for the whole mesh, so it must pay `L = g·Δ` for the steepest face that matters:
 //! [`FaceSlope`] says which that is (faces steeper than it are grazing, a few pixels wide on
-//! screen; their edges are not guaranteed).
+//! screen; their edges are not guaranteed). Given as a limit (an angle, a gradient), it pays
+//! for faces at that limit whether the mesh has them or not; [`recommend_for_mesh`] reads the
+//! mesh's own steepest faces within the limit from its triangles
+//! ([`crate::steepest_face`]) and pays for those.
 //!
 //! # The shared terms
 //! Face and edge depths are computed by two primitives of one mesh: each is off its exact plane
@@ -218,7 +222,7 @@ pub struct Edges {
     pub kind: LineKind,
     /// MSAA samples per pixel (1 without multisampling), `1..=64`. Above 1 the reach is
     /// `√2·(w + 1)/2` (module docs, "MSAA"): a sample lies up to `w/2` off the line in any
-    /// direction.
+    /// direction (against an angle or a mesh's gradient length, `(w + 1)/2` of that length).
     pub samples: u32,
     /// The mesh's nearest and farthest eye depth (`−z`), inside the frustum.
     pub depth_range: [f64; 2],
@@ -282,7 +286,8 @@ pub struct EdgeRecommendation {
     pub window_offset: f64,
     /// The line term `L = g·Δ` (unit window depth; polygon-mode lines `2·g·Δ`: the
     /// neighbouring triangle's outline adds its own slope term; under MSAA with a face-slope
-    /// angle, each part at most `g·(w + 1)/2`: the angle bounds the whole gradient).
+    /// angle, each part at most `g·(w + 1)/2`: the angle bounds the whole gradient; with a
+    /// mesh's own faces, at most `length·(w + 1)/2`).
     pub line_term: f64,
     /// `Δ`, pixels (times `max(|∂z/∂x|, |∂z/∂y|)`): how far from the pixel or sample a line
     /// fragment's depth is taken. `(w + 1)/2` in the worst case and for polygon-mode lines;

@@ -1,6 +1,7 @@
 //! The steepest face of a mesh as it is drawn: the window-depth gradient an engine passes as
 //! [`crate::lines::FaceSlope::WindowGradient`] for its own mesh, instead of the gradient a
-//! face-slope angle allows.
+//! face-slope angle allows ([`crate::lines::recommend_for_mesh`] reads it and passes it on,
+//! with the largest gradient length, as [`crate::lines::FaceSlope::Faces`]).
 //!
 //! A matrix offset for edges (and the polygon-offset push that sets the hidden-line gap) pays
 //! the line term `L = g·Δ` for the steepest face that matters ([`crate::lines`], "The line

@@ -103,7 +103,8 @@ pub struct ZshiftEdgeOffset {
     /// triangle's slope term where its outline may take its own plane beyond the shared side
     /// (the worst case: 2*g*line_reach; none where the profile's outline_neighbour is f32 noise).
     /// Under MSAA with face_angle set, each part is at most g*(w + 1)/2: the angle bounds the
-    /// face's whole gradient, and a sample lies within (w + 1)/2 of its line.
+    /// face's whole gradient, and a sample lies within (w + 1)/2 of its line; from
+    /// `zshift_edge_offset_for_mesh`, at most the mesh's gradient length times (w + 1)/2.
     pub line_term: f64,
     /// How far (pixels, times max(|dz/dx|, |dz/dy|)) from the pixel or sample a line fragment's
     /// depth is taken: (w + 1)/2 in the worst case (plus 1/8 for polygon-mode lines wider than
@@ -113,7 +114,8 @@ pub struct ZshiftEdgeOffset {
     /// sqrt(2)*(w - 1)/2 where smaller.
     pub line_reach: f64,
     /// g: the window-depth gradient per pixel of the steepest face that matters (its larger
-    /// component given face_gradient, its length given face_angle).
+    /// component given face_gradient, its length given face_angle; from
+    /// `zshift_edge_offset_for_mesh`, the mesh's steepest face's larger component).
     pub face_gradient: f64,
     /// Hidden edges behind a front face by at least this eye depth never show.
     pub hidden_gap: f64,
