@@ -1113,7 +1113,8 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, or a probed profile's line_reach_msaa plus 1/16 where smaller;
     against a ``face_angle`` the line term takes at most (w + 1)/2 of the face's whole gradient), the steepest face that
     matters as ``face_angle`` (radians from the view axis: faces whose window gradient has a length up to the returned
-    ``face_gradient``) or ``face_gradient`` (window depth per pixel, max(|dz/dx|, |dz/dy|)), and
+    ``face_gradient``) or ``face_gradient`` (window depth per pixel, max(|dz/dx|, |dz/dy|); :func:`steepest_face`
+    reads a mesh's own, and :func:`edge_offset_for_mesh` does both in one call), and
     ``hidden_separation`` the eye depth from which hidden edges must not show (0: no promise).
     How the engine draws the mesh (``ZshiftEdges.pipeline``): ``viewport_origin`` (``glViewport``'s
     x, y in a larger framebuffer), ``framebuffer_depth_range`` (``glDepthRange``), ``world_reach``
