@@ -1326,4 +1326,70 @@ mod tests {
             }
         }
     }
+
+    /// The mesh's own faces: a gentle face and one beyond the angle's gradient; the offset pays
+    /// the gentle one (its line term is its gradient times the reach, not the angle's), the
+    /// steep one is counted beyond the limit, and under MSAA the line term is at most the
+    /// gradient length times (w + 1)/2.
+    #[test]
+    fn a_mesh_pays_for_its_own_faces_within_the_limit() {
+        let clip = ClipDepth::NegOneToOne;
+        let m = matrix(1.0, 1000.0, clip);
+        let positions: [[f32; 3]; 6] = [
+            [-1.0, -1.0, -10.0],
+            [1.0, -1.0, -10.5],
+            [0.0, 1.0, -10.0],
+            [-1.0, -1.0, -10.0],
+            [-0.98, -1.0, -14.0],
+            [-1.0, 1.0, -10.0],
+        ];
+        let indices = [0, 1, 2, 3, 4, 5];
+        let mesh = MeshDraw {
+            clip_matrix: &m,
+            positions: &positions,
+            indices: &indices,
+        };
+        let mut e = Edges::new([512, 512], DepthFormat::Unorm24, [9.0, 15.0]);
+        e.face_slope = FaceSlope::Angle(60f64.to_radians());
+        for samples in [1, 4] {
+            e.samples = samples;
+            let by_angle = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            let (by_mesh, faces) =
+                recommend_for_mesh(&m, clip, &e, EdgeMethod::Matrix, &mesh).unwrap();
+            let alone = crate::steepest_face::steepest_face(
+                &m,
+                clip,
+                [512, 512],
+                &positions[..3],
+                &[0, 1, 2],
+                f64::INFINITY,
+            )
+            .unwrap();
+            assert_eq!(
+                (faces.counted, faces.beyond_limit, faces.triangle),
+                (1, 1, Some(0))
+            );
+            assert_eq!(
+                (faces.gradient, faces.length),
+                (alone.gradient, alone.length)
+            );
+            assert_eq!(by_mesh.face_gradient, faces.gradient);
+            assert!(by_mesh.window_offset < by_angle.window_offset);
+            let reach = line_reach(&e);
+            if samples == 1 {
+                assert_eq!(by_mesh.line_term, faces.gradient * reach);
+            } else {
+                let across = faces.length * (e.line_width + 1.0) / 2.0;
+                assert_eq!(by_mesh.line_term, (faces.gradient * reach).min(across));
+                assert!(by_mesh.line_term < faces.gradient * reach);
+            }
+        }
+        // The faces are read by the call: a slope given as Faces is refused.
+        e.face_slope = FaceSlope::Faces {
+            max_component: 1e-3,
+            length: 1e-3,
+        };
+        let err = recommend_for_mesh(&m, clip, &e, EdgeMethod::Matrix, &mesh).unwrap_err();
+        assert_eq!(err.kind(), ErrorKind::Domain);
+    }
 }
