@@ -703,7 +703,7 @@ fn edges_over_faces_sweep() {
         );
     }
     // Per profile and method over every class.
-    for pname in ["worst", "probed"] {
+    for pname in ["worst", "probed", "probed mesh"] {
         for method in ["(a)", "(b)"] {
             for conv in ["[-1,1]", "[0,1]", "rev"] {
                 let mut r: Vec<f64> = classes
