@@ -395,7 +395,7 @@ fn zshift_shadow_bias_is_acne_free_where_it_answers() {
                         tallies[t].1.ratios.push(on_ground / s);
                     }
                     if verbose {
-                        println!("{} {pname}: acne {}/{} leak {}/{} bias {on_ground:.3e} smallest {smallest:?}", case.label(), got.acne, got.lit, got.leak, got.shadowed);
+                        println!("{} {pname}: acne {}/{} leak {}/{} bias {on_ground:.3e} smallest {smallest:?}; terms {:?}", case.label(), got.acne, got.lit, got.leak, got.shadowed, bias.terms);
                     }
                     if got.acne > 0 {
                         failures.push(format!(
