@@ -61,9 +61,10 @@ fn main() {
         p.line_reach[0], figures.line_pixels[0], p.line_reach[1], figures.line_pixels[1], p.outline_neighbour, figures.outline_neighbour_pixels, p.offset_slope, figures.offset_slope_axis
     );
     println!(
-        "MSAA lines     reach (pixels along the steepest gradient, from the sample): GL_LINES width 1 {:.4} over {} samples, polygon-mode {:.4} over {} (drawn at {:?} samples); over the whole gradient |∇z|: {:.4}, {:.4}",
+        "MSAA lines     reach (pixels along the steepest gradient, from the sample): GL_LINES width 1 {:.4} over {} samples, polygon-mode {:.4} over {} (drawn at {:?} samples); over the whole gradient |∇z|: {:.4}, {:.4}; at glLineWidth(3), over the whole gradient: {:.4}, {:.4} over {:?} samples",
         p.line_reach_msaa[0], figures.msaa_line_samples[0], p.line_reach_msaa[1], figures.msaa_line_samples[1], figures.msaa_sample_counts,
-        figures.msaa_line_reach_whole[0], figures.msaa_line_reach_whole[1]
+        p.line_reach_msaa_whole[0], p.line_reach_msaa_whole[1],
+        p.line_reach_msaa_wide_whole[0], p.line_reach_msaa_wide_whole[1], figures.msaa_wide_line_samples
     );
     println!(
         "wide lines     reach at glLineWidth(3) (pixels along the steepest gradient): GL_LINES {:.4} over {} fragments, polygon-mode {:.4} over {}",

@@ -71,9 +71,11 @@
 //! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines take the same, with their
 //! own figure (llvmpipe 1.054). A face-slope limit given as an angle ([`FaceSlope::Angle`])
 //! bounds a face's whole gradient `|∇z|`, so against it the line term is `g·min(Δ, (w + 1)/2)`
-//! (a sample within `(w + 1)/2` of its line's point in any direction; llvmpipe's within 0.87
-//! of the whole gradient), and against a mesh's own faces ([`FaceSlope::Faces`]) the smaller
-//! of `M·Δ` and `length·(w + 1)/2`; the polygon-offset factor keeps `Δ`, which multiplies each
+//! (a sample within `(w + 1)/2` of its line's point in any direction; a measured profile's
+//! [`RasterizerProfile::line_reach_msaa_whole`] and [`RasterizerProfile::line_reach_msaa_wide_whole`]
+//! plus 1/16 where smaller: llvmpipe's samples lie within 0.87 of the whole gradient at width 1,
+//! 1.66 at width 3), and against a mesh's own faces ([`FaceSlope::Faces`]) the smaller
+//! of `M·Δ` and `length` times that; the polygon-offset factor keeps `Δ`, which multiplies each
 //! face's own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
 //! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay
 //! 0.001 pixel inside its exact front face, on the side of a shallower face that borders none
@@ -648,18 +650,46 @@ fn line_reach(edges: &Edges) -> f64 {
     }
 }
 
+/// How far, in any direction, a multisampled line's sample may lie from the point whose depth it
+/// takes, pixels (its error is at most this times the face's whole gradient `|∇z|`): `(w + 1)/2`
+/// in the worst case; with a measured profile the probe's whole-gradient reach for the line kind
+/// at width 1 ([`RasterizerProfile::line_reach_msaa_whole`]) plus [`LINE_REACH_MARGIN`] and
+/// `(w − 1)/2`, and from width 3 on its 3-pixel figure
+/// ([`RasterizerProfile::line_reach_msaa_wide_whole`]) plus the margin and `(w − 3)/2`, the
+/// smallest. llvmpipe: 0.865 and 1.656, so 0.93 at width 1 and 1.72 at width 3 (1 and 2).
+fn msaa_across(edges: &Edges) -> f64 {
+    let w = edges.line_width;
+    let p = &edges.profile;
+    let kind = match edges.kind {
+        LineKind::Lines => 0,
+        LineKind::PolygonMode => 1,
+    };
+    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
+    let mut across = (w + 1.0) / 2.0;
+    let one = p.line_reach_msaa_whole[kind];
+    if measured(one) {
+        across = across.min(one + LINE_REACH_MARGIN + (w - 1.0) / 2.0);
+    }
+    let wide = p.line_reach_msaa_wide_whole[kind];
+    let from = f64::from(crate::profile::WIDE_LINE_WIDTH);
+    if w >= from && measured(wide) {
+        across = across.min(wide + LINE_REACH_MARGIN + (w - from) / 2.0);
+    }
+    across
+}
+
 /// The part of the line term one reach makes against the face-slope limit `g` (the face's own
-/// `Δ`, or a polygon-mode neighbour's `Δ_n`, in pixels of `M`): `g·reach`, except under MSAA
+/// `Δ`, or a polygon-mode neighbour's `Δ_n`, in pixels of `M`), `across` the sample's distance
+/// in any direction ([`msaa_across`]; the worst case's `(w + 1)/2` for a neighbour's outline,
+/// which the probe does not draw): `g·reach`, except under MSAA
 /// where the limit also bounds a face's whole gradient `|∇z|`, not only its larger component
 /// `M` — an angle ([`FaceSlope::Angle`]), whose `g` is that length, or a mesh's own faces
-/// ([`FaceSlope::Faces`], `length`): a sample lies at most `(w + 1)/2` from the point whose
-/// depth it takes, in any direction (module docs, "MSAA"), so it is off its face by at most
-/// `|∇z|·(w + 1)/2`, less than `M·Δ` wherever `Δ` exceeds `(w + 1)/2` (the worst case's
-/// `√2·(w + 1)/2`; llvmpipe's measured 1.12 at width 1: its samples lie within 0.87 of their
-/// face's whole gradient, [`crate::probe::Figures::msaa_line_reach_whole`]). The
-/// polygon-offset factor keeps `Δ`: it multiplies each face's own `M`.
-fn line_part(edges: &Edges, g: f64, reach: f64) -> f64 {
-    let across = (edges.line_width + 1.0) / 2.0;
+/// ([`FaceSlope::Faces`], `length`): a sample lies at most `across` from the point whose depth
+/// it takes, in any direction (module docs, "MSAA"), so it is off its face by at most
+/// `|∇z|·across`, less than `M·Δ` wherever `Δ` exceeds it (the worst case's `√2·(w + 1)/2`
+/// against `(w + 1)/2`; llvmpipe's measured 1.12 at width 1 against 0.93). The polygon-offset
+/// factor keeps `Δ`: it multiplies each face's own `M`.
+fn line_part(edges: &Edges, g: f64, reach: f64, across: f64) -> f64 {
     match edges.face_slope {
         FaceSlope::Angle(_) if edges.samples > 1 => g * reach.min(across),
         FaceSlope::Faces { length, .. } if edges.samples > 1 => (g * reach).min(length * across),
@@ -753,9 +783,17 @@ fn unchecked_gap(
     // edge may take its line fragment from the neighbour's outline, off the face by the
     // neighbour's slope term too where the rasterizer evaluates the neighbour's plane there
     // (module docs, "Polygon-mode lines"): that part, up to the face-slope limit, is `neighbour`.
-    let own = representable(line_part(edges, g, reach), "the line term overflows f64")?;
+    let own = representable(
+        line_part(edges, g, reach, msaa_across(edges)),
+        "the line term overflows f64",
+    )?;
     let neighbour = representable(
-        line_part(edges, g, neighbour_reach(edges)),
+        line_part(
+            edges,
+            g,
+            neighbour_reach(edges),
+            (edges.line_width + 1.0) / 2.0,
+        ),
         "the line term overflows f64",
     )?;
     let line = representable(own + neighbour, "the line term overflows f64")?;

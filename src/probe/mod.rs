@@ -228,12 +228,9 @@ pub struct Figures {
     /// Line samples compared for [`RasterizerProfile::line_reach_msaa`] (`GL_LINES`,
     /// polygon-mode).
     pub msaa_line_samples: [usize; 2],
-    /// The same samples' largest `|stored − plane| / |∇z|`, over the plane's whole gradient
-    /// rather than its larger component (NaN where not measured): how far from its sample a
-    /// multisampled line takes its depth, in any direction. At most `(w + 1)/2` = 1 is what
-    /// lets a face-slope angle bound the line term by `g·(w + 1)/2` under MSAA
-    /// ([`crate::lines`]); llvmpipe 0.87.
-    pub msaa_line_reach_whole: [f64; 2],
+    /// Samples compared for [`RasterizerProfile::line_reach_msaa_wide_whole`] (`GL_LINES`,
+    /// polygon-mode).
+    pub msaa_wide_line_samples: [usize; 2],
     /// Line fragments compared for [`RasterizerProfile::line_reach_wide`] (`GL_LINES`,
     /// polygon-mode).
     pub wide_line_pixels: [usize; 2],
@@ -376,7 +373,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         line_pixels: [0; 2],
         outline_neighbour_pixels: 0,
         msaa_line_samples: [0; 2],
-        msaa_line_reach_whole: [f64::NAN; 2],
+        msaa_wide_line_samples: [0; 2],
         wide_line_pixels: [0; 2],
         msaa_sample_counts: [0; 2],
         offset_slope_axis: f64::NAN,
@@ -451,7 +448,9 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             let msaa = msaa_line_reach(gl, o)?;
             profile.line_reach_msaa = msaa.measured.reach;
             figures.msaa_line_samples = msaa.measured.samples;
-            figures.msaa_line_reach_whole = msaa.measured.whole;
+            profile.line_reach_msaa_whole = msaa.measured.whole;
+            profile.line_reach_msaa_wide_whole = msaa.wide.whole;
+            figures.msaa_wide_line_samples = msaa.wide.samples;
             figures.msaa_sample_counts = msaa.counts;
         }
         if internal == DEPTH_COMPONENT24 {

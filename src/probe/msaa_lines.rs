@@ -11,7 +11,9 @@
 //! no colour state is touched) and compares it with the tile's plane at that sample's position
 //! (`glGetMultisamplefv`).
 
+use super::wide_lines::WIDE_PER_TILE;
 use super::*;
+use crate::profile::WIDE_LINE_WIDTH as WIDE;
 
 /// Copies sample `s` of the multisampled depth at this fragment's pixel: a full-screen triangle.
 const COPY_VERTEX_SHADER: &[u8] = b"#version 150\nvoid main() {\n\
@@ -34,6 +36,8 @@ pub(super) struct MsaaFigures {
     /// `|stored − plane at the sample|` over `max(|gₓ|, |g_y|)` and over `|∇z|`, pixels, the
     /// larger of the sample counts drawn (NaN where none was), and the samples compared.
     pub(super) measured: TileReach,
+    /// The same at `glLineWidth(3)` ([`WIDE`]); unmeasured where the context refuses the width.
+    pub(super) wide: TileReach,
     /// The sample counts drawn (0: none).
     pub(super) counts: [Int; 2],
 }
@@ -68,6 +72,7 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
     gl.check("glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES) raised a GL error")?;
     let mut figures = MsaaFigures {
         measured: TileReach::unmeasured(),
+        wide: TileReach::unmeasured(),
         counts: [0; 2],
     };
     if most < SAMPLES {
@@ -80,7 +85,7 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
     };
     for (i, &count) in counts.iter().enumerate().filter(|(_, &c)| c > 0) {
         let mut targets = Targets::default();
-        let result = draw_and_compare(gl, o, count, &mut targets);
+        let result = draw_and_compare(gl, o, count, PER_TILE, &mut targets);
         targets.delete(gl, o);
         // A count the context cannot attach is not measured (the model keeps the worst case).
         let Some(measured) = result? else {
@@ -89,7 +94,41 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
         figures.measured.merge(&measured);
         figures.counts[i] = count;
     }
+    figures.wide = wide_msaa_reach(gl, o, &figures.counts)?;
     Ok(figures)
+}
+
+/// The multisampled reach at [`WIDE`] pixels, at the sample counts `counts` the 1-pixel lines
+/// were drawn at (16 primitives per tile, as [`super::wide_lines`] draws them); unmeasured where
+/// the context refuses the width (a forward-compatible core context allows only 1) or draws
+/// narrower lines.
+unsafe fn wide_msaa_reach(gl: &Gl, o: &Objects, counts: &[Int; 2]) -> Result<TileReach> {
+    let mut wide = TileReach::unmeasured();
+    let mut range = [0.0f32; 2];
+    (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
+    gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
+    if range[1] < WIDE {
+        return Ok(wide);
+    }
+    (gl.LineWidth)(WIDE);
+    if gl.failed() {
+        return Ok(wide);
+    }
+    for &count in counts.iter().filter(|&&c| c > 0) {
+        let mut targets = Targets::default();
+        let result = draw_and_compare(gl, o, count, WIDE_PER_TILE, &mut targets);
+        targets.delete(gl, o);
+        match result {
+            Ok(Some(measured)) => wide.merge(&measured),
+            Ok(None) => {}
+            Err(e) => {
+                (gl.LineWidth)(1.0);
+                return Err(e);
+            }
+        }
+    }
+    (gl.LineWidth)(1.0);
+    Ok(wide)
 }
 
 /// One sample count: draws the line tiles multisampled, copies every sample out and compares
@@ -98,6 +137,7 @@ unsafe fn draw_and_compare(
     gl: &Gl,
     o: &Objects,
     count: Int,
+    per_tile: usize,
     t: &mut Targets,
 ) -> Result<Option<TileReach>> {
     let side = (SIZE * TILES) as Sizei;
@@ -133,7 +173,7 @@ unsafe fn draw_and_compare(
         (gl.GetMultisamplefv)(SAMPLE_POSITION, s as Uint, p.as_mut_ptr());
     }
     (gl.Enable)(MULTISAMPLE);
-    let drawn = draw_dense(gl, o, side, rows as Sizei, PER_TILE);
+    let drawn = draw_dense(gl, o, side, rows as Sizei, per_tile);
     (gl.Disable)(MULTISAMPLE);
     drawn?;
     let depth = copy_samples(gl, o, t, count, side, rows as Sizei)?;

@@ -14,7 +14,7 @@ use crate::profile::WIDE_LINE_WIDTH as WIDE;
 /// Primitives drawn per tile: a wide line's reach is set by its quad, not by how a sample
 /// pattern lines up, and levels off sooner than the multisampled one, at a tenth of the time.
 /// On llvmpipe the figure is 1.5005–1.5016 at 4, 8, 16 and 64 per tile.
-const WIDE_PER_TILE: usize = 16;
+pub(super) const WIDE_PER_TILE: usize = 16;
 
 /// Measures the reach of [`WIDE`]-pixel lines per kind (module docs): the largest
 /// `|stored − plane at the pixel centre| / max(|gₓ|, |g_y|)` per kind (`GL_LINES`, polygon-mode
