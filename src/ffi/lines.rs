@@ -3,8 +3,8 @@
 //! through the projection matrix (the one offset that reaches GL_LINES).
 
 use super::{
-    checked, checked_array, clip_of, format_named, null_pointer, ZshiftClip, ZshiftDepthTest,
-    ZshiftFormat, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
+    checked_array, checked_record, clip_of, format_named, null_pointer, ZshiftClip,
+    ZshiftDepthTest, ZshiftFormat, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
 use crate::error::Result;
@@ -279,17 +279,11 @@ pub extern "C" fn zshift_edge_offset(
         Ok(x) => x,
         Err(status) => return status,
     };
-    // SAFETY (store): `checked` has refused NULL; the caller promises a writable
-    // ZshiftEdgeOffset; write_unaligned needs no alignment.
-    checked(
-        out,
-        move || {
-            let clip = clip_of(clip)?;
-            let r = crate::lines::recommend(&m, clip, &input(clip, &e)?, method_of(method)?)?;
-            Ok(ZshiftEdgeOffset::from(r))
-        },
-        |out, record| unsafe { out.write_unaligned(record) },
-    )
+    checked_record(out, move || {
+        let clip = clip_of(clip)?;
+        let r = crate::lines::recommend(&m, clip, &input(clip, &e)?, method_of(method)?)?;
+        Ok(ZshiftEdgeOffset::from(r))
+    })
 }
 
 /// Writes near and far planes (out[0], out[1]) with which `zshift_edge_offset` answers for
@@ -391,25 +385,19 @@ pub extern "C" fn zshift_steepest_face(
         Ok(x) => x,
         Err(status) => return status,
     };
-    // SAFETY (store): `checked` has refused NULL; the caller promises a writable
-    // ZshiftSteepestFace; write_unaligned needs no alignment.
-    checked(
-        out,
-        move || {
-            let clip = clip_of(clip)?;
-            let (positions, indices) = mesh.arrays()?;
-            let face = crate::steepest_face::steepest_face(
-                &mesh.clip_matrix,
-                clip,
-                [viewport_width, viewport_height],
-                &positions,
-                &indices,
-                limit,
-            )?;
-            Ok(ZshiftSteepestFace::from(face))
-        },
-        |out, record| unsafe { out.write_unaligned(record) },
-    )
+    checked_record(out, move || {
+        let clip = clip_of(clip)?;
+        let (positions, indices) = mesh.arrays()?;
+        let face = crate::steepest_face::steepest_face(
+            &mesh.clip_matrix,
+            clip,
+            [viewport_width, viewport_height],
+            &positions,
+            &indices,
+            limit,
+        )?;
+        Ok(ZshiftSteepestFace::from(face))
+    })
 }
 
 /// Writes the offset for `edges`' mesh by `method`, as `zshift_edge_offset`, paying for the
@@ -439,28 +427,23 @@ pub extern "C" fn zshift_edge_offset_for_mesh(
         Ok(x) => x,
         Err(status) => return status,
     };
-    // SAFETY (store): as zshift_edge_offset.
-    checked(
-        out,
-        move || {
-            let clip = clip_of(clip)?;
-            let (positions, indices) = mesh.arrays()?;
-            let draw = crate::lines::MeshDraw {
-                clip_matrix: &mesh.clip_matrix,
-                positions: &positions,
-                indices: &indices,
-            };
-            let (r, _) = crate::lines::recommend_for_mesh(
-                &m,
-                clip,
-                &input(clip, &e)?,
-                method_of(method)?,
-                &draw,
-            )?;
-            Ok(ZshiftEdgeOffset::from(r))
-        },
-        |out, record| unsafe { out.write_unaligned(record) },
-    )
+    checked_record(out, move || {
+        let clip = clip_of(clip)?;
+        let (positions, indices) = mesh.arrays()?;
+        let draw = crate::lines::MeshDraw {
+            clip_matrix: &mesh.clip_matrix,
+            positions: &positions,
+            indices: &indices,
+        };
+        let (r, _) = crate::lines::recommend_for_mesh(
+            &m,
+            clip,
+            &input(clip, &e)?,
+            method_of(method)?,
+            &draw,
+        )?;
+        Ok(ZshiftEdgeOffset::from(r))
+    })
 }
 
 impl From<crate::steepest_face::SteepestFace> for ZshiftSteepestFace {

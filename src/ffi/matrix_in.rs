@@ -2,7 +2,7 @@
 //! (src/matrix_in.rs), and the recommendation for it.
 
 use super::{
-    checked, checked_array, checked_matrix, clip_of, format_named, null_pointer, ZshiftClip,
+    checked_array, checked_matrix, checked_record, clip_of, format_named, null_pointer, ZshiftClip,
     ZshiftDepthTest, ZshiftFormat, ZshiftRecommendation, ZshiftStatus, ZSHIFT_SUBPIXEL_UNSNAPPED,
 };
 use crate::domain::{domain, finite};
@@ -364,16 +364,12 @@ pub extern "C" fn zshift_recommend_for_matrix(
     }
     // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
     // write_unaligned needs no alignment.
-    checked(
-        out,
-        move || {
-            Ok(record_of(
-                &recommend_for(&m, clip, &read_decal(decal))?,
-                clip,
-            ))
-        },
-        |out, record| unsafe { out.write_unaligned(record) },
-    )
+    checked_record(out, move || {
+        Ok(record_of(
+            &recommend_for(&m, clip, &read_decal(decal))?,
+            clip,
+        ))
+    })
 }
 
 /// The most planes one decal may be asked over: far above any decal system's pieces, low enough
@@ -488,14 +484,10 @@ pub extern "C" fn zshift_recommend_for_planes(
     }
     // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
     // write_unaligned needs no alignment.
-    checked(
-        out,
-        move || {
-            Ok(record_of(
-                &recommend_over_planes(&m, clip, decals, count)?,
-                clip,
-            ))
-        },
-        |out, record| unsafe { out.write_unaligned(record) },
-    )
+    checked_record(out, move || {
+        Ok(record_of(
+            &recommend_over_planes(&m, clip, decals, count)?,
+            clip,
+        ))
+    })
 }

@@ -157,6 +157,19 @@ fn null_pointer(name: &str) -> ZshiftStatus {
     ZSHIFT_ERR_NULL_POINTER
 }
 
+/// [`checked`] for an output record (`ZshiftEdgeOffset`, `ZshiftSteepestFace`, ...): written
+/// with one unaligned store, only on success.
+fn checked_record<P: Copy>(
+    out: *mut P,
+    compute: impl FnOnce() -> Result<P> + UnwindSafe,
+) -> ZshiftStatus {
+    // SAFETY: `checked` has refused NULL; the caller promises a writable `P`; write_unaligned
+    // needs no alignment.
+    checked(out, compute, |out, record| unsafe {
+        out.write_unaligned(record)
+    })
+}
+
 /// [`checked`] for an output of `N` plain values (`float[16]`, `double[N]`): written with one
 /// byte copy from a local, which needs no alignment and cannot overlap, and only on success.
 fn checked_array<T: Copy, const N: usize>(

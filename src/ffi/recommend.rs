@@ -1,11 +1,10 @@
 //! The recommended offset for a real rasterizer (src/recommend.rs): the scene and record structs
 //! and the zshift_recommend* entry points.
 
-use std::panic::UnwindSafe;
-
 use super::{
-    checked, checked_array, checked_in_place, clip_of, format_named, null_pointer, write_matrix,
-    ZshiftClip, ZshiftDepthTest, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE, ZSHIFT_ERR_DOMAIN,
+    checked, checked_array, checked_in_place, checked_record, clip_of, format_named, null_pointer,
+    write_matrix, ZshiftClip, ZshiftDepthTest, ZshiftStatus, ZSHIFT_CLIP_NEG_ONE_TO_ONE,
+    ZSHIFT_ERR_DOMAIN,
 };
 use crate::error::Result;
 use crate::projection::{ClipDepth, Frustum};
@@ -337,16 +336,6 @@ impl ZshiftScene {
             }
         }
     }
-}
-
-/// [`checked`] for a `ZshiftRecommendation` output, written with `write_unaligned`.
-fn checked_record(
-    out: *mut ZshiftRecommendation,
-    compute: impl FnOnce() -> Result<ZshiftRecommendation> + UnwindSafe,
-) -> ZshiftStatus {
-    // SAFETY: `checked` has refused NULL; the caller promises a writable ZshiftRecommendation;
-    // write_unaligned needs no alignment.
-    checked(out, compute, |out, v| unsafe { out.write_unaligned(v) })
 }
 
 /// The most corners a decal may have: a decal is a quad, a few more for a clipped one.
