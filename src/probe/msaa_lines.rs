@@ -13,7 +13,6 @@
 
 use super::wide_lines::WIDE_PER_TILE;
 use super::*;
-use crate::profile::WIDE_LINE_WIDTH as WIDE;
 
 /// Copies sample `s` of the multisampled depth at this fragment's pixel: a full-screen triangle.
 const COPY_VERTEX_SHADER: &[u8] = b"#version 150\nvoid main() {\n\
@@ -36,7 +35,7 @@ pub(super) struct MsaaFigures {
     /// `|stored − plane at the sample|` over `max(|gₓ|, |g_y|)` and over `|∇z|`, pixels, the
     /// larger of the sample counts drawn (NaN where none was), and the samples compared.
     pub(super) measured: TileReach,
-    /// The same at `glLineWidth(3)` ([`WIDE`]); unmeasured where the context refuses the width.
+    /// The same at `glLineWidth(3)` ([`crate::profile::WIDE_LINE_WIDTH`]); unmeasured where the context refuses the width.
     pub(super) wide: TileReach,
     /// The sample counts drawn (0: none).
     pub(super) counts: [Int; 2],
@@ -98,20 +97,13 @@ pub(super) unsafe fn msaa_line_reach(gl: &Gl, o: &Objects) -> Result<MsaaFigures
     Ok(figures)
 }
 
-/// The multisampled reach at [`WIDE`] pixels, at the sample counts `counts` the 1-pixel lines
+/// The multisampled reach at [`crate::profile::WIDE_LINE_WIDTH`] pixels, at the sample counts `counts` the 1-pixel lines
 /// were drawn at (16 primitives per tile, as [`super::wide_lines`] draws them); unmeasured where
 /// the context refuses the width (a forward-compatible core context allows only 1) or draws
 /// narrower lines.
 unsafe fn wide_msaa_reach(gl: &Gl, o: &Objects, counts: &[Int; 2]) -> Result<TileReach> {
     let mut wide = TileReach::unmeasured();
-    let mut range = [0.0f32; 2];
-    (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
-    gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
-    if range[1] < WIDE {
-        return Ok(wide);
-    }
-    (gl.LineWidth)(WIDE);
-    if gl.failed() {
+    if !super::wide_lines::set_wide(gl)? {
         return Ok(wide);
     }
     for &count in counts.iter().filter(|&&c| c > 0) {

@@ -22,15 +22,7 @@ pub(super) const WIDE_PER_TILE: usize = 16;
 /// not draw the width. Needs D32F attached.
 pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<TileReach> {
     let figures = TileReach::unmeasured();
-    let mut range = [0.0f32; 2];
-    (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
-    gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
-    if range[1] < WIDE {
-        return Ok(figures);
-    }
-    (gl.LineWidth)(WIDE);
-    // A forward-compatible core context refuses widths above 1 (GL_INVALID_VALUE): not measured.
-    if gl.failed() {
+    if !set_wide(gl)? {
         return Ok(figures);
     }
     let side = (SIZE * TILES) as Sizei;
@@ -49,4 +41,18 @@ pub(super) unsafe fn wide_line_reach(gl: &Gl, o: &Objects) -> Result<TileReach> 
     } else {
         figures
     })
+}
+
+/// Sets `glLineWidth(`[`WIDE`]`)`; `false` (and the width left at 1) where the context draws no
+/// line that wide or refuses the width (a forward-compatible core context allows only 1: not
+/// measured).
+pub(super) unsafe fn set_wide(gl: &Gl) -> Result<bool> {
+    let mut range = [0.0f32; 2];
+    (gl.GetFloatv)(ALIASED_LINE_WIDTH_RANGE, range.as_mut_ptr());
+    gl.check("glGetFloatv(GL_ALIASED_LINE_WIDTH_RANGE) raised a GL error")?;
+    if range[1] < WIDE {
+        return Ok(false);
+    }
+    (gl.LineWidth)(WIDE);
+    Ok(!gl.failed())
 }
