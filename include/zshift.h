@@ -132,9 +132,10 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
  The version of this C ABI. It changes when a declaration in this header changes
  incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
  the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
- engine's pipeline; rebuild against this header).
+ engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reaches;
+ rebuild against this header).
  */
-#define ZSHIFT_ABI_VERSION 3
+#define ZSHIFT_ABI_VERSION 4
 
 /*
  `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float

@@ -49,7 +49,7 @@ __all__ = [
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
-ABI_VERSION = 3
+ABI_VERSION = 4
 
 #: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
 #: Never a default: the recommendation functions require ``subpixel_bits`` (the rasterizer's
