@@ -142,6 +142,18 @@ class SteepestFace(unittest.TestCase):
         with self.assertRaises(TypeError):
             zshift.edge_offset_for_mesh(*args, self.M, facing, range(3), no_such_argument=1)
 
+    def test_numpy_arrays_as_engines_hold_them(self):
+        import numpy
+
+        positions = [(-1, -1, -10), (1, -1, -10), (0, 1, -10), (-1, -1, -10), (1, -1, -14), (0, 1, -10)]
+        by_list = zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), positions, range(6))
+        by_numpy = zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), numpy.array(positions),
+                                        numpy.arange(6, dtype=numpy.int64).reshape(2, 3))
+        self.assertEqual(by_list, by_numpy)
+        with self.assertRaises(zshift.ZshiftError):
+            zshift.steepest_face(self.M, zshift.Clip.NEG_ONE_TO_ONE, (512, 512), numpy.array(positions),
+                                 numpy.array([0, 1, -2]))
+
     def test_bad_inputs_are_named(self):
         tri = [(0, 0, -5), (1, 0, -5), (0, 1, -5)]
         with self.assertRaises(zshift.ZshiftError) as caught:

@@ -1189,19 +1189,31 @@ def _flattened(values, name, kind):
     return flat
 
 
+def _c_array(values, name, ctype, numpy_type, kind):
+    """``values`` as a ctypes array of ``ctype``: a numpy array is copied in one step (as ``numpy_type``), any other
+    sequence of triples or numbers element by element."""
+    if hasattr(values, "astype") and hasattr(values, "ravel"):
+        flat = values.astype(numpy_type).ravel()
+        return (ctype * flat.size).from_buffer_copy(flat.tobytes())
+    flat = _flattened(values, name, kind)
+    return (ctype * len(flat))(*flat)
+
+
 def _mesh(clip_matrix, positions, indices):
     """A ``ZshiftMesh`` and the arrays it points into (keep both alive for the call)."""
     mat = _engine_matrix(clip_matrix)
-    flat = _flattened(positions, "positions", float)
-    if len(flat) % 3:
-        raise TypeError(f"positions must hold three floats per vertex, not {len(flat)} values")
-    index_list = _flattened(indices, "indices", int)
-    if any(not 0 <= i < 2**32 for i in index_list):
+    points = _c_array(positions, "positions", _ctypes.c_float, "<f4", float)
+    if len(points) % 3:
+        raise TypeError(f"positions must hold three floats per vertex, not {len(points)} values")
+    if hasattr(indices, "min") and len(indices) and (indices.min() < 0 or indices.max() >= 2**32):
         raise ZshiftError(Status.DOMAIN, "indices must be integers in [0, 2**32)")
-    arrays = (mat, (_ctypes.c_float * len(flat))(*flat), (_ctypes.c_uint32 * len(index_list))(*index_list))
-    record = _Mesh(_ctypes.cast(arrays[0], _ctypes.POINTER(_ctypes.c_float)),
-                   _ctypes.cast(arrays[1], _ctypes.POINTER(_ctypes.c_float)), len(flat) // 3, 0,
-                   _ctypes.cast(arrays[2], _ctypes.POINTER(_ctypes.c_uint32)), len(index_list))
+    if not hasattr(indices, "astype") and any(not 0 <= i < 2**32 for i in _flattened(indices, "indices", int)):
+        raise ZshiftError(Status.DOMAIN, "indices must be integers in [0, 2**32)")
+    index_array = _c_array(indices, "indices", _ctypes.c_uint32, "<u4", int)
+    arrays = (mat, points, index_array)
+    record = _Mesh(_ctypes.cast(mat, _ctypes.POINTER(_ctypes.c_float)),
+                   _ctypes.cast(points, _ctypes.POINTER(_ctypes.c_float)), len(points) // 3, 0,
+                   _ctypes.cast(index_array, _ctypes.POINTER(_ctypes.c_uint32)), len(index_array))
     return record, arrays
 
 
