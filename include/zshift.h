@@ -132,7 +132,7 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
  The version of this C ABI. It changes when a declaration in this header changes
  incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
  the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
- engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reaches;
+ engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reach;
  rebuild against this header).
  */
 #define ZSHIFT_ABI_VERSION 4
@@ -364,17 +364,11 @@ typedef struct {
    How far, in any direction, a multisampled 1-pixel line's sample is from the point whose
    depth it takes: the largest |stored - plane at the sample| / |grad z| (the whole
    gradient) over the line_reach_msaa samples; GL_LINES [0], polygon-mode lines [1].
-   zshift_edge_offset takes it against a face_angle or a mesh's own faces (worst case
-   (w + 1)/2); wider lines add (w - 1)/2. llvmpipe: 0.865 and 0.866. NAN where not
-   measured. NAN or finite >= 0.
+   zshift_edge_offset takes it against a face_angle or a mesh's own faces for 1-pixel lines
+   (worst case (w + 1)/2 = 1; wider lines keep (w + 1)/2). llvmpipe: 0.865 and 0.866. NAN
+   where not measured. NAN or finite >= 0.
    */
   double line_reach_msaa_whole[2];
-  /*
-   The same at glLineWidth(3), taken from width 3 on (worst case 2 there; wider lines add
-   (w - 3)/2). NAN where not measured (a forward-compatible core context refuses the
-   width). NAN or finite >= 0.
-   */
-  double line_reach_msaa_wide_whole[2];
 } ZshiftProfile;
 
 /*

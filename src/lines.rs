@@ -71,11 +71,10 @@
 //! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines take the same, with their
 //! own figure (llvmpipe 1.054). A face-slope limit given as an angle ([`FaceSlope::Angle`])
 //! bounds a face's whole gradient `|∇z|`, so against it the line term is `g·min(Δ, (w + 1)/2)`
-//! (a sample within `(w + 1)/2` of its line's point in any direction; a measured profile's
-//! [`RasterizerProfile::line_reach_msaa_whole`] and [`RasterizerProfile::line_reach_msaa_wide_whole`]
-//! plus 1/16 where smaller: llvmpipe's samples lie within 0.87 of the whole gradient at width 1,
-//! 1.66 at width 3), and against a mesh's own faces ([`FaceSlope::Faces`]) the smaller
-//! of `M·Δ` and `length` times that; the polygon-offset factor keeps `Δ`, which multiplies each
+//! (a sample within `(w + 1)/2` of its line's point in any direction; for 1-pixel lines a
+//! measured profile's [`RasterizerProfile::line_reach_msaa_whole`] plus 1/16 where smaller:
+//! llvmpipe's samples lie within 0.87 of the whole gradient), and against a mesh's own faces
+//! ([`FaceSlope::Faces`]) the smaller of `M·Δ` and `length` times that; the polygon-offset factor keeps `Δ`, which multiplies each
 //! face's own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
 //! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay
 //! 0.001 pixel inside its exact front face, on the side of a shallower face that borders none
@@ -651,12 +650,12 @@ fn line_reach(edges: &Edges) -> f64 {
 }
 
 /// How far, in any direction, a multisampled line's sample may lie from the point whose depth it
-/// takes, pixels (its error is at most this times the face's whole gradient `|∇z|`): `(w + 1)/2`
-/// in the worst case; with a measured profile the probe's whole-gradient reach for the line kind
-/// at width 1 ([`RasterizerProfile::line_reach_msaa_whole`]) plus [`LINE_REACH_MARGIN`] and
-/// `(w − 1)/2`, and from width 3 on its 3-pixel figure
-/// ([`RasterizerProfile::line_reach_msaa_wide_whole`]) plus the margin and `(w − 3)/2`, the
-/// smallest. llvmpipe: 0.865 and 1.656, so 0.93 at width 1 and 1.72 at width 3 (1 and 2).
+/// takes, pixels (its error is at most this times the face's whole gradient `|∇z|`): `(w + 1)/2`;
+/// for 1-pixel lines with a measured profile, the probe's whole-gradient reach for the line kind
+/// ([`RasterizerProfile::line_reach_msaa_whole`]) plus [`LINE_REACH_MARGIN`] where smaller
+/// (llvmpipe: 0.865, so 0.93). Wider lines keep `(w + 1)/2`: the probe's figure at width 3
+/// (1.656 on llvmpipe) fell short of what a seeded sweep needed
+/// ([`crate::probe::Figures::msaa_wide_line_reach_whole`]).
 fn msaa_across(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let p = &edges.profile;
@@ -664,18 +663,13 @@ fn msaa_across(edges: &Edges) -> f64 {
         LineKind::Lines => 0,
         LineKind::PolygonMode => 1,
     };
-    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
-    let mut across = (w + 1.0) / 2.0;
+    let worst = (w + 1.0) / 2.0;
     let one = p.line_reach_msaa_whole[kind];
-    if measured(one) {
-        across = across.min(one + LINE_REACH_MARGIN + (w - 1.0) / 2.0);
+    if w == 1.0 && p.measured && one.is_finite() && one > 0.0 {
+        worst.min(one + LINE_REACH_MARGIN)
+    } else {
+        worst
     }
-    let wide = p.line_reach_msaa_wide_whole[kind];
-    let from = f64::from(crate::profile::WIDE_LINE_WIDTH);
-    if w >= from && measured(wide) {
-        across = across.min(wide + LINE_REACH_MARGIN + (w - from) / 2.0);
-    }
-    across
 }
 
 /// The part of the line term one reach makes against the face-slope limit `g` (the face's own

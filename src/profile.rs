@@ -185,14 +185,10 @@ pub struct RasterizerProfile {
     /// not its larger component) over the [`RasterizerProfile::line_reach_msaa`] samples,
     /// `GL_LINES` (`[0]`) and polygon-mode lines (`[1]`), pixels. [`crate::lines`] takes it
     /// against a bound on a face's gradient length (a face-slope angle, a mesh's own faces;
-    /// worst case `(w + 1)/2`, 1 pixel at width 1); wider lines add `(w − 1)/2`. Measured on
-    /// llvmpipe: 0.865 and 0.866. NaN where not measured.
+    /// worst case `(w + 1)/2`, 1 pixel at width 1) for 1-pixel lines only: wider multisampled
+    /// lines keep `(w + 1)/2` ([`crate::probe::Figures::msaa_wide_line_reach_whole`] says why).
+    /// Measured on llvmpipe: 0.865 and 0.866. NaN where not measured.
     pub line_reach_msaa_whole: [f64; 2],
-    /// The same for lines drawn multisampled at `glLineWidth(3)` (the dense geometry of
-    /// [`RasterizerProfile::line_reach_wide`]); [`crate::lines`] takes it from width 3 on (worst
-    /// case 2 pixels there), adding `(w − 3)/2` beyond. NaN where not measured (a
-    /// forward-compatible core context refuses the width).
-    pub line_reach_msaa_wide_whole: [f64; 2],
     /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
     /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
     /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
@@ -235,7 +231,6 @@ impl RasterizerProfile {
             line_reach_msaa: [f64::NAN; 2],
             line_reach_wide: [f64::NAN; 2],
             line_reach_msaa_whole: [f64::NAN; 2],
-            line_reach_msaa_wide_whole: [f64::NAN; 2],
             offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,

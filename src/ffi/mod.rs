@@ -66,7 +66,7 @@ pub use shadow::*;
 /// The version of this C ABI. It changes when a declaration in this header changes
 /// incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
 /// the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
-/// engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reaches;
+/// engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reach;
 /// rebuild against this header).
 pub const ZSHIFT_ABI_VERSION: u32 = 4;
 

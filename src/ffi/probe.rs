@@ -131,14 +131,10 @@ pub struct ZshiftProfile {
     /// How far, in any direction, a multisampled 1-pixel line's sample is from the point whose
     /// depth it takes: the largest |stored - plane at the sample| / |grad z| (the whole
     /// gradient) over the line_reach_msaa samples; GL_LINES [0], polygon-mode lines [1].
-    /// zshift_edge_offset takes it against a face_angle or a mesh's own faces (worst case
-    /// (w + 1)/2); wider lines add (w - 1)/2. llvmpipe: 0.865 and 0.866. NAN where not
-    /// measured. NAN or finite >= 0.
+    /// zshift_edge_offset takes it against a face_angle or a mesh's own faces for 1-pixel lines
+    /// (worst case (w + 1)/2 = 1; wider lines keep (w + 1)/2). llvmpipe: 0.865 and 0.866. NAN
+    /// where not measured. NAN or finite >= 0.
     pub line_reach_msaa_whole: [f64; 2],
-    /// The same at glLineWidth(3), taken from width 3 on (worst case 2 there; wider lines add
-    /// (w - 3)/2). NAN where not measured (a forward-compatible core context refuses the
-    /// width). NAN or finite >= 0.
-    pub line_reach_msaa_wide_whole: [f64; 2],
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -176,7 +172,6 @@ impl From<RasterizerProfile> for ZshiftProfile {
             line_reach_wide: p.line_reach_wide,
             offset_slope: p.offset_slope,
             line_reach_msaa_whole: p.line_reach_msaa_whole,
-            line_reach_msaa_wide_whole: p.line_reach_msaa_wide_whole,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -231,8 +226,6 @@ impl ZshiftProfile {
             self.offset_slope,
             self.line_reach_msaa_whole[0],
             self.line_reach_msaa_whole[1],
-            self.line_reach_msaa_wide_whole[0],
-            self.line_reach_msaa_wide_whole[1],
         ];
         if self
             .plane_error
@@ -243,7 +236,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, line_reach_wide, offset_slope, line_reach_msaa_whole, line_reach_msaa_wide_whole or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, line_reach_wide, offset_slope, line_reach_msaa_whole or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -274,7 +267,6 @@ impl ZshiftProfile {
             line_reach_msaa: self.line_reach_msaa,
             line_reach_wide: self.line_reach_wide,
             line_reach_msaa_whole: self.line_reach_msaa_whole,
-            line_reach_msaa_wide_whole: self.line_reach_msaa_wide_whole,
             offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

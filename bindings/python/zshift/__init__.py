@@ -944,13 +944,12 @@ class _ZshiftProfile(_ctypes.Structure):
         ("line_reach_wide", _ctypes.c_double * 2),
         ("offset_slope", _ctypes.c_double),
         ("line_reach_msaa_whole", _ctypes.c_double * 2),
-        ("line_reach_msaa_wide_whole", _ctypes.c_double * 2),
     ]
 
 
 #: What :func:`probe` and :func:`profile_worst_case` return: the C ``ZshiftProfile``'s fields
-#: (per-format arrays as 4-tuples in the order D16, D24, D32, D32F, line_reach, line_reach_msaa, line_reach_wide,
-#: line_reach_msaa_whole and line_reach_msaa_wide_whole 2-tuples; see
+#: (per-format arrays as 4-tuples in the order D16, D24, D32, D32F, line_reach, line_reach_msaa, line_reach_wide and
+#: line_reach_msaa_whole 2-tuples; see
 #: zshift.h for each field).
 Profile = _collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
 
