@@ -168,6 +168,17 @@ pub enum LineKind {
     PolygonMode,
 }
 
+impl LineKind {
+    /// The index of this kind in the profile's per-kind line figures
+    /// ([`RasterizerProfile::line_reach`] and its kin): `GL_LINES` 0, polygon-mode lines 1.
+    fn index(self) -> usize {
+        match self {
+            LineKind::Lines => 0,
+            LineKind::PolygonMode => 1,
+        }
+    }
+}
+
 /// The steepest face whose edges must be kept: faces steeper than it are grazing (a few pixels
 /// across on screen) and their edges are not guaranteed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -610,10 +621,7 @@ fn line_reach(edges: &Edges) -> f64 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M. A
         // measured profile's width-1 reach, its margin, and the rest of the width at √2.
-        let kind = match edges.kind {
-            LineKind::Lines => 0,
-            LineKind::PolygonMode => 1,
-        };
+        let kind = edges.kind.index();
         let root2 = std::f64::consts::SQRT_2;
         let across = root2 * worst;
         let reach = p.line_reach_msaa[kind];
@@ -659,10 +667,7 @@ fn line_reach(edges: &Edges) -> f64 {
 fn msaa_across(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let p = &edges.profile;
-    let kind = match edges.kind {
-        LineKind::Lines => 0,
-        LineKind::PolygonMode => 1,
-    };
+    let kind = edges.kind.index();
     let worst = (w + 1.0) / 2.0;
     let one = p.line_reach_msaa_whole[kind];
     if w == 1.0 && p.measured && one.is_finite() && one > 0.0 {

@@ -224,7 +224,7 @@ fn window_gradient(c: &[[f64; 4]; 3], scale: [f64; 2]) -> Option<(f64, f64)> {
     let rows = [c[0], d1, d2];
     // a_k = (−1)^k · det of the rows without column k; only a₀, a₁, a₂ are needed.
     let minor = |skip: usize| {
-        let cols: Vec<usize> = (0..4).filter(|&j| j != skip).collect();
+        let cols = [0, 1, 2].map(|j| if j < skip { j } else { j + 1 });
         let e = |r: usize, j: usize| rows[r][cols[j]];
         e(0, 0) * (e(1, 1) * e(2, 2) - e(1, 2) * e(2, 1))
             - e(0, 1) * (e(1, 0) * e(2, 2) - e(1, 2) * e(2, 0))

@@ -229,26 +229,24 @@ fn asks(
     ]
 }
 
-/// zshift's answer for `edges`, with the mesh's own steepest faces (`lines::recommend_for_mesh`,
-/// the mesh in eye space: its clip matrix is `m`) where `from_mesh`.
+/// zshift's answer for `edges`: with the mesh's own steepest faces (`lines::recommend_for_mesh`)
+/// where `mesh` is given, else from the face-slope limit alone.
 fn ask(
     m: &[f32; 16],
     clip: ClipDepth,
     edges: &Edges,
     method: EdgeMethod,
-    mesh: &Mesh,
-    from_mesh: bool,
+    mesh: Option<&MeshDraw>,
 ) -> zshift::Result<zshift::lines::EdgeRecommendation> {
-    if !from_mesh {
-        return recommend(m, clip, edges, method);
+    match mesh {
+        Some(draw) => recommend_for_mesh(m, clip, edges, method, draw).map(|(r, _)| r),
+        None => recommend(m, clip, edges, method),
     }
-    let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
-    let draw = MeshDraw {
-        clip_matrix: m,
-        positions: &mesh.verts,
-        indices: &indices,
-    };
-    recommend_for_mesh(m, clip, edges, method, &draw).map(|(r, _)| r)
+}
+
+/// The triangles of `mesh` as `GL_TRIANGLES` indices.
+fn triangle_indices(mesh: &Mesh) -> Vec<u32> {
+    mesh.tris.iter().flatten().copied().collect()
 }
 
 /// `make`'s mesh near eye distance `d0`, moved to lie inside `[1.1n, 0.95f]` (its depth extent
@@ -433,6 +431,13 @@ fn edges_over_faces_sweep() {
                         let b = f * n / (f - n);
                         let (dmin, dmax) = mesh.depth_range();
                         renderer.load(gl.glow(), &mesh);
+                        // The mesh as zshift reads it: eye-space vertices, so its clip matrix is m.
+                        let indices = triangle_indices(&mesh);
+                        let draw = MeshDraw {
+                            clip_matrix: &m,
+                            positions: &mesh.verts,
+                            indices: &indices,
+                        };
                         for &variant in &variants {
                             let kind = variant.kind;
                             let (ms, rfs) = if variant.samples > 1 {
@@ -485,8 +490,13 @@ fn edges_over_faces_sweep() {
                                     }
                                     let class = class_of(&mut classes, &label);
                                     class.scenes += 1;
-                                    let rec = match ask(&m, clip, &edges, method, &mesh, from_mesh)
-                                    {
+                                    let rec = match ask(
+                                        &m,
+                                        clip,
+                                        &edges,
+                                        method,
+                                        from_mesh.then_some(&draw),
+                                    ) {
                                         Ok(r) => r,
                                         Err(e) => {
                                             class.refused += 1;
@@ -595,7 +605,7 @@ fn edges_over_faces_sweep() {
                                         // one of them.
                                         let sep = 0.5 * rec.hidden_gap;
                                         edges.hidden_separation = sep;
-                                        match ask(&m, clip, &edges, method, &mesh, from_mesh) {
+                                        match ask(&m, clip, &edges, method, from_mesh.then_some(&draw)) {
                                             Err(e) if e.kind() == zshift::ErrorKind::Unresolvable => {
                                                 let cs = classify(&scene, &p, rfs, &ids, b, g, sep);
                                                 let (l, shown) = scene

@@ -179,6 +179,15 @@ fn edges_drawn_as_engines_draw() {
                 })
                 .unwrap();
                 renderer.load_positions(gl.glow(), &world);
+                // The mesh as zshift reads it: its world positions through the engine's
+                // projection times view, as an f32 MVP.
+                let mvp = times(&m, &view32);
+                let indices = triangle_indices(&mesh);
+                let draw = MeshDraw {
+                    clip_matrix: &mvp,
+                    positions: &world,
+                    indices: &indices,
+                };
                 // A multisampled target beside this scene's own (it rebinds that one after reads).
                 let msaa = (variant.samples > 1).then(|| Msaa::new(&gl, fmt, variant.samples));
                 let rfs: Vec<Reference> = match &msaa {
@@ -216,9 +225,8 @@ fn edges_drawn_as_engines_draw() {
                             pipeline,
                             ..edges_for(fmt, conv, variant, profile, [dmin, dmax])
                         };
-                        // The mesh's own steepest faces, from its world positions through the
-                        // engine's projection times view (as an f32 MVP), within the angle's
-                        // gradient; the pixels judged are the angle's.
+                        // The mesh's own steepest faces within the angle's gradient; the pixels
+                        // judged are the angle's.
                         let mut g_angle = f64::NAN;
                         if from_mesh {
                             let Ok(r) = recommend(&m, clip, &edges, method) else {
@@ -233,19 +241,7 @@ fn edges_drawn_as_engines_draw() {
                             variant.name(),
                             mesh.name
                         );
-                        let mvp = times(&m, &view32);
-                        let indices: Vec<u32> = mesh.tris.iter().flatten().copied().collect();
-                        let draw = MeshDraw {
-                            clip_matrix: &mvp,
-                            positions: &world,
-                            indices: &indices,
-                        };
-                        let answer = if from_mesh {
-                            recommend_for_mesh(&m, clip, &edges, method, &draw).map(|(r, _)| r)
-                        } else {
-                            recommend(&m, clip, &edges, method)
-                        };
-                        let rec = match answer {
+                        let rec = match ask(&m, clip, &edges, method, from_mesh.then_some(&draw)) {
                             Ok(r) => r,
                             Err(e) if e.kind() == zshift::ErrorKind::Unresolvable => {
                                 refused += 1;
