@@ -1880,25 +1880,9 @@ fn samples() -> u32 {
     })
 }
 
-/// `ZSHIFT_ENGINE_SCENES_SHARD=<i>/<n>`: only the cases whose index is `i` modulo `n`, so that
-/// `n` processes (each with its own context) share a grid on a machine with cores to spare
-/// (`scripts/gpu-checks`); `(0, 1)` without it.
-fn shard() -> (usize, usize) {
-    let Ok(text) = std::env::var("ZSHIFT_ENGINE_SCENES_SHARD") else {
-        return (0, 1);
-    };
-    let parsed = text
-        .split_once('/')
-        .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
-    match parsed {
-        Some((i, n)) if i < n => (i, n),
-        _ => panic!("ZSHIFT_ENGINE_SCENES_SHARD={text}: expected <i>/<n> with i < n, e.g. 0/8"),
-    }
-}
-
 #[test]
 fn the_scene_every_engine_draws() {
-    let (shard, shards) = shard();
+    let (shard, shards) = gl_common::shard("ZSHIFT_ENGINE_SCENES_SHARD");
     let picked = cases()
         .into_iter()
         .enumerate()

@@ -11,7 +11,8 @@
 //! the same context; width-3 lines (a compatibility context) and 4× MSAA (every sample checked
 //! against its own reference) in fewer scenes. The default run draws one scene in [`SAMPLE`]
 //! (every mesh, f/n and position in turn), the width-3 and MSAA variants one in [`SAMPLE_MORE`];
-//! `ZSHIFT_LINES_FULL=1` draws the whole grid; `ZSHIFT_LINES_SEED=<n>` another draw
+//! `ZSHIFT_LINES_FULL=1` draws the whole grid (`ZSHIFT_LINES_SHARD=<i>/<n>` one `n`th of its
+//! cells, for processes side by side); `ZSHIFT_LINES_SEED=<n>` another draw
 //! ([`Variation`]); `ZSHIFT_LINES_VARIANT=<text>` only the variants whose name contains it
 //! (`MSAA`, `w3`, `polymode`); `ZSHIFT_LINES_ONLY=<text>` only the scenes whose label contains it,
 //! and with `ZSHIFT_LINES_VERBOSE=1` each scene's zshift ÷ smallest working offset, and each lost
@@ -339,6 +340,9 @@ fn edges_over_faces_sweep() {
     let only_scene = std::env::var("ZSHIFT_LINES_ONLY").ok();
     // `ZSHIFT_LINES_VERBOSE=1`: each scene's ratio, and each lost pixel of a failing scene.
     let verbose = std::env::var_os("ZSHIFT_LINES_VERBOSE").is_some();
+    // `ZSHIFT_LINES_SHARD=<i>/<n>`: only the cells (format, convention, f/n, position, mesh)
+    // whose index is i modulo n.
+    let (shard, shards) = gl_common::shard("ZSHIFT_LINES_SHARD");
     let mut gl =
         Gl::new(Profile::Compatibility).unwrap_or_else(|e| panic!("no OpenGL context: {e}"));
     let renderer = Renderer::new(gl.glow());
@@ -388,6 +392,10 @@ fn edges_over_faces_sweep() {
                         // The default run samples one scene in SAMPLE (the meshes in turn at
                         // every f/n and position); ZSHIFT_LINES_FULL=1 runs the whole grid.
                         let idx = (ri * 3 + pi) * meshes.len() + mi;
+                        let cell = ((fi * 3 + ci) * 9 + ri * 3 + pi) * meshes.len() + mi;
+                        if cell % shards != shard {
+                            continue;
+                        }
                         let variants: Vec<Variant> = VARIANTS
                             .into_iter()
                             .filter(|v| only.as_ref().is_none_or(|o| v.name().contains(o.as_str())))

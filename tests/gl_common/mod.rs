@@ -184,3 +184,19 @@ pub fn format_row(r: &Row) -> String {
         pct(&r.bleed_gap)
     )
 }
+
+/// `<var>=<i>/<n>`: only the cases whose index is `i` modulo `n`, so that `n` processes (each
+/// with its own context) share a grid on a machine with cores to spare (`scripts/gpu-checks`);
+/// `(0, 1)` without it.
+pub fn shard(var: &str) -> (usize, usize) {
+    let Ok(text) = std::env::var(var) else {
+        return (0, 1);
+    };
+    let parsed = text
+        .split_once('/')
+        .and_then(|(i, n)| Some((i.parse().ok()?, n.parse().ok()?)));
+    match parsed {
+        Some((i, n)) if i < n => (i, n),
+        _ => panic!("{var}={text}: expected <i>/<n> with i < n, e.g. 0/8"),
+    }
+}
