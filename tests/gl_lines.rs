@@ -61,7 +61,7 @@ use zshift::recommend::{DepthTest, RasterizerProfile};
 use zshift_harness::draw::Xorshift;
 use zshift_harness::edges::meshes::{chamfered_box, finish, place, sphere, terrain, torus};
 use zshift_harness::edges::{
-    classify, edge_at, edge_ids, project, reference, Draw, Mesh, Msaa, Primitive, Reference,
+    classify, edge_at, edge_ids, project, reference, Draw, Limit, Mesh, Msaa, Primitive, Reference,
     Renderer, Scene, Variant, EDGE, SIZE,
 };
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, Gl, Profile};
@@ -246,6 +246,18 @@ fn ask(
 }
 
 /// The triangles of `mesh` as `GL_TRIANGLES` indices.
+/// The faces an ask promises to keep the edges of (harness [`Limit`]): against a face-slope
+/// angle under MSAA, those whose whole gradient is within the angle's `g` (the line term is
+/// `g·min(Δ, across)`: every face within the angle has `|∇z| ≤ g`); a mesh's own faces
+/// (`from_mesh`) and single-sampled lines, those whose larger component is.
+fn limit_of(edges: &Edges, from_mesh: bool, g: f64) -> Limit {
+    if !from_mesh && edges.samples > 1 && matches!(edges.face_slope, FaceSlope::Angle(_)) {
+        Limit::Length(g)
+    } else {
+        Limit::MaxComponent(g)
+    }
+}
+
 fn triangle_indices(mesh: &Mesh) -> Vec<u32> {
     mesh.tris.iter().flatten().copied().collect()
 }
@@ -520,7 +532,9 @@ fn edges_over_faces_sweep() {
                                     } else {
                                         rec.face_gradient
                                     };
-                                    let c = classify(&scene, &p, rfs, &ids, b, g, rec.hidden_gap);
+                                    let limit = limit_of(&edges, from_mesh, g);
+                                    let c =
+                                        classify(&scene, &p, rfs, &ids, b, limit, rec.hidden_gap);
                                     class.visible += c.visible.len();
                                     class.hidden += c.hidden.len();
                                     ties += c.ties;
@@ -540,14 +554,18 @@ fn edges_over_faces_sweep() {
                                             {
                                                 let (plane, i) = (j / (n * n), j % (n * n));
                                                 let front = rfs[plane].front[i];
-                                                let grad =
-                                                    front.map(|(t, _)| b * rfs[plane].tri_grad[t]);
+                                                let grad = front.map(|(t, _)| {
+                                                    (
+                                                        b * rfs[plane].tri_grad[t],
+                                                        b * rfs[plane].tri_len[t],
+                                                    )
+                                                });
                                                 let edges_here: Vec<String> = ids[j].iter().map(|&e| {
                                                     let (inv_e, along) = edge_at(scene.mesh, &p, e, i % n, i / n, offsets[plane]);
                                                     let grads: Vec<String> = scene.mesh.edge_tris[e].iter().map(|&t| format!("{:.3e}", b * rfs[plane].tri_grad[t])).collect();
                                                     format!("edge {e} tris {:?} (gradients {}) 1/d {inv_e:.9e} along {:.3e}", scene.mesh.edge_tris[e], grads.join(", "), b * along)
                                                 }).collect();
-                                                println!("  lost pixel ({}, {}) sample {plane}: colour {:?}, front {front:?} (rasterized: face {}) grad {grad:?} of g {g:.3e}; {}", i % n, i / n, img[j], faces[j] as i64 - 1, edges_here.join("; "));
+                                                println!("  lost pixel ({}, {}) sample {plane}: colour {:?}, front {front:?} (rasterized: face {}) grad (max, length) {grad:?} of g {g:.3e}; {}", i % n, i / n, img[j], faces[j] as i64 - 1, edges_here.join("; "));
                                             }
                                             let scales: Vec<String> =
                                                 [1.1, 1.25, 1.5, 2.0, 4.0, 16.0, 256.0]
@@ -615,7 +633,7 @@ fn edges_over_faces_sweep() {
                                         edges.hidden_separation = sep;
                                         match ask(&m, clip, &edges, method, from_mesh.then_some(&draw)) {
                                             Err(e) if e.kind() == zshift::ErrorKind::Unresolvable => {
-                                                let cs = classify(&scene, &p, rfs, &ids, b, g, sep);
+                                                let cs = classify(&scene, &p, rfs, &ids, b, limit, sep);
                                                 let (l, shown) = scene
                                                     .count(&scaled(&rec, &m, clip, hi.exp2()), &cs);
                                                 if l > 0 {
@@ -643,7 +661,7 @@ fn edges_over_faces_sweep() {
                                         && (kind == Primitive::Lines
                                             || method == EdgeMethod::PolygonOffset)
                                     {
-                                        let all = classify(&scene, &p, rfs, &ids, b, g, 0.0);
+                                        let all = classify(&scene, &p, rfs, &ids, b, limit, 0.0);
                                         let class = class_of(&mut classes, &label);
                                         class.peer_scenes += 1;
                                         class.peer_visible += all.visible.len();
@@ -936,7 +954,8 @@ fn refusals_confirmed_by_bisection() {
                             let ids = edge_ids(&scene);
                             let rfs = std::slice::from_ref(&rf);
                             let g = rec.face_gradient;
-                            let c = classify(&scene, &p, rfs, &ids, b, g, sep);
+                            let c =
+                                classify(&scene, &p, rfs, &ids, b, limit_of(&edges, false, g), sep);
                             // zshift's own offset (no separation) keeps every visible edge.
                             let (lost, _) = scene.count(&scaled(&rec, &m, clip, 1.0), &c);
                             if lost > 0 {

@@ -28,8 +28,8 @@ use zshift::projection::{projection, projection_f64, ClipDepth, Frustum};
 use zshift::recommend::{DepthTest, RasterizerProfile};
 use zshift_harness::edges::meshes::torus;
 use zshift_harness::edges::{
-    classify, count_in, edge_ids, project, reference, Classes, Draw, Mesh, Primitive, Renderer,
-    Scene, Variant, EDGE, SIZE,
+    classify, count_in, edge_ids, project, reference, Classes, Draw, Limit, Mesh, Primitive,
+    Renderer, Scene, Variant, EDGE, SIZE,
 };
 use zshift_harness::{ClipDepth as GlClip, DepthFormat, Gl, Image};
 
@@ -248,7 +248,16 @@ fn measure(gl: &mut Gl, renderer: &Renderer, s: &'static EdgeScene) -> Result<Ro
     // Every hidden edge pixel, behind its front face by any amount (gap 0), for every panel.
     let b = s.far * NEAR / (s.far - NEAR);
     let g = recs[0].face_gradient;
-    let c = classify(&scene, &p, std::slice::from_ref(&rf), &ids, b, g, 0.0);
+    // Single-sampled: the faces whose larger gradient component is within the limit.
+    let c = classify(
+        &scene,
+        &p,
+        std::slice::from_ref(&rf),
+        &ids,
+        b,
+        Limit::MaxComponent(g),
+        0.0,
+    );
     Ok(Row {
         scene: s,
         visible: c.visible.len(),

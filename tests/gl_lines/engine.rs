@@ -258,7 +258,15 @@ fn edges_drawn_as_engines_draw() {
                         } else {
                             rec.face_gradient
                         };
-                        let c = classify(&scene, &p, &rfs, &ids, b, g, rec.hidden_gap);
+                        let c = classify(
+                            &scene,
+                            &p,
+                            &rfs,
+                            &ids,
+                            b,
+                            limit_of(&edges, from_mesh, g),
+                            rec.hidden_gap,
+                        );
                         visible += c.visible.len();
                         hidden += c.hidden.len();
                         let (lost, shown) = scene.count(&scaled(&rec, &m, clip, 1.0), &c);

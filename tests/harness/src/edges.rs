@@ -162,6 +162,8 @@ pub struct Reference {
     pub front: Vec<Option<(usize, f64)>>,
     /// The largest per-pixel gradient of 1/d of each triangle, along x or y.
     pub tri_grad: Vec<f64>,
+    /// The length of each triangle's per-pixel gradient of 1/d.
+    pub tri_len: Vec<f64>,
 }
 
 /// The reference of `mesh` at `off` within each pixel (its centre, or an MSAA sample).
@@ -169,6 +171,7 @@ pub fn reference(mesh: &Mesh, p: &Projected, off: [f64; 2]) -> Reference {
     let n = SIZE as usize;
     let mut front: Vec<Option<(usize, f64)>> = vec![None; n * n];
     let mut tri_grad = Vec::new();
+    let mut tri_len = Vec::new();
     for (t, tri) in mesh.tris.iter().enumerate() {
         let [a, b, c] = tri.map(|i| i as usize);
         let (pa, pb, pc) = (p.xy[a], p.xy[b], p.xy[c]);
@@ -176,12 +179,14 @@ pub fn reference(mesh: &Mesh, p: &Projected, off: [f64; 2]) -> Reference {
         let (ia, ib, ic) = (p.inv_d[a], p.inv_d[b], p.inv_d[c]);
         if area == 0.0 {
             tri_grad.push(f64::INFINITY);
+            tri_len.push(f64::INFINITY);
             continue;
         }
         // 1/d is affine on screen: gradient from the three vertices.
         let gx = ((ib - ia) * (pc[1] - pa[1]) - (ic - ia) * (pb[1] - pa[1])) / area;
         let gy = ((ic - ia) * (pb[0] - pa[0]) - (ib - ia) * (pc[0] - pa[0])) / area;
         tri_grad.push(gx.abs().max(gy.abs()));
+        tri_len.push(gx.hypot(gy));
         let x0 = pa[0].min(pb[0]).min(pc[0]).floor().max(0.0) as usize;
         let x1 = (pa[0].max(pb[0]).max(pc[0]).ceil() as usize).min(n);
         let y0 = pa[1].min(pb[1]).min(pc[1]).floor().max(0.0) as usize;
@@ -203,7 +208,11 @@ pub fn reference(mesh: &Mesh, p: &Projected, off: [f64; 2]) -> Reference {
             }
         }
     }
-    Reference { front, tri_grad }
+    Reference {
+        front,
+        tri_grad,
+        tri_len,
+    }
 }
 
 /// 1/d of edge `e` at the major-axis coordinate of the pixel's sample point (`off` within the
@@ -794,6 +803,37 @@ pub fn seg_dist(mesh: &Mesh, p: &Projected, e: usize, x: f64, y: f64) -> f64 {
     ((a[0] + t * dx - x).powi(2) + (a[1] + t * dy - y).powi(2)).sqrt()
 }
 
+/// The faces an ask promises to keep the edges of: those whose per-pixel 1/d gradient is at
+/// most the limit, by its larger component (a window-gradient limit, a mesh's own faces, and
+/// a face-slope angle single-sampled, whose line term is `g·Δ` in pixels of that component) or
+/// by its length (a face-slope angle under MSAA: its line term is `g·min(Δ, across)`, the
+/// angle bounding a face's whole gradient; a face whose larger component is within `g` but
+/// whose length is not is steeper than the angle).
+#[derive(Clone, Copy, Debug)]
+pub enum Limit {
+    /// Faces whose larger gradient component is at most this.
+    MaxComponent(f64),
+    /// Faces whose gradient length is at most this.
+    Length(f64),
+}
+
+impl Limit {
+    /// The limit's gradient.
+    pub fn gradient(self) -> f64 {
+        match self {
+            Limit::MaxComponent(g) | Limit::Length(g) => g,
+        }
+    }
+
+    /// Triangle `t`'s gradient as this limit measures it.
+    fn of(self, rf: &Reference, t: usize) -> f64 {
+        match self {
+            Limit::MaxComponent(_) => rf.tri_grad[t],
+            Limit::Length(_) => rf.tri_len[t],
+        }
+    }
+}
+
 /// Visible and hidden-beyond-`gap` pixels, or samples under MSAA (module docs); `rfs` the
 /// reference at each sample plane's position ([`Scene::offsets`]).
 #[allow(clippy::too_many_arguments)]
@@ -803,9 +843,11 @@ pub fn classify(
     rfs: &[Reference],
     ids: &[Vec<usize>],
     b: f64,
-    g: f64,
+    limit: Limit,
     gap: f64,
 ) -> Classes {
+    let g = limit.gradient();
+    let steep = |rf: &Reference, t: usize| b * limit.of(rf, t) > g;
     let n = SIZE as usize;
     let near_vertex = |x: usize, y: usize| p.near_vertex[y * n + x];
     let offsets = scene.offsets();
@@ -823,7 +865,7 @@ pub fn classify(
         let Some((t, inv_front)) = rf.front[i] else {
             continue;
         };
-        if b * rf.tri_grad[t] > g {
+        if steep(rf, t) {
             continue;
         }
         let (x, y) = (i % n, i / n);
@@ -860,10 +902,8 @@ pub fn classify(
             // An edge of a face steeper than the limit is not guaranteed (the model's contract):
             // the rasterizer may keep that face at a pixel the exact reference gives to its
             // neighbour (measured: a sphere's grazing face at its shared edge, ZSHIFT_LINES_SEED=1).
-            let steep_edge = b * along > g
-                || scene.mesh.edge_tris[e]
-                    .iter()
-                    .any(|&tn| b * rf.tri_grad[tn] > g);
+            let steep_edge =
+                b * along > g || scene.mesh.edge_tris[e].iter().any(|&tn| steep(rf, tn));
             if (adjacent || in_front) && !steep_edge {
                 any_visible = true;
             }
