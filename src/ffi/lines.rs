@@ -1,4 +1,4 @@
-//! Edges drawn over their own faces (src/lines.rs): wireframe on shaded, outlines, hidden-line
+//! Edges drawn over their own faces (src/lines/): wireframe on shaded, outlines, hidden-line
 //! drawing. Two ways: the faces pushed back with polygon offset, or the edges pulled forward
 //! through the projection matrix (the one offset that reaches GL_LINES).
 

@@ -1015,7 +1015,7 @@ def probe(get_proc_address):
     return _profile(out)
 
 
-# ---- Edges over their own faces (src/lines.rs, docs/edges.md) ----
+# ---- Edges over their own faces (src/lines/, docs/edges.md) ----
 
 
 class EdgeMethod(_enum_module.IntEnum):
