@@ -1,5 +1,5 @@
-use super::*;
 use super::reach::{LINE_REACH_MARGIN, WIDE_OUTLINE_SHIFT};
+use super::*;
 use crate::projection::projection;
 
 fn matrix(n: f64, f: f64, clip: ClipDepth) -> [f32; 16] {
