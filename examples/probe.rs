@@ -64,7 +64,7 @@ fn main() {
         "MSAA lines     reach (pixels along the steepest gradient, from the sample): GL_LINES width 1 {:.4} over {} samples, polygon-mode {:.4} over {} (drawn at {:?} samples); over the whole gradient |∇z|: {:.4}, {:.4}; at glLineWidth(3), over the whole gradient: {:.4}, {:.4} over {:?} samples",
         p.line_reach_msaa[0], figures.msaa_line_samples[0], p.line_reach_msaa[1], figures.msaa_line_samples[1], figures.msaa_sample_counts,
         p.line_reach_msaa_whole[0], p.line_reach_msaa_whole[1],
-        figures.msaa_wide_line_reach_whole[0], figures.msaa_wide_line_reach_whole[1], figures.msaa_wide_line_samples
+        p.line_reach_msaa_wide_whole[0], p.line_reach_msaa_wide_whole[1], figures.msaa_wide_line_samples
     );
     println!(
         "wide lines     reach at glLineWidth(3) (pixels along the steepest gradient): GL_LINES {:.4} over {} fragments, polygon-mode {:.4} over {}",

@@ -133,9 +133,9 @@ static const ZshiftOffsetKind ZSHIFT_OFFSET_RELATIVE = { 1 };
  incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
  the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
  engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reach;
- rebuild against this header).
+ 5: and its reach at width 3; rebuild against this header).
  */
-#define ZSHIFT_ABI_VERSION 4
+#define ZSHIFT_ABI_VERSION 5
 
 /*
  `subpixel_bits` value meaning the rasterizer sets its depth plane up from unsnapped float
@@ -365,10 +365,19 @@ typedef struct {
    depth it takes: the largest |stored - plane at the sample| / |grad z| (the whole
    gradient) over the line_reach_msaa samples; GL_LINES [0], polygon-mode lines [1].
    zshift_edge_offset takes it against a face_angle or a mesh's own faces for 1-pixel lines
-   (worst case (w + 1)/2 = 1; wider lines keep (w + 1)/2). llvmpipe: 0.865 and 0.866. NAN
-   where not measured. NAN or finite >= 0.
+   (worst case (w + 1)/2 = 1; wider lines take line_reach_msaa_wide_whole). llvmpipe: 0.865
+   and 0.866. NAN where not measured. NAN or finite >= 0.
    */
   double line_reach_msaa_whole[2];
+  /*
+   The same at glLineWidth(3): how far, in any direction, a multisampled 3-pixel line's
+   sample is from the point whose depth it takes, pixels of |grad z|; GL_LINES [0],
+   polygon-mode lines [1]. zshift_edge_offset takes it against a face_angle or a mesh's own
+   faces for multisampled lines wider than 1 (worst case (w + 1)/2 = 2 at width 3), adding
+   (w - 3)/2 beyond width 3. llvmpipe: 1.656 and 1.652. NAN where not measured. NAN or
+   finite >= 0.
+   */
+  double line_reach_msaa_wide_whole[2];
 } ZshiftProfile;
 
 /*

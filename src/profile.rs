@@ -185,10 +185,20 @@ pub struct RasterizerProfile {
     /// not its larger component) over the [`RasterizerProfile::line_reach_msaa`] samples,
     /// `GL_LINES` (`[0]`) and polygon-mode lines (`[1]`), pixels. [`crate::lines`] takes it
     /// against a bound on a face's gradient length (a face-slope angle, a mesh's own faces;
-    /// worst case `(w + 1)/2`, 1 pixel at width 1) for 1-pixel lines only: wider multisampled
-    /// lines keep `(w + 1)/2` ([`crate::probe::Figures::msaa_wide_line_reach_whole`] says why).
-    /// Measured on llvmpipe: 0.865 and 0.866. NaN where not measured.
+    /// worst case `(w + 1)/2`, 1 pixel at width 1) for 1-pixel lines; wider ones take
+    /// [`RasterizerProfile::line_reach_msaa_wide_whole`]. Measured on llvmpipe: 0.865 and 0.866,
+    /// on an NVIDIA H200 0.5005 and 0.5007 (the sample's projection on the line). NaN where not
+    /// measured.
     pub line_reach_msaa_whole: [f64; 2],
+    /// The same at `glLineWidth(3)`: how far, in any direction, a multisampled 3-pixel line's
+    /// sample is from the point whose depth it takes, over the
+    /// [`RasterizerProfile::line_reach_msaa`] geometry drawn multisampled at that width,
+    /// `GL_LINES` (`[0]`) and polygon-mode lines (`[1]`), pixels. [`crate::lines`] takes it for
+    /// multisampled lines wider than 1 against a bound on a face's gradient length (worst case
+    /// `(w + 1)/2`, 2 pixels at width 3), adding `(w − 3)/2` beyond width 3. Measured on
+    /// llvmpipe: 1.656 and 1.652; on an NVIDIA H200 1.5000 and 1.4999. NaN where not measured
+    /// (a forward-compatible core context refuses the width).
+    pub line_reach_msaa_wide_whole: [f64; 2],
     /// `glPolygonOffset`'s slope rule: the offset of `glPolygonOffset(1, 0)` on a plane with
     /// `|gₓ| = |g_y| = g`, over `g`: 1 where the slope term is `max(|gₓ|, |g_y|)` (GL's rule,
     /// llvmpipe), `√2` where it is their root sum of squares (allowed by Vulkan and Direct3D).
@@ -231,6 +241,7 @@ impl RasterizerProfile {
             line_reach_msaa: [f64::NAN; 2],
             line_reach_wide: [f64::NAN; 2],
             line_reach_msaa_whole: [f64::NAN; 2],
+            line_reach_msaa_wide_whole: [f64::NAN; 2],
             offset_slope: f64::NAN,
             measured: false,
             probe_seconds: 0.0,

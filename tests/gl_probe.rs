@@ -164,13 +164,12 @@ fn probe_matches_an_independent_readback_and_llvmpipes_known_figures() {
         // At glLineWidth(3) (a compatibility context draws it): within the model's (w + 1)/2 = 2
         // of the whole gradient, and at least the line's half width.
         assert!(
-            figures
-                .msaa_wide_line_reach_whole
+            p.line_reach_msaa_wide_whole
                 .iter()
                 .all(|&whole| (1.4..2.0).contains(&whole))
                 && figures.msaa_wide_line_samples.iter().all(|&n| n > 5000),
             "{:?} over {:?}",
-            figures.msaa_wide_line_reach_whole,
+            p.line_reach_msaa_wide_whole,
             figures.msaa_wide_line_samples
         );
         // 3-pixel lines and outlines: 1.5 pixels (the wide quad's bound is 2.125 for outlines).

@@ -25,7 +25,7 @@
 
 #include "zshift.h"
 
-static_assert(ZSHIFT_ABI_VERSION == 4, "zshift.hpp wraps version 4 of the zshift C ABI");
+static_assert(ZSHIFT_ABI_VERSION == 5, "zshift.hpp wraps version 5 of the zshift C ABI");
 
 namespace zshift {
 

@@ -67,8 +67,8 @@ pub use shadow::*;
 /// incompatibly (2: ZshiftScene, ZshiftDecal and ZshiftProfile gained the engine's pipeline,
 /// the decal's depth test and the clipper's measured error; 3: ZshiftEdges gained the
 /// engine's pipeline; 4: ZshiftProfile gained the multisampled lines' whole-gradient reach;
-/// rebuild against this header).
-pub const ZSHIFT_ABI_VERSION: u32 = 4;
+/// 5: and its reach at width 3; rebuild against this header).
+pub const ZSHIFT_ABI_VERSION: u32 = 5;
 
 /// The outcome of a zshift call: `ZSHIFT_OK` (0) or one of the `ZSHIFT_ERR_*` codes.
 ///

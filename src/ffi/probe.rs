@@ -132,9 +132,16 @@ pub struct ZshiftProfile {
     /// depth it takes: the largest |stored - plane at the sample| / |grad z| (the whole
     /// gradient) over the line_reach_msaa samples; GL_LINES [0], polygon-mode lines [1].
     /// zshift_edge_offset takes it against a face_angle or a mesh's own faces for 1-pixel lines
-    /// (worst case (w + 1)/2 = 1; wider lines keep (w + 1)/2). llvmpipe: 0.865 and 0.866. NAN
-    /// where not measured. NAN or finite >= 0.
+    /// (worst case (w + 1)/2 = 1; wider lines take line_reach_msaa_wide_whole). llvmpipe: 0.865
+    /// and 0.866. NAN where not measured. NAN or finite >= 0.
     pub line_reach_msaa_whole: [f64; 2],
+    /// The same at glLineWidth(3): how far, in any direction, a multisampled 3-pixel line's
+    /// sample is from the point whose depth it takes, pixels of |grad z|; GL_LINES [0],
+    /// polygon-mode lines [1]. zshift_edge_offset takes it against a face_angle or a mesh's own
+    /// faces for multisampled lines wider than 1 (worst case (w + 1)/2 = 2 at width 3), adding
+    /// (w - 3)/2 beyond width 3. llvmpipe: 1.656 and 1.652. NAN where not measured. NAN or
+    /// finite >= 0.
+    pub line_reach_msaa_wide_whole: [f64; 2],
 }
 
 /// A GL entry point as a loader returns it (as glad's GLADapiproc and GLFW's GLFWglproc): a
@@ -172,6 +179,7 @@ impl From<RasterizerProfile> for ZshiftProfile {
             line_reach_wide: p.line_reach_wide,
             offset_slope: p.offset_slope,
             line_reach_msaa_whole: p.line_reach_msaa_whole,
+            line_reach_msaa_wide_whole: p.line_reach_msaa_wide_whole,
             near_clip: match p.near_clip {
                 NearClip::ClippedF32 => ZSHIFT_NEAR_CLIP_CLIPPED_F32,
                 NearClip::PlanePreserving => ZSHIFT_NEAR_CLIP_PLANE_PRESERVING,
@@ -226,6 +234,8 @@ impl ZshiftProfile {
             self.offset_slope,
             self.line_reach_msaa_whole[0],
             self.line_reach_msaa_whole[1],
+            self.line_reach_msaa_wide_whole[0],
+            self.line_reach_msaa_wide_whole[1],
         ];
         if self
             .plane_error
@@ -236,7 +246,7 @@ impl ZshiftProfile {
             .any(|e| *e < 0.0 || e.is_infinite())
         {
             return Err(domain(
-                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, line_reach_wide, offset_slope, line_reach_msaa_whole or a facing figure is negative \
+                "ZshiftProfile.plane_error, plane_error_reversed, error_ulps, error_ulps_reversed, clip_ulps, line_reach, outline_neighbour, line_reach_msaa, line_reach_wide, offset_slope, line_reach_msaa_whole, line_reach_msaa_wide_whole or a facing figure is negative \
                  or infinite \
                  (NAN means not measured)",
             ));
@@ -267,6 +277,7 @@ impl ZshiftProfile {
             line_reach_msaa: self.line_reach_msaa,
             line_reach_wide: self.line_reach_wide,
             line_reach_msaa_whole: self.line_reach_msaa_whole,
+            line_reach_msaa_wide_whole: self.line_reach_msaa_wide_whole,
             offset_slope: self.offset_slope,
             measured: self.measured != 0,
             probe_seconds: if self.probe_seconds.is_finite() {

@@ -71,9 +71,11 @@
 //! 1 (was 1.41) and 2.53 at width 3 (was 2.83). Polygon-mode lines take the same, with their
 //! own figure (llvmpipe 1.054). A face-slope limit given as an angle ([`FaceSlope::Angle`])
 //! bounds a face's whole gradient `|∇z|`, so against it the line term is `g·min(Δ, (w + 1)/2)`
-//! (a sample within `(w + 1)/2` of its line's point in any direction; for 1-pixel lines a
-//! measured profile's [`RasterizerProfile::line_reach_msaa_whole`] plus 1/16 where smaller:
-//! llvmpipe's samples lie within 0.87 of the whole gradient), and against a mesh's own faces
+//! (a sample within `(w + 1)/2` of its line's point in any direction; a measured profile's
+//! [`RasterizerProfile::line_reach_msaa_whole`] plus 1/16 where smaller for 1-pixel lines,
+//! llvmpipe's samples lying within 0.87 of the whole gradient, NVIDIA's within 0.5, and
+//! [`RasterizerProfile::line_reach_msaa_wide_whole`] plus 1/16 for wider ones, 1.66 and 1.5 at
+//! width 3), and against a mesh's own faces
 //! ([`FaceSlope::Faces`]) the smaller of `M·Δ` and `length` times that; the polygon-offset factor keeps `Δ`, which multiplies each
 //! face's own `M`. They had added a pixel (`+ 1`) under MSAA, set from one sample
 //! a sphere lost at a vertex (`tests/gl_lines.rs`, `ZSHIFT_LINES_SEED=4`); that sample lay

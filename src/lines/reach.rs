@@ -77,19 +77,27 @@ pub(super) fn line_reach(edges: &Edges) -> f64 {
 
 /// How far, in any direction, a multisampled line's sample may lie from the point whose depth it
 /// takes, pixels (its error is at most this times the face's whole gradient `|∇z|`): `(w + 1)/2`;
-/// for 1-pixel lines with a measured profile, the probe's whole-gradient reach for the line kind
-/// ([`RasterizerProfile::line_reach_msaa_whole`]) plus [`LINE_REACH_MARGIN`] where smaller
-/// (llvmpipe: 0.865, so 0.93). Wider lines keep `(w + 1)/2`: the probe's figure at width 3
-/// (1.656 on llvmpipe) fell short of what a seeded sweep needed
-/// ([`crate::probe::Figures::msaa_wide_line_reach_whole`]).
+/// with a measured profile, where smaller, the probe's whole-gradient reach for the line kind
+/// plus [`LINE_REACH_MARGIN`]: at width 1 [`RasterizerProfile::line_reach_msaa_whole`]
+/// (llvmpipe 0.865, so 0.93), wider [`RasterizerProfile::line_reach_msaa_wide_whole`] (measured
+/// at width 3: llvmpipe 1.656, so 1.72 where the worst case is 2) plus `(w − 3)/2` beyond 3 (a
+/// narrower wide line reaches no further than a 3-pixel one).
 pub(super) fn msaa_across(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let p = &edges.profile;
     let kind = edges.kind.index();
     let worst = (w + 1.0) / 2.0;
-    let one = p.line_reach_msaa_whole[kind];
-    if w == 1.0 && p.measured && one.is_finite() && one > 0.0 {
-        worst.min(one + LINE_REACH_MARGIN)
+    let (figure, beyond) = if w == 1.0 {
+        (p.line_reach_msaa_whole[kind], 0.0)
+    } else {
+        let wide = f64::from(crate::profile::WIDE_LINE_WIDTH);
+        (
+            p.line_reach_msaa_wide_whole[kind],
+            (w - wide).max(0.0) / 2.0,
+        )
+    };
+    if p.measured && figure.is_finite() && figure > 0.0 {
+        worst.min(figure + LINE_REACH_MARGIN + beyond)
     } else {
         worst
     }

@@ -228,16 +228,8 @@ pub struct Figures {
     /// Line samples compared for [`RasterizerProfile::line_reach_msaa`] (`GL_LINES`,
     /// polygon-mode).
     pub msaa_line_samples: [usize; 2],
-    /// The [`RasterizerProfile::line_reach_msaa_whole`] geometry drawn multisampled at
-    /// `glLineWidth(3)` (16 of each kind per tile): the largest `|stored − plane at the sample| /
-    /// |∇z|` (`GL_LINES`, polygon-mode), pixels; NaN where the context refuses the width.
-    /// Reported, not used: llvmpipe measures 1.656 and 1.652, but a seeded draw of the edges
-    /// sweep (`ZSHIFT_LINES_SEED=1`, width-3 lines under 4× MSAA on spheres and a torus) needed
-    /// up to about 1.9, beyond that figure plus 1/16 (the wide quad's ends, which the dense
-    /// geometry's long lines rarely put over another face), so [`crate::lines`] keeps
-    /// `(w + 1)/2` = 2 for multisampled lines wider than 1.
-    pub msaa_wide_line_reach_whole: [f64; 2],
-    /// Samples compared for [`Figures::msaa_wide_line_reach_whole`] (`GL_LINES`, polygon-mode).
+    /// Samples compared for [`RasterizerProfile::line_reach_msaa_wide_whole`] (`GL_LINES`,
+    /// polygon-mode).
     pub msaa_wide_line_samples: [usize; 2],
     /// Line fragments compared for [`RasterizerProfile::line_reach_wide`] (`GL_LINES`,
     /// polygon-mode).
@@ -381,7 +373,6 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
         line_pixels: [0; 2],
         outline_neighbour_pixels: 0,
         msaa_line_samples: [0; 2],
-        msaa_wide_line_reach_whole: [f64::NAN; 2],
         msaa_wide_line_samples: [0; 2],
         wide_line_pixels: [0; 2],
         msaa_sample_counts: [0; 2],
@@ -458,7 +449,7 @@ unsafe fn measure(gl: &Gl, objects: &mut Objects) -> Result<(RasterizerProfile, 
             profile.line_reach_msaa = msaa.measured.reach;
             figures.msaa_line_samples = msaa.measured.samples;
             profile.line_reach_msaa_whole = msaa.measured.whole;
-            figures.msaa_wide_line_reach_whole = msaa.wide.whole;
+            profile.line_reach_msaa_wide_whole = msaa.wide.whole;
             figures.msaa_wide_line_samples = msaa.wide.samples;
             figures.msaa_sample_counts = msaa.counts;
         }

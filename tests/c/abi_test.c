@@ -766,7 +766,7 @@ static void test_versions(void) {
   const char *version = zshift_version();
   CHECK(version != NULL && strcmp(version, EXPECTED_VERSION) == 0, "zshift_version() is \"%s\", Cargo.toml says \"%s\"",
         version ? version : "(null)", EXPECTED_VERSION);
-  CHECK(ZSHIFT_ABI_VERSION == 4, "ZSHIFT_ABI_VERSION is %d; this test was written for 4", ZSHIFT_ABI_VERSION);
+  CHECK(ZSHIFT_ABI_VERSION == 5, "ZSHIFT_ABI_VERSION is %d; this test was written for 5", ZSHIFT_ABI_VERSION);
 }
 
 /* The detail of an error names the input, its value and the rule; it is per thread, replaced by

@@ -69,6 +69,8 @@ class ProbeTest(unittest.TestCase):
         self.assertTrue(all(1.49 <= r < 1.6 for r in p.line_reach_wide), p.line_reach_wide)
         # Against the whole gradient a multisampled 1-pixel line's sample lies within 0.87 of its line's point.
         self.assertTrue(all(0.7 <= r < 0.9 for r in p.line_reach_msaa_whole), p.line_reach_msaa_whole)
+        # At width 3 within the model's (w + 1)/2 = 2, and at least the line's half width.
+        self.assertTrue(all(1.4 <= r < 2.0 for r in p.line_reach_msaa_wide_whole), p.line_reach_msaa_wide_whole)
         self.assertAlmostEqual(p.offset_slope, 1.0, delta=1e-3)
         self.assertLess(p.plane_error[0], 1.0)
         # A facing decal with shared z needs a few element-10 steps on D24 (not measured on D16).
@@ -95,7 +97,7 @@ class ProbeTest(unittest.TestCase):
         clipped = zshift.recommend_for_matrix(m, zshift.Clip.NEG_ONE_TO_ONE, profile=p, base_reach=1000.0, **front)
         self.assertEqual((inside.snap, inside.clip), (0.0, 0.0))
         self.assertGreater(clipped.clip, 0.0)
-        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4, (0.0,) * 4, 0.0, 0.0, 0, 0.0, (0.0,) * 2, 0.0, (0.0,) * 2, (0.0,) * 2, 0.0, (0.0,) * 2]))
+        zeroed = zshift.Profile(*([0] * 2 + [(0.0,) * 4] * 2 + [0.0, 0.0, 0, 0.0, (0.0,) * 4, (0.0,) * 4, 0.0, 0.0, 0, 0.0, (0.0,) * 2, 0.0, (0.0,) * 2, (0.0,) * 2, 0.0, (0.0,) * 2, (0.0,) * 2]))
         with self.assertRaises(zshift.ZshiftError) as caught:
             zshift.recommend(profile=zeroed, **args)
         self.assertEqual(caught.exception.status, zshift.Status.DOMAIN)

@@ -49,7 +49,7 @@ __all__ = [
 ]
 
 #: The version of the C ABI these bindings were written for (``ZSHIFT_ABI_VERSION``).
-ABI_VERSION = 4
+ABI_VERSION = 5
 
 #: ``subpixel_bits`` for a rasterizer that sets depth up from unsnapped positions (Mesa llvmpipe).
 #: Never a default: the recommendation functions require ``subpixel_bits`` (the rasterizer's
@@ -944,12 +944,13 @@ class _ZshiftProfile(_ctypes.Structure):
         ("line_reach_wide", _ctypes.c_double * 2),
         ("offset_slope", _ctypes.c_double),
         ("line_reach_msaa_whole", _ctypes.c_double * 2),
+        ("line_reach_msaa_wide_whole", _ctypes.c_double * 2),
     ]
 
 
 #: What :func:`probe` and :func:`profile_worst_case` return: the C ``ZshiftProfile``'s fields
-#: (per-format arrays as 4-tuples in the order D16, D24, D32, D32F, line_reach, line_reach_msaa, line_reach_wide and
-#: line_reach_msaa_whole 2-tuples; see
+#: (per-format arrays as 4-tuples in the order D16, D24, D32, D32F, line_reach, line_reach_msaa, line_reach_wide,
+#: line_reach_msaa_whole and line_reach_msaa_wide_whole 2-tuples; see
 #: zshift.h for each field).
 Profile = _collections.namedtuple("Profile", [name for name, _ in _ZshiftProfile._fields_])
 
