@@ -105,7 +105,7 @@ impl Conv {
 /// (the context is a compatibility one, where `glLineWidth(3)` is valid); the same under 4×
 /// MSAA; width-3 polygon-mode lines, and 1-pixel ones under 4× MSAA. The default run draws the
 /// first two in one scene in [`SAMPLE`], the others in one in [`SAMPLE_MORE`].
-const VARIANTS: [Variant; 7] = [
+const VARIANTS: [Variant; 8] = [
     Variant {
         kind: Primitive::Lines,
         width: 1.0,
@@ -139,6 +139,11 @@ const VARIANTS: [Variant; 7] = [
     Variant {
         kind: Primitive::PolygonMode,
         width: 1.0,
+        samples: 4,
+    },
+    Variant {
+        kind: Primitive::PolygonMode,
+        width: 3.0,
         samples: 4,
     },
 ];

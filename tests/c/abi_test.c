@@ -920,6 +920,10 @@ static void test_front_door(void) {
     CHECK(zshift_profile_worst_case(&zeroed) == ZSHIFT_OK && zeroed.facing_chain == -1,
           "the worst-case profile knows no depth chain (facing_chain %d)", (int)zeroed.facing_chain);
     profile.facing_chain = -1;
+    profile.line_reach_msaa_wide_whole[1] = -1.0; /* a reach is never negative (NAN: not measured) */
+    CHECK_STATUS(zshift_recommend_for_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, &clipped), ZSHIFT_ERR_DOMAIN);
+    expect_detail("negative line_reach_msaa_wide_whole", "line_reach_msaa_wide_whole");
+    profile.line_reach_msaa_wide_whole[1] = NAN;
     memset(&zeroed, 0, sizeof zeroed);
     decal.profile = &zeroed;
     CHECK_STATUS(zshift_decal_matrix(m, ZSHIFT_CLIP_NEG_ONE_TO_ONE, &decal, out), ZSHIFT_ERR_DOMAIN);
