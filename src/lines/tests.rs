@@ -172,6 +172,56 @@ fn an_angle_limit_bounds_the_multisampled_line_term_by_the_whole_gradient() {
     );
 }
 
+/// Against an angle under MSAA a measured profile's whole-gradient reach sets how far a sample
+/// lies from its line's point: the width-1 figure for 1-pixel lines, the width-3 figure for
+/// wider ones plus half of any width beyond 3, each plus 1/16 and at most `(w + 1)/2`;
+/// unmeasured, `(w + 1)/2`.
+#[test]
+fn measured_whole_gradient_reaches_set_the_multisampled_line_term() {
+    let clip = ClipDepth::NegOneToOne;
+    let m = matrix(1.0, 100.0, clip);
+    let mut e = edges(DepthFormat::Unorm24, [5.0, 50.0], clip);
+    e.face_slope = FaceSlope::Angle(60f64.to_radians());
+    e.samples = 4;
+    e.profile.measured = true;
+    e.profile.line_reach_msaa = [1.056; 2];
+    let relative = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs();
+    let (whole, wide) = ([0.5, 0.6], [1.6, 1.65]);
+    for kind in [LineKind::Lines, LineKind::PolygonMode] {
+        e.kind = kind;
+        let k = kind.index();
+        for width in [1.0, 2.0, 3.0, 5.0] {
+            e.line_width = width;
+            let worst = (width + 1.0) / 2.0;
+            let across = if width == 1.0 {
+                worst.min(whole[k] + 1.0 / 16.0)
+            } else {
+                worst.min(wide[k] + 1.0 / 16.0 + (width - 3.0).max(0.0) / 2.0)
+            };
+            e.profile.line_reach_msaa_whole = [f64::NAN; 2];
+            e.profile.line_reach_msaa_wide_whole = [f64::NAN; 2];
+            let unmeasured = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            e.profile.line_reach_msaa_whole = whole;
+            e.profile.line_reach_msaa_wide_whole = wide;
+            let b = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            let g = b.face_gradient;
+            // The face's own part is g·min(Δ, across); a polygon-mode neighbour's (its worst
+            // case, which the probe does not measure) is the same either way.
+            let own = |across: f64| g * b.line_reach.min(across);
+            assert!(
+                relative(b.line_term - unmeasured.line_term, own(across) - own(worst))
+                    || own(across) == own(worst) && b.line_term == unmeasured.line_term,
+                "{kind:?} width {width}: {} against {} unmeasured, across {across}",
+                b.line_term,
+                unmeasured.line_term
+            );
+            if kind == LineKind::Lines {
+                assert!(relative(b.line_term, own(across)), "width {width}: {b:?}");
+            }
+        }
+    }
+}
+
 /// Polygon-mode outlines with a measured neighbour: f32 noise leaves the neighbour's term out
 /// (the outline's own reach, measured, plus 1/16); a rasterizer that evaluates the
 /// triangle's plane beyond its side pays that distance for the face (the factor) and for the
