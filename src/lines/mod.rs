@@ -488,39 +488,30 @@ fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
                 .with_integer("samples", i64::from(edges.samples)),
         );
     }
-    let sep = edges.hidden_separation;
-    finite(sep, "hidden_separation is NaN or infinite")
-        .map_err(|e| e.with_value("hidden_separation", sep))?;
-    if sep < 0.0 {
-        return Err(
-            domain("hidden_separation must be >= 0 (0: no promise asked)")
-                .with_value("hidden_separation", sep),
-        );
-    }
+    non_negative(
+        "hidden_separation",
+        edges.hidden_separation,
+        "hidden_separation is NaN or infinite",
+        "hidden_separation must be >= 0 (0: no promise asked)",
+    )?;
     match edges.face_slope {
-        FaceSlope::WindowGradient(g) => {
-            finite(g, "face_slope (window gradient) is NaN or infinite")
-                .map_err(|e| e.with_value("face_slope", g))?;
-            if g < 0.0 {
-                return Err(
-                    domain("face_slope (window gradient per pixel) must be >= 0")
-                        .with_value("face_slope", g),
-                );
-            }
-        }
+        FaceSlope::WindowGradient(g) => non_negative(
+            "face_slope",
+            g,
+            "face_slope (window gradient) is NaN or infinite",
+            "face_slope (window gradient per pixel) must be >= 0",
+        )?,
         FaceSlope::Faces {
             max_component,
             length,
         } => {
             for (name, g) in [("max_component", max_component), ("length", length)] {
-                finite(g, "face_slope (a mesh's face gradient) is NaN or infinite")
-                    .map_err(|e| e.with_value(name, g))?;
-                if g < 0.0 {
-                    return Err(domain(
-                        "face_slope (a mesh's face gradient per pixel) must be >= 0",
-                    )
-                    .with_value(name, g));
-                }
+                non_negative(
+                    name,
+                    g,
+                    "face_slope (a mesh's face gradient) is NaN or infinite",
+                    "face_slope (a mesh's face gradient per pixel) must be >= 0",
+                )?;
             }
         }
         FaceSlope::Angle(a) => {
@@ -568,6 +559,21 @@ fn check(edges: &Edges, frustum: &Frustum) -> Result<()> {
     Ok(())
 }
 
+/// `x` (the input `name`) finite and `>= 0`, else the error with `not_finite` or `negative` as
+/// its detail and the value attached.
+fn non_negative(
+    name: &'static str,
+    x: f64,
+    not_finite: &'static str,
+    negative: &'static str,
+) -> Result<()> {
+    finite(x, not_finite).map_err(|e| e.with_value(name, x))?;
+    if x < 0.0 {
+        return Err(domain(negative).with_value(name, x));
+    }
+    Ok(())
+}
+
 /// The eye slope `s` of the scene whose bounds cover every face of window gradient up to `g`,
 /// and `g` itself (module docs, "The shared terms").
 fn slopes(edges: &Edges, frustum: &Frustum) -> Result<(f64, f64)> {
@@ -604,11 +610,8 @@ const LARGEST_KNOWN_RESOLVABLE: f64 = 4.0;
 /// `glPolygonOffset`'s slope term over `max(|gₓ|, |g_y|)` at its largest: the measured rule
 /// (1 for GL's max), else `√2` (a root sum of squares, which Vulkan allows).
 fn offset_slope(p: &RasterizerProfile) -> f64 {
-    if p.measured && p.offset_slope.is_finite() && p.offset_slope > 0.0 {
-        p.offset_slope.max(1.0)
-    } else {
-        std::f64::consts::SQRT_2
-    }
+    crate::model::measured::measured_figure(p, p.offset_slope)
+        .map_or(std::f64::consts::SQRT_2, |rule| rule.max(1.0))
 }
 
 fn unchecked_gap(

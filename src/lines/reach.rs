@@ -4,7 +4,15 @@
 //! outline reaches onto a face.
 
 use super::{Edges, FaceSlope, LineKind};
+use crate::model::measured::measured_figure;
 use crate::recommend::RasterizerProfile;
+
+/// Half of a line's width beyond the width the probe measures wide lines at
+/// ([`crate::profile::WIDE_LINE_WIDTH`]), pixels; 0 for narrower lines, which reach no further
+/// than 3-pixel ones.
+fn beyond_wide(w: f64) -> f64 {
+    (w - f64::from(crate::profile::WIDE_LINE_WIDTH)).max(0.0) / 2.0
+}
 
 /// What the model adds to the probe's measured line reach, pixels: the probe's figure is the
 /// largest over its 96 lines (0.5006 for `GL_LINES` on llvmpipe), and a sweep scene drew a
@@ -34,7 +42,7 @@ pub(super) fn line_reach(edges: &Edges) -> f64 {
     let w = edges.line_width;
     let worst = (w + 1.0) / 2.0;
     let p = &edges.profile;
-    let measured = |x: f64| p.measured && x.is_finite() && x > 0.0;
+    let measured = |x: f64| measured_figure(p, x);
     if edges.samples > 1 {
         // A sample up to w/2 across the line from the point whose depth it takes, half a pixel
         // of freedom beyond, in any direction: the face's gradient there is up to √2·M. A
@@ -42,15 +50,12 @@ pub(super) fn line_reach(edges: &Edges) -> f64 {
         let kind = edges.kind.index();
         let root2 = std::f64::consts::SQRT_2;
         let across = root2 * worst;
-        let reach = p.line_reach_msaa[kind];
-        return if measured(reach) {
+        return measured(p.line_reach_msaa[kind]).map_or(across, |reach| {
             (reach + LINE_REACH_MARGIN + root2 * (w - 1.0) / 2.0).min(across)
-        } else {
-            across
-        };
+        });
     }
     match edges.kind {
-        LineKind::Lines if measured(p.line_reach[0]) => {
+        LineKind::Lines if measured(p.line_reach[0]).is_some() => {
             (p.line_reach[0] + LINE_REACH_MARGIN + (w - 1.0) / 2.0).min(worst)
         }
         // Wide outlines take the quad shift of a wide-line stage ([`WIDE_OUTLINE_SHIFT`]), or
@@ -58,17 +63,16 @@ pub(super) fn line_reach(edges: &Edges) -> f64 {
         // reach no further than 3-pixel ones).
         LineKind::PolygonMode if w > 1.0 => {
             let wide = worst + WIDE_OUTLINE_SHIFT;
-            if measured(p.line_reach_wide[1]) {
-                let beyond = (w - f64::from(crate::profile::WIDE_LINE_WIDTH)).max(0.0) / 2.0;
-                (p.line_reach_wide[1] + LINE_REACH_MARGIN + beyond).min(wide)
-            } else {
-                wide
-            }
+            measured(p.line_reach_wide[1]).map_or(wide, |reach| {
+                (reach + LINE_REACH_MARGIN + beyond_wide(w)).min(wide)
+            })
         }
         // A 1-pixel outline takes its depth up to its own measured reach from the pixel, or,
         // where the rasterizer evaluates its triangle's plane beyond the side, up to the
         // measured distance there (module docs, "Polygon-mode lines"): the larger.
-        LineKind::PolygonMode if measured(p.line_reach[1]) && p.outline_neighbour.is_finite() => {
+        LineKind::PolygonMode
+            if measured(p.line_reach[1]).is_some() && p.outline_neighbour.is_finite() =>
+        {
             (p.line_reach[1].max(p.outline_neighbour) + LINE_REACH_MARGIN).min(worst)
         }
         LineKind::Lines | LineKind::PolygonMode => worst,
@@ -90,17 +94,9 @@ pub(super) fn msaa_across(edges: &Edges) -> f64 {
     let (figure, beyond) = if w == 1.0 {
         (p.line_reach_msaa_whole[kind], 0.0)
     } else {
-        let wide = f64::from(crate::profile::WIDE_LINE_WIDTH);
-        (
-            p.line_reach_msaa_wide_whole[kind],
-            (w - wide).max(0.0) / 2.0,
-        )
+        (p.line_reach_msaa_wide_whole[kind], beyond_wide(w))
     };
-    if p.measured && figure.is_finite() && figure > 0.0 {
-        worst.min(figure + LINE_REACH_MARGIN + beyond)
-    } else {
-        worst
-    }
+    measured_figure(p, figure).map_or(worst, |reach| worst.min(reach + LINE_REACH_MARGIN + beyond))
 }
 
 /// The part of the line term one reach makes against the face-slope limit `g` (the face's own
