@@ -15,7 +15,8 @@
 //! (`shadow_bias`) and with every face listed (`shadow_bias_for_receivers`), with the worst-case
 //! and the probed profile; a refusal must be a scene where no constant lookup bias below 1 is
 //! acne-free. `ZSHIFT_SHADOW_SCENES=full` draws every combination; `ZSHIFT_SHADOW_ONLY=<a>&<b>`
-//! only the asks whose label contains every part.
+//! only the asks whose label contains every part; `ZSHIFT_SHADOW_SHARD=<i>/<n>` every `n`-th
+//! case from the `i`-th, so that `n` processes share the full grid (`scripts/gpu-checks`).
 
 use super::*;
 
@@ -619,6 +620,8 @@ fn spheres_and_terrain_receive_without_acne() {
     let full = std::env::var("ZSHIFT_SHADOW_SCENES").is_ok_and(|v| v == "full");
     // `ZSHIFT_SHADOW_ONLY=<a>&<b>…`: only the asks whose label contains every part.
     let only = std::env::var("ZSHIFT_SHADOW_ONLY").unwrap_or_default();
+    // `ZSHIFT_SHADOW_SHARD=<i>/<n>`: every n-th case from the i-th (the full grid in n processes).
+    let (shard, shards) = gl_common::shard("ZSHIFT_SHADOW_SHARD");
     let (eye, camera) = camera();
     let mut failures = Vec::new();
     let (mut asked, mut answered, mut refused, mut judged_pixels) = (0, 0, 0, 0usize);
@@ -630,7 +633,8 @@ fn spheres_and_terrain_receive_without_acne() {
             unsafe { upload(gl.glow(), &world.vertices()) }.unwrap_or_else(|e| panic!("{e}"));
         let meshes = [(buffer, 3 * world.tris.len() as i32)];
         let points = world.points();
-        for case in receiver_cases(full) {
+        let cases = receiver_cases(full).into_iter().enumerate();
+        for (_, case) in cases.filter(|(index, _)| index % shards == shard) {
             let label = format!("{} {}", world.name, case.label());
             if !only.split('&').all(|part| label.contains(part)) {
                 continue;
