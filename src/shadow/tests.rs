@@ -453,7 +453,7 @@ fn the_lookup_term_covers_an_f32_lookup() {
             let listed = shadow_bias_for_receivers(&map, &[&ccw]).unwrap();
             let proj = crate::projection::projection_f64(&frustum, clip).unwrap();
             let proj32 = proj.map(|v| v as f32);
-            let mut worst = 0.0f64;
+            let (mut worst, mut signed) = (0.0f64, [0.0f64; 2]);
             for _ in 0..4000 {
                 let p = [12.0 * next() - 6.0, 0.0, 12.0 * next() - 6.0].map(|c| c as f32);
                 for fused in [false, true] {
@@ -472,7 +472,9 @@ fn the_lookup_term_covers_an_f32_lookup() {
                     } else {
                         exact
                     };
-                    let err = (f64::from(z) - exact).abs();
+                    let signed_err = f64::from(z) - exact;
+                    signed = [signed[0].min(signed_err), signed[1].max(signed_err)];
+                    let err = signed_err.abs();
                     assert!(
                         err <= listed.terms.lookup,
                         "f/n {ratio} {clip:?}: {err:e} beyond the lookup term {:e} at {p:?}",
@@ -482,8 +484,10 @@ fn the_lookup_term_covers_an_f32_lookup() {
                 }
             }
             println!(
-                "f/n {ratio:e} {clip:?}: lookup worst {:.2} quanta of 2⁻²⁴, term {:.2}",
+                "f/n {ratio:e} {clip:?}: lookup worst {:.2} quanta of 2⁻²⁴ ({:+.2} to {:+.2}), term {:.2}",
                 worst * 2f64.powi(24),
+                signed[0] * 2f64.powi(24),
+                signed[1] * 2f64.powi(24),
                 listed.terms.lookup * 2f64.powi(24)
             );
         }
