@@ -790,7 +790,8 @@ typedef struct {
    */
   double depth_far;
   /*
-   glLineWidth in pixels, 1 to 64.
+   glLineWidth in pixels, 1 to 64. A width between integers is taken as GL may draw it,
+   rounded to the nearest integer (halves up) where that is wider: 2.5 as 3.
    */
   double line_width;
   /*

@@ -14,7 +14,8 @@
 //! `ZSHIFT_LINES_FULL=1` draws the whole grid (`ZSHIFT_LINES_SHARD=<i>/<n>` one `n`th of its
 //! cells, for processes side by side); `ZSHIFT_LINES_SEED=<n>` another draw
 //! ([`Variation`]); `ZSHIFT_LINES_VARIANT=<text>` only the variants whose name contains it
-//! (`MSAA`, `w3`, `polymode`); `ZSHIFT_LINES_ONLY=<text>` only the scenes whose label contains it,
+//! (`MSAA`, `w3`, `polymode`); `ZSHIFT_LINES_WIDE=<w>` the wide variants `w` pixels wide instead
+//! of 3 (`w2`, `w5` in their names); `ZSHIFT_LINES_ONLY=<text>` only the scenes whose label contains it,
 //! and with `ZSHIFT_LINES_VERBOSE=1` each scene's zshift ÷ smallest working offset, and each lost
 //! pixel of a failing scene and the offsets that keep it.
 //!
@@ -353,6 +354,13 @@ fn edges_over_faces_sweep() {
     let mut draw = Variation::from_env();
     // `ZSHIFT_LINES_VARIANT=<text>`: only the variants whose name contains it ("MSAA", "w3").
     let only = std::env::var("ZSHIFT_LINES_VARIANT").ok();
+    // `ZSHIFT_LINES_WIDE=<w>`: the wide variants drawn `w` pixels wide instead of 3.
+    let wide = std::env::var("ZSHIFT_LINES_WIDE").ok().map(|w| {
+        w.parse::<f32>()
+            .ok()
+            .filter(|w| *w > 1.0)
+            .unwrap_or_else(|| panic!("ZSHIFT_LINES_WIDE={w}: expected a width above 1, e.g. 2"))
+    });
     // `ZSHIFT_LINES_ONLY=<text>`: only the scenes whose label contains it (for looking at one).
     let only_scene = std::env::var("ZSHIFT_LINES_ONLY").ok();
     // `ZSHIFT_LINES_VERBOSE=1`: each scene's ratio, and each lost pixel of a failing scene.
@@ -415,6 +423,10 @@ fn edges_over_faces_sweep() {
                         }
                         let variants: Vec<Variant> = VARIANTS
                             .into_iter()
+                            .map(|v| match wide {
+                                Some(width) if v.width > 1.0 => Variant { width, ..v },
+                                _ => v,
+                            })
                             .filter(|v| only.as_ref().is_none_or(|o| v.name().contains(o.as_str())))
                             .filter(|v| {
                                 let turn = idx + 5 * (fi * 3 + ci);

@@ -38,7 +38,8 @@ pub struct ZshiftEdges {
     pub depth_near: f64,
     /// The mesh's farthest eye depth (-z), >= depth_near.
     pub depth_far: f64,
-    /// glLineWidth in pixels, 1 to 64.
+    /// glLineWidth in pixels, 1 to 64. A width between integers is taken as GL may draw it,
+    /// rounded to the nearest integer (halves up) where that is wider: 2.5 as 3.
     pub line_width: f64,
     /// 0: GL_LINES; 1: the faces drawn again in glPolygonMode(GL_LINE).
     pub polygon_mode: u32,

@@ -233,7 +233,9 @@ pub struct Edges {
     /// The edge pass's depth test (`GL_LEQUAL` is usual: a tie keeps the edge; reversed Z:
     /// `GL_GEQUAL`/`GL_GREATER`).
     pub depth_test: DepthTest,
-    /// Line width in pixels (`glLineWidth`), `1 ≤ w ≤ 64`; polygon-mode lines take it too.
+    /// Line width in pixels (`glLineWidth`), `1 ≤ w ≤ 64`; polygon-mode lines take it too. A
+    /// width between integers is taken as GL may draw it, rounded to the nearest integer
+    /// (halves up) where that is wider: 2.5 as 3, 2.4 as 2.4.
     pub line_width: f64,
     /// `GL_LINES` or polygon-mode lines.
     pub kind: LineKind,
@@ -661,7 +663,7 @@ fn unchecked_gap(
             edges,
             g,
             neighbour_reach(edges),
-            (edges.line_width + 1.0) / 2.0,
+            (reach::drawn_width(edges.line_width) + 1.0) / 2.0,
         ),
         "the line term overflows f64",
     )?;

@@ -517,3 +517,35 @@ fn a_mesh_pays_for_its_own_faces_within_the_limit() {
     let err = recommend_for_mesh(&m, clip, &e, EdgeMethod::Matrix, &mesh).unwrap_err();
     assert_eq!(err.kind(), ErrorKind::Domain);
 }
+
+/// A width between integers is taken as GL may draw it (OpenGL's aliased lines round their
+/// width to the nearest integer): the worst-case line reach at `w` is `(W + 1)/2` with
+/// `W = max(w, ⌊w + ½⌋)` — 2.5 as 3, 2.4 as 2.4, 3.5 as 4 — for `GL_LINES` and polygon-mode
+/// lines, single-sampled and multisampled alike.
+#[test]
+fn a_width_between_integers_is_taken_as_drawn() {
+    let clip = ClipDepth::NegOneToOne;
+    let m = matrix(1.0, 1000.0, clip);
+    for (w, drawn) in [(2.5, 3.0), (2.4, 2.4), (3.5, 4.0), (1.2, 1.2), (1.5, 2.0)] {
+        for (kind, extra) in [
+            (LineKind::Lines, 0.0),
+            (LineKind::PolygonMode, WIDE_OUTLINE_SHIFT),
+        ] {
+            let mut e = edges(DepthFormat::Unorm24, [10.0, 20.0], clip);
+            e.kind = kind;
+            e.line_width = w;
+            let r = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            // Polygon-mode outlines wider than 1 pixel add the wide-line quad's shift.
+            let shift = if drawn > 1.0 { extra } else { 0.0 };
+            assert_eq!(r.line_reach, (drawn + 1.0) / 2.0 + shift, "{kind:?} at {w}");
+            e.samples = 4;
+            let msaa = recommend(&m, clip, &e, EdgeMethod::Matrix).unwrap();
+            let root2 = std::f64::consts::SQRT_2;
+            assert!(
+                (msaa.line_reach - root2 * (drawn + 1.0) / 2.0).abs() < 1e-12,
+                "{kind:?} at {w} under MSAA: {}",
+                msaa.line_reach
+            );
+        }
+    }
+}

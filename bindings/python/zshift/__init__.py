@@ -1112,7 +1112,8 @@ def edge_offset(m, clip, viewport, depth_format, depth_range, method, line_width
     """The offset that keeps a mesh's edges in front of its own faces (``zshift_edge_offset``):
     ``m`` the engine's perspective projection (16 floats, column-major) under ``clip``, the mesh
     over eye depths ``depth_range`` (nearest, farthest), ``method`` an :class:`EdgeMethod`, edges as
-    GL_LINES of ``line_width`` pixels (or ``polygon_mode`` lines) with ``samples`` MSAA samples per
+    GL_LINES of ``line_width`` pixels (or ``polygon_mode`` lines; a width between integers is taken as GL may
+    draw it, rounded to the nearest integer, halves up, where wider: 2.5 as 3) with ``samples`` MSAA samples per
     pixel (above 1 the line reach is sqrt(2)*(w + 1)/2, or a probed profile's line_reach_msaa plus 1/16 where smaller;
     against a ``face_angle`` the line term takes at most (w + 1)/2 of the face's whole gradient), the steepest face that
     matters as ``face_angle`` (radians from the view axis: faces whose window gradient has a length up to the returned
