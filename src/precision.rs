@@ -136,6 +136,10 @@ pub enum DepthFormat {
 const GL_DEPTH24_STENCIL8: u32 = 0x88F0;
 /// `GL_DEPTH32F_STENCIL8`: f32 depth packed with 8 stencil bits.
 const GL_DEPTH32F_STENCIL8: u32 = 0x8CAD;
+/// `GL_DEPTH_COMPONENT`: unsized depth, the bits the driver's choice.
+const GL_DEPTH_COMPONENT: u32 = 0x1902;
+/// `GL_DEPTH_STENCIL`: unsized packed depth and stencil.
+const GL_DEPTH_STENCIL: u32 = 0x84F9;
 
 impl DepthFormat {
     /// Bits per depth value.
@@ -165,11 +169,18 @@ impl DepthFormat {
     /// the stencil bits change nothing of it.
     ///
     /// # Errors
-    /// [`ErrorKind::Domain`] for any other value.
+    /// [`ErrorKind::Domain`] for any other value; for the unsized `GL_DEPTH_COMPONENT` (0x1902)
+    /// and `GL_DEPTH_STENCIL` (0x84F9) the message says how to read the size the driver chose.
     pub fn from_gl_internal_format(internal_format: u32) -> Result<Self> {
         match internal_format {
             GL_DEPTH24_STENCIL8 => return Ok(Self::Unorm24),
             GL_DEPTH32F_STENCIL8 => return Ok(Self::Float32),
+            // Unsized: the driver chose the bits, as it does for a window's default framebuffer.
+            GL_DEPTH_COMPONENT | GL_DEPTH_STENCIL => {
+                return Err(domain(
+                    "the depth format is unsized (GL_DEPTH_COMPONENT or GL_DEPTH_STENCIL): the driver chose its size; read it with glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, attachment, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, ..) (16, 24 or 32; GL_FRAMEBUFFER_ATTACHMENT_COMPONENT_TYPE is GL_FLOAT for 32F; attachment GL_DEPTH for a window's default framebuffer) and pass the sized format",
+                ))
+            }
             _ => {}
         }
         [Self::Unorm16, Self::Unorm24, Self::Unorm32, Self::Float32]

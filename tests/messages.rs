@@ -85,8 +85,16 @@ fn the_front_door_names_the_field_its_value_and_the_bound() {
     };
     refused(&with(&|d| d.viewport_width = 0), &["viewport_width = 0"]);
     refused(
+        &with(&|d| d.format.value = 0x1234),
+        &["format = 0x1234", "GL_DEPTH24_STENCIL8"],
+    );
+    refused(
         &with(&|d| d.format.value = 0x1902),
-        &["format = 0x1902", "GL_DEPTH24_STENCIL8"],
+        &[
+            "format = 0x1902",
+            "unsized",
+            "GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE",
+        ],
     );
     refused(
         &with(&|d| d.subpixel_bits = 40),

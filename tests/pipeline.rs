@@ -77,8 +77,18 @@ fn packed_depth_stencil_formats_store_depth_as_the_depth_only_ones() {
         DepthFormat::from_gl_internal_format(0x8CAD).unwrap(),
         DepthFormat::Float32
     );
-    let e = DepthFormat::from_gl_internal_format(0x1902).unwrap_err();
+    let e = DepthFormat::from_gl_internal_format(0x1234).unwrap_err();
     assert!(e.to_string().contains("GL_DEPTH24_STENCIL8"), "{e}");
+    // Unsized (GL_DEPTH_COMPONENT, GL_DEPTH_STENCIL): the message says how to read the size.
+    for unsized_format in [0x1902, 0x84F9] {
+        let e = DepthFormat::from_gl_internal_format(unsized_format).unwrap_err();
+        assert_eq!(e.kind(), zshift::ErrorKind::Domain);
+        assert!(
+            e.to_string()
+                .contains("GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE"),
+            "{e}"
+        );
+    }
 }
 
 #[test]
