@@ -851,8 +851,10 @@ pub fn classify(
     let n = SIZE as usize;
     let near_vertex = |x: usize, y: usize| p.near_vertex[y * n + x];
     let offsets = scene.offsets();
-    // How far (pixels) a line of the variant's width draws from its edge.
+    // How far (pixels) a line of the variant's width draws from its edge: GL may round a width
+    // between integers up (2.5 drawn 3 wide), so the larger.
     let w = f64::from(scene.variant.width);
+    let w = w.max((w + 0.5).floor());
     let reach = w / 2.0 + 1.0;
     let k = reach.ceil() as usize - 1;
     let (mut visible, mut hidden, mut ties) = (Vec::new(), Vec::new(), 0);
