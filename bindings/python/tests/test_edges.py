@@ -48,6 +48,13 @@ class Edges(unittest.TestCase):
         self.assertEqual(r.d3d_bias[0], math.ceil(r.d3d_bias[0]))
         self.assertEqual(r.vulkan_bias[1], 2.125)
 
+    def test_a_width_between_integers_is_taken_as_drawn(self):
+        # GL rounds an aliased line's width to the nearest integer: 2.5 may be drawn 3 wide, so its
+        # worst-case reach is (3 + 1)/2; 2.4 is drawn at most 2.4 wide, (2.4 + 1)/2.
+        self.assertEqual(self.offset(zshift.EdgeMethod.MATRIX, line_width=2.5).line_reach, 2.0)
+        self.assertAlmostEqual(self.offset(zshift.EdgeMethod.MATRIX, line_width=2.4).line_reach, 1.7,
+                               delta=1e-12)
+
     def test_refusal_and_planes(self):
         m = perspective(0.01, 100.0)
         kw = dict(face_gradient=1e-9, subpixel_bits=zshift.SUBPIXEL_UNSNAPPED)
