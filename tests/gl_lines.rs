@@ -52,6 +52,9 @@ mod gl_common;
 // framebuffer, glDepthRange): a test of its own.
 #[path = "gl_lines/engine.rs"]
 mod engine;
+// How wide GL draws a line between integer widths, against the width the model takes.
+#[path = "gl_lines/width.rs"]
+mod width;
 
 use zshift::lines::{
     recommend, recommend_for_mesh, EdgeMethod, Edges, FaceSlope, LineKind, MeshDraw,
