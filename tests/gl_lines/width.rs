@@ -2,7 +2,7 @@
 //! (`max(w, ⌊w + ½⌋)`: GL rounds an aliased line's width to the nearest integer, OpenGL 4.6
 //! compatibility profile, 14.5.2.1).
 
-use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope};
+use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
 use zshift::precision::DepthFormat as Format;
 use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::RasterizerProfile;
@@ -14,7 +14,8 @@ layout(location = 0) in vec3 p;
 void main() { gl_Position = vec4(p, 1.0); }
 ";
 
-/// A horizontal `GL_LINES` segment at widths between integers and at four sub-pixel heights,
+/// A horizontal `GL_LINES` segment, and a triangle's side in polygon mode, at widths between
+/// integers and at four sub-pixel heights,
 /// the rows it covers counted in one column of a 64² target: never more than the width the
 /// model takes (computed here from GL's rule, not read from the library), and the library's
 /// worst-case line reach is at least `(rows + 1)/2` (half the drawn width and half a pixel of
@@ -30,13 +31,18 @@ fn a_line_is_drawn_no_wider_than_the_model_takes_it() {
     let (program, vao, vbo) =
         unsafe { flat_colour_pipeline(gl.glow(), VERTEX_SHADER) }.unwrap_or_else(|e| panic!("{e}"));
     let mut failures = Vec::new();
-    for w in [1.0f32, 1.5, 2.0, 2.4, 2.5, 2.6, 3.0, 3.5, 4.5] {
+    for (w, outline) in [1.0f32, 1.5, 2.0, 2.4, 2.5, 2.6, 3.0, 3.5, 4.5]
+        .into_iter()
+        .flat_map(|w| [(w, false), (w, true)])
+    {
         let taken = f64::from(w).max((f64::from(w) + 0.5).floor());
         let mut drawn = Vec::new();
         for y in [20.0f32, 20.25, 20.5, 20.75] {
             gl.clear([0.0; 4], 1.0).unwrap_or_else(|e| panic!("{e}"));
             let ndc = y / 32.0 - 1.0;
-            let ends: Vec<u8> = [-0.9f32, ndc, 0.0, 0.9, ndc, 0.0]
+            // GL_LINES: the segment; polygon mode: a triangle whose lowest side is that segment
+            // (its other sides meet the column far above it).
+            let ends: Vec<u8> = [-0.9f32, ndc, 0.0, 0.9, ndc, 0.0, 0.0, 0.9, 0.0]
                 .iter()
                 .flat_map(|v| v.to_ne_bytes())
                 .collect();
@@ -52,12 +58,19 @@ fn a_line_is_drawn_no_wider_than_the_model_takes_it() {
                 g.bind_buffer(glow::ARRAY_BUFFER, Some(vbo));
                 g.buffer_data_u8_slice(glow::ARRAY_BUFFER, &ends, glow::STREAM_DRAW);
                 g.line_width(w);
-                g.draw_arrays(glow::LINES, 0, 2);
+                if outline {
+                    g.polygon_mode(glow::FRONT_AND_BACK, glow::LINE);
+                    g.draw_arrays(glow::TRIANGLES, 0, 3);
+                    g.polygon_mode(glow::FRONT_AND_BACK, glow::FILL);
+                } else {
+                    g.draw_arrays(glow::LINES, 0, 2);
+                }
                 g.line_width(1.0);
             }
             gl.check("a wide line").unwrap_or_else(|e| panic!("{e}"));
             let image = gl.read_color().unwrap_or_else(|e| panic!("{e}"));
-            let rows = (0..64).filter(|&r| image.at(32, r)[0] > 0).count();
+            // Rows of the lowest side only: the triangle's others cross the column near y 60.
+            let rows = (0..48).filter(|&r| image.at(32, r)[0] > 0).count();
             if rows as f64 > taken {
                 failures.push(format!(
                     "glLineWidth({w}) at y {y}: {rows} rows, the model takes {taken}"
@@ -67,6 +80,9 @@ fn a_line_is_drawn_no_wider_than_the_model_takes_it() {
         }
         let mut edges = Edges::new([64, 64], Format::Unorm24, [10.0, 20.0]);
         edges.line_width = f64::from(w);
+        if outline {
+            edges.kind = LineKind::PolygonMode;
+        }
         edges.face_slope = FaceSlope::WindowGradient(1e-4);
         edges.profile = RasterizerProfile::worst_case();
         let clip = ClipDepth::NegOneToOne;
@@ -84,7 +100,10 @@ fn a_line_is_drawn_no_wider_than_the_model_takes_it() {
                 "glLineWidth({w}): {widest} rows drawn, line reach {reach}"
             ));
         }
-        println!("glLineWidth({w}): rows {drawn:?}, the model takes {taken}, line reach {reach}");
+        let kind = if outline { "polygon mode" } else { "GL_LINES" };
+        println!(
+            "glLineWidth({w}) {kind}: rows {drawn:?}, the model takes {taken}, line reach {reach}"
+        );
         assert!(
             drawn.iter().all(|&r| r > 0),
             "glLineWidth({w}) drew nothing"
