@@ -87,3 +87,20 @@ pub(crate) fn test_uniform(seed: u64) -> impl FnMut() -> f64 {
         (state >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// GLSL's `m * v` in f32 for the unit tests that emulate a shader: the columns summed left to
+/// right, each product rounded, or fused into the sum (as a GPU may).
+#[cfg(test)]
+pub(crate) fn test_mat_vec_f32(m: &[f32; 16], v: [f32; 4], fused: bool) -> [f32; 4] {
+    [0, 1, 2, 3].map(|r| {
+        let mut acc = m[r] * v[0];
+        for j in 1..4 {
+            acc = if fused {
+                m[4 * j + r].mul_add(v[j], acc)
+            } else {
+                acc + m[4 * j + r] * v[j]
+            };
+        }
+        acc
+    })
+}

@@ -249,13 +249,13 @@ mod tests {
             for _ in 0..100 {
                 let p = [0, 1, 2].map(|k| lo[k] + (hi[k] - lo[k]) * next());
                 let p32 = p.map(|c| c as f32);
+                let v = [p32[0], p32[1], p32[2], 1.0];
+                let plain = crate::test_mat_vec_f32(&view32, v, false);
+                let fused = crate::test_mat_vec_f32(&view32, v, true);
                 for k in 0..3 {
                     let exact: f64 =
                         (0..3).map(|j| view[4 * j + k] * p[j]).sum::<f64>() + view[12 + k];
-                    let m = |j: usize| view32[4 * j + k];
-                    let plain = ((m(0) * p32[0] + m(1) * p32[1]) + m(2) * p32[2]) + m(3);
-                    let fused = m(2).mul_add(p32[2], m(1).mul_add(p32[1], m(0) * p32[0])) + m(3);
-                    for got in [plain, fused] {
+                    for got in [plain[k], fused[k]] {
                         let ulps = (f64::from(got) - exact).abs() / (U * a[k]);
                         assert!(
                             ulps <= EYE_FIRST_ROUNDINGS,

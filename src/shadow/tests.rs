@@ -427,11 +427,7 @@ fn the_lookup_term_covers_an_f32_lookup() {
         .map(|p| glam::Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32))
         .collect();
     let view32 = view.map(|v| v as f32);
-    let mut k = 0.0f64;
-    let mut next = move || {
-        k += 1.0;
-        (k * 0.618_033_988_749_894_9 + 0.5 * (k * 0.414_213_562_373_095).fract()).fract()
-    };
+    let mut next = crate::test_uniform(20);
     for ratio in [10.0, 1e3, 1e5] {
         let f = zmax * 1.02;
         let n = f / ratio;
@@ -457,8 +453,8 @@ fn the_lookup_term_covers_an_f32_lookup() {
             for _ in 0..4000 {
                 let p = [12.0 * next() - 6.0, 0.0, 12.0 * next() - 6.0].map(|c| c as f32);
                 for fused in [false, true] {
-                    let ev = mat_vec_f32(&view32, [p[0], p[1], p[2], 1.0], fused);
-                    let c = mat_vec_f32(&proj32, ev, fused);
+                    let ev = crate::test_mat_vec_f32(&view32, [p[0], p[1], p[2], 1.0], fused);
+                    let c = crate::test_mat_vec_f32(&proj32, ev, fused);
                     let ndc = [c[0] / c[3], c[1] / c[3], c[2] / c[3]];
                     let z = if clip == ClipDepth::NegOneToOne {
                         ndc[2] * 0.5 + 0.5
@@ -520,22 +516,6 @@ fn look_at_origin(eye: [f64; 3]) -> [f64; 16] {
     }
     m[15] = 1.0;
     m
-}
-
-/// GLSL's `m * v` in f32: the columns summed left to right, each product rounded (or fused
-/// into the sum, as a GPU may).
-fn mat_vec_f32(m: &[f32; 16], v: [f32; 4], fused: bool) -> [f32; 4] {
-    [0, 1, 2, 3].map(|r| {
-        let mut acc = m[r] * v[0];
-        for j in 1..4 {
-            acc = if fused {
-                m[4 * j + r].mul_add(v[j], acc)
-            } else {
-                acc + m[4 * j + r] * v[j]
-            };
-        }
-        acc
-    })
 }
 
 /// NDC depth of the world plane `y = 0` on the ray through NDC `(x, y)` of the exact (f64)
