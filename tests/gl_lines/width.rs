@@ -6,6 +6,7 @@ use zshift::lines::{recommend, EdgeMethod, Edges, FaceSlope, LineKind};
 use zshift::precision::DepthFormat as Format;
 use zshift::projection::{projection, ClipDepth, Frustum};
 use zshift::recommend::RasterizerProfile;
+use zshift_harness::edges::drawn_width;
 use zshift_harness::{flat_colour_pipeline, DepthFormat, Gl, Profile};
 
 /// Passes clip coordinates through: the line's ends are given in NDC.
@@ -17,7 +18,8 @@ void main() { gl_Position = vec4(p, 1.0); }
 /// A horizontal `GL_LINES` segment, and a triangle's side in polygon mode, at widths between
 /// integers and at four sub-pixel heights,
 /// the rows it covers counted in one column of a 64² target: never more than the width the
-/// model takes (computed here from GL's rule, not read from the library), and the library's
+/// model takes (GL's rule as the harness states it, [`drawn_width`], not read from the
+/// library), and the library's
 /// worst-case line reach is at least `(rows + 1)/2` (half the drawn width and half a pixel of
 /// freedom). Printed: the rows per width (llvmpipe: 1.5, 2.5 and 3.5 draw 2, 3 and 4 rows, 2.4
 /// two).
@@ -35,7 +37,7 @@ fn a_line_is_drawn_no_wider_than_the_model_takes_it() {
         .into_iter()
         .flat_map(|w| [(w, false), (w, true)])
     {
-        let taken = f64::from(w).max((f64::from(w) + 0.5).floor());
+        let taken = drawn_width(w);
         let mut drawn = Vec::new();
         for y in [20.0f32, 20.25, 20.5, 20.75] {
             gl.clear([0.0; 4], 1.0).unwrap_or_else(|e| panic!("{e}"));

@@ -399,6 +399,15 @@ pub struct Variant {
     pub samples: u32,
 }
 
+/// The widest a GL rasterizer draws a line asked `width` pixels wide: GL rounds an aliased
+/// line's width to the nearest integer (OpenGL 4.6 compatibility profile, 14.5.2.1) and a
+/// width halfway may go up (2.5 drawn 3 wide), so the larger of `width` and `⌊width + ½⌋`.
+/// The harness's own statement of GL's rule, not read from the library.
+pub fn drawn_width(width: f32) -> f64 {
+    let w = f64::from(width);
+    w.max((w + 0.5).floor())
+}
+
 impl Variant {
     /// The sweep's label: `lines`, `polymode`, then ` w<width>` and ` <n>xMSAA` where not 1.
     pub fn name(self) -> String {
@@ -851,10 +860,8 @@ pub fn classify(
     let n = SIZE as usize;
     let near_vertex = |x: usize, y: usize| p.near_vertex[y * n + x];
     let offsets = scene.offsets();
-    // How far (pixels) a line of the variant's width draws from its edge: GL may round a width
-    // between integers up (2.5 drawn 3 wide), so the larger.
-    let w = f64::from(scene.variant.width);
-    let w = w.max((w + 0.5).floor());
+    // How far (pixels) a line of the variant's width draws from its edge.
+    let w = drawn_width(scene.variant.width);
     let reach = w / 2.0 + 1.0;
     let k = reach.ceil() as usize - 1;
     let (mut visible, mut hidden, mut ties) = (Vec::new(), Vec::new(), 0);
